@@ -1,0 +1,24 @@
+# Owl Kit Lab. `make demo` and `make test` bootstrap themselves; `make setup` only bootstraps.
+SHELL := /bin/bash
+.SHELLFLAGS := -eu -o pipefail -c
+ENV := source ./env.sh &&
+
+.PHONY: setup demo test lint bench clean
+
+setup:
+	@bash scripts/bootstrap.sh
+
+demo: setup
+	@$(ENV) python scripts/demo.py
+
+test: setup
+	@$(ENV) python -m pytest
+
+lint: setup
+	@$(ENV) ruff check .
+
+bench: setup
+	@$(ENV) python bench/service_roundtrip.py
+
+clean:
+	rm -rf build install log .venv .pytest_cache

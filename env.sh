@@ -1,0 +1,62 @@
+# Owl Kit Lab shell environment: `source env.sh` (bash or zsh) from anywhere.
+# Activates the venv with the ROS 2 wheels and the colcon workspace overlay, so the course's
+# commands (colcon build, ros2 run ..., the installed nodes) work in this shell.
+
+if [ -n "${BASH_VERSION:-}" ]; then
+  OWL_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+elif [ -n "${ZSH_VERSION:-}" ]; then
+  # shellcheck disable=SC2296
+  OWL_ROOT="$(cd "$(dirname "${(%):-%x}")" && pwd)"
+else
+  OWL_ROOT="$(pwd)"
+fi
+export OWL_ROOT
+
+if [ ! -x "$OWL_ROOT/.venv/bin/python" ]; then
+  echo "Owl Kit Lab is not set up yet: run 'make setup' in $OWL_ROOT first." >&2
+  return 1 2>/dev/null || exit 1
+fi
+
+# shellcheck disable=SC1091
+. "$OWL_ROOT/.venv/bin/activate"
+
+_owl_prepend() {  # _owl_prepend VAR DIR: put DIR first in the colon list VAR, once
+  eval "_owl_val=\${$1:-}"
+  case ":$_owl_val:" in
+    *":$2:"*) ;;
+    *) eval "export $1=\"$2\${_owl_val:+:\$_owl_val}\"" ;;
+  esac
+  unset _owl_val
+}
+
+# The venv is the underlay, as /opt/ros/<distro> is on a normal install.
+_owl_prepend AMENT_PREFIX_PATH "$VIRTUAL_ENV"
+_owl_prepend CMAKE_PREFIX_PATH "$VIRTUAL_ENV"
+# The wheels' shared libraries. Setting them here (and marking it done) saves every Python
+# process the re-exec that the ros_wheels_bootstrapper .pth hook would otherwise do.
+for _owl_libs in "$VIRTUAL_ENV"/lib/python3.*/site-packages/ros_*.libs; do
+  [ -d "$_owl_libs" ] && _owl_prepend LD_LIBRARY_PATH "$_owl_libs"
+done
+unset _owl_libs
+_owl_prepend LD_LIBRARY_PATH "$VIRTUAL_ENV/lib"
+export _ROS_WHEELS_BOOTSTRAP_COMPLETE=1
+export RMW_IMPLEMENTATION="${RMW_IMPLEMENTATION:-rmw_fastrtps_cpp}"
+export ROS_DISTRO="${ROS_DISTRO:-kilted}"
+export ROS_VERSION=2
+export ROS_PYTHON_VERSION=3
+# Log lines reach terminals and pipes as they happen, not when a buffer fills.
+export RCUTILS_LOGGING_BUFFERED_STREAM="${RCUTILS_LOGGING_BUFFERED_STREAM:-1}"
+unset -f _owl_prepend
+
+# The workspace overlay, once `make setup` (or `colcon build`) has built it.
+if [ -n "${ZSH_VERSION:-}" ] && [ -f "$OWL_ROOT/install/local_setup.zsh" ]; then
+  # shellcheck disable=SC1091
+  . "$OWL_ROOT/install/local_setup.zsh"
+elif [ -f "$OWL_ROOT/install/local_setup.bash" ] && [ -n "${BASH_VERSION:-}" ]; then
+  # shellcheck disable=SC1091
+  . "$OWL_ROOT/install/local_setup.bash"
+elif [ -f "$OWL_ROOT/install/local_setup.sh" ]; then
+  COLCON_CURRENT_PREFIX="$OWL_ROOT/install"
+  # shellcheck disable=SC1091
+  . "$OWL_ROOT/install/local_setup.sh"
+fi

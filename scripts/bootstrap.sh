@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# make setup: venv with the pinned ROS 2 wheels, CMake path repair, colcon build of src/.
+# Idempotent: every step is skipped when its inputs have not changed since it last ran.
+set -euo pipefail
+
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+VENV="$ROOT/.venv"
+LOG_DIR="$ROOT/log/bootstrap"
+START=$SECONDS
+cd "$ROOT"
+
+die() { echo "setup: $*" >&2; exit 1; }
+
+# One log per step; on an unexpected failure show its tail, not the whole wall.
+run_logged() {  # run_logged NAME COMMAND...
+  local log="$LOG_DIR/$1.log"
+  shift
+  if ! "$@" >"$log" 2>&1; then
+    echo "setup: '$*' failed; the last lines of $log:" >&2
+    tail -n 25 "$log" >&2
+    exit 1
+  fi
+}
+
+# --- Prerequisites: each missing one is a single line saying what to install. ---
+[ "$(uname -s)" = Linux ] || die "Owl Kit Lab needs Linux (the ROS 2 wheels are manylinux); this is $(uname -s)."
+[ "$(uname -m)" = x86_64 ] || die "the ROS 2 wheels exist for x86_64 only; this machine is $(uname -m)."
+PYTHON="${PYTHON:-python3}"
+command -v "$PYTHON" >/dev/null || die "no '$PYTHON' found: install Python 3.10-3.13 (e.g. 'sudo apt install python3 python3-venv')."
+PY_VERSION="$("$PYTHON" -c 'import sys; print("%d.%d" % sys.version_info[:2])')"
+case "$PY_VERSION" in
+  3.10|3.11|3.12|3.13) ;;
+  *) die "Python $PY_VERSION found, but the ROS 2 wheels need 3.10-3.13: install one and run 'PYTHON=python3.11 make setup'." ;;
+esac
+"$PYTHON" -c 'import venv, ensurepip' 2>/dev/null \
+  || die "Python $PY_VERSION has no venv module: install it (e.g. 'sudo apt install python$PY_VERSION-venv')."
+command -v cc >/dev/null || command -v gcc >/dev/null \
+  || die "no C compiler found: install one (e.g. 'sudo apt install build-essential')."
+command -v c++ >/dev/null || command -v g++ >/dev/null \
+  || die "no C++ compiler found: install one (e.g. 'sudo apt install g++')."
+command -v cmake >/dev/null || die "no cmake found: install it (e.g. 'sudo apt install cmake')."
+
+mkdir -p "$LOG_DIR"
+
+# --- venv with the exact pins. ---
+if [ -x "$VENV/bin/python" ] && [ "$("$VENV/bin/python" -c 'import sys; print("%d.%d" % sys.version_info[:2])')" != "$PY_VERSION" ]; then
+  echo "setup: the venv was made with another Python; making it anew"
+  rm -rf "$VENV"
+fi
+[ -x "$VENV/bin/python" ] || run_logged venv "$PYTHON" -m venv "$VENV"
+REQ_STAMP="$VENV/.owl-requirements.sha256"
+req_hash="$(sha256sum requirements.txt | cut -d' ' -f1)"
+if [ "$(cat "$REQ_STAMP" 2>/dev/null)" != "$req_hash" ]; then
+  echo "setup: installing the pinned ROS 2 wheels and tools into .venv ..."
+  # The bootstrapper hook re-executes every venv Python; this marker skips that during pip.
+  run_logged pip env _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/python" -m pip install \
+    --disable-pip-version-check --no-input -r requirements.txt
+  run_logged cmake-repair "$VENV/bin/python" scripts/repair_cmake_paths.py
+  # colcon warns about an underlay prefix with no local_setup file; the venv is one.
+  for shell_ext in sh bash zsh; do
+    printf '# The venv is the ROS underlay; env.sh sets its paths.\n' >"$VENV/local_setup.$shell_ext"
+  done
+  echo "$req_hash" >"$REQ_STAMP"
+fi
+
+# --- colcon build of src/, when anything in it changed. ---
+# shellcheck disable=SC1091
+source "$ROOT/env.sh"
+BUILD_STAMP="$ROOT/install/.owl-src.sha256"
+src_hash="$( (find src -type f -not -path '*/__pycache__/*' -printf '%p %T@\n' | sort; cat requirements.txt) | sha256sum | cut -d' ' -f1)"
+if [ "$(cat "$BUILD_STAMP" 2>/dev/null)" != "$src_hash" ]; then
+  echo "setup: building the workspace (colcon build --symlink-install) ..."
+  run_logged colcon colcon build --symlink-install --event-handlers console_direct- \
+    --cmake-args -DBUILD_TESTING=OFF -DPython3_EXECUTABLE="$VENV/bin/python"
+  echo "$src_hash" >"$BUILD_STAMP"
+fi
+
+echo "setup: ready in $((SECONDS - START)) s. Next: 'source env.sh' for the course's commands, 'make demo', 'make test'."

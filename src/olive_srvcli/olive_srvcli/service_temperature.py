@@ -1,0 +1,34 @@
+"""temp_server: convert a Celsius temperature into Kelvin and Fahrenheit (service temp_conversion)."""
+
+from olive_interfaces.srv import TempConv
+from owl_common.run import spin_node
+from rclpy.node import Node
+
+from olive_srvcli.conversions import celsius_to_fahrenheit, celsius_to_kelvin, check_celsius
+
+
+class TempService(Node):
+
+    def __init__(self):
+        super().__init__('temp_service')
+        self.srv = self.create_service(TempConv, 'temp_conversion', self.temp_conversion_callback)
+
+    def temp_conversion_callback(self, request, response):
+        self.get_logger().info(f'Incoming request\nTemperature in Celsius: {request.temp_c}')
+        problem = check_celsius(request.temp_c)
+        if problem:
+            # TempConv has no error field; NaN says "no answer" without inventing one.
+            self.get_logger().warn(f'Refusing request: {problem}')
+            response.temp_k = response.temp_f = float('nan')
+            return response
+        response.temp_k = celsius_to_kelvin(request.temp_c)
+        response.temp_f = celsius_to_fahrenheit(request.temp_c)
+        return response
+
+
+def main(args=None):
+    spin_node(TempService, args)
+
+
+if __name__ == '__main__':
+    main()
