@@ -1,6 +1,6 @@
 # Owl Kit Lab. `make demo` and `make test` bootstrap themselves; `make setup` only bootstraps.
 SHELL := /bin/bash
-.SHELLFLAGS := -eu -o pipefail -c
+.SHELLFLAGS := -e -o pipefail -c
 ENV := source ./env.sh &&
 
 .PHONY: setup demo test lint bench clean

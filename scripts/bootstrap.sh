@@ -64,8 +64,10 @@ if [ "$(cat "$REQ_STAMP" 2>/dev/null)" != "$req_hash" ]; then
 fi
 
 # --- colcon build of src/, when anything in it changed. ---
+set +u  # colcon's setup scripts read unset variables
 # shellcheck disable=SC1091
 source "$ROOT/env.sh"
+set -u
 BUILD_STAMP="$ROOT/install/.owl-src.sha256"
 src_hash="$( (find src -type f -not -path '*/__pycache__/*' -printf '%p %T@\n' | sort; cat requirements.txt) | sha256sum | cut -d' ' -f1)"
 if [ "$(cat "$BUILD_STAMP" 2>/dev/null)" != "$src_hash" ]; then

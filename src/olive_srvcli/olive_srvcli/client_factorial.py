@@ -1,7 +1,8 @@
 """factorial_client N: ask the factorial service for N!."""
 
-from olive_interfaces.srv import Factorial
 from owl_common.client import OneShotClient, UsageError, number_argument, run_client
+
+from olive_interfaces.srv import Factorial
 
 
 class FactorialClient(OneShotClient):

@@ -1,9 +1,8 @@
 """Section 3.5 exercise: publish 1, 2, 3, ... on random_numbers once a second."""
 
+from owl_common.run import spin_node
 from rclpy.node import Node
 from std_msgs.msg import Int32
-
-from owl_common.run import spin_node
 
 
 class CounterPublisher(Node):

@@ -2,13 +2,13 @@
 
 import random
 
+from owl_common.run import spin_node
 from rcl_interfaces.msg import ParameterDescriptor, SetParametersResult
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from std_msgs.msg import Int32
 
 from random_number_ps.limits import check_limits
-from owl_common.run import spin_node
 
 
 class RandomNumberPublisher(Node):

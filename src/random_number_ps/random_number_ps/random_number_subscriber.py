@@ -1,9 +1,8 @@
 """Log every number received on random_numbers."""
 
+from owl_common.run import spin_node
 from rclpy.node import Node
 from std_msgs.msg import Int32
-
-from owl_common.run import spin_node
 
 
 class RandomNumberSubscriber(Node):

@@ -3,10 +3,9 @@
 import random
 
 from geometry_msgs.msg import Twist
+from owl_common.run import spin_node
 from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor
 from rclpy.node import Node
-
-from owl_common.run import spin_node
 
 
 def random_twist(rng: random.Random, max_linear: float, max_angular: float) -> Twist:

@@ -1,0 +1,198 @@
+"""Start ROS executables as child processes, watch their output, stop them cleanly.
+
+Used by the system tests, the demo and the benchmarks, so each of them isolates itself the same
+way: a ROS domain of its own (leased through a lock file, so concurrent runs on one machine never
+share one) and discovery limited to this machine.
+"""
+
+from __future__ import annotations
+
+import fcntl
+import os
+import re
+import signal
+import subprocess
+import threading
+import time
+from collections.abc import Iterable
+from pathlib import Path
+
+# Fast DDS maps domain N to UDP ports 7400 + 250 N and up; up to 101 stays clear of the
+# Linux ephemeral range. 0 is left to the user's own shell.
+DOMAIN_IDS = range(1, 102)
+LEASE_DIR = Path(os.environ.get('OWL_DOMAIN_LEASE_DIR', '/tmp/owl-kit-lab-domains'))
+
+
+class DomainLease:
+    """Exclusive use of one ROS_DOMAIN_ID on this machine until release()."""
+
+    def __init__(self) -> None:
+        LEASE_DIR.mkdir(parents=True, exist_ok=True)
+        start = os.getpid() % len(DOMAIN_IDS)
+        for offset in range(len(DOMAIN_IDS)):
+            domain_id = DOMAIN_IDS[(start + offset) % len(DOMAIN_IDS)]
+            handle = open(LEASE_DIR / f'{domain_id}.lock', 'w')
+            try:
+                fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except BlockingIOError:
+                handle.close()
+                continue
+            self.domain_id = domain_id
+            self._handle = handle
+            return
+        raise RuntimeError(f'all ROS domains {DOMAIN_IDS.start}..{DOMAIN_IDS.stop - 1} are in use')
+
+    def release(self) -> None:
+        if self._handle is not None:
+            self._handle.close()
+            self._handle = None
+
+
+def isolated_env(domain_id: int, base: dict[str, str] | None = None) -> dict[str, str]:
+    """The environment for processes that must only see each other."""
+    env = dict(os.environ if base is None else base)
+    env.update({
+        'ROS_DOMAIN_ID': str(domain_id),
+        'ROS_AUTOMATIC_DISCOVERY_RANGE': 'LOCALHOST',
+        'PYTHONUNBUFFERED': '1',
+        'RCUTILS_LOGGING_BUFFERED_STREAM': '1',
+        'RCUTILS_COLORIZED_OUTPUT': '0',
+    })
+    env.pop('ROS_STATIC_PEERS', None)
+    return env
+
+
+def installed_executable(package: str, executable: str) -> Path:
+    """<prefix>/lib/<package>/<executable> from the first AMENT_PREFIX_PATH entry that has it."""
+    prefixes = [p for p in os.environ.get('AMENT_PREFIX_PATH', '').split(os.pathsep) if p]
+    for prefix in prefixes:
+        candidate = Path(prefix) / 'lib' / package / executable
+        if candidate.is_file() and os.access(candidate, os.X_OK):
+            return candidate
+    raise FileNotFoundError(
+        f"no executable '{executable}' of package '{package}' under AMENT_PREFIX_PATH "
+        '(is the workspace built and env.sh sourced?)')
+
+
+class RosProcess:
+    """A child process in its own process group whose merged output is collected line by line."""
+
+    def __init__(self, argv: list[str], env: dict[str, str], label: str | None = None,
+                 echo: bool = False, cwd: str | None = None) -> None:
+        self.argv = [str(a) for a in argv]
+        self.label = label or Path(self.argv[0]).name
+        self.echo = echo
+        self.lines: list[str] = []
+        self._changed = threading.Condition()
+        self.popen = subprocess.Popen(
+            self.argv, env=env, cwd=cwd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT, text=True, errors='replace', bufsize=1,
+            start_new_session=True)
+        self._reader = threading.Thread(target=self._read, daemon=True)
+        self._reader.start()
+
+    def _read(self) -> None:
+        assert self.popen.stdout is not None
+        for line in self.popen.stdout:
+            line = line.rstrip('\n')
+            if self.echo:
+                print(f'[{self.label}] {line}', flush=True)
+            with self._changed:
+                self.lines.append(line)
+                self._changed.notify_all()
+        with self._changed:
+            self._changed.notify_all()
+
+    @property
+    def pid(self) -> int:
+        return self.popen.pid
+
+    @property
+    def output(self) -> str:
+        with self._changed:
+            return '\n'.join(self.lines)
+
+    def running(self) -> bool:
+        return self.popen.poll() is None
+
+    def wait_for(self, pattern: str, timeout: float = 10.0, count: int = 1) -> list[re.Match]:
+        """Wait until count output lines match the regex pattern; return those matches."""
+        regex = re.compile(pattern)
+        deadline = time.monotonic() + timeout
+        with self._changed:
+            while True:
+                matches = [m for m in map(regex.search, self.lines) if m]
+                if len(matches) >= count:
+                    return matches[:count]
+                remaining = deadline - time.monotonic()
+                if remaining <= 0 or (not self._reader.is_alive() and self.popen.poll() is not None):
+                    raise AssertionError(
+                        f'{self.label}: waited {timeout:.1f} s for {count} line(s) matching '
+                        f'{pattern!r}; exit code {self.popen.poll()}; output:\n{self._tail()}')
+                self._changed.wait(min(remaining, 0.2))
+
+    def _tail(self, lines: int = 40) -> str:
+        return '\n'.join(self.lines[-lines:]) or '(none)'
+
+    def wait(self, timeout: float = 10.0) -> int:
+        """Wait for the process to exit and its output to be read; return its exit code."""
+        code = self.popen.wait(timeout)
+        self._reader.join(timeout)
+        return code
+
+    def send_signal(self, sig: int = signal.SIGINT) -> None:
+        """Signal the whole process group, as a terminal's Ctrl-C does."""
+        if self.running():
+            try:
+                os.killpg(self.popen.pid, sig)
+            except ProcessLookupError:
+                pass
+
+    def stop(self, timeout: float = 5.0) -> int:
+        """SIGINT, then SIGTERM, then SIGKILL, each after timeout; return the exit code."""
+        for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGKILL):
+            self.send_signal(sig)
+            try:
+                return self.wait(timeout)
+            except subprocess.TimeoutExpired:
+                continue
+        return self.wait(timeout)
+
+
+class RosSandbox:
+    """A set of processes sharing one private ROS domain; close() stops them all."""
+
+    def __init__(self, echo: bool = False) -> None:
+        self._lease = DomainLease()
+        self.domain_id = self._lease.domain_id
+        self.env = isolated_env(self.domain_id)
+        self.echo = echo
+        self.processes: list[RosProcess] = []
+
+    def run(self, package: str, executable: str, *args: str, label: str | None = None,
+            env: dict[str, str] | None = None) -> RosProcess:
+        """Start an installed executable of a package, like `ros2 run package executable args`."""
+        path = installed_executable(package, executable)
+        return self.command([str(path), *args], label=label or executable, env=env)
+
+    def command(self, argv: Iterable[str], label: str | None = None,
+                env: dict[str, str] | None = None, cwd: str | None = None) -> RosProcess:
+        """Start any command inside the sandbox's domain."""
+        process_env = dict(self.env)
+        process_env.update(env or {})
+        process = RosProcess(list(argv), process_env, label=label, echo=self.echo, cwd=cwd)
+        self.processes.append(process)
+        return process
+
+    def close(self) -> None:
+        for process in reversed(self.processes):
+            if process.running():
+                process.stop(timeout=3.0)
+        self._lease.release()
+
+    def __enter__(self) -> RosSandbox:
+        return self
+
+    def __exit__(self, *exc_info: object) -> None:
+        self.close()
+

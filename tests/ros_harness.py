@@ -1,0 +1,133 @@
+"""The system tests' view of ROS: processes in a private domain plus an rclpy probe node.
+
+`ros` (the fixture in conftest.py) is a RosHarness: start installed executables with
+ros.run(package, executable, *args), then talk to them over real DDS through ros.probe, an rclpy
+node in the same private domain, spun by a background thread.
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from collections.abc import Callable
+from typing import Any
+
+import rclpy
+from owl_common.processes import RosSandbox
+from rcl_interfaces.msg import Parameter, ParameterType, ParameterValue, SetParametersResult
+from rcl_interfaces.srv import GetParameters, SetParameters
+from rclpy.context import Context
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.node import Node
+from rclpy.qos import QoSProfile
+
+
+class Probe:
+    """An rclpy node of the test itself, in the sandbox's domain."""
+
+    def __init__(self, domain_id: int, name: str = 'owl_test_probe'):
+        self.context = Context()
+        rclpy.init(context=self.context, domain_id=domain_id)
+        self.node = Node(name, context=self.context)
+        self.executor = SingleThreadedExecutor(context=self.context)
+        self.executor.add_node(self.node)
+        self._thread = threading.Thread(target=self._spin, daemon=True)
+        self._thread.start()
+
+    def _spin(self) -> None:
+        try:
+            self.executor.spin()
+        except Exception:  # the context shut down under it: the test is over
+            pass
+
+    def close(self) -> None:
+        self.executor.shutdown(timeout_sec=1.0)
+        self.node.destroy_node()
+        rclpy.try_shutdown(context=self.context)
+        self._thread.join(2.0)
+
+    def wait_for_node(self, name: str, timeout: float = 10.0) -> None:
+        """Wait until a node of that name (no namespace) is in the graph."""
+        wait_until(lambda: name in self.node.get_node_names(), timeout, f'node {name}')
+
+    def collect(self, msg_type: Any, topic: str, qos: QoSProfile | int = 10) -> list[Any]:
+        """Subscribe now; the returned list fills with every message received from then on."""
+        received: list[Any] = []
+        self.node.create_subscription(msg_type, topic, received.append, qos)
+        return received
+
+    def call(self, srv_type: Any, service: str, request: Any, timeout: float = 10.0) -> Any:
+        """Call a service once and return the response (waits for the server first)."""
+        client = self.node.create_client(srv_type, service)
+        try:
+            if not client.wait_for_service(timeout_sec=timeout):
+                raise AssertionError(f'service {service} did not appear within {timeout} s')
+            future = client.call_async(request)
+            wait_until(future.done, timeout, f'response from {service}')
+            return future.result()
+        finally:
+            self.node.destroy_client(client)
+
+    def set_parameters(self, node: str, timeout: float = 10.0, **values: Any) -> list[SetParametersResult]:
+        """Set parameters of another node through its set_parameters service, one result each."""
+        request = SetParameters.Request(
+            parameters=[Parameter(name=k, value=parameter_value(v)) for k, v in values.items()])
+        return list(self.call(SetParameters, f'{node}/set_parameters', request, timeout).results)
+
+    def get_parameters(self, node: str, *names: str, timeout: float = 10.0) -> list[Any]:
+        """Current values of another node's parameters, as Python values."""
+        response = self.call(GetParameters, f'{node}/get_parameters',
+                             GetParameters.Request(names=list(names)), timeout)
+        return [python_value(v) for v in response.values]
+
+
+def parameter_value(value: Any) -> ParameterValue:
+    """A Python value as an rcl_interfaces ParameterValue (bool, int, float, str)."""
+    if isinstance(value, bool):
+        return ParameterValue(type=ParameterType.PARAMETER_BOOL, bool_value=value)
+    if isinstance(value, int):
+        return ParameterValue(type=ParameterType.PARAMETER_INTEGER, integer_value=value)
+    if isinstance(value, float):
+        return ParameterValue(type=ParameterType.PARAMETER_DOUBLE, double_value=value)
+    if isinstance(value, str):
+        return ParameterValue(type=ParameterType.PARAMETER_STRING, string_value=value)
+    raise TypeError(f'no parameter type for {value!r}')
+
+
+def python_value(value: ParameterValue) -> Any:
+    fields = {
+        ParameterType.PARAMETER_NOT_SET: None,
+        ParameterType.PARAMETER_BOOL: 'bool_value',
+        ParameterType.PARAMETER_INTEGER: 'integer_value',
+        ParameterType.PARAMETER_DOUBLE: 'double_value',
+        ParameterType.PARAMETER_STRING: 'string_value',
+    }
+    field = fields.get(value.type)
+    return getattr(value, field) if field else None
+
+
+def wait_until(condition: Callable[[], bool], timeout: float, what: str) -> None:
+    deadline = time.monotonic() + timeout
+    while not condition():
+        if time.monotonic() > deadline:
+            raise AssertionError(f'timed out after {timeout} s waiting for {what}')
+        time.sleep(0.02)
+
+
+class RosHarness(RosSandbox):
+    """A RosSandbox whose probe node is created on first use."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self._probe: Probe | None = None
+
+    @property
+    def probe(self) -> Probe:
+        if self._probe is None:
+            self._probe = Probe(self.domain_id)
+        return self._probe
+
+    def close(self) -> None:
+        if self._probe is not None:
+            self._probe.close()
+        super().close()
