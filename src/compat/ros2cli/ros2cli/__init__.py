@@ -1,0 +1,1 @@
+"""The `ros2` command line tool of Owl Kit Lab."""

@@ -1,0 +1,18 @@
+"""Every `ros2 <command>`: its name and the module that implements it, imported only when used.
+
+A command module provides:
+    DESCRIPTION: str                                   one line for `ros2 -h`
+    add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None
+                                                       its options and verb sub-parsers
+    main(args: argparse.Namespace) -> int | str | None the command's work (see cli.py for what the
+                                                       return value means)
+Commands that live in other packages (pkg, launch) are listed here too; when such a package is not
+installed, `ros2 <command>` says so in one line.
+"""
+
+COMMANDS: dict[str, tuple[str, str]] = {
+    # name: (module, package that provides it)
+    'run': ('ros2cli.command.run', 'ros2cli'),
+    'pkg': ('ros2pkg.command', 'ros2pkg'),
+    'launch': ('ros2launch.command', 'ros2launch'),
+}
