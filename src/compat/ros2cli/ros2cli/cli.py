@@ -32,7 +32,8 @@ def build_parser(argv: list[str]) -> argparse.ArgumentParser:
     parser.add_argument(
         '--use-python-default-buffering', action='store_true',
         help='Do not force line buffering of stdout; use Python\'s default buffering')
-    subparsers = parser.add_subparsers(title='Commands', metavar='Call `ros2 <command> -h` for more detailed usage.')
+    subparsers = parser.add_subparsers(
+        title='Commands', metavar='Call `ros2 <command> -h` for more detailed usage.')
     # Only the chosen command is imported; `ros2 -h` lists the rest by name.
     chosen = next((arg for arg in argv if not arg.startswith('-')), None)
     for name in sorted(COMMANDS):
