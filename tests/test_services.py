@@ -3,7 +3,6 @@
 import math
 
 import pytest
-
 from olive_interfaces.srv import CurrencyConv, Factorial, TempConv
 
 TEMPERATURE_LINE = (

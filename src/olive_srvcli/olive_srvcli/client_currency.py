@@ -1,8 +1,7 @@
 """currency_client EUROS: ask currency_conversion for dollars, pounds and Swiss francs."""
 
-from owl_common.client import OneShotClient, UsageError, number_argument, run_client
-
 from olive_interfaces.srv import CurrencyConv
+from owl_common.client import OneShotClient, UsageError, number_argument, run_client
 
 
 class CurrencyClient(OneShotClient):

@@ -1,8 +1,7 @@
 """factorial_client N: ask the factorial service for N!."""
 
-from owl_common.client import OneShotClient, UsageError, number_argument, run_client
-
 from olive_interfaces.srv import Factorial
+from owl_common.client import OneShotClient, UsageError, number_argument, run_client
 
 
 class FactorialClient(OneShotClient):

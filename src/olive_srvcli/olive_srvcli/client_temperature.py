@@ -1,8 +1,8 @@
 """temp_client CELSIUS: ask temp_conversion for Kelvin and Fahrenheit."""
 
+from olive_interfaces.srv import TempConv
 from owl_common.client import OneShotClient, UsageError, number_argument, run_client
 
-from olive_interfaces.srv import TempConv
 from olive_srvcli.conversions import check_celsius
 
 

@@ -3,11 +3,11 @@
 The exchange rates are parameters (units per euro), changeable at runtime.
 """
 
+from olive_interfaces.srv import CurrencyConv
 from owl_common.run import spin_node
 from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor
 from rclpy.node import Node
 
-from olive_interfaces.srv import CurrencyConv
 from olive_srvcli.conversions import convert_euros
 
 # Units per euro; reference rates of late 2025, close enough for an exercise.

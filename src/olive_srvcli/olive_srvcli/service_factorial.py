@@ -1,9 +1,9 @@
 """factorial_server: n! for 0 <= n <= 20 (service factorial); anything else answers success=false."""
 
+from olive_interfaces.srv import Factorial
 from owl_common.run import spin_node
 from rclpy.node import Node
 
-from olive_interfaces.srv import Factorial
 from olive_srvcli.conversions import factorial
 
 

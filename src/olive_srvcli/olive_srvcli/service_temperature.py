@@ -1,9 +1,9 @@
 """temp_server: convert a Celsius temperature into Kelvin and Fahrenheit (service temp_conversion)."""
 
+from olive_interfaces.srv import TempConv
 from owl_common.run import spin_node
 from rclpy.node import Node
 
-from olive_interfaces.srv import TempConv
 from olive_srvcli.conversions import celsius_to_fahrenheit, celsius_to_kelvin, check_celsius
 
 
