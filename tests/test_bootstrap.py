@@ -1,0 +1,73 @@
+"""make setup: one clear line for each missing prerequisite, and a fast no-op re-run."""
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+BOOTSTRAP = ROOT / 'scripts' / 'bootstrap.sh'
+
+
+def run_bootstrap(path_dirs: list[Path], python: str) -> subprocess.CompletedProcess:
+    env = {'PATH': os.pathsep.join(map(str, path_dirs)), 'PYTHON': python, 'HOME': os.environ['HOME']}
+    return subprocess.run([shutil.which('bash'), str(BOOTSTRAP)], env=env, capture_output=True,
+                          text=True, timeout=60)
+
+
+def tool_dir(tmp_path: Path, tools: list[str]) -> Path:
+    """A folder holding only the named tools of this machine (by symlink)."""
+    folder = tmp_path / 'bin'
+    folder.mkdir()
+    for tool in tools:
+        (folder / tool).symlink_to(shutil.which(tool))
+    return folder
+
+
+BASICS = ['uname', 'dirname']
+COMPILERS = ['cc', 'c++']
+
+
+@pytest.mark.parametrize(('missing', 'message'), [
+    ('cmake', "no cmake found: install it (e.g. 'sudo apt install cmake')."),
+    ('cc', 'no C compiler found: install one'),
+    ('c++', 'no C++ compiler found: install one'),
+])
+def test_missing_tool_stops_with_one_line(tmp_path, missing, message):
+    present = [tool for tool in [*BASICS, *COMPILERS, 'cmake'] if tool != missing]
+    result = run_bootstrap([tool_dir(tmp_path, present)], sys.executable)
+    assert result.returncode == 1
+    assert result.stdout == ''
+    assert len(result.stderr.splitlines()) == 1
+    assert result.stderr.startswith('setup: ')
+    assert message in result.stderr
+
+
+def test_unsupported_python_stops_with_one_line(tmp_path):
+    fake_python = tmp_path / 'python3.9'
+    fake_python.write_text('#!/bin/sh\necho 3.9\n')
+    fake_python.chmod(0o755)
+    result = run_bootstrap([tool_dir(tmp_path, [*BASICS, *COMPILERS, 'cmake'])], str(fake_python))
+    assert result.returncode == 1
+    assert len(result.stderr.splitlines()) == 1
+    assert 'Python 3.9 found, but the ROS 2 wheels need 3.10-3.13' in result.stderr
+
+
+def test_missing_python_stops_with_one_line(tmp_path):
+    result = run_bootstrap([tool_dir(tmp_path, BASICS)], 'python3-not-here')
+    assert result.returncode == 1
+    assert result.stderr.strip() == (
+        "setup: no 'python3-not-here' found: install Python 3.10-3.13 "
+        "(e.g. 'sudo apt install python3 python3-venv').")
+
+
+def test_rerun_with_nothing_changed_does_nothing(tmp_path):
+    # `make test` has just set up; a second setup must find everything in place.
+    result = subprocess.run(['bash', str(BOOTSTRAP)], capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    [line] = result.stdout.splitlines()
+    assert re.fullmatch(r"setup: ready in [0-3] s\. Next: .*", line), line
