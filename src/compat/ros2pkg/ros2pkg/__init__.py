@@ -1,0 +1,1 @@
+"""`ros2 pkg`: find installed packages and create new ones."""
