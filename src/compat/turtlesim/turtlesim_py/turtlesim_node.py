@@ -1,0 +1,356 @@
+"""turtlesim_node: the node `turtlesim`, a 500 x 500 px pond of turtles driven over ROS.
+
+All ROS callbacks run on one executor thread between 16 ms timer ticks, so, as upstream, they never
+overlap a physics step. Per-tick logic lives in turtle.py, drawing in canvas.py.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import random
+import sys
+import time
+from pathlib import Path
+
+from geometry_msgs.msg import Twist
+from owl_common.run import spin_node
+from PIL import Image
+from rcl_interfaces.msg import IntegerRange, ParameterDescriptor, ParameterEvent
+from rclpy.action import ActionServer, CancelResponse, GoalResponse
+from rclpy.action.server import ServerGoalHandle
+from rclpy.node import Node
+from rclpy.publisher import Publisher
+from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
+from rclpy.service import Service
+from rclpy.subscription import Subscription
+from rclpy.task import Future
+from rclpy.utilities import remove_ros_args
+from sensor_msgs.msg import CompressedImage
+from std_srvs.srv import Empty, Trigger
+from turtlesim.action import RotateAbsolute
+from turtlesim.msg import Color
+from turtlesim.msg import Pose as PoseMsg
+from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelative
+
+from turtlesim_py import world
+from turtlesim_py.canvas import DEFAULT_BACKGROUND, SHELL_COLORS, Canvas, SpriteView, encode_png
+from turtlesim_py.turtle import RotationGoal, Turtle
+
+# Humble: keep last 7, otherwise the defaults (reliable, volatile).
+TOPIC_QOS = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=7)
+PARAMETER_EVENTS_QOS = QoSProfile(depth=100, reliability=ReliabilityPolicy.BEST_EFFORT)
+IMAGE_PERIOD = 0.1  # s between CompressedImage messages, when they are enabled
+
+
+def background_descriptor(channel: str) -> ParameterDescriptor:
+    return ParameterDescriptor(
+        description=f'{channel} channel of the background color',
+        integer_range=[IntegerRange(from_value=0, to_value=255, step=1)])
+
+
+class GoalOfHandle(RotationGoal):
+    """A rotation goal bound to its rclpy goal handle; `done` resolves with the result."""
+
+    def __init__(self, handle: ServerGoalHandle) -> None:
+        super().__init__(handle.request.theta)
+        self.handle = handle
+        self.done = Future()
+
+    def cancel_requested(self) -> bool:
+        return self.handle.is_cancel_requested
+
+    def publish_feedback(self, remaining: float) -> None:
+        self.handle.publish_feedback(RotateAbsolute.Feedback(remaining=remaining))
+
+    def finish(self, status: str, delta: float) -> None:
+        {'succeeded': self.handle.succeed, 'canceled': self.handle.canceled,
+         'aborted': self.handle.abort}[status]()
+        self.done.set_result(RotateAbsolute.Result(delta=delta))
+
+
+class TurtleEndpoints:
+    """The topics, services and action server of one turtle, all under `<name>/`."""
+
+    def __init__(self, node: TurtlesimNode, turtle: Turtle) -> None:
+        self.turtle = turtle
+        self._node = node
+        self._entities: list[Publisher | Subscription | Service | ActionServer] = []
+        self._goals: dict[bytes, GoalOfHandle] = {}
+        name = turtle.name
+        try:
+            self.pose_pub = node.create_publisher(PoseMsg, f'{name}/pose', TOPIC_QOS)
+            self._entities.append(self.pose_pub)
+            self.color_pub = node.create_publisher(Color, f'{name}/color_sensor', TOPIC_QOS)
+            self._entities.append(self.color_pub)
+            self._entities += [
+                node.create_subscription(Twist, f'{name}/cmd_vel', self._on_cmd_vel, TOPIC_QOS),
+                node.create_service(SetPen, f'{name}/set_pen', self._on_set_pen),
+                node.create_service(
+                    TeleportAbsolute, f'{name}/teleport_absolute', self._on_teleport_absolute),
+                node.create_service(
+                    TeleportRelative, f'{name}/teleport_relative', self._on_teleport_relative),
+                ActionServer(
+                    node, RotateAbsolute, f'{name}/rotate_absolute',
+                    execute_callback=self._execute_goal,
+                    goal_callback=lambda _goal: GoalResponse.ACCEPT,
+                    handle_accepted_callback=self._on_goal_accepted,
+                    cancel_callback=lambda _handle: CancelResponse.ACCEPT),
+            ]
+        except BaseException:
+            self.destroy()
+            raise
+
+    def destroy(self) -> None:
+        self.turtle.abort_goal()
+        for entity in reversed(self._entities):
+            if isinstance(entity, ActionServer):
+                entity.destroy()
+            elif isinstance(entity, Publisher):
+                self._node.destroy_publisher(entity)
+            elif isinstance(entity, Subscription):
+                self._node.destroy_subscription(entity)
+            else:
+                self._node.destroy_service(entity)
+        self._entities.clear()
+
+    def publish(self, pose: PoseMsg, color: Color) -> None:
+        self.pose_pub.publish(pose)
+        self.color_pub.publish(color)
+
+    def _on_cmd_vel(self, msg: Twist) -> None:
+        values = (msg.linear.x, msg.linear.y, msg.angular.z)
+        if not all(math.isfinite(v) for v in values):
+            # Upstream would integrate NaN into the pose for good; refuse the command instead.
+            self._node.get_logger().error(
+                f'Ignoring velocity command for [{self.turtle.name}] with a non-finite value: '
+                f'linear.x={values[0]}, linear.y={values[1]}, angular.z={values[2]}')
+            return
+        self.turtle.command_velocity(*values, now=self._node.now())
+
+    def _on_set_pen(self, request: SetPen.Request, response: SetPen.Response) -> SetPen.Response:
+        self.turtle.set_pen(request.r, request.g, request.b, request.width, request.off)
+        return response
+
+    def _on_teleport_absolute(self, request: TeleportAbsolute.Request,
+                              response: TeleportAbsolute.Response) -> TeleportAbsolute.Response:
+        if self._finite('teleport_absolute', x=request.x, y=request.y, theta=request.theta):
+            self.turtle.teleport_absolute(request.x, request.y, request.theta)
+        return response
+
+    def _on_teleport_relative(self, request: TeleportRelative.Request,
+                              response: TeleportRelative.Response) -> TeleportRelative.Response:
+        if self._finite('teleport_relative', linear=request.linear, angular=request.angular):
+            self.turtle.teleport_relative(request.linear, request.angular)
+        return response
+
+    def _finite(self, service: str, **values: float) -> bool:
+        if all(math.isfinite(v) for v in values.values()):
+            return True
+        shown = ', '.join(f'{k}={v}' for k, v in values.items())
+        self._node.get_logger().error(
+            f'Refusing {service} of turtle [{self.turtle.name}]: every value must be finite ({shown})')
+        return False
+
+    def _on_goal_accepted(self, handle: ServerGoalHandle) -> None:
+        goal = GoalOfHandle(handle)
+        self._goals[bytes(handle.goal_id.uuid)] = goal
+        handle.execute()  # EXECUTING now, so the next tick may finish it
+        self.turtle.start_rotation(goal)
+
+    async def _execute_goal(self, handle: ServerGoalHandle) -> RotateAbsolute.Result:
+        goal = self._goals.pop(bytes(handle.goal_id.uuid))
+        return await goal.done
+
+
+class TurtlesimNode(Node):
+    def __init__(self, canvas_png: Path = Path('turtlesim.png'), publish_image: bool = False,
+                 window: bool = False) -> None:
+        super().__init__('turtlesim')
+        for channel, default in zip(('red', 'green', 'blue'), DEFAULT_BACKGROUND, strict=True):
+            name = f'background_{channel[0]}'
+            self.declare_parameter(name, default, background_descriptor(channel.capitalize()))
+        self.canvas = Canvas()
+        self.canvas_png = canvas_png
+        self.turtles: dict[str, TurtleEndpoints] = {}
+        self._spawn_counter = 0
+        self._random = random.Random(time.time())
+        self._last_tick: float | None = None
+        self._dirty = True
+        self.frame: Image.Image | None = None  # latest render, for a window; None until wanted
+        self.want_frames = False
+
+        self.create_subscription(ParameterEvent, '/parameter_events', self._on_parameter_event,
+                                 PARAMETER_EVENTS_QOS)
+        self.create_service(Empty, 'clear', self._on_clear)
+        self.create_service(Empty, 'reset', self._on_reset)
+        self.create_service(Spawn, 'spawn', self._on_spawn)
+        self.create_service(Kill, 'kill', self._on_kill)
+        # Hidden (leading underscore), so `ros2 service list` looks exactly like upstream's.
+        self.create_service(Trigger, '~/_save_canvas', self._on_save_canvas)
+        self._image_pub = None
+        self._last_image = 0.0
+        if publish_image:
+            self._image_pub = self.create_publisher(CompressedImage, '~/canvas/compressed', 1)
+
+        self.get_logger().info(f'Starting turtlesim with node name {self.get_fully_qualified_name()}')
+        self.spawn_turtle('', world.CENTER, world.CENTER, 0.0)
+        self.create_timer(world.TICK_DT, self._tick)
+        self.window = None
+        if window and os.environ.get('DISPLAY'):
+            from turtlesim_py.window import CanvasWindow  # tkinter only when there is a display
+            self.want_frames = True
+            self.window = CanvasWindow(self)
+
+    def destroy_node(self) -> None:
+        if self.window is not None:
+            self.window.close()
+        super().destroy_node()
+
+    def now(self) -> float:
+        return self.get_clock().now().nanoseconds * 1e-9
+
+    # --- turtles -----------------------------------------------------------------------
+
+    def spawn_turtle(self, name: str, x: float, y: float, theta: float) -> str:
+        """Create a turtle; returns its name, or '' when it could not be created."""
+        if not name:
+            name = self._next_free_name()
+        elif name in self.turtles:
+            self.get_logger().error(f'A turtle named [{name}] already exists')
+            return ''
+        turtle = Turtle.spawn(name, x, y, theta, self.now(), self.get_logger(),
+                              sprite=self._random.randrange(len(SHELL_COLORS)))
+        try:
+            self.turtles[name] = TurtleEndpoints(self, turtle)
+        except Exception as error:  # rclpy rejects names that are not valid ROS names
+            self.get_logger().error(f'Cannot spawn a turtle named [{name}]: {error}')
+            return ''
+        self._dirty = True
+        self.get_logger().info(f'Spawning turtle [{name}] at x=[{x:f}], y=[{y:f}], theta=[{theta:f}]')
+        return name
+
+    def _next_free_name(self) -> str:
+        while True:
+            self._spawn_counter += 1
+            name = f'turtle{self._spawn_counter}'
+            if name not in self.turtles:
+                return name
+
+    def _on_spawn(self, request: Spawn.Request, response: Spawn.Response) -> Spawn.Response:
+        values = {'x': request.x, 'y': request.y, 'theta': request.theta}
+        if not all(math.isfinite(v) for v in values.values()):
+            shown = ', '.join(f'{k}={v}' for k, v in values.items())
+            self.get_logger().error(f'Refusing to spawn: every value must be finite ({shown})')
+            response.name = ''
+            return response
+        response.name = self.spawn_turtle(request.name, request.x, request.y, request.theta)
+        return response
+
+    def _on_kill(self, request: Kill.Request, response: Kill.Response) -> Kill.Response:
+        endpoints = self.turtles.pop(request.name, None)
+        if endpoints is None:
+            self.get_logger().error(f'Tried to kill turtle [{request.name}], which does not exist')
+        else:
+            endpoints.destroy()
+            self._dirty = True
+        return response
+
+    def _on_clear(self, request: Empty.Request, response: Empty.Response) -> Empty.Response:
+        self.get_logger().info('Clearing turtlesim.')
+        self.canvas.clear()
+        self._dirty = True
+        return response
+
+    def _on_reset(self, request: Empty.Request, response: Empty.Response) -> Empty.Response:
+        self.get_logger().info('Resetting turtlesim.')
+        for endpoints in self.turtles.values():
+            endpoints.destroy()
+        self.turtles.clear()
+        self._spawn_counter = 0
+        self.spawn_turtle('', world.CENTER, world.CENTER, 0.0)
+        self.canvas.clear()
+        self._dirty = True
+        return response
+
+    # --- canvas --------------------------------------------------------------------------
+
+    def _on_parameter_event(self, event: ParameterEvent) -> None:
+        if event.node == self.get_fully_qualified_name():
+            self._dirty = True
+
+    def background(self) -> tuple[int, int, int]:
+        return tuple(self.get_parameter(f'background_{c}').value for c in 'rgb')  # type: ignore[return-value]
+
+    def render(self) -> Image.Image:
+        views = [SpriteView(name, *world.to_pixels(e.turtle.x, e.turtle.y_down), e.turtle.theta,
+                            e.turtle.sprite) for name, e in self.turtles.items()]
+        return self.canvas.render(self.background(), views)
+
+    def _on_save_canvas(self, request: Trigger.Request, response: Trigger.Response) -> Trigger.Response:
+        try:
+            self.render().save(self.canvas_png, format='PNG')
+        except OSError as error:
+            response.success, response.message = False, f'cannot write {self.canvas_png}: {error}'
+            self.get_logger().error(response.message)
+        else:
+            response.success, response.message = True, str(self.canvas_png.resolve())
+        return response
+
+    # --- the 16 ms tick ------------------------------------------------------------------
+
+    def _tick(self) -> None:
+        now = self.now()
+        if self._last_tick is None:
+            # The first tick only records the time (with sim time and no /clock it stays 0).
+            if now != 0.0:
+                self._last_tick = now
+            return
+        self._last_tick = now
+        for endpoints in list(self.turtles.values()):
+            result = endpoints.turtle.update(world.TICK_DT, now, self.canvas)
+            pose = result.pose
+            endpoints.publish(
+                PoseMsg(x=pose.x, y=pose.y, theta=pose.theta, linear_velocity=pose.linear_velocity,
+                        angular_velocity=pose.angular_velocity),
+                Color(r=result.color[0], g=result.color[1], b=result.color[2]))
+            self._dirty |= result.modified
+        if self._dirty:
+            self._publish_frame(now)
+
+    def _publish_frame(self, now: float) -> None:
+        frame_due = self._image_pub is not None and now - self._last_image >= IMAGE_PERIOD
+        if not (self.want_frames or frame_due):
+            return
+        self._dirty = False
+        frame = self.render()
+        self.frame = frame
+        if frame_due:
+            self._last_image = now
+            message = CompressedImage(format='png', data=encode_png(frame))
+            message.header.stamp = self.get_clock().now().to_msg()
+            message.header.frame_id = 'turtlesim'
+            self._image_pub.publish(message)
+
+
+def parse_options(argv: list[str]) -> argparse.Namespace:
+    parser = argparse.ArgumentParser(prog='turtlesim_node', description=__doc__.splitlines()[0])
+    parser.add_argument('--headless', action='store_true', help='never open a window')
+    parser.add_argument('--canvas-png', type=Path, default=Path('turtlesim.png'),
+                        help='where the hidden ~/_save_canvas service writes the canvas '
+                             '(default: %(default)s)')
+    parser.add_argument('--publish-image', action='store_true',
+                        help='publish the canvas as sensor_msgs/CompressedImage on ~/canvas/compressed')
+    return parser.parse_args(remove_ros_args(argv)[1:])
+
+
+def main(args: list[str] | None = None) -> None:
+    argv = sys.argv if args is None else args
+    options = parse_options(argv)
+    spin_node(lambda: TurtlesimNode(options.canvas_png, options.publish_image,
+                                    window=not options.headless), argv)
+
+
+if __name__ == '__main__':
+    main()
