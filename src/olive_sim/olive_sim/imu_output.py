@@ -1,0 +1,92 @@
+"""The imu and magnetometer topics of a module (the IMU module and the camera both have them)."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+
+from rcl_interfaces.msg import FloatingPointRange, IntegerRange
+from rclpy.node import Node
+from rclpy.qos import QoSProfile, ReliabilityPolicy
+from sensor_msgs.msg import Imu, MagneticField
+
+from olive_sim.imu_model import ImuNoise, ImuSensor
+from olive_sim.module_node import describe
+from olive_sim.quaternion import Quaternion
+
+NOISE_DESCRIPTIONS = {
+    'gyro_noise': 'Gyro white noise, standard deviation per sample [rad/s].',
+    'gyro_bias': 'Standard deviation of the constant gyro bias drawn at start [rad/s].',
+    'accel_noise': 'Accelerometer noise, standard deviation per sample [m/s^2].',
+    'mag_noise': 'Magnetometer noise, standard deviation per sample [T].',
+    'orientation_noise': 'Jitter of the fused orientation, standard deviation [rad].',
+}
+RELIABILITIES = {'reliable': ReliabilityPolicy.RELIABLE, 'best_effort': ReliabilityPolicy.BEST_EFFORT}
+
+
+def reliability(name: str, parameter: str) -> ReliabilityPolicy:
+    if name not in RELIABILITIES:
+        raise ValueError(f"{parameter} must be one of {', '.join(RELIABILITIES)}, got '{name}'")
+    return RELIABILITIES[name]
+
+
+class ImuOutput:
+    """Declares the IMU parameters on `node`, owns the sensor model and publishes its readings."""
+
+    def __init__(self, node: Node, topic: Callable[[str], str], frame_id: str,
+                 true_orientation: Callable[[float], Quaternion]) -> None:
+        self.node = node
+        self.true_orientation = true_orientation
+        defaults = ImuNoise()
+        for name, description in NOISE_DESCRIPTIONS.items():
+            node.declare_parameter(name, getattr(defaults, name), describe(
+                description, True, floating_point_range=[FloatingPointRange(from_value=0.0, to_value=1.0)]))
+        node.declare_parameter('seed', 0, describe(
+            'Seed of the sensor noise and bias (same seed, same errors).', True,
+            integer_range=[IntegerRange(from_value=0, to_value=2**31 - 1, step=1)]))
+        node.declare_parameter('imu_rate', 100.0, describe(
+            'Publication rate of imu and magnetometer [Hz].', True,
+            floating_point_range=[FloatingPointRange(from_value=1.0, to_value=1000.0)]))
+        node.declare_parameter('imu_frame_id', frame_id, describe(
+            'header.frame_id of imu and magnetometer.', True))
+        node.declare_parameter('imu_reliability', 'reliable', describe(
+            'Reliability of the imu publisher: reliable or best_effort.', True))
+        value = node.get_parameter
+        self.noise = ImuNoise(**{name: value(name).value for name in NOISE_DESCRIPTIONS})
+        self.sensor = ImuSensor(self.noise, value('seed').value)
+        self.frame_id = value('imu_frame_id').value
+        qos = QoSProfile(depth=10, reliability=reliability(value('imu_reliability').value, 'imu_reliability'))
+        self.imu_publisher = node.create_publisher(Imu, topic('imu'), qos)
+        self.mag_publisher = node.create_publisher(MagneticField, topic('magnetometer'), qos)
+        self._epoch = time.monotonic()
+        self.timer = node.create_timer(1.0 / value('imu_rate').value, self.publish)
+
+    def publish(self) -> None:
+        stamp_time = self.node.get_clock().now()
+        t = time.monotonic() - self._epoch
+        reading = self.sensor.sample(t, self.true_orientation(t))
+        stamp = stamp_time.to_msg()
+        imu = Imu()
+        imu.header.stamp = stamp
+        imu.header.frame_id = self.frame_id
+        imu.orientation.x, imu.orientation.y, imu.orientation.z, imu.orientation.w = reading.orientation
+        av, la = imu.angular_velocity, imu.linear_acceleration
+        av.x, av.y, av.z = reading.angular_velocity
+        la.x, la.y, la.z = reading.linear_acceleration
+        n = self.noise
+        imu.orientation_covariance = _diagonal(n.orientation_noise ** 2)
+        imu.angular_velocity_covariance = _diagonal(n.gyro_noise ** 2)
+        imu.linear_acceleration_covariance = _diagonal(n.accel_noise ** 2)
+        self.imu_publisher.publish(imu)
+        mag = MagneticField()
+        mag.header = imu.header
+        mf = mag.magnetic_field
+        mf.x, mf.y, mf.z = reading.magnetic_field
+        mag.magnetic_field_covariance = _diagonal(n.mag_noise ** 2)
+        self.mag_publisher.publish(mag)
+
+
+def _diagonal(variance: float) -> list[float]:
+    # Zero means "unknown" in sensor_msgs/Imu, so a noiseless axis reports a tiny variance instead.
+    v = max(variance, 1e-12)
+    return [v, 0.0, 0.0, 0.0, v, 0.0, 0.0, 0.0, v]

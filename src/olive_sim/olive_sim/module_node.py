@@ -1,0 +1,150 @@
+"""What every simulated Olive module shares: names, status, temperature, button, LED.
+
+A module of type T with namespace N publishes under /olive/T/N/ (the course's naming) from a
+node named olive_T_N_dcm_srv (like the course's /olive_servo_pan_dcm_srv).
+"""
+
+from __future__ import annotations
+
+import re
+import time
+from typing import Any
+
+from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
+from owl_common.run import spin_node
+from rcl_interfaces.msg import ParameterDescriptor
+from rclpy.node import Node
+from rclpy.parameter import Parameter
+from sensor_msgs.msg import Temperature
+from std_msgs.msg import Bool
+
+FIRMWARE_VERSION = 'olive_sim 0.1.0'
+NAMESPACE_PATTERN = re.compile(r'^[A-Za-z][A-Za-z0-9_]*$')
+STATUS_PERIOD = 1.0  # s: status, temperature and switch are published at 1 Hz
+
+
+def check_namespace(namespace: str) -> str:
+    """The namespace if it can be one ROS name token, else ValueError with the reason."""
+    if not NAMESPACE_PATTERN.match(namespace):
+        raise ValueError(f"namespace '{namespace}' is not valid: use letters, digits and '_', "
+                         'starting with a letter')
+    return namespace
+
+
+def read_namespace(default: str) -> str:
+    """The `namespace` parameter given on the command line, read before the module node exists.
+
+    The node's name contains the namespace, so it has to be known before the node is created;
+    a short-lived node without services reads it from the command-line overrides.
+    """
+    probe = Node('olive_sim_namespace_reader', enable_rosout=False, start_parameter_services=False,
+                 automatically_declare_parameters_from_overrides=True)
+    try:
+        if not probe.has_parameter('namespace'):
+            return default
+        value = probe.get_parameter('namespace').value
+        if not isinstance(value, str):
+            raise ValueError(f'parameter namespace must be a string, got {value!r}')
+        return check_namespace(value)
+    finally:
+        probe.destroy_node()
+
+
+def node_name(module_type: str, namespace: str) -> str:
+    return f'olive_{module_type}_{namespace}_dcm_srv'
+
+
+def describe(description: str, read_only: bool = False, **ranges: Any) -> ParameterDescriptor:
+    """A parameter descriptor; ranges are FloatingPointRange/IntegerRange objects by keyword."""
+    return ParameterDescriptor(description=description, read_only=read_only, **ranges)
+
+
+class OliveModule(Node):
+    """Base class of the module nodes: the common topics and the `namespace` parameter."""
+
+    def __init__(self, module_type: str, namespace: str, serial: str) -> None:
+        super().__init__(node_name(module_type, namespace))
+        self.module_type = module_type
+        self.namespace_name = namespace
+        self.serial = serial
+        self.prefix = f'/olive/{module_type}/{namespace}/'
+        self.declare_parameter('namespace', namespace, describe(
+            f'Module namespace: topics are /olive/{module_type}/<namespace>/...', read_only=True))
+        self.declare_parameter('button_pressed', False, describe(
+            'Simulated state of the module button, published on switch.'))
+        self.led_on = False
+        self.started = time.monotonic()
+        self._wrong_led_types: set[str] = set()
+        self.status_publisher = self.create_publisher(DiagnosticStatus, self.topic('status'), 10)
+        self.temperature_publisher = self.create_publisher(Temperature, self.topic('temperature'), 10)
+        self.switch_publisher = self.create_publisher(Bool, self.topic('switch'), 10)
+        self.led_subscription = self.create_subscription(Bool, self.topic('led'), self._on_led, 10)
+        self.add_post_set_parameters_callback(self._publish_button_change)
+        self.status_timer = self.create_timer(STATUS_PERIOD, self._publish_status)
+
+    def topic(self, name: str) -> str:
+        return self.prefix + name
+
+    # -- to be refined by each module -------------------------------------------------------
+
+    def temperature(self) -> float:
+        """Board temperature in deg C."""
+        return 35.0
+
+    def status_values(self) -> dict[str, str]:
+        """Module-specific key/values for the status message."""
+        return {}
+
+    def status_level(self) -> tuple[bytes, str]:
+        return DiagnosticStatus.OK, 'running'
+
+    # -- common behaviour -------------------------------------------------------------------
+
+    def _on_led(self, msg: Bool) -> None:
+        if msg.data != self.led_on:
+            self.get_logger().info(f"LED {'on' if msg.data else 'off'}")
+        self.led_on = msg.data
+
+    def _publish_button_change(self, parameters: list[Parameter]) -> None:
+        if any(p.name == 'button_pressed' for p in parameters):
+            self.switch_publisher.publish(Bool(data=self.get_parameter('button_pressed').value))
+
+    def _warn_wrong_led_types(self) -> None:
+        # A publisher of another type never reaches our Bool subscription; say so once per type.
+        for info in self.get_publishers_info_by_topic(self.topic('led')):
+            if info.topic_type != 'std_msgs/msg/Bool' and info.topic_type not in self._wrong_led_types:
+                self._wrong_led_types.add(info.topic_type)
+                self.get_logger().warning(
+                    f"{self.topic('led')} is published as {info.topic_type} by "
+                    f"{info.node_namespace.rstrip('/')}/{info.node_name}: the LED expects "
+                    'std_msgs/msg/Bool and ignores it')
+
+    def _publish_status(self) -> None:
+        stamp = self.get_clock().now().to_msg()
+        level, message = self.status_level()
+        values = {
+            'led': 'on' if self.led_on else 'off',
+            'button': 'pressed' if self.get_parameter('button_pressed').value else 'released',
+            'temperature': f'{self.temperature():.1f}',
+            'uptime': f'{time.monotonic() - self.started:.0f}',
+            'firmware': FIRMWARE_VERSION,
+            **self.status_values(),
+        }
+        self.status_publisher.publish(DiagnosticStatus(
+            level=level, name=self.prefix.rstrip('/'), message=message, hardware_id=self.serial,
+            values=[KeyValue(key=k, value=v) for k, v in values.items()]))
+        temperature = Temperature(temperature=self.temperature(), variance=0.25)
+        temperature.header.stamp = stamp
+        temperature.header.frame_id = f'{self.namespace_name}_base_link'
+        self.temperature_publisher.publish(temperature)
+        self.switch_publisher.publish(Bool(data=self.get_parameter('button_pressed').value))
+        self._warn_wrong_led_types()
+
+
+def run_module(make_node: Any, default_namespace: str, args: list[str] | None = None) -> None:
+    """main() of a module executable: read the namespace, build the node, spin until Ctrl-C."""
+    def build() -> Node:
+        return make_node(read_namespace(default_namespace))
+
+    spin_node(build, args)
+
