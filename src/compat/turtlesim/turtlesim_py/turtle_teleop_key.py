@@ -1,0 +1,184 @@
+"""turtle_teleop_key: node `teleop_turtle`, drives turtle1 from the keyboard of a terminal.
+
+Arrow keys publish one Twist each on turtle1/cmd_vel; the letters around F send RotateAbsolute goals
+to turtle1/rotate_absolute, f cancels the last accepted goal, q quits. The terminal is switched to
+non-canonical no-echo mode (Ctrl-C still works) and restored on every way out.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import termios
+import threading
+from dataclasses import dataclass
+
+import rclpy
+from geometry_msgs.msg import Twist
+from rcl_interfaces.msg import ParameterDescriptor
+from rclpy.action import ActionClient
+from rclpy.action.client import ClientGoalHandle
+from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
+from rclpy.node import Node
+from turtlesim.action import RotateAbsolute
+
+BANNER = """Reading from keyboard
+---------------------------
+Use arrow keys to move the turtle.
+Use G|B|V|C|D|E|R|T keys to rotate to absolute orientations. 'F' to cancel a rotation.
+'Q' to quit."""
+HUMBLE_QOS_DEPTH = 1
+NOT_A_TERMINAL_EXIT = 2
+
+# Arrow keys arrive as ESC [ A..D; like upstream, only the last byte counts.
+ARROWS = {ord('A'): (1.0, 0.0), ord('B'): (-1.0, 0.0), ord('C'): (0.0, -1.0), ord('D'): (0.0, 1.0)}
+# The ring around F, each key pointing in its direction.
+HEADINGS = {'g': 0.0, 't': 0.7854, 'r': 1.5708, 'e': 2.3562, 'd': 3.1416,
+            'c': -2.3562, 'v': -1.5708, 'b': -0.7854}
+
+
+@dataclass(frozen=True)
+class Drive:
+    linear: float  # multiples of scale_linear
+    angular: float  # multiples of scale_angular
+
+
+@dataclass(frozen=True)
+class Rotate:
+    theta: float
+
+
+class Cancel:
+    pass
+
+
+class Quit:
+    pass
+
+
+Action = Drive | Rotate | Cancel | Quit
+
+
+def action_for(byte: int) -> Action | None:
+    """What one input byte asks for; None for keys that do nothing."""
+    if byte in ARROWS:
+        return Drive(*ARROWS[byte])
+    key = chr(byte)
+    if key in HEADINGS:
+        return Rotate(HEADINGS[key])
+    if key == 'f':
+        return Cancel()
+    if key == 'q':
+        return Quit()
+    return None
+
+
+class RawTerminal:
+    """Non-canonical, no-echo input with a 0.1 s read timeout; the old mode comes back on exit."""
+
+    def __init__(self, fd: int) -> None:
+        self.fd = fd
+        self._saved = termios.tcgetattr(fd)
+
+    def __enter__(self) -> RawTerminal:
+        mode = termios.tcgetattr(self.fd)
+        mode[3] &= ~(termios.ICANON | termios.ECHO)  # lflags; ISIG stays, so Ctrl-C still interrupts
+        mode[6][termios.VMIN] = 0
+        mode[6][termios.VTIME] = 1
+        termios.tcsetattr(self.fd, termios.TCSANOW, mode)
+        return self
+
+    def __exit__(self, *exc_info: object) -> None:
+        termios.tcsetattr(self.fd, termios.TCSANOW, self._saved)
+
+    def read_byte(self) -> int | None:
+        data = os.read(self.fd, 1)
+        return data[0] if data else None
+
+
+class TeleopTurtle(Node):
+    def __init__(self) -> None:
+        super().__init__('teleop_turtle')
+        self.declare_parameter('scale_angular', 2.0, ParameterDescriptor(
+            description='Angular velocity sent per arrow key press, in rad/s'))
+        self.declare_parameter('scale_linear', 2.0, ParameterDescriptor(
+            description='Linear velocity sent per arrow key press, in m/s'))
+        self._twist_pub = self.create_publisher(Twist, 'turtle1/cmd_vel', HUMBLE_QOS_DEPTH)
+        self._rotate = ActionClient(self, RotateAbsolute, 'turtle1/rotate_absolute')
+        self._goal_handle: ClientGoalHandle | None = None
+
+    def perform(self, action: Action) -> None:
+        if isinstance(action, Drive):
+            self.drive(action)
+        elif isinstance(action, Rotate):
+            self.rotate(action.theta)
+        elif isinstance(action, Cancel):
+            self.cancel()
+
+    def drive(self, drive: Drive) -> None:
+        twist = Twist()
+        twist.linear.x = drive.linear * self.get_parameter('scale_linear').value
+        twist.angular.z = drive.angular * self.get_parameter('scale_angular').value
+        if twist.linear.x != 0.0 or twist.angular.z != 0.0:
+            self._twist_pub.publish(twist)
+
+    def rotate(self, theta: float) -> None:
+        future = self._rotate.send_goal_async(RotateAbsolute.Goal(theta=theta))
+        future.add_done_callback(self._on_goal_response)
+
+    def _on_goal_response(self, future) -> None:
+        self.get_logger().debug('Goal response received')
+        handle = future.result()
+        if handle is not None and handle.accepted:
+            self._goal_handle = handle
+
+    def cancel(self) -> None:
+        if self._goal_handle is not None:
+            self.get_logger().debug('Sending cancel request')
+            self._goal_handle.cancel_goal_async()  # whatever the answer, there is nothing to do
+
+
+def main(args: list[str] | None = None) -> None:
+    stdin = sys.stdin.fileno()
+    if not os.isatty(stdin):
+        print('turtle_teleop_key: standard input is not a terminal; run it in an interactive terminal',
+              file=sys.stderr)
+        sys.exit(NOT_A_TERMINAL_EXIT)
+    rclpy.init(args=args)
+    node = TeleopTurtle()
+    executor = SingleThreadedExecutor()
+    executor.add_node(node)
+    spinner = threading.Thread(target=_spin, args=(executor,), daemon=True)
+    spinner.start()
+    code = 0
+    try:
+        print(BANNER, flush=True)
+        with RawTerminal(stdin) as terminal:
+            while rclpy.ok():
+                byte = terminal.read_byte()
+                action = None if byte is None else action_for(byte)
+                if isinstance(action, Quit):
+                    break
+                if action is not None:
+                    node.perform(action)
+    except KeyboardInterrupt:
+        pass
+    except OSError as error:
+        print(f'read(): {error}', file=sys.stderr)
+        code = 1
+    finally:
+        executor.shutdown(timeout_sec=1.0)
+        node.destroy_node()
+        rclpy.try_shutdown()
+    sys.exit(code)
+
+
+def _spin(executor: SingleThreadedExecutor) -> None:
+    try:
+        executor.spin()
+    except ExternalShutdownException:
+        pass
+
+
+if __name__ == '__main__':
+    main()
