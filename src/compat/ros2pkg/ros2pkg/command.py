@@ -14,6 +14,7 @@ from collections.abc import Callable
 from ros2pkg import api
 from ros2pkg.create import (
     DEFAULT_LICENSE,
+    EMAIL,
     CreateError,
     check_settings,
     plan,
@@ -159,8 +160,9 @@ def main_create(args: argparse.Namespace) -> int | str:
             node_name=args.node_name, library_name=args.library_name,
             package_format=args.package_format, destination=args.destination_directory,
             warn=lambda line: print(line, file=sys.stderr))
-        if args.maintainer_email is None:
-            settings.maintainer_email = _git_email() or settings.maintainer_email
+        git_email = _git_email() if args.maintainer_email is None else None
+        if git_email and EMAIL.fullmatch(git_email):
+            settings.maintainer_email = git_email
         for line in summary(settings, args.destination_directory):
             print(line)
         write_package(plan(settings, args.destination_directory), print)

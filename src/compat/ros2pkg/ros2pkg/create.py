@@ -27,7 +27,8 @@ DEFAULT_LICENSE = 'TODO: License declaration'
 PACKAGE_NAME = re.compile(r'[a-z][a-z0-9_]*')
 IDENTIFIER = re.compile(r'[A-Za-z_][A-Za-z0-9_]*')
 DEPENDENCY_KEY = re.compile(r'[A-Za-z0-9][A-Za-z0-9_.+-]*')
-EMAIL = re.compile(r'[^@\s<>"]+@[^@\s<>"]+')
+# What catkin_pkg accepts in package.xml (name@host.tld), so generated manifests validate.
+EMAIL = re.compile(r'[A-Za-z0-9_%+-]+(\.[A-Za-z0-9_%+-]+)*@[A-Za-z0-9%-]+(\.[A-Za-z0-9%-]+)*\.[A-Za-z]{2,}')
 
 
 class CreateError(Exception):
@@ -44,6 +45,9 @@ def closest(word: str, choices: tuple[str, ...] | list[str]) -> str | None:
     key = word.lower().replace('-', '_')
     if key in normalized:
         return normalized[key]
+    extensions = [choice for norm, choice in normalized.items() if norm.startswith(key)]
+    if len(extensions) == 1:
+        return extensions[0]
     matches = difflib.get_close_matches(key, list(normalized), n=1, cutoff=0.6)
     return normalized[matches[0]] if matches else None
 
@@ -116,7 +120,11 @@ def check_settings(name: str, build_type: str, dependencies: list[str], descript
     if not maintainer_name.strip():
         raise CreateError('the maintainer name must not be empty')
     if maintainer_email is not None and not EMAIL.fullmatch(maintainer_email):
-        raise CreateError(f"invalid maintainer email '{maintainer_email}': expected name@host")
+        raise CreateError(f"invalid maintainer email '{maintainer_email}': expected name@host.domain")
+    if not description.strip():
+        raise CreateError('the description must not be empty')
+    if not license_name.strip():
+        raise CreateError("the license must not be empty (`--license '?'` lists the supported licenses)")
     if node_name is not None:
         check_identifier('node name', node_name)
     if library_name is not None:
@@ -141,7 +149,8 @@ def check_settings(name: str, build_type: str, dependencies: list[str], descript
 
 def default_email(maintainer_name: str) -> str:
     """Upstream's fallback when neither --maintainer-email nor `git config user.email` gives one."""
-    return f'{maintainer_name}@todo.todo'
+    local_part = re.sub(r'[^A-Za-z0-9_%+-]+', '_', maintainer_name).strip('_') or 'user'
+    return f'{local_part}@todo.todo'
 
 
 @dataclass(frozen=True)
