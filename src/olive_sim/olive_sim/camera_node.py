@@ -1,0 +1,125 @@
+"""camera_sim: a simulated Olive camera (OLV-CAM01) on the Owl Kit's pan/tilt head."""
+
+from __future__ import annotations
+
+import math
+import time
+
+from rcl_interfaces.msg import FloatingPointRange, IntegerRange, SetParametersResult
+from rclpy.parameter import Parameter
+from rclpy.qos import DurabilityPolicy, QoSProfile
+from sensor_msgs.msg import CameraInfo, CompressedImage, JointState
+
+from olive_sim import quaternion as quat
+from olive_sim.camera_render import CameraRenderer
+from olive_sim.imu_output import ImuOutput, reliability
+from olive_sim.module_node import OliveModule, describe, run_module
+from olive_sim.quaternion import Quaternion
+
+# Horizontal field of view of the vendor's shipped calibration (K of calibration/ost.yaml).
+DEFAULT_FOV_DEG = 48.66
+
+
+class CameraModule(OliveModule):
+
+    def __init__(self, namespace: str) -> None:
+        super().__init__('camera', namespace, serial='1715257918934')
+        self.declare_parameter('width', 640, describe('Image width [px].', True, integer_range=[
+            IntegerRange(from_value=16, to_value=4096, step=1)]))
+        self.declare_parameter('height', 480, describe('Image height [px].', True, integer_range=[
+            IntegerRange(from_value=16, to_value=4096, step=1)]))
+        self.declare_parameter('fps', 30.0, describe('Frame rate [Hz].', True, floating_point_range=[
+            FloatingPointRange(from_value=0.1, to_value=240.0)]))
+        self.declare_parameter('jpeg_quality', 80, describe('JPEG quality 1..100.', integer_range=[
+            IntegerRange(from_value=1, to_value=100, step=1)]))
+        self.declare_parameter('horizontal_fov', DEFAULT_FOV_DEG, describe(
+            'Horizontal field of view [deg].', True, floating_point_range=[
+                FloatingPointRange(from_value=5.0, to_value=160.0)]))
+        self.declare_parameter('image_reliability', 'best_effort', describe(
+            'Reliability of image/compressed and image/camera_info: best_effort (as the course shows) '
+            'or reliable.', True))
+        self.declare_parameter('frame_id', 'olive', describe('header.frame_id of the images.', True))
+        self.declare_parameter('pan_joint_topic', '/olive/servo/pan/joint', describe(
+            'JointState topic of the pan servo the camera sits on.', True))
+        self.declare_parameter('tilt_joint_topic', '/olive/servo/tilt/joint', describe(
+            'JointState topic of the tilt servo the camera sits on.', True))
+        value = self.get_parameter
+        self.renderer = CameraRenderer(value('width').value, value('height').value,
+                                       math.radians(value('horizontal_fov').value))
+        self.frame_id = value('frame_id').value
+        self.pan = 0.0
+        self.tilt = 0.0
+        self.frames = 0
+        self.jpeg_quality = value('jpeg_quality').value
+        qos = QoSProfile(depth=10, durability=DurabilityPolicy.VOLATILE,
+                         reliability=reliability(value('image_reliability').value, 'image_reliability'))
+        self.image_publisher = self.create_publisher(CompressedImage, self.topic('image/compressed'), qos)
+        self.info_publisher = self.create_publisher(CameraInfo, self.topic('image/camera_info'), qos)
+        self.camera_info = self._camera_info()
+        self.create_subscription(JointState, value('pan_joint_topic').value, self._on_pan, 10)
+        self.create_subscription(JointState, value('tilt_joint_topic').value, self._on_tilt, 10)
+        self.add_post_set_parameters_callback(self._apply_parameters)
+        self.output = ImuOutput(self, self.topic, f'{namespace}_body_link', self.orientation)
+        self.frame_timer = self.create_timer(1.0 / value('fps').value, self.publish_frame)
+        self._epoch = time.monotonic()
+
+    def _apply_parameters(self, parameters: list[Parameter]) -> SetParametersResult:
+        for p in parameters:
+            if p.name == 'jpeg_quality':
+                self.jpeg_quality = p.value
+
+    def orientation(self, t: float) -> Quaternion:
+        """The camera's true orientation: yaw by pan, pitched down by tilt."""
+        return quat.from_euler(0.0, self.tilt, self.pan)
+
+    def _joint_position(self, msg: JointState, which: str) -> float | None:
+        if not msg.position or not math.isfinite(msg.position[0]):
+            self.get_logger().warning(f'{which} joint state without a finite position ignored',
+                                      throttle_duration_sec=2.0)
+            return None
+        return msg.position[0]
+
+    def _on_pan(self, msg: JointState) -> None:
+        position = self._joint_position(msg, 'pan')
+        if position is not None:
+            self.pan = position
+
+    def _on_tilt(self, msg: JointState) -> None:
+        position = self._joint_position(msg, 'tilt')
+        if position is not None:
+            self.tilt = position
+
+    def _camera_info(self) -> CameraInfo:
+        r = self.renderer
+        info = CameraInfo(width=r.width, height=r.height, distortion_model='plumb_bob')
+        info.d = [0.0, 0.0, 0.0, 0.0, 0.0]
+        info.k = [r.fx, 0.0, r.cx, 0.0, r.fy, r.cy, 0.0, 0.0, 1.0]
+        info.r = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]
+        info.p = [r.fx, 0.0, r.cx, 0.0, 0.0, r.fy, r.cy, 0.0, 0.0, 0.0, 1.0, 0.0]
+        info.header.frame_id = self.frame_id
+        return info
+
+    def publish_frame(self) -> None:
+        self.frames += 1
+        now = self.get_clock().now()
+        seconds = now.nanoseconds / 1e9
+        clock = time.strftime('%H:%M:%S', time.gmtime(seconds))
+        caption = f'#{self.frames}  {clock}.{int(seconds % 1 * 1000):03d}'
+        msg = CompressedImage(format='jpeg')
+        msg.header.stamp = now.to_msg()
+        msg.header.frame_id = self.frame_id
+        msg.data = self.renderer.jpeg(self.pan, self.tilt, caption, self.jpeg_quality)
+        self.image_publisher.publish(msg)
+        self.camera_info.header.stamp = msg.header.stamp
+        self.info_publisher.publish(self.camera_info)
+
+    def temperature(self) -> float:
+        return 42.0
+
+
+def main(args: list[str] | None = None) -> None:
+    run_module(CameraModule, 'eye', args)
+
+
+if __name__ == '__main__':
+    main()
