@@ -6,13 +6,18 @@ import math
 
 import pytest
 from geometry_msgs.msg import Twist
+from PIL import Image
+from rcl_interfaces.srv import DescribeParameters
+from rclpy.qos import DurabilityPolicy, ReliabilityPolicy
 from ros_harness import wait_until
-from std_srvs.srv import Empty
+from std_srvs.srv import Empty, Trigger
 from turtlesim.msg import Color, Pose
 from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelative
 
 CENTER = 5.544444561004639
 TURTLE_QOS = 7
+BACKGROUND = (69, 86, 255)
+PEN = (0xB3, 0xB8, 0xFF)
 
 
 def start_turtlesim(ros, *args: str):
@@ -26,6 +31,37 @@ def latest(messages: list, timeout: float = 10.0, count: int = 1):
     return messages[-1]
 
 
+def spawn(ros, name: str = '', x: float = 1.0, y: float = 1.0, theta: float = 0.0) -> str:
+    return ros.probe.call(Spawn, '/spawn', Spawn.Request(x=x, y=y, theta=theta, name=name)).name
+
+
+def teleport(ros, turtle: str, x: float, y: float, theta: float = 0.0) -> None:
+    ros.probe.call(TeleportAbsolute, f'/{turtle}/teleport_absolute',
+                   TeleportAbsolute.Request(x=x, y=y, theta=theta))
+
+
+def set_pen(ros, turtle: str, r: int = 0, g: int = 0, b: int = 0, width: int = 0, off: int = 0) -> None:
+    ros.probe.call(SetPen, f'/{turtle}/set_pen', SetPen.Request(r=r, g=g, b=b, width=width, off=off))
+
+
+def snapshot(ros, path) -> Image.Image:
+    """The canvas as the hidden ~/_save_canvas service writes it."""
+    response = ros.probe.call(Trigger, '/turtlesim/_save_canvas', Trigger.Request())
+    assert response.success, response.message
+    with Image.open(path) as image:
+        return image.convert('RGB')
+
+
+def pixel(x: float, y: float) -> tuple[int, int]:
+    """Canvas pixel of a world position."""
+    return round(x * 45), round((11.088889 - y) * 45)
+
+
+def settled(poses: list, predicate, what: str) -> Pose:
+    wait_until(lambda: poses and predicate(poses[-1]), 10, what)
+    return poses[-1]
+
+
 def test_starts_headless_and_publishes_turtle1_pose_and_color(ros):
     sim = start_turtlesim(ros)
     sim.wait_for(r'\[turtlesim\]: Starting turtlesim with node name /turtlesim')
@@ -37,32 +73,144 @@ def test_starts_headless_and_publishes_turtle1_pose_and_color(ros):
     color = latest(colors)
     assert (color.r, color.g, color.b) == (255, 255, 255)  # an untouched path layer reads white
     assert 'Spawning turtle [turtle1] at x=[5.544445], y=[5.544445], theta=[0.000000]' in sim.output
+    for topic in ('/turtle1/pose', '/turtle1/color_sensor'):
+        (info,) = ros.probe.node.get_publishers_info_by_topic(topic)
+        assert info.qos_profile.reliability == ReliabilityPolicy.RELIABLE
+        assert info.qos_profile.durability == DurabilityPolicy.VOLATILE
     assert sim.stop() == 0
     assert 'Traceback' not in sim.output
 
 
-def test_cmd_vel_moves_turtle_and_services_answer(ros):
+def test_cmd_vel_drives_the_turtle_and_times_out(ros):
     start_turtlesim(ros)
-    probe = ros.probe
-    poses = probe.collect(Pose, '/turtle1/pose', TURTLE_QOS)
-    cmd = probe.node.create_publisher(Twist, '/turtle1/cmd_vel', TURTLE_QOS)
+    poses = ros.probe.collect(Pose, '/turtle1/pose', TURTLE_QOS)
+    cmd = ros.probe.node.create_publisher(Twist, '/turtle1/cmd_vel', TURTLE_QOS)
     latest(poses)
     wait_until(lambda: cmd.get_subscription_count() > 0, 10, 'cmd_vel subscriber')
-    cmd.publish(Twist())  # warm-up: an all-zero command changes nothing
     twist = Twist()
-    twist.linear.x = 2.0
+    twist.linear.x, twist.angular.z = 2.0, 1.0
     cmd.publish(twist)
-    wait_until(lambda: poses[-1].x > CENTER + 0.5, 10, 'turtle1 moving east')
-    assert poses[-1].linear_velocity == pytest.approx(2.0)
-    assert probe.call(Spawn, '/spawn', Spawn.Request(x=1.0, y=1.0, name='')).name == 'turtle2'
-    probe.call(TeleportAbsolute, '/turtle2/teleport_absolute',
-               TeleportAbsolute.Request(x=2.0, y=3.0, theta=1.0))
-    probe.call(TeleportRelative, '/turtle2/teleport_relative',
-               TeleportRelative.Request(linear=0.0, angular=0.5))
-    probe.call(SetPen, '/turtle2/set_pen', SetPen.Request(r=255, width=5))
-    probe.call(Empty, '/clear', Empty.Request())
-    probe.call(Kill, '/kill', Kill.Request(name='turtle2'))
-    wait_until(lambda: not any(n == '/turtle2/pose' for n, _ in probe.node.get_topic_names_and_types()),
-               10, 'turtle2 topics gone')
-    theta = math.atan2(0, 1)
-    assert theta == 0.0
+    moving = settled(poses, lambda p: p.linear_velocity == 2.0, 'turtle1 moving')
+    assert moving.angular_velocity == 1.0
+    # One message keeps it going for 1 s (62 or 63 ticks), then it stops: a 2 m arc.
+    stopped = settled(poses, lambda p: p.linear_velocity == 0.0, 'turtle1 stopped by the timeout')
+    assert stopped.angular_velocity == 0.0
+    assert 61 * 0.016 <= stopped.theta <= 64 * 0.016
+    assert math.hypot(stopped.x - CENTER, stopped.y - CENTER) == pytest.approx(
+        2 * 2.0 * math.sin(stopped.theta / 2), abs=0.04)  # chord of a radius-2 arc
+
+    twist.linear.x, twist.angular.z = math.nan, 0.0
+    cmd.publish(twist)  # refused with an error; the pose stays finite
+    twist.linear.x, twist.angular.z = 10.0, 0.0
+    cmd.publish(twist)
+    settled(poses, lambda p: p.x == pytest.approx(11.088889), 'turtle1 at the east wall')
+    assert all(math.isfinite(p.x) and math.isfinite(p.y) for p in poses)
+
+
+def test_spawn_naming_kill_clear_reset(ros, tmp_path):
+    png = tmp_path / 'canvas.png'
+    sim = start_turtlesim(ros, '--canvas-png', str(png))
+    assert spawn(ros) == 'turtle2'
+    assert spawn(ros, 'turtle3') == 'turtle3'
+    assert spawn(ros) == 'turtle4'  # turtle3 is taken
+    sim.wait_for(r'Spawning turtle \[turtle4\] at x=\[1.000000\], y=\[1.000000\], theta=\[0.000000\]')
+    assert spawn(ros, 'turtle2') == ''
+    sim.wait_for(r'\[ERROR\].*A turtle named \[turtle2\] already exists')
+    ros.probe.call(Kill, '/kill', Kill.Request(name='turtle1'))
+    assert spawn(ros) == 'turtle5'  # names are not reused
+    ros.probe.call(Kill, '/kill', Kill.Request(name='nobody'))
+    sim.wait_for(r'\[ERROR\].*Tried to kill turtle \[nobody\], which does not exist')
+    wait_until(lambda: '/turtle1/pose' not in dict(ros.probe.node.get_topic_names_and_types()),
+               10, 'turtle1 topics gone')
+
+    # A trail with the default pen, one with width 0 (1 px), one with the pen off.
+    teleport(ros, 'turtle2', 5.0, 1.0)
+    set_pen(ros, 'turtle2', r=255, width=0)
+    teleport(ros, 'turtle2', 5.0, 5.0)
+    set_pen(ros, 'turtle2', off=1)
+    teleport(ros, 'turtle2', 9.0, 5.0)
+    wait_until(lambda: 'Traceback' not in sim.output, 1, 'no crash')
+    image = snapshot(ros, png)
+    assert image.getpixel(pixel(3.0, 1.0)) == PEN
+    column, row = pixel(5.0, 3.0)
+    assert image.getpixel((column, row)) == (255, 0, 0)
+    assert image.getpixel((column + 2, row)) == BACKGROUND  # 1 px wide
+    assert image.getpixel(pixel(7.0, 5.0)) == BACKGROUND  # pen off
+    assert image.getpixel((2, 2)) == BACKGROUND
+
+    ros.probe.call(Empty, '/clear', Empty.Request())
+    sim.wait_for(r'\[INFO\].*Clearing turtlesim\.')
+    image = snapshot(ros, png)
+    assert image.getpixel(pixel(3.0, 1.0)) == BACKGROUND
+    assert '/turtle2/pose' in dict(ros.probe.node.get_topic_names_and_types())  # turtles untouched
+
+    teleport(ros, 'turtle2', 2.0, 1.0)
+    ros.probe.set_parameters('turtlesim', background_g=0)
+    ros.probe.call(Empty, '/reset', Empty.Request())
+    sim.wait_for(r'\[INFO\].*Resetting turtlesim\.')
+    sim.wait_for(r'Spawning turtle \[turtle1\] at x=\[5.544445\], y=\[5.544445\], theta=\[0.000000\]',
+                 count=2)
+    topics = dict(ros.probe.node.get_topic_names_and_types())
+    wait_until(lambda: not any(t.startswith(('/turtle2/', '/turtle3/'))
+                               for t in dict(ros.probe.node.get_topic_names_and_types())),
+               10, 'all but turtle1 gone')
+    assert '/turtle1/pose' in topics
+    image = snapshot(ros, png)
+    assert image.getpixel(pixel(3.0, 1.0)) == (69, 0, 255)  # trails gone, background kept
+    assert ros.probe.get_parameters('turtlesim', 'background_g') == [0]
+    assert spawn(ros) == 'turtle2'  # the counter starts again
+    assert sim.running() and 'Traceback' not in sim.output
+
+
+def test_bad_input_is_refused_and_logged_never_fatal(ros):
+    sim = start_turtlesim(ros)
+    poses = ros.probe.collect(Pose, '/turtle1/pose', TURTLE_QOS)
+    for bad in ('bad name', '1turtle', 'a//b', 'turtle?'):
+        assert spawn(ros, bad) == ''
+        sim.wait_for(rf'\[ERROR\].*Cannot spawn a turtle named \[{bad.replace("?", "[?]")}\]')
+    assert spawn(ros, 'fine', x=math.nan) == ''
+    sim.wait_for(r'\[ERROR\].*Refusing to spawn: every value must be finite')
+    teleport(ros, 'turtle1', math.nan, 1.0)
+    ros.probe.call(TeleportRelative, '/turtle1/teleport_relative',
+                   TeleportRelative.Request(linear=math.inf, angular=0.0))
+    sim.wait_for(r'\[ERROR\].*Refusing teleport_absolute of turtle \[turtle1\]')
+    sim.wait_for(r'\[ERROR\].*Refusing teleport_relative of turtle \[turtle1\]')
+    latest(poses, count=5)
+    assert (poses[-1].x, poses[-1].y) == (pytest.approx(CENTER), pytest.approx(CENTER))
+    # Huge but finite teleports are clamped to the wall, as upstream does.
+    teleport(ros, 'turtle1', 1e30, -1e30)
+    settled(poses, lambda p: (p.x, p.y) == (pytest.approx(11.088889), 0.0), 'clamped to the corner')
+    sim.wait_for(r'\[WARN\].*Oh no! I hit the wall! \(Clamping from \[x=')
+    assert spawn(ros) == 'turtle2'  # still serving
+    assert sim.running() and 'Traceback' not in sim.output
+
+
+def test_background_parameters(ros, tmp_path):
+    png = tmp_path / 'canvas.png'
+    sim = start_turtlesim(ros, '--canvas-png', str(png))
+    assert ros.probe.get_parameters('turtlesim', 'background_r', 'background_g', 'background_b') == [
+        69, 86, 255]
+    described = ros.probe.call(DescribeParameters, '/turtlesim/describe_parameters',
+                               DescribeParameters.Request(names=['background_r'])).descriptors[0]
+    assert described.description == 'Red channel of the background color'
+    (limits,) = described.integer_range
+    assert (limits.from_value, limits.to_value, limits.step) == (0, 255, 1)
+
+    assert snapshot(ros, png).getpixel((10, 10)) == BACKGROUND
+    (ok,) = ros.probe.set_parameters('turtlesim', background_r=255)
+    assert ok.successful
+    wait_until(lambda: snapshot(ros, png).getpixel((10, 10)) == (255, 86, 255), 10, 'purple background')
+    for wrong in ({'background_g': 256}, {'background_g': -1}, {'background_b': 'blue'},
+                  {'background_b': 1.5}):
+        (result,) = ros.probe.set_parameters('turtlesim', **wrong)
+        assert not result.successful
+    assert ros.probe.get_parameters('turtlesim', 'background_g', 'background_b') == [86, 255]
+    assert sim.running()
+
+
+@pytest.mark.parametrize('override', ['background_r:=300', 'background_b:=blue'])
+def test_bad_startup_parameter_is_one_line_and_exit_2(ros, override):
+    sim = ros.run('turtlesim', 'turtlesim_node', '--headless', '--ros-args', '-p', override)
+    assert sim.wait(timeout=30) == 2
+    assert sim.output.startswith('error: ')
+    assert 'Traceback' not in sim.output

@@ -167,6 +167,8 @@ class TurtleEndpoints:
 class TurtlesimNode(Node):
     def __init__(self, canvas_png: Path = Path('turtlesim.png'), publish_image: bool = False,
                  window: bool = False) -> None:
+        # Set first: rclpy destroys a half-built node (bad --ros-args parameter) via destroy_node().
+        self.window = None
         super().__init__('turtlesim')
         for channel, default in zip(('red', 'green', 'blue'), DEFAULT_BACKGROUND, strict=True):
             name = f'background_{channel[0]}'
@@ -197,7 +199,6 @@ class TurtlesimNode(Node):
         self.get_logger().info(f'Starting turtlesim with node name {self.get_fully_qualified_name()}')
         self.spawn_turtle('', world.CENTER, world.CENTER, 0.0)
         self.create_timer(world.TICK_DT, self._tick)
-        self.window = None
         if window and os.environ.get('DISPLAY'):
             from turtlesim_py.window import CanvasWindow  # tkinter only when there is a display
             self.want_frames = True
