@@ -1,11 +1,13 @@
 """`ros2 pkg`: the installed command against the installed workspace, and a fresh package built end to end."""
 
+import argparse
 import os
 import subprocess
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import pytest
+from ros2pkg.command import add_arguments
 
 TIMEOUT = 60
 
@@ -177,3 +179,24 @@ def test_created_packages_build_run_and_pass_their_tests(tmp_path):
     results = in_workspace(tmp_path, 'colcon test-result --all')
     assert results.returncode == 0, results.stdout
     assert 'Summary: 6 tests, 0 errors, 0 failures, 0 skipped' in results.stdout
+
+
+def test_pkg_without_a_verb_prints_its_help():
+    result = ros2('pkg')
+    assert result.returncode == 0
+    for verb in ('create', 'executables', 'list', 'prefix', 'xml'):
+        assert f'    {verb} ' in result.stdout
+
+
+def test_shell_completion_offers_package_names_build_types_and_licenses():
+
+    parser = argparse.ArgumentParser(prog='ros2 pkg')
+    add_arguments(parser, 'ros2 pkg')
+    verbs = next(action for action in parser._actions if isinstance(action, argparse._SubParsersAction))
+    completers = {option: action.completer for action in verbs.choices['create']._actions
+                  for option in action.option_strings if hasattr(action, 'completer')}
+    assert completers['--build-type']() == ['ament_cmake', 'ament_python']
+    assert 'Apache-2.0' in completers['--license']()
+    prefix_package = next(action for action in verbs.choices['prefix']._actions
+                          if action.dest == 'package_name')
+    assert 'ros2cli' in prefix_package.completer()

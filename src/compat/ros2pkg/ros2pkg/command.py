@@ -13,6 +13,7 @@ from collections.abc import Callable
 
 from ros2pkg import api
 from ros2pkg.create import (
+    BUILD_TYPES,
     DEFAULT_LICENSE,
     EMAIL,
     CreateError,
@@ -54,15 +55,18 @@ def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:
                         help='The package.xml format.')
     create.add_argument('--description', default='TODO: Package description',
                         help='The description given in the package.xml')
-    create.add_argument('--license', default=DEFAULT_LICENSE,
+    license_argument = create.add_argument('--license', default=DEFAULT_LICENSE,
                         help='The license attached to this package; this can be an arbitrary string, but '
                              'a LICENSE file will only be generated if it is one of the supported '
                              "licenses (pass '?' to get a list)")
+    license_argument.completer = lambda **_: list(LICENSES)  # type: ignore[attr-defined]
     create.add_argument('--destination-directory', default=os.curdir,
                         help='Directory where to create the package directory')
     # Checked in main_create rather than with `choices`, to answer typos with a suggestion.
-    create.add_argument('--build-type', default='ament_cmake', metavar='{ament_cmake,ament_python}',
-                        help='The build type to process the package with')
+    build_type = create.add_argument('--build-type', default='ament_cmake',
+                                     metavar='{' + ','.join(BUILD_TYPES) + '}',
+                                     help='The build type to process the package with')
+    build_type.completer = lambda **_: list(BUILD_TYPES)  # type: ignore[attr-defined]
     create.add_argument('--dependencies', nargs='+', default=[], help='list of dependencies')
     create.add_argument('--maintainer-email', help='email address of the maintainer of this package')
     create.add_argument('--maintainer-name', default=_login_name(),
