@@ -135,8 +135,8 @@ def main_xml(args: argparse.Namespace) -> int | str:
         return 'Package xml manifest not found'
     try:
         tree = ET.parse(manifest)
-    except ET.ParseError as error:
-        return f'Package xml manifest {manifest} is not valid XML: {error}'
+    except (ET.ParseError, OSError) as error:
+        return f'Package xml manifest {manifest} cannot be read: {error}'
     if args.tag is None:
         ET.dump(tree)
         return 0
