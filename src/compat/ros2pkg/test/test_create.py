@@ -179,3 +179,17 @@ def test_cmakelists_declares_dependencies_node_library_and_tests():
 
 def test_license_list_is_upstreams():
     assert LICENSES[0] == 'Apache-2.0' and 'LGPL-3.0-only' in LICENSES and len(LICENSES) == 9
+
+
+def test_python_library_is_a_subpackage(tmp_path):
+    p = settings(tmp_path, library_name='helpers')
+    root = os.path.join(str(tmp_path), 'my_pkg')
+    steps = plan(p, str(tmp_path))
+    assert [step.message for step in steps[-2:]] == [f'creating folder {root}/my_pkg/helpers',
+                                                      f'creating {root}/my_pkg/helpers/__init__.py']
+
+
+def test_package_format_2_is_declared(tmp_path):
+    text = package_xml(settings(tmp_path, package_format=2))
+    assert '<package format="2">' in text and 'package_format2.xsd' in text
+    assert parse_package_string(text).package_format == 2
