@@ -131,3 +131,26 @@ class RosHarness(RosSandbox):
         if self._probe is not None:
             self._probe.close()
         super().close()
+
+
+# -- helpers for module tests (olive_sim) --------------------------------------------------------
+
+def wait_for_messages(received: list[Any], count: int, timeout: float = 15.0, what: str = 'messages') -> None:
+    """Wait until a list filled by Probe.collect holds at least count messages."""
+    wait_until(lambda: len(received) >= count, timeout, f'{count} {what} (got {len(received)})')
+
+
+def endpoints(probe: Probe, topic: str, kind: str = 'publishers', count: int = 1,
+              timeout: float = 15.0) -> list[Any]:
+    """The graph's TopicEndpointInfo list of a topic's publishers or subscriptions, once it has count."""
+    lookup = (probe.node.get_publishers_info_by_topic if kind == 'publishers'
+              else probe.node.get_subscriptions_info_by_topic)
+    wait_until(lambda: len(lookup(topic)) >= count, timeout, f'{count} {kind} of {topic}')
+    return lookup(topic)
+
+
+def list_parameter_names(probe: Probe, node: str, timeout: float = 10.0) -> list[str]:
+    """Names of all parameters of another node, through its list_parameters service."""
+    from rcl_interfaces.srv import ListParameters
+    response = probe.call(ListParameters, f'{node}/list_parameters', ListParameters.Request(), timeout)
+    return sorted(response.result.names)

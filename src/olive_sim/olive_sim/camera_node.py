@@ -74,8 +74,7 @@ class CameraModule(OliveModule):
 
     def _joint_position(self, msg: JointState, which: str) -> float | None:
         if not msg.position or not math.isfinite(msg.position[0]):
-            self.get_logger().warning(f'{which} joint state without a finite position ignored',
-                                      throttle_duration_sec=2.0)
+            self.warn(f'{which} joint', f'{which} joint state without a finite position ignored')
             return None
         return msg.position[0]
 

@@ -6,6 +6,7 @@ node named olive_T_N_dcm_srv (like the course's /olive_servo_pan_dcm_srv).
 
 from __future__ import annotations
 
+import math
 import re
 import time
 from typing import Any
@@ -21,6 +22,7 @@ from std_msgs.msg import Bool
 FIRMWARE_VERSION = 'olive_sim 0.1.0'
 NAMESPACE_PATTERN = re.compile(r'^[A-Za-z][A-Za-z0-9_]*$')
 STATUS_PERIOD = 1.0  # s: status, temperature and switch are published at 1 Hz
+WARN_EVERY = 2.0     # s between repeats of one kind of warning
 
 
 def check_namespace(namespace: str) -> str:
@@ -75,6 +77,7 @@ class OliveModule(Node):
         self.led_on = False
         self.started = time.monotonic()
         self._wrong_led_types: set[str] = set()
+        self._last_warning: dict[str, float] = {}
         self.status_publisher = self.create_publisher(DiagnosticStatus, self.topic('status'), 10)
         self.temperature_publisher = self.create_publisher(Temperature, self.topic('temperature'), 10)
         self.switch_publisher = self.create_publisher(Bool, self.topic('switch'), 10)
@@ -99,6 +102,14 @@ class OliveModule(Node):
         return DiagnosticStatus.OK, 'running'
 
     # -- common behaviour -------------------------------------------------------------------
+
+    def warn(self, kind: str, message: str) -> None:
+        """Log a warning, at most once per WARN_EVERY s for each kind (a stream of bad goals
+        at 100 Hz must not flood the log, but a different problem is still reported at once)."""
+        now = time.monotonic()
+        if now - self._last_warning.get(kind, -math.inf) >= WARN_EVERY:
+            self._last_warning[kind] = now
+            self.get_logger().warning(message)
 
     def _on_led(self, msg: Bool) -> None:
         if msg.data != self.led_on:

@@ -73,17 +73,18 @@ class Pid:
 
     gains: PidGains = field(default_factory=PidGains)
     integral_zone: float = 0.1  # rad: the error is integrated only closer to the goal than this
-    integral: float = 0.0
+    integral: float = 0.0       # the integral term's contribution to the output
 
     def update(self, error: float, measured_velocity: float, dt: float) -> float:
         g = self.gains
-        unsaturated = g.kp * error + g.ki * self.integral - g.kd * measured_velocity
-        # Integrate only near the goal and while the output is not pinned at its limit in the
-        # error's direction: otherwise the integral winds up during a long move and throws the
-        # servo past the goal.
+        proportional_and_derivative = g.kp * error - g.kd * measured_velocity
+        unsaturated = proportional_and_derivative + self.integral
+        # The integral keeps ki*sum(e*dt), so a new ki acts from now on without a jump. It grows
+        # only near the goal and while the output is not pinned at its limit in the error's
+        # direction: otherwise it winds up during a long move and throws the servo past the goal.
         if abs(error) < self.integral_zone and (abs(unsaturated) < 1.0 or unsaturated * error < 0):
-            self.integral += error * dt
-        return clamp(g.kp * error + g.ki * self.integral - g.kd * measured_velocity, -1.0, 1.0)
+            self.integral = clamp(self.integral + g.ki * error * dt, -1.0, 1.0)
+        return clamp(proportional_and_derivative + self.integral, -1.0, 1.0)
 
     def reset(self) -> None:
         self.integral = 0.0
@@ -273,3 +274,37 @@ def simulate_step(gains: PidGains, goal: float = 1.57, duration: float = 3.0,
             times.append(sim.time)
             positions.append(sim.state.position)
     return step_metrics(times, positions, start, sim.goal_position)
+
+
+# The course's section 4.4 sequence: Kp = 1 alone; Kp raised "until the servo reaches the desired
+# speed"; Ki introduced from 0.01 and raised until no error remains; Kd = 1.0 against the overshoot.
+COURSE_GAIN_SEQUENCE = (
+    ('Kp=1', PidGains(1.0, 0.0, 0.0)),
+    ('Kp=5', PidGains(5.0, 0.0, 0.0)),
+    ('Kp=5 Ki=10', PidGains(5.0, 10.0, 0.0)),
+    ('Kp=5 Ki=10 Kd=1', PidGains(5.0, 10.0, 1.0)),
+)
+
+
+def course_exercise(sequence: tuple[tuple[str, PidGains], ...] = COURSE_GAIN_SEQUENCE,
+                    goals: tuple[float, float] = (1.57, 0.0), period: float = 3.0,
+                    params: ServoParams | None = None, sample_rate: float = 100.0
+                    ) -> list[tuple[str, StepMetrics]]:
+    """One servo running the appendix 5.3 script (goal flips every `period` s), the gains changed
+    before each flip as the exercise goes: the step-response numbers of every flip."""
+    sim = ServoSim(params)
+    sim.enable_torque(True)
+    every = max(1, round(1.0 / (sample_rate * sim.dt)))
+    results = []
+    for index, (label, gains) in enumerate(sequence):
+        sim.pid.gains = PidGains(gains.kp, gains.ki, gains.kd)
+        start, t0 = sim.state.position, sim.time
+        sim.goal_position = sim.clamp_goal(goals[index % 2])
+        times, positions = [], []
+        for _ in range(round(period / sim.dt)):
+            sim.step()
+            if sim.steps % every == 0:
+                times.append(sim.time - t0)
+                positions.append(sim.state.position)
+        results.append((label, step_metrics(times, positions, start, sim.goal_position)))
+    return results

@@ -21,7 +21,6 @@ from olive_sim.module_node import OliveModule, describe, run_module
 from olive_sim.servo_model import CONTROL_MODES, PidGains, ServoParams, ServoSim
 
 MAX_CATCH_UP = 1.0  # s of physics run at once after a stall; beyond that the model skips time
-WARN_EVERY = 2.0    # s between repeats of the same warning
 GAIN_LIMITS = {'kp': 100.0, 'ki': 1000.0, 'kd': 10.0}
 DEFAULT_GAINS = PidGains(kp=5.0, ki=10.0, kd=0.3)
 
@@ -104,9 +103,8 @@ class ServoModule(OliveModule):
         elapsed = time.monotonic() - self._wall_start
         behind = elapsed - self.sim.time
         if behind > MAX_CATCH_UP:
-            self.get_logger().warning(
-                f'physics fell {behind:.2f} s behind wall time (process stalled): skipping ahead',
-                throttle_duration_sec=WARN_EVERY)
+            self.warn('stall', f'physics fell {behind:.2f} s behind wall time (process stalled): '
+                      'skipping ahead')
             self._wall_start += behind - MAX_CATCH_UP
             elapsed = time.monotonic() - self._wall_start
         for _ in range(int(elapsed * self.physics_rate) - self.sim.steps):
@@ -149,13 +147,12 @@ class ServoModule(OliveModule):
     def _accept(self, topic: str, value: float) -> bool:
         """Whether a command may act: finite, and torque on (both warned about otherwise)."""
         if not math.isfinite(value):
-            self.get_logger().warning(f'{self.topic(topic)}: ignored {value}, a goal must be a finite '
-                                      'number', throttle_duration_sec=WARN_EVERY)
+            self.warn(f'{topic} {value}', f'{self.topic(topic)}: ignored {value}, a goal must be a '
+                      'finite number')
             return False
         if not self.sim.torque_enabled:
-            self.get_logger().warning(
-                f'{self.topic(topic)}: ignored, torque is disabled (call '
-                f"{self.topic('setTorqueEnable')} first)", throttle_duration_sec=WARN_EVERY)
+            self.warn(f'{topic} torque off', f'{self.topic(topic)}: ignored, torque is disabled (call '
+                      f"{self.topic('setTorqueEnable')} first)")
             return False
         return True
 
@@ -166,9 +163,8 @@ class ServoModule(OliveModule):
         goal = self.sim.clamp_goal(msg.data)
         if goal != msg.data:
             p = self.sim.params
-            self.get_logger().warning(
-                f'goal/position {msg.data:.4f} rad is outside [{p.min_position:.4f}, '
-                f'{p.max_position:.4f}]: clamped to {goal:.4f}', throttle_duration_sec=WARN_EVERY)
+            self.warn('position clamped', f'goal/position {msg.data:.4f} rad is outside '
+                      f'[{p.min_position:.4f}, {p.max_position:.4f}]: clamped to {goal:.4f}')
         self.sim.goal_position = goal
 
     def _on_goal_velocity(self, msg: Float32) -> None:
@@ -178,17 +174,15 @@ class ServoModule(OliveModule):
         limit = self.sim.params.no_load_speed
         goal = max(-limit, min(limit, msg.data))
         if goal != msg.data:
-            self.get_logger().warning(
-                f'goal/velocity {msg.data:.3f} rad/s is beyond the speed limit {limit:.3f}: clamped',
-                throttle_duration_sec=WARN_EVERY)
+            self.warn('velocity clamped', f'goal/velocity {msg.data:.3f} rad/s is beyond the speed '
+                      f'limit {limit:.3f}: clamped')
         self.sim.goal_velocity = goal
 
     def _on_pwm(self, msg: Float32) -> None:
         if not self._accept('pwm', msg.data):
             return
         if not -1.0 <= msg.data <= 1.0:
-            self.get_logger().warning(f'pwm {msg.data} ignored: the duty cycle must be within -1..1',
-                                      throttle_duration_sec=WARN_EVERY)
+            self.warn('pwm range', f'pwm {msg.data} ignored: the duty cycle must be within -1..1')
             return
         self.advance_to_now()
         self.sim.pwm = msg.data

@@ -3,7 +3,14 @@
 import math
 
 import pytest
-from olive_sim.servo_model import PidGains, ServoParams, ServoSim, simulate_step, step_metrics
+from olive_sim.servo_model import (
+    PidGains,
+    ServoParams,
+    ServoSim,
+    course_exercise,
+    simulate_step,
+    step_metrics,
+)
 
 # The course's section 4.4 exercise, step 0 -> 1.57 rad as the appendix 5.3 script commands.
 P_ONLY = PidGains(kp=1.0)
@@ -42,6 +49,25 @@ def test_kd_reduces_the_overshoot():
     without, with_d = simulate_step(WITH_I), simulate_step(WITH_D)
     assert with_d.overshoot < without.overshoot / 2
     assert simulate_step(PidGains(kp=5.0, ki=10.0, kd=0.3)).overshoot < 0.01  # raised further
+
+
+def test_the_whole_exercise_on_one_servo_shows_the_four_observations():
+    # As a student does it: one running servo, gains changed between the script's goal flips.
+    (_, p_only), (_, fast), (_, with_i), (_, with_d) = course_exercise()
+    assert p_only.steady_state_error > 0.03
+    assert fast.rise_time < p_only.rise_time and fast.overshoot > p_only.overshoot + 0.05
+    assert with_i.steady_state_error < 0.01
+    assert with_d.overshoot < with_i.overshoot / 2
+
+
+def test_a_new_ki_acts_without_a_jump():
+    sim = ServoSim(gains=PidGains(kp=5.0))
+    sim.enable_torque(True)
+    sim.goal_position = 0.05  # inside friction's dead band: P alone leaves the error
+    run(sim, 1.0)
+    sim.pid.gains.ki = 10.0
+    sim.step()
+    assert abs(sim.effort - 5.0 * (0.05 - sim.measured_position())) < 0.01
 
 
 def test_step_response_is_deterministic():
