@@ -1,0 +1,109 @@
+"""Actions on the environment of launch (and so of the processes it starts afterwards)."""
+
+from __future__ import annotations
+
+import os
+from typing import TYPE_CHECKING, Any
+
+from launch.action import Action
+from launch.conditions import evaluate_condition_expression
+from launch.frontend.expose import expose_action
+from launch.substitution import (
+    SomeSubstitutionsType,
+    normalize_to_list_of_substitutions,
+    perform_substitutions,
+)
+
+if TYPE_CHECKING:
+    from launch.frontend import Entity, Parser
+    from launch.launch_context import LaunchContext
+
+
+@expose_action('set_env')
+class SetEnvironmentVariable(Action):
+    def __init__(self, name: SomeSubstitutionsType, value: SomeSubstitutionsType, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.name = normalize_to_list_of_substitutions(name)
+        self.value = normalize_to_list_of_substitutions(value)
+
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        return cls, {'name': parser.substitutions(entity.get_attr('name')),
+                     'value': parser.substitutions(entity.get_attr('value'))}
+
+    def execute(self, context: LaunchContext) -> None:
+        context.environment[perform_substitutions(context, self.name)] = (
+            perform_substitutions(context, self.value))
+
+
+@expose_action('unset_env')
+class UnsetEnvironmentVariable(Action):
+    def __init__(self, name: SomeSubstitutionsType, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.name = normalize_to_list_of_substitutions(name)
+
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        return cls, {'name': parser.substitutions(entity.get_attr('name'))}
+
+    def execute(self, context: LaunchContext) -> None:
+        context.environment.pop(perform_substitutions(context, self.name), None)
+
+
+@expose_action('append_env')
+class AppendEnvironmentVariable(Action):
+    """Append (or prepend) a value to a separator-joined variable such as a path list."""
+
+    def __init__(self, name: SomeSubstitutionsType, value: SomeSubstitutionsType, *,
+                 prepend: bool | SomeSubstitutionsType = False,
+                 separator: SomeSubstitutionsType = os.pathsep, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.name = normalize_to_list_of_substitutions(name)
+        self.value = normalize_to_list_of_substitutions(value)
+        self.prepend = prepend if isinstance(prepend, bool) else normalize_to_list_of_substitutions(prepend)
+        self.separator = normalize_to_list_of_substitutions(separator)
+
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        kwargs: dict[str, Any] = {'name': parser.substitutions(entity.get_attr('name')),
+                                  'value': parser.substitutions(entity.get_attr('value'))}
+        for key in ('prepend', 'separator'):
+            value = entity.get_attr(key, optional=True)
+            if value is not None:
+                kwargs[key] = parser.substitutions(value)
+        return cls, kwargs
+
+    def execute(self, context: LaunchContext) -> None:
+        name = perform_substitutions(context, self.name)
+        value = perform_substitutions(context, self.value)
+        separator = perform_substitutions(context, self.separator)
+        prepend = (self.prepend if isinstance(self.prepend, bool)
+                   else evaluate_condition_expression(context, self.prepend))
+        current = context.environment.get(name)
+        if not current:
+            context.environment[name] = value
+        else:
+            context.environment[name] = (value + separator + current if prepend
+                                         else current + separator + value)
+
+
+class PushEnvironment(Action):
+    def execute(self, context: LaunchContext) -> None:
+        context._push_environment()
+
+
+class PopEnvironment(Action):
+    def execute(self, context: LaunchContext) -> None:
+        context._pop_environment()
+
+
+@expose_action('reset_env')
+class ResetEnvironment(Action):
+    """Back to the environment launch started with."""
+
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        return cls, {}
+
+    def execute(self, context: LaunchContext) -> None:
+        context._reset_environment()

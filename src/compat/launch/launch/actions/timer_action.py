@@ -1,0 +1,101 @@
+"""TimerAction: run actions once after a period, in the scope the timer was started in."""
+
+from __future__ import annotations
+
+import asyncio
+from collections.abc import Iterable
+from typing import TYPE_CHECKING, Any
+
+from launch.action import Action
+from launch.actions.launch_configuration_actions import (
+    PopLaunchConfigurations,
+    PushLaunchConfigurations,
+    ReplaceLaunchConfigurations,
+)
+from launch.event_handler import CallbackEventHandler
+from launch.events import Shutdown, TimerEvent
+from launch.frontend.expose import expose_action
+from launch.launch_description_entity import LaunchDescriptionEntity
+from launch.substitution import (
+    SomeSubstitutionsType,
+    normalize_to_list_of_substitutions,
+    perform_substitutions,
+)
+
+if TYPE_CHECKING:
+    from launch.event import Event
+    from launch.frontend import Entity, Parser
+    from launch.launch_context import LaunchContext
+
+
+@expose_action('timer')
+class TimerAction(Action):
+    """One-shot; keeps launch busy while pending; cancelled by shutdown unless told otherwise.
+
+    The actions see the locals and launch configurations of the moment the timer started (as
+    upstream launch does since ros2/launch#836), so a timer inside a group keeps its scope.
+    """
+
+    def __init__(self, *, period: float | SomeSubstitutionsType,
+                 actions: Iterable[LaunchDescriptionEntity], cancel_on_shutdown: bool = True,
+                 **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.period = (period if isinstance(period, (int, float))
+                       else normalize_to_list_of_substitutions(period))
+        self.actions = list(actions)
+        self.cancel_on_shutdown = cancel_on_shutdown
+        self._future: asyncio.Future | None = None
+        self._handle: asyncio.TimerHandle | None = None
+
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        kwargs: dict[str, Any] = {'period': parser.substitutions(entity.get_attr('period'))}
+        cancel = parser.boolean(entity, 'cancel_on_shutdown')
+        if cancel is not None:
+            kwargs['cancel_on_shutdown'] = cancel
+        kwargs['actions'] = parser.parse_actions(entity.action_children())
+        return cls, kwargs
+
+    def describe_conditional_sub_entities(self) -> list[tuple[str, Iterable[LaunchDescriptionEntity]]]:
+        return [('after a timer', self.actions)]
+
+    def get_asyncio_future(self) -> asyncio.Future | None:
+        return self._future
+
+    def cancel(self) -> None:
+        if self._handle is not None:
+            self._handle.cancel()
+        if self._future is not None and not self._future.done():
+            self._future.set_result(None)
+
+    def execute(self, context: LaunchContext) -> None:
+        text = (str(self.period) if isinstance(self.period, (int, float))
+                else perform_substitutions(context, self.period))
+        try:
+            period = float(text)
+        except ValueError:
+            raise ValueError(f"TimerAction period must be a number of seconds, got '{text}'") from None
+        captured_locals = context.get_locals_as_dict()
+        captured_configurations = dict(context.launch_configurations)
+
+        def on_timer(_event: Event, ctx: LaunchContext) -> list[LaunchDescriptionEntity]:
+            ctx.extend_locals(captured_locals)
+            return [PushLaunchConfigurations(), ReplaceLaunchConfigurations(captured_configurations),
+                    *self.actions, PopLaunchConfigurations()]
+
+        context.register_event_handler(CallbackEventHandler(
+            matcher=lambda event: isinstance(event, TimerEvent) and event.timer_action is self,
+            callback=on_timer, handle_once=True))
+        if self.cancel_on_shutdown:
+            context.register_event_handler(CallbackEventHandler(
+                matcher=lambda event: isinstance(event, Shutdown),
+                callback=lambda _event, _ctx: self.cancel(), handle_once=True))
+        loop = asyncio.get_running_loop()
+        self._future = loop.create_future()
+
+        def fire() -> None:
+            if self._future is not None and not self._future.done():
+                context.emit_event_sync(TimerEvent(timer_action=self, actions=self.actions))
+                self._future.set_result(None)
+
+        self._handle = loop.call_later(period, fire)

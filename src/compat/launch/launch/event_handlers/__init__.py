@@ -1,0 +1,128 @@
+"""Event handlers for process events, shutdown, completion of actions and includes."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable
+from typing import TYPE_CHECKING, Any
+
+from launch.event_handler import BaseEventHandler, EventHandler
+from launch.events import ExecutionComplete, Shutdown
+from launch.events import IncludeLaunchDescription as IncludeLaunchDescriptionEvent
+from launch.events.process import ProcessExited, ProcessIO, ProcessStarted
+from launch.launch_description_entity import LaunchDescriptionEntity
+
+if TYPE_CHECKING:
+    from launch.event import Event
+    from launch.launch_context import LaunchContext
+
+__all__ = [
+    'EventHandler', 'OnActionEventBase', 'OnExecutionComplete', 'OnIncludeLaunchDescription',
+    'OnProcessExit', 'OnProcessIO', 'OnProcessStart', 'OnShutdown',
+]
+
+# A reaction: entities, or a callable (event, context) -> entities | None.
+SomeActionsOrCallable = Any
+
+
+def _entities_or_callable(on_event: SomeActionsOrCallable) -> Callable[[Event, LaunchContext], Any]:
+    """Check a reaction once, at construction, and turn it into a callable."""
+    if callable(on_event) and not isinstance(on_event, LaunchDescriptionEntity):
+        return on_event
+    entities = [on_event] if isinstance(on_event, LaunchDescriptionEntity) else list(on_event)
+    for entity in entities:
+        if not isinstance(entity, LaunchDescriptionEntity):
+            raise TypeError(f"expected launch description entities, got '{type(entity).__name__}'")
+    return lambda _event, _context: entities
+
+
+def _action_matcher(target_action: Any) -> Callable[[Any], bool]:
+    if target_action is None:
+        return lambda _action: True
+    if isinstance(target_action, LaunchDescriptionEntity):
+        return lambda action: action is target_action
+    if callable(target_action):
+        return target_action
+    raise TypeError(f"target_action must be an action, a callable or None, got '{type(target_action)}'")
+
+
+class OnActionEventBase(BaseEventHandler):
+    """Reacts to events of one class that belong to the target action(s)."""
+
+    def __init__(self, *, event_type: type, on_event: SomeActionsOrCallable,
+                 target_action: Any = None, handle_once: bool = False) -> None:
+        action_matches = _action_matcher(target_action)
+        super().__init__(
+            matcher=lambda event: isinstance(event, event_type) and action_matches(event.action),
+            handle_once=handle_once)
+        self._on_event = _entities_or_callable(on_event)
+
+    def handle(self, event: Event, context: LaunchContext) -> Iterable[LaunchDescriptionEntity] | None:
+        super().handle(event, context)
+        return self._on_event(event, context)
+
+
+class OnProcessStart(OnActionEventBase):
+    def __init__(self, *, target_action: Any = None, on_start: SomeActionsOrCallable,
+                 handle_once: bool = False) -> None:
+        super().__init__(event_type=ProcessStarted, on_event=on_start, target_action=target_action,
+                         handle_once=handle_once)
+
+
+class OnProcessExit(OnActionEventBase):
+    def __init__(self, *, target_action: Any = None, on_exit: SomeActionsOrCallable,
+                 handle_once: bool = False) -> None:
+        super().__init__(event_type=ProcessExited, on_event=on_exit, target_action=target_action,
+                         handle_once=handle_once)
+
+
+class OnExecutionComplete(OnActionEventBase):
+    def __init__(self, *, target_action: Any = None, on_completion: SomeActionsOrCallable,
+                 handle_once: bool = False) -> None:
+        super().__init__(event_type=ExecutionComplete, on_event=on_completion,
+                         target_action=target_action, handle_once=handle_once)
+
+
+class OnProcessIO(BaseEventHandler):
+    """Callbacks get the ProcessIO event only (text is bytes)."""
+
+    def __init__(self, *, target_action: Any = None,
+                 on_stdin: Callable[[ProcessIO], Any] | None = None,
+                 on_stdout: Callable[[ProcessIO], Any] | None = None,
+                 on_stderr: Callable[[ProcessIO], Any] | None = None,
+                 handle_once: bool = False) -> None:
+        action_matches = _action_matcher(target_action)
+        self._callbacks = {0: on_stdin, 1: on_stdout, 2: on_stderr}
+        super().__init__(
+            matcher=lambda event: (isinstance(event, ProcessIO) and action_matches(event.action)
+                                   and self._callback(event) is not None),
+            handle_once=handle_once)
+
+    def _callback(self, event: ProcessIO) -> Callable[[ProcessIO], Any] | None:
+        fd = 1 if event.from_stdout else 2 if event.from_stderr else 0
+        return self._callbacks[fd]
+
+    def handle(self, event: Event, context: LaunchContext) -> Iterable[LaunchDescriptionEntity] | None:
+        super().handle(event, context)
+        callback = self._callback(event)  # type: ignore[arg-type]
+        return callback(event) if callback is not None else None
+
+
+class OnShutdown(BaseEventHandler):
+    def __init__(self, *, on_shutdown: SomeActionsOrCallable, handle_once: bool = False) -> None:
+        super().__init__(matcher=lambda event: isinstance(event, Shutdown), handle_once=handle_once)
+        self._on_shutdown = _entities_or_callable(on_shutdown)
+
+    def handle(self, event: Event, context: LaunchContext) -> Iterable[LaunchDescriptionEntity] | None:
+        super().handle(event, context)
+        return self._on_shutdown(event, context)
+
+
+class OnIncludeLaunchDescription(EventHandler):
+    """The launch service's own handler: an included description is visited."""
+
+    def __init__(self) -> None:
+        super().__init__(matcher=lambda event: isinstance(event, IncludeLaunchDescriptionEvent))
+
+    def handle(self, event: Event, context: LaunchContext) -> Iterable[LaunchDescriptionEntity] | None:
+        super().handle(event, context)
+        return [event.launch_description]  # type: ignore[attr-defined]

@@ -1,0 +1,81 @@
+"""Events about the processes that ExecuteProcess (and Node) run."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+from launch.event import Event
+
+__all__ = [
+    'ProcessExited', 'ProcessIO', 'ProcessStarted', 'ProcessStderr', 'ProcessStdin', 'ProcessStdout',
+    'RunningProcessEvent', 'ShutdownProcess', 'SignalProcess',
+]
+
+
+class RunningProcessEvent(Event):
+    """Something about one running process; says which action, label, argv, cwd, env and pid."""
+
+    def __init__(self, *, action: Any, name: str, cmd: list[str], cwd: str | None,
+                 env: dict[str, str] | None, pid: int) -> None:
+        self.action = action
+        self.execute_process_action = action
+        self.name = name
+        self.process_name = name
+        self.cmd = cmd
+        self.cwd = cwd
+        self.env = env
+        self.pid = pid
+
+
+class ProcessStarted(RunningProcessEvent):
+    pass
+
+
+class ProcessExited(RunningProcessEvent):
+    def __init__(self, *, returncode: int, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.returncode = returncode
+
+
+class ProcessIO(RunningProcessEvent):
+    """A chunk of a process's output (text is bytes; fd is 1 or 2)."""
+
+    def __init__(self, *, text: bytes, fd: int, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.text = text
+        self.from_stdout = fd == 1
+        self.from_stderr = fd == 2
+        self.from_stdin = fd == 0
+
+
+class ProcessStdout(ProcessIO):
+    def __init__(self, **kwargs: Any) -> None:
+        super().__init__(fd=1, **kwargs)
+
+
+class ProcessStderr(ProcessIO):
+    def __init__(self, **kwargs: Any) -> None:
+        super().__init__(fd=2, **kwargs)
+
+
+class ProcessStdin(ProcessIO):
+    def __init__(self, **kwargs: Any) -> None:
+        super().__init__(fd=0, **kwargs)
+
+
+class _ProcessTargetingEvent(Event):
+    def __init__(self, *, process_matcher: Callable[[Any], bool]) -> None:
+        self.process_matcher = process_matcher
+
+
+class ShutdownProcess(_ProcessTargetingEvent):
+    """Stop the matching processes (SIGINT, then the SIGTERM/SIGKILL escalation)."""
+
+
+class SignalProcess(_ProcessTargetingEvent):
+    """Send a signal to the matching processes."""
+
+    def __init__(self, *, signal_number: int, process_matcher: Callable[[Any], bool]) -> None:
+        super().__init__(process_matcher=process_matcher)
+        self.signal = signal_number

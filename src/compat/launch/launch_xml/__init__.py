@@ -1,0 +1,1 @@
+"""XML launch files (the parser itself lives in launch.frontend)."""

@@ -1,0 +1,1 @@
+"""YAML launch files (the parser itself lives in launch.frontend)."""

@@ -1,0 +1,9 @@
+"""YAMLLaunchDescriptionSource: a YAML launch file."""
+
+from launch.launch_description_sources import FrontendLaunchDescriptionSource
+
+__all__ = ['YAMLLaunchDescriptionSource']
+
+
+class YAMLLaunchDescriptionSource(FrontendLaunchDescriptionSource):
+    format_name = 'yaml'

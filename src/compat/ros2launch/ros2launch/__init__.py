@@ -1,0 +1,1 @@
+"""ros2launch: the `ros2 launch` command."""

@@ -1,0 +1,1 @@
+"""olive_launch holds launch files only (see launch/)."""
