@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 import re
+import signal
 import time
 from typing import Any
 
@@ -87,6 +88,12 @@ class OliveModule(Node):
 
     def topic(self, name: str) -> str:
         return self.prefix + name
+
+    def destroy_node(self) -> None:
+        # Ctrl-C in a terminal running `ros2 launch` reaches each module twice (from the terminal
+        # and forwarded by launch); the second one must not interrupt the clean-up with a traceback.
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+        super().destroy_node()
 
     # -- to be refined by each module -------------------------------------------------------
 

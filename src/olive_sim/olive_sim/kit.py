@@ -1,0 +1,65 @@
+"""The Owl Kit as the launch file starts it: which modules, their parameters, their topics."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from olive_sim.imu_node import DEFAULT_NAMESPACE as IMU_NAMESPACE
+from olive_sim.module_node import node_name
+
+COMMON_TOPICS = ('led', 'status', 'switch', 'temperature')
+# Topic names and types per module type, as `ros2 topic list -t` shows them in the course.
+MODULE_TOPICS = {
+    'imu': {'imu': 'sensor_msgs/msg/Imu', 'magnetometer': 'sensor_msgs/msg/MagneticField'},
+    'servo': {'goal/position': 'std_msgs/msg/Float32', 'joint': 'sensor_msgs/msg/JointState',
+              'joint/diagnostics': 'diagnostic_msgs/msg/DiagnosticStatus'},
+    'camera': {'image/camera_info': 'sensor_msgs/msg/CameraInfo',
+               'image/compressed': 'sensor_msgs/msg/CompressedImage',
+               'imu': 'sensor_msgs/msg/Imu', 'magnetometer': 'sensor_msgs/msg/MagneticField'},
+}
+COMMON_TYPES = {'led': 'std_msgs/msg/Bool', 'status': 'diagnostic_msgs/msg/DiagnosticStatus',
+                'switch': 'std_msgs/msg/Bool', 'temperature': 'sensor_msgs/msg/Temperature'}
+
+
+@dataclass(frozen=True)
+class KitModule:
+    module_type: str
+    namespace: str
+    executable: str
+    parameters: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def node(self) -> str:
+        return node_name(self.module_type, self.namespace)
+
+    def topics(self) -> dict[str, str]:
+        """Absolute topic name -> type of everything the module offers (position mode for servos)."""
+        prefix = f'/olive/{self.module_type}/{self.namespace}/'
+        names = {**MODULE_TOPICS[self.module_type], **COMMON_TYPES}
+        return {prefix + name: names[name] for name in sorted(names)}
+
+
+# The tilt servo carries the camera (about 80 g plus the L-bracket) 4 cm off its axis, and its
+# range is what the vendor's demos use for the head.
+OWL_KIT = (
+    KitModule('imu', IMU_NAMESPACE, 'imu_sim'),
+    KitModule('servo', 'pan', 'servo_sim', {'namespace': 'pan', 'min_position': -1.5708,
+                                             'max_position': 1.5708}),
+    KitModule('servo', 'tilt', 'servo_sim', {'namespace': 'tilt', 'load_mass': 0.12,
+                                              'load_offset': 0.04, 'min_position': -1.3,
+                                              'max_position': 0.9}),
+    KitModule('camera', 'eye', 'camera_sim', {'namespace': 'eye'}),
+)
+
+
+def topic_table(modules: tuple[KitModule, ...] = OWL_KIT) -> str:
+    """A short table of the kit's modules and topics, printed when the kit starts."""
+    rows = [('MODULE', 'NODE', 'TOPIC', 'TYPE')]
+    for module in modules:
+        for index, (topic, type_name) in enumerate(module.topics().items()):
+            label = f'{module.module_type} {module.namespace}' if index == 0 else ''
+            rows.append((label, module.node if index == 0 else '', topic, type_name))
+    widths = [max(len(row[i]) for row in rows) for i in range(4)]
+    return '\n'.join('  '.join(cell.ljust(width) for cell, width in zip(row, widths, strict=True)).rstrip()
+                     for row in rows)
