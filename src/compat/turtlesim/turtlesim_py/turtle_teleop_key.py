@@ -106,6 +106,11 @@ class TeleopTurtle(Node):
         self._twist_pub = self.create_publisher(Twist, 'turtle1/cmd_vel', HUMBLE_QOS_DEPTH)
         self._rotate = ActionClient(self, RotateAbsolute, 'turtle1/rotate_absolute')
         self._goal_handle: ClientGoalHandle | None = None
+        # Unlike upstream, a goal keyed in before the action server is discovered is not lost:
+        # it waits here (only the latest) and the timer sends it once the server is there.
+        self._pending_lock = threading.Lock()
+        self._pending_theta: float | None = None
+        self.create_timer(0.05, self._send_pending_goal)
 
     def perform(self, action: Action) -> None:
         if isinstance(action, Drive):
@@ -123,6 +128,15 @@ class TeleopTurtle(Node):
             self._twist_pub.publish(twist)
 
     def rotate(self, theta: float) -> None:
+        with self._pending_lock:
+            self._pending_theta = theta
+        self._send_pending_goal()
+
+    def _send_pending_goal(self) -> None:
+        with self._pending_lock:
+            if self._pending_theta is None or not self._rotate.server_is_ready():
+                return
+            theta, self._pending_theta = self._pending_theta, None
         future = self._rotate.send_goal_async(RotateAbsolute.Goal(theta=theta))
         future.add_done_callback(self._on_goal_response)
 
@@ -148,12 +162,13 @@ def main(args: list[str] | None = None) -> None:
     node = TeleopTurtle()
     executor = SingleThreadedExecutor()
     executor.add_node(node)
-    spinner = threading.Thread(target=_spin, args=(executor,), daemon=True)
+    # Not a daemon: a thread left inside rclpy's C++ wait at interpreter exit aborts the process.
+    spinner = threading.Thread(target=_spin, args=(executor,))
     spinner.start()
     code = 0
     try:
-        print(BANNER, flush=True)
         with RawTerminal(stdin) as terminal:
+            print(BANNER, flush=True)  # once the keys no longer echo
             while rclpy.ok():
                 byte = terminal.read_byte()
                 action = None if byte is None else action_for(byte)
@@ -168,6 +183,7 @@ def main(args: list[str] | None = None) -> None:
         code = 1
     finally:
         executor.shutdown(timeout_sec=1.0)
+        spinner.join()
         node.destroy_node()
         rclpy.try_shutdown()
     sys.exit(code)

@@ -226,7 +226,8 @@ class TurtlesimNode(Node):
         try:
             self.turtles[name] = TurtleEndpoints(self, turtle)
         except Exception as error:  # rclpy rejects names that are not valid ROS names
-            self.get_logger().error(f'Cannot spawn a turtle named [{name}]: {error}')
+            reason = str(error).splitlines()[0].rstrip(':')  # rclpy adds a caret diagram below
+            self.get_logger().error(f'Cannot spawn a turtle named [{name}]: {reason}')
             return ''
         self._dirty = True
         self.get_logger().info(f'Spawning turtle [{name}] at x=[{x:f}], y=[{y:f}], theta=[{theta:f}]')
