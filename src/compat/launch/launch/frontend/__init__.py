@@ -6,9 +6,9 @@ import importlib
 import importlib.util
 from typing import TYPE_CHECKING, Any
 
+from launch.frontend import substitution_parser
 from launch.frontend.entity import Entity, LaunchFileError, load_xml_root, load_yaml_root
 from launch.frontend.expose import action_parse_methods, expose_action, expose_substitution
-from launch.frontend.substitution_parser import parse_substitution
 from launch.substitution import Substitution, TextSubstitution
 
 if TYPE_CHECKING:
@@ -25,20 +25,34 @@ __all__ = [
 EXTENSION_MODULES = ('launch_ros.actions', 'launch_ros.substitutions')
 
 
+_extensions_loaded = False
+
+
 def _load_extensions() -> None:
+    """Register the tags and `$(...)` names of launch and of the installed extensions, once."""
+    global _extensions_loaded
+    if _extensions_loaded:
+        return
     import launch.actions
     import launch.frontend.builtin_substitutions  # noqa: F401
 
     for module in EXTENSION_MODULES:
         if importlib.util.find_spec(module.split('.')[0]) is not None:
             importlib.import_module(module)
+    _extensions_loaded = True
+
+
+def parse_substitution(text: str) -> list[Substitution]:
+    """The substitutions of one `$(...)` template ('' gives one empty text)."""
+    _load_extensions()
+    return substitution_parser.parse_substitution(text)
 
 
 class Parser:
     """Turns entities into actions; parse methods of actions call back into it."""
 
     def parse_substitution(self, text: str) -> list[Substitution]:
-        return parse_substitution(text)
+        return substitution_parser.parse_substitution(text)
 
     def substitutions(self, value: Any) -> list[Substitution] | None:
         """An attribute value as substitutions (YAML scalars become their text); None stays None."""
@@ -49,7 +63,7 @@ class Parser:
         if isinstance(value, (int, float)):
             return [TextSubstitution(text=str(value))]
         if isinstance(value, str):
-            return parse_substitution(value)
+            return substitution_parser.parse_substitution(value)
         raise TypeError(f'expected a text value, got {value!r}')
 
     def boolean(self, entity: Entity, name: str) -> bool | None:

@@ -123,7 +123,7 @@ def _yaml_entity(item: Any, file: str) -> Entity:
         value = {}
     if not isinstance(value, dict):
         raise LaunchFileError(f'{file}:{line}: the value of `{tag}` must be a mapping, got {value!r}')
-    return Entity(tag, value, None, file, getattr(value, 'line', line), is_xml=False)
+    return Entity(tag, value, None, file, line, is_xml=False)
 
 
 def load_yaml_root(path: str) -> Entity:
