@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import io
 import math
 
 import pytest
@@ -10,6 +11,7 @@ from PIL import Image
 from rcl_interfaces.srv import DescribeParameters
 from rclpy.qos import DurabilityPolicy, ReliabilityPolicy
 from ros_harness import wait_until
+from sensor_msgs.msg import CompressedImage
 from std_srvs.srv import Empty, Trigger
 from turtlesim.msg import Color, Pose
 from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelative
@@ -214,3 +216,28 @@ def test_bad_startup_parameter_is_one_line_and_exit_2(ros, override):
     assert sim.wait(timeout=30) == 2
     assert sim.output.startswith('error: ')
     assert 'Traceback' not in sim.output
+
+
+def test_canvas_image_topic_is_opt_in_and_save_errors_are_reported(ros, tmp_path):
+    sim = start_turtlesim(ros, '--publish-image', '--canvas-png', str(tmp_path / 'missing' / 'c.png'))
+    images = ros.probe.collect(CompressedImage, '/turtlesim/canvas/compressed', 1)
+    ros.probe.set_parameters('turtlesim', background_b=0)
+    wait_until(lambda: images and _decode(images[-1]).getpixel((10, 10)) == (69, 86, 0), 15,
+               'a CompressedImage with the new background')
+    assert images[-1].format == 'png'
+    centre = _decode(images[-1]).getpixel(pixel(CENTER, CENTER))
+    assert centre != (69, 86, 0)  # turtle1 is drawn
+    response = ros.probe.call(Trigger, '/turtlesim/_save_canvas', Trigger.Request())
+    assert not response.success and 'cannot write' in response.message
+    assert sim.running() and 'Traceback' not in sim.output
+    sim.stop()
+
+    plain = ros.run('turtlesim', 'turtlesim_node', '--headless', '--ros-args', '-r', '__node:=plain')
+    plain.wait_for(r'Spawning turtle \[turtle1\]', timeout=30)
+    ros.probe.wait_for_node('plain')
+    wait_until(lambda: '/turtle1/pose' in dict(ros.probe.node.get_topic_names_and_types()), 10, 'topics')
+    assert '/plain/canvas/compressed' not in dict(ros.probe.node.get_topic_names_and_types())
+
+
+def _decode(message) -> Image.Image:
+    return Image.open(io.BytesIO(bytes(message.data))).convert('RGB')

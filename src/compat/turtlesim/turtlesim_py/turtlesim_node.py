@@ -20,6 +20,7 @@ from PIL import Image
 from rcl_interfaces.msg import IntegerRange, ParameterDescriptor, ParameterEvent
 from rclpy.action import ActionServer, CancelResponse, GoalResponse
 from rclpy.action.server import ServerGoalHandle
+from rclpy.logging import LoggingSeverity
 from rclpy.node import Node
 from rclpy.publisher import Publisher
 from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
@@ -310,6 +311,7 @@ class TurtlesimNode(Node):
                 self._last_tick = now
             return
         self._last_tick = now
+        debug = self.get_logger().is_enabled_for(LoggingSeverity.DEBUG)
         for endpoints in list(self.turtles.values()):
             result = endpoints.turtle.update(world.TICK_DT, now, self.canvas)
             pose = result.pose
@@ -318,6 +320,10 @@ class TurtlesimNode(Node):
                         angular_velocity=pose.angular_velocity),
                 Color(r=result.color[0], g=result.color[1], b=result.color[2]))
             self._dirty |= result.modified
+            if debug:
+                turtle = endpoints.turtle
+                self.get_logger().debug(f'[{self.get_namespace()}]: pos_x: {turtle.x:f} '
+                                        f'pos_y: {turtle.y_down:f} theta: {turtle.theta:f}')
         if self._dirty:
             self._publish_frame(now)
 
