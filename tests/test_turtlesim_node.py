@@ -207,6 +207,14 @@ def test_background_parameters(ros, tmp_path):
         (result,) = ros.probe.set_parameters('turtlesim', **wrong)
         assert not result.successful
     assert ros.probe.get_parameters('turtlesim', 'background_g', 'background_b') == [86, 255]
+
+    # What `ros2 param dump /turtlesim` shows in the course, besides the background.
+    qos = 'qos_overrides./parameter_events.publisher.'
+    assert ros.probe.get_parameters('turtlesim', 'use_sim_time', *(qos + p for p in (
+        'depth', 'durability', 'history', 'reliability'))) == [
+        False, 1000, 'volatile', 'keep_last', 'reliable']
+    (result,) = ros.probe.set_parameters('turtlesim', **{qos + 'depth': 5})
+    assert not result.successful  # read-only
     assert sim.running()
 
 

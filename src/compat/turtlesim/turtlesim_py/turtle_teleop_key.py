@@ -22,6 +22,8 @@ from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.node import Node
 from turtlesim.action import RotateAbsolute
 
+from turtlesim_py.rclcpp_parameters import declare_parameter_events_qos
+
 BANNER = """Reading from keyboard
 ---------------------------
 Use arrow keys to move the turtle.
@@ -103,6 +105,7 @@ class TeleopTurtle(Node):
             description='Angular velocity sent per arrow key press, in rad/s'))
         self.declare_parameter('scale_linear', 2.0, ParameterDescriptor(
             description='Linear velocity sent per arrow key press, in m/s'))
+        declare_parameter_events_qos(self)
         self._twist_pub = self.create_publisher(Twist, 'turtle1/cmd_vel', HUMBLE_QOS_DEPTH)
         self._rotate = ActionClient(self, RotateAbsolute, 'turtle1/rotate_absolute')
         self._goal_handle: ClientGoalHandle | None = None

@@ -37,6 +37,7 @@ from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelativ
 
 from turtlesim_py import world
 from turtlesim_py.canvas import DEFAULT_BACKGROUND, SHELL_COLORS, Canvas, SpriteView, encode_png
+from turtlesim_py.rclcpp_parameters import declare_parameter_events_qos
 from turtlesim_py.turtle import RotationGoal, Turtle
 
 # Humble: keep last 7, otherwise the defaults (reliable, volatile).
@@ -174,6 +175,7 @@ class TurtlesimNode(Node):
         for channel, default in zip(('red', 'green', 'blue'), DEFAULT_BACKGROUND, strict=True):
             name = f'background_{channel[0]}'
             self.declare_parameter(name, default, background_descriptor(channel.capitalize()))
+        declare_parameter_events_qos(self)
         self.canvas = Canvas()
         self.canvas_png = canvas_png
         self.turtles: dict[str, TurtleEndpoints] = {}
