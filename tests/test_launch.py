@@ -384,7 +384,7 @@ def generate_launch_description():
 '''
 BAD_FILES = {
     'syntax': ('bad_launch.py', 'def generate_launch_description(:\n',
-               r'SyntaxError: .*\(bad_launch.py, line 1\)'),
+               r'SyntaxError: .*\(bad_launch.py, line 1\) \(launch file: /\S+/bad_launch.py\)'),
     'no-function': ('empty_launch.py', 'X = 1\n',
                     r"launch file at '.*empty_launch.py' does not contain the required function "
                     r"'generate_launch_description\(\)'"),
@@ -449,3 +449,49 @@ def test_show_args_of_a_broken_file_is_one_error(ros, tmp_path):
     assert finish(process) == 1
     assert 'Traceback' not in process.output
     assert re.search(r'SyntaxError: .*bad_launch.py, line 1', process.output), process.output
+
+
+# ---- ros2 launch options ----
+
+QUIET_ECHO = '''
+<launch>
+  <executable cmd="printenv OWL_PREFIXED" name="first"/>
+  <executable cmd="printenv OWL_PREFIXED" name="second" output="screen"/>
+  <executable cmd="echo unprefixed" output="screen"/>
+</launch>
+'''
+
+
+def test_launch_prefix_with_filter_and_show_all_output(ros, tmp_path):
+    path = write(tmp_path, 'prefix.launch.xml', QUIET_ECHO)
+    process = launch(ros, path, '--launch-prefix', 'env OWL_PREFIXED=yes',
+                     '--launch-prefix-filter', 'print.*')
+    assert finish(process) == 0, process.output
+    # output="log" keeps stdout off the screen; the prefix applies to printenv, not to echo.
+    assert not re.search(r'^\[first-\d+\]', process.output, re.MULTILINE)
+    process.wait_for(r'^\[second-\d+\] yes$')
+    process.wait_for(r'^\[echo-\d+\] unprefixed$')
+    shown = launch(ros, path, '-a', '--launch-prefix', 'env OWL_PREFIXED=all')
+    assert finish(shown) == 0
+    shown.wait_for(r'^\[first-\d+\] all$')
+
+
+def test_print_description_and_debug(ros, tmp_path):
+    path = write(tmp_path, 'features.launch.xml', XML_FEATURES)
+    printed = launch(ros, path, '--print-description')
+    assert finish(printed) == 0
+    assert printed.lines[0] == f'<launch.LaunchDescription from {path}>'
+    assert "├── DeclareLaunchArgument('who')" in printed.output
+    assert not started_pids(printed)
+    debug = launch(ros, write(tmp_path, 'bad_launch.py', SLEEP_THEN.format(action='LogInfo(msg=1)')), '-d')
+    assert finish(debug) == 1
+    debug.wait_for(r'\[INFO\] \[launch\]: Default logging verbosity is set to DEBUG')
+    # With -d the traceback behind "Caught exception" is shown too.
+    debug.wait_for(r'\[DEBUG\] \[launch\]: Traceback')
+    assert_no_orphans(debug)
+
+
+def test_launch_prefix_filter_needs_a_prefix(ros, tmp_path):
+    process = launch(ros, write(tmp_path, 'features.launch.xml', XML_FEATURES), '--launch-prefix-filter', 'x')
+    assert finish(process) == 1
+    assert process.lines == ["'--launch-prefix-filter' must be used together with '--launch-prefix'"]

@@ -87,7 +87,13 @@ class IncludeLaunchDescription(Action):
         return [entity for entity in description.get_launch_arguments() if entity.name not in given]
 
     def execute(self, context: LaunchContext) -> list[LaunchDescriptionEntity]:
-        description = self.__source.get_launch_description(context)
+        try:
+            description = self.__source.get_launch_description(context)
+        except Exception as error:
+            location = self.__source._expanded_location
+            if location and location not in str(error):  # e.g. a SyntaxError names the basename only
+                raise RuntimeError(f'{error} (launch file: {os.path.abspath(location)})') from error
+            raise
         location = self.__source.location
         path = os.path.abspath(location) if os.path.exists(location) else location
         given = []
