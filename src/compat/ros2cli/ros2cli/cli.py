@@ -1,12 +1,33 @@
-"""`ros2`: parse `ros2 <command> ...` with argparse and hand over to the command's module."""
+"""`ros2`: parse `ros2 <command> ...` with argparse and hand over to the command's module.
+
+A command's main() returns None/0 (exit 0), an int (that exit code) or a string (printed on
+stderr, exit 1); a RuntimeError's message is printed the same way. Ctrl-C exits with 2 (the
+value of SIGINT), as upstream. Any other exception is a bug or a problem of the environment:
+it is reported in one line, never as a traceback (ROS2CLI_TRACEBACK=1 shows it for debugging).
+"""
 
 import argparse
 import importlib
+import os
 import signal
 import sys
 from types import ModuleType
 
 from ros2cli.command_table import COMMANDS
+
+# One line per command for `ros2 -h`, without importing every command.
+DESCRIPTIONS = {
+    'action': 'Various action related sub-commands',
+    'daemon': 'Various daemon related sub-commands',
+    'interface': 'Show information about ROS interfaces',
+    'launch': 'Run a launch file',
+    'node': 'Various node related sub-commands',
+    'param': 'Various param related sub-commands',
+    'pkg': 'Various package related sub-commands',
+    'run': 'Run a package specific executable',
+    'service': 'Various service related sub-commands',
+    'topic': 'Various topic related sub-commands',
+}
 
 
 class CommandUnavailable(Exception):
@@ -31,30 +52,50 @@ def build_parser(argv: list[str]) -> argparse.ArgumentParser:
         formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument(
         '--use-python-default-buffering', action='store_true',
-        help='Do not force line buffering of stdout; use Python\'s default buffering')
+        help='Do not force line buffering in stdout and instead use the python default buffering, '
+             'which might be affected by PYTHONUNBUFFERED/-u and depends on whatever stdout is '
+             'interactive or not')
     subparsers = parser.add_subparsers(
         title='Commands', metavar='Call `ros2 <command> -h` for more detailed usage.')
     # Only the chosen command is imported; `ros2 -h` lists the rest by name.
     chosen = next((arg for arg in argv if not arg.startswith('-')), None)
     for name in sorted(COMMANDS):
+        summary = DESCRIPTIONS.get(name, f'`ros2 {name} -h` for its verbs and options')
         if name == chosen:
             module = load_command(name)
-            command_parser = subparsers.add_parser(name, help=module.DESCRIPTION,
-                                                   description=module.DESCRIPTION)
+            command_parser = subparsers.add_parser(
+                name, help=module.DESCRIPTION, description=module.DESCRIPTION,
+                formatter_class=argparse.RawDescriptionHelpFormatter)
             module.add_arguments(command_parser, f'ros2 {name}')
             command_parser.set_defaults(_main=module.main, _parser=command_parser)
         else:
-            subparsers.add_parser(name, help=f'`ros2 {name} -h` for its verbs and options')
+            subparsers.add_parser(name, help=summary)
     return parser
 
 
+def _completion_argv() -> list[str] | None:
+    """The words being completed, when argcomplete drives this process (shell completion)."""
+    if '_ARGCOMPLETE' not in os.environ:
+        return None
+    import shlex
+    line = os.environ.get('COMP_LINE', '')[:int(os.environ.get('COMP_POINT', '0') or 0)]
+    try:
+        return shlex.split(line)[1:]
+    except ValueError:
+        return line.split()[1:]
+
+
 def main(argv: list[str] | None = None) -> int | str:
-    argv = sys.argv[1:] if argv is None else argv
+    completing = _completion_argv()
+    argv = completing if completing is not None else sys.argv[1:] if argv is None else argv
     try:
         parser = build_parser(argv)
     except CommandUnavailable as error:
         print(error, file=sys.stderr)
         return 1
+    if completing is not None:
+        import argcomplete
+        argcomplete.autocomplete(parser)  # prints the candidates and exits
     args = parser.parse_args(argv)
     if not args.use_python_default_buffering:
         sys.stdout.reconfigure(line_buffering=True)
@@ -66,8 +107,17 @@ def main(argv: list[str] | None = None) -> int | str:
         result = command_main(args)
     except KeyboardInterrupt:
         return signal.SIGINT
+    except BrokenPipeError:  # the reader went away (`ros2 topic list | head -1`)
+        sys.stdout = None
+        return 0
     except RuntimeError as error:
-        return str(error)
+        result = str(error)
+    except Exception as error:  # the promise: one line, never a traceback
+        if type(error).__name__ == 'ExternalShutdownException':
+            return signal.SIGTERM
+        if os.environ.get('ROS2CLI_TRACEBACK'):
+            raise
+        result = f'ros2: {type(error).__name__}: {error}'
     if isinstance(result, str):
         print(result, file=sys.stderr)
         return 1

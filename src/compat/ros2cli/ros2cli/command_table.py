@@ -12,7 +12,14 @@ installed, `ros2 <command>` says so in one line.
 
 COMMANDS: dict[str, tuple[str, str]] = {
     # name: (module, package that provides it)
+    'action': ('ros2cli.command.action', 'ros2cli'),
+    'daemon': ('ros2cli.command.daemon', 'ros2cli'),
+    'interface': ('ros2cli.command.interface', 'ros2cli'),
+    'node': ('ros2cli.command.node', 'ros2cli'),
+    'param': ('ros2cli.command.param', 'ros2cli'),
     'run': ('ros2cli.command.run', 'ros2cli'),
+    'service': ('ros2cli.command.service', 'ros2cli'),
+    'topic': ('ros2cli.command.topic', 'ros2cli'),
     'pkg': ('ros2pkg.command', 'ros2pkg'),
     'launch': ('ros2launch.command', 'ros2launch'),
 }

@@ -1,25 +1,123 @@
-"""`ros2 run <package> <executable> [args]` (placeholder until the CLI issue fills it in)."""
+"""`ros2 run [--prefix PREFIX] <package> <executable> [args]`: run a package's executable.
+
+Arguments go through untouched; the child gets its own process group (and the terminal, when
+there is one) so that every SIGINT/SIGTERM reaches it exactly once, whether it came from the
+terminal, from `kill <pid of ros2>` or from a signal to the whole group of `ros2`.
+"""
 
 import argparse
 import os
-
-from ament_index_python.packages import PackageNotFoundError, get_package_prefix
+import shlex
+import signal
+import subprocess
+import sys
 
 DESCRIPTION = 'Run a package specific executable'
+FORWARDED_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGQUIT)
 
 
 def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:
-    parser.add_argument('package_name', help='Name of the ROS package')
-    parser.add_argument('executable_name', help='Name of the executable')
+    from ros2cli.completion import executable_completer, package_completer
+
+    parser.add_argument('--prefix', help='Prefix command, which should go before the executable. '
+                                         'Command must be wrapped in quotes if it contains spaces '
+                                         "(e.g. --prefix 'gdb -ex run --args').")
+    parser.add_argument('package_name', help='Name of the ROS package').completer = package_completer
+    parser.add_argument('executable_name', help='Name of the executable').completer = \
+        executable_completer
     parser.add_argument('argv', nargs=argparse.REMAINDER, help='Pass arbitrary arguments to the executable')
 
 
+def package_executables(prefix: str, package: str) -> list[str]:
+    """Executable files under <prefix>/lib/<package>/, recursively, hidden directories skipped."""
+    found = []
+    for root, dirs, files in os.walk(os.path.join(prefix, 'lib', package)):
+        dirs[:] = sorted(d for d in dirs if not d.startswith('.'))
+        for name in sorted(files):
+            path = os.path.join(root, name)
+            if os.access(path, os.X_OK) and os.path.isfile(path):
+                found.append(path)
+    return found
+
+
+def _child_setup(take_terminal: bool) -> None:
+    os.setpgid(0, 0)
+    if take_terminal:
+        signal.signal(signal.SIGTTOU, signal.SIG_IGN)
+        os.tcsetpgrp(0, os.getpgrp())
+        signal.signal(signal.SIGTTOU, signal.SIG_DFL)
+    try:  # the child follows `ros2 run` when that is killed outright
+        import ctypes
+        ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):
+        pass
+
+
+def run_executable(command: list[str]) -> int:
+    """Run command with signals forwarded; its exit code (128 + N when killed by signal N)."""
+    take_terminal = False
+    try:
+        take_terminal = os.isatty(0) and os.tcgetpgrp(0) == os.getpgrp()
+    except OSError:
+        pass
+    try:
+        process = subprocess.Popen(command, preexec_fn=lambda: _child_setup(take_terminal))
+    except OSError as error:
+        raise RuntimeError(f"Cannot run '{command[0]}': {error.strerror}") from None
+
+    def forward(signum: int, _frame: object) -> None:
+        try:
+            os.kill(process.pid, signum)
+        except ProcessLookupError:
+            pass
+
+    for signum in FORWARDED_SIGNALS:
+        signal.signal(signum, forward)
+    try:
+        code = process.wait()
+    finally:
+        if take_terminal:
+            signal.signal(signal.SIGTTOU, signal.SIG_IGN)
+            try:
+                os.tcsetpgrp(0, os.getpgrp())
+            except OSError:
+                pass
+            signal.signal(signal.SIGTTOU, signal.SIG_DFL)
+    if code < 0:
+        print(f'[ros2run]: {signal.strsignal(-code) or f"Signal {-code}"}')
+        return 128 - code
+    if code:
+        print(f'[ros2run]: Process exited with failure {code}')
+    return code
+
+
 def main(args: argparse.Namespace) -> int | str:
+    from ament_index_python.packages import (
+        PackageNotFoundError,
+        get_package_prefix,
+        get_packages_with_prefixes,
+    )
+
+    from ros2cli.names import did_you_mean
+
     try:
         prefix = get_package_prefix(args.package_name)
-    except PackageNotFoundError:
-        return 'Package not found'
-    path = os.path.join(prefix, 'lib', args.package_name, args.executable_name)
-    if not os.access(path, os.X_OK):
-        return 'No executable found'
-    os.execv(path, [path, *args.argv])
+    except (PackageNotFoundError, ValueError):
+        hint = did_you_mean(args.package_name, get_packages_with_prefixes())
+        return f"Package '{args.package_name}' not found{hint}"
+    executables = package_executables(prefix, args.package_name)
+    matches = [path for path in executables if os.path.basename(path) == args.executable_name]
+    if not matches:
+        names = sorted({os.path.basename(path) for path in executables})
+        if not names:
+            return f"No executable found: package '{args.package_name}' has no executables"
+        hint = did_you_mean(args.executable_name, names)
+        return (f"No executable found: package '{args.package_name}' has no executable "
+                f"'{args.executable_name}'{hint}; its executables: {', '.join(names)}")
+    if len(matches) > 1:
+        return 'Multiple executables found:' + ''.join(f'\n- {path}' for path in matches)
+    command = [matches[0], *args.argv]
+    if args.prefix:
+        command = [*shlex.split(args.prefix), *command]
+    sys.stdout.flush()
+    return run_executable(command)

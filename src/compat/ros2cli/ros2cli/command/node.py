@@ -1,0 +1,102 @@
+"""`ros2 node list | info`."""
+
+import argparse
+import sys
+from typing import Any
+
+from ros2cli.verb import Verb, add_verbs, run_verb
+
+DESCRIPTION = 'Various node related sub-commands'
+DUPLICATE_WARNING = ('WARNING: Be aware that there are nodes in the graph that share an exact name, '
+                     'which can have unintended side effects.')
+
+
+def node_names(graph: Any, include_hidden: bool = False) -> list[str]:
+    """Full names of the nodes in the graph, sorted, duplicates kept."""
+    from ros2cli.names import full_node_name, is_hidden_node
+    names = [full_node_name(ns, name) for name, ns in graph.node_names_and_namespaces()]
+    return sorted(n for n in names if include_hidden or not is_hidden_node(n))
+
+
+class ListVerb(Verb):
+    DESCRIPTION = 'Output a list of available nodes'
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        from ros2cli.node.strategy import add_strategy_arguments
+        add_strategy_arguments(parser)
+        parser.add_argument('-a', '--all', action='store_true', help='Display all nodes even hidden ones')
+        parser.add_argument('-c', '--count-nodes', action='store_true',
+                            help='Only display the number of nodes discovered')
+
+    def main(self, args: argparse.Namespace) -> int:
+        from ros2cli.node.strategy import NodeStrategy
+        with NodeStrategy(args) as strategy:
+            names = node_names(strategy.graph, args.all)
+        if args.count_nodes:
+            print(len(names))
+            return 0
+        if len(set(names)) != len(names):
+            print(DUPLICATE_WARNING, file=sys.stderr)
+        for name in names:
+            print(name)
+        return 0
+
+
+def print_section(title: str, names_and_types: list[list[Any]], include_hidden: bool) -> None:
+    from ros2cli.names import is_hidden_name
+    print(f'  {title}:')
+    lines = [f"    {name}: {', '.join(types)}" for name, types in names_and_types
+             if include_hidden or not is_hidden_name(name)]
+    # An empty section prints one empty line, as upstream does.
+    print('\n'.join(lines))
+
+
+class InfoVerb(Verb):
+    DESCRIPTION = 'Output information about a node'
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        from ros2cli.completion import node_completer
+        from ros2cli.node.strategy import add_strategy_arguments
+        parser.add_argument('node_name', help='Node name to request information').completer = node_completer
+        add_strategy_arguments(parser)
+        parser.add_argument('--include-hidden', action='store_true', help='Display hidden topics, '
+                            'services, and actions as well')
+
+    def main(self, args: argparse.Namespace) -> int | str:
+        from ros2cli.names import did_you_mean, split_node_name
+        from ros2cli.node.strategy import NodeStrategy
+
+        with NodeStrategy(args) as strategy:
+            graph = strategy.graph
+            strategy.wait_until(lambda: args.node_name in node_names(graph, args.include_hidden))
+            names = node_names(graph, args.include_hidden)
+            count = names.count(args.node_name)
+            if count == 0:
+                return f"Unable to find node '{args.node_name}'{did_you_mean(args.node_name, names)}"
+            if count > 1:
+                print(f'There are {count} nodes in the graph with the exact name "{args.node_name}". '
+                      'You are seeing information about only one of them.', file=sys.stderr)
+            namespace, name = split_node_name(args.node_name)
+            sections = [
+                ('Subscribers', graph.subscribers_by_node(name, namespace)),
+                ('Publishers', graph.publishers_by_node(name, namespace)),
+                ('Service Servers', graph.services_by_node(name, namespace)),
+                ('Service Clients', graph.clients_by_node(name, namespace)),
+                ('Action Servers', graph.action_servers_by_node(name, namespace)),
+                ('Action Clients', graph.action_clients_by_node(name, namespace)),
+            ]
+        print(args.node_name)
+        for title, names_and_types in sections:
+            print_section(title, names_and_types, args.include_hidden)
+        return 0
+
+
+VERBS = {'info': InfoVerb, 'list': ListVerb}
+
+
+def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:
+    add_verbs(parser, cli_name, VERBS)
+
+
+def main(args: argparse.Namespace) -> Any:
+    return run_verb(args)

@@ -1,0 +1,393 @@
+"""`ros2 param list | get | set | delete | describe | dump | load`, through the nodes' parameter services."""
+
+import argparse
+import sys
+from typing import Any
+
+from ros2cli.verb import Verb, add_verbs, run_verb
+
+DESCRIPTION = 'Various param related sub-commands'
+SERVICE_TIMEOUT = 5.0
+TYPE_NAMES = {0: 'not set', 1: 'boolean', 2: 'integer', 3: 'double', 4: 'string', 5: 'byte array',
+              6: 'boolean array', 7: 'integer array', 8: 'double array', 9: 'string array'}
+VALUE_LABELS = {1: 'Boolean value is:', 2: 'Integer value is:', 3: 'Double value is:', 4: 'String value is:',
+                5: 'Byte values are:', 6: 'Boolean values are:', 7: 'Integer values are:',
+                8: 'Double values are:', 9: 'String values are:'}
+
+
+def full_name(node_name: str) -> str:
+    return node_name if node_name.startswith('/') else '/' + node_name
+
+
+def python_value(value: Any) -> Any:
+    """A ParameterValue as a plain Python value (arrays as lists)."""
+    from rclpy.parameter import parameter_value_to_python
+    result = parameter_value_to_python(value)
+    return list(result) if value.type >= 5 else result
+
+
+def value_text(value: Any) -> str:
+    """What `param get` prints after the label (Python's str of the value)."""
+    return str(python_value(value))
+
+
+class ParameterSession:
+    """A DirectNode with a parameter client for one remote node, found through NodeStrategy first."""
+
+    def __init__(self, args: argparse.Namespace, node_name: str, wait: float | None = None) -> None:
+        self.args = args
+        self.node_name = full_name(node_name)
+        self.wait = getattr(args, 'timeout', 1) if wait is None else wait
+        self._strategy: Any = None
+        self.client: Any = None
+
+    def __enter__(self) -> 'ParameterSession':
+        from rclpy.parameter_client import AsyncParameterClient
+
+        from ros2cli.command.node import node_names
+        from ros2cli.names import did_you_mean
+        from ros2cli.node.strategy import NodeStrategy
+
+        self._strategy = NodeStrategy(self.args, spin_time=0.0)
+        hidden = getattr(self.args, 'include_hidden_nodes', False)
+        graph = self._strategy.graph
+        if not self._strategy.wait_until(lambda: self.node_name in node_names(graph, hidden), self.wait):
+            self.close()
+            raise RuntimeError(f'Node not found{did_you_mean(self.node_name, node_names(graph, hidden))}')
+        direct = self._strategy.direct
+        self.client = AsyncParameterClient(direct.node, self.node_name)
+        if not direct.wait_until(self.client.services_are_ready, SERVICE_TIMEOUT):
+            self.close()
+            raise RuntimeError(
+                f'Wait for service timed out waiting for parameter services for node {self.node_name}')
+        return self
+
+    def call(self, future: Any, service: str) -> Any:
+        import rclpy
+        rclpy.spin_until_future_complete(self._strategy.direct.node, future, timeout_sec=SERVICE_TIMEOUT)
+        if not future.done() or future.exception() is not None:
+            problem = future.exception() if future.done() else 'no response'
+            raise RuntimeError(f"Exception while calling {service} service of node '{self.node_name}': "
+                               f'{problem}')
+        return future.result()
+
+    def names(self) -> list[str]:
+        return sorted(self.call(self.client.list_parameters(), 'list_parameters').result.names)
+
+    def values(self, names: list[str]) -> list[Any]:
+        return list(self.call(self.client.get_parameters(names), 'get_parameters').values)
+
+    def set(self, parameters: list[Any]) -> list[Any]:
+        return list(self.call(self.client.set_parameters(parameters), 'set_parameters').results)
+
+    def unknown(self, name: str) -> str:
+        """' (did you mean ...)' for an undeclared parameter name."""
+        from ros2cli.names import did_you_mean
+        return did_you_mean(name, self.names())
+
+    def close(self) -> None:
+        if self._strategy is not None:
+            self._strategy.close()
+            self._strategy = None
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+
+def _add_common(parser: argparse.ArgumentParser, node_required: bool = True, timeout: bool = True) -> None:
+    from ros2cli.completion import node_completer
+    from ros2cli.node.strategy import add_strategy_arguments
+    parser.add_argument('node_name', nargs=None if node_required else '?',
+                        help='Name of the ROS node').completer = node_completer
+    parser.add_argument('--include-hidden-nodes', action='store_true', help='Consider hidden nodes as well')
+    if timeout:
+        parser.add_argument('--timeout', metavar='N', type=int, default=1,
+                            help='Wait for N seconds until node is found (default: 1 second)')
+    add_strategy_arguments(parser)
+
+
+class ListVerb(Verb):
+    DESCRIPTION = 'Output a list of available parameters'
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        _add_common(parser, node_required=False, timeout=False)
+        parser.add_argument('--param-prefixes', nargs='+', default=[],
+                            help='Only list parameters with the provided prefixes')
+        parser.add_argument('--param-type', action='store_true',
+                            help='Print parameter types with parameter names')
+        parser.add_argument('--filter', metavar='REGEX', help='Only list parameters matching this regex')
+
+    def main(self, args: argparse.Namespace) -> int | str:
+        import re
+
+        from ros2cli.command.node import node_names
+        from ros2cli.node.strategy import NodeStrategy
+
+        try:
+            pattern = re.compile(args.filter) if args.filter else None
+        except re.error as error:
+            return f"Invalid --filter regex '{args.filter}': {error}"
+        if args.node_name:
+            targets = [full_name(args.node_name)]
+        else:
+            with NodeStrategy(args) as strategy:
+                services = {name for name, _ in strategy.graph.service_names_and_types()}
+                targets = [n for n in sorted(set(node_names(strategy.graph, args.include_hidden_nodes)))
+                           if f'{n}/list_parameters' in services]
+        for target in targets:
+            try:
+                with ParameterSession(args, target, wait=0.0 if not args.node_name else 1.0) as session:
+                    response = session.call(session.client.list_parameters(args.param_prefixes or None),
+                                            'list_parameters')
+                    names = sorted(n for n in response.result.names if not pattern or pattern.match(n))
+                    types = {}
+                    if args.param_type and names:
+                        types = dict(zip(names, (v.type for v in session.values(names)), strict=True))
+            except RuntimeError as error:
+                if args.node_name:
+                    raise
+                print(error)
+                continue
+            if names and not args.node_name:
+                print(f'{target}:')
+            for name in names:
+                print(f'  {name} (type: {TYPE_NAMES[types[name]]})' if args.param_type else f'  {name}')
+        return 0
+
+
+class GetVerb(Verb):
+    DESCRIPTION = 'Get parameter'
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        _add_common(parser)
+        parser.add_argument('parameter_name', help='Name of the parameter')
+        parser.add_argument('--hide-type', action='store_true', help='Hide the type information')
+
+    def main(self, args: argparse.Namespace) -> int | str:
+        with ParameterSession(args, args.node_name) as session:
+            values = session.values([args.parameter_name])
+            if not values:
+                return (f"Parameter not set: node '{session.node_name}' has no parameter "
+                        f"'{args.parameter_name}'{session.unknown(args.parameter_name)}")
+        value = values[0]
+        if value.type == 0:
+            print('Parameter not set.')
+            return 0
+        if value.type not in VALUE_LABELS:
+            return f"Unknown parameter type '{value.type}'"
+        text = value_text(value)
+        print(text if args.hide_type else f'{VALUE_LABELS[value.type]} {text}')
+        return 0
+
+
+def _set_one(args: argparse.Namespace, session: ParameterSession, value: Any, verb: tuple[str, str]) -> None:
+    from rcl_interfaces.msg import Parameter
+    result = session.set([Parameter(name=args.parameter_name, value=value)])[0]
+    if result.successful:
+        print(verb[0] + (f': {result.reason}' if result.reason else ''))
+        return
+    print(f'{verb[1]}: {failure_reason(result.reason, args.parameter_name, session)}', file=sys.stderr)
+
+
+def failure_reason(reason: str, name: str, session: ParameterSession) -> str:
+    """rclpy's reason, said plainly: type names instead of type numbers, the closest declared name."""
+    import re
+    wrong_type = re.fullmatch(r"Wrong parameter type, expected '(\d+)' got '(\d+)'", reason)
+    if wrong_type:
+        expected, got = (TYPE_NAMES.get(int(n), n) for n in wrong_type.groups())
+        return f"Wrong parameter type for '{name}': expected {expected}, got {got}"
+    if 'undeclared parameter' in reason:
+        return f"node '{session.node_name}' has no parameter '{name}'{session.unknown(name)}"
+    return reason or 'no reason given'
+
+
+class SetVerb(Verb):
+    DESCRIPTION = 'Set parameter'
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        _add_common(parser)
+        parser.add_argument('parameter_name', help='Name of the parameter')
+        parser.add_argument('value', help='Value of the parameter')
+
+    def main(self, args: argparse.Namespace) -> int:
+        from rclpy.parameter import get_parameter_value
+        with ParameterSession(args, args.node_name) as session:
+            _set_one(args, session, get_parameter_value(args.value),
+                     ('Set parameter successful', 'Setting parameter failed'))
+        return 0
+
+
+class DeleteVerb(Verb):
+    DESCRIPTION = 'Delete parameter'
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        _add_common(parser)
+        parser.add_argument('parameter_name', help='Name of the parameter')
+
+    def main(self, args: argparse.Namespace) -> int:
+        from rcl_interfaces.msg import ParameterValue
+        with ParameterSession(args, args.node_name) as session:
+            _set_one(args, session, ParameterValue(type=0),
+                     ('Deleted parameter successfully', 'Deleting parameter failed'))
+        return 0
+
+
+class DescribeVerb(Verb):
+    DESCRIPTION = 'Show descriptive information about declared parameters'
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        _add_common(parser)
+        parser.add_argument('parameter_names', nargs='+', help='Names of the parameters')
+
+    def main(self, args: argparse.Namespace) -> int:
+        with ParameterSession(args, args.node_name) as session:
+            # One request per name: a node answers nothing at all when any name is undeclared.
+            descriptors, hints = [], {}
+            for name in args.parameter_names:
+                found = session.call(session.client.describe_parameters([name]), 'describe_parameters')
+                descriptors += list(found.descriptors)
+                if not found.descriptors:
+                    hints[name] = session.unknown(name)
+        for descriptor in descriptors:
+            print(f'Parameter name: {descriptor.name}')
+            print(f'  Type: {TYPE_NAMES.get(descriptor.type, descriptor.type)}')
+            if descriptor.description:
+                print(f'  Description: {descriptor.description}')
+            print('  Constraints:')
+            if descriptor.read_only:
+                print('    Read only: true')
+            ranges = list(descriptor.floating_point_range) or list(descriptor.integer_range)
+            if ranges:
+                print(f'    Min value: {ranges[0].from_value}')
+                print(f'    Max value: {ranges[0].to_value}')
+                if ranges[0].step != 0:
+                    print(f'    Step: {ranges[0].step}')
+            if descriptor.additional_constraints:
+                print(f'    Additional constraints: {descriptor.additional_constraints}')
+        for name, hint in hints.items():
+            print(f"Parameter '{name}' is not declared by node '{session.node_name}'{hint}", file=sys.stderr)
+        return 0
+
+
+def nested_parameters(names: list[str], values: list[Any]) -> dict[str, Any]:
+    """{'a.b': 1} -> {'a': {'b': 1}}, the shape of a parameter file."""
+    tree: dict[str, Any] = {}
+    for name, value in zip(names, values, strict=True):
+        *path, leaf = name.split('.')
+        branch = tree
+        for part in path:
+            branch = branch.setdefault(part, {})
+        branch[leaf] = python_value(value)
+    return tree
+
+
+class DumpVerb(Verb):
+    DESCRIPTION = 'Show all of the parameters of a node in a YAML file format'
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        _add_common(parser)
+
+    def main(self, args: argparse.Namespace) -> int:
+        import yaml
+        with ParameterSession(args, args.node_name) as session:
+            names = session.names()
+            values = session.values(names) if names else []
+        document = {session.node_name: {'ros__parameters': nested_parameters(names, values)}}
+        print(yaml.dump(document, default_flow_style=False))
+        return 0
+
+
+def parameters_for_node(document: Any, node_name: str, use_wildcard: bool) -> list[Any]:
+    """The Parameter messages a parameter file holds for one node: the '/**' entry (when used) first,
+    then the node's own entry, which overrides it. RuntimeError with one line when nothing fits.
+    """
+    from rclpy.parameter import Parameter
+
+    from ros2cli.names import did_you_mean
+
+    if not isinstance(document, dict):
+        raise RuntimeError('the file is not a ROS parameter file (expected '
+                           "'<node>: ros__parameters: ...' as written by `ros2 param dump`)")
+    namespace, _, base = node_name.rpartition('/')
+    keys = (['/**'] if use_wildcard else []) + [node_name] + ([base] if not namespace else [])
+    values: dict[str, Any] = {}
+    for key in keys:
+        entry = document.get(key)
+        if entry is None:
+            continue
+        if not isinstance(entry, dict) or not isinstance(entry.get('ros__parameters'), dict):
+            raise RuntimeError(f"the entry '{key}' of the file has no 'ros__parameters' mapping")
+        values.update(flatten(entry['ros__parameters']))
+    if not values:
+        nodes = [str(k) for k in document]
+        raise RuntimeError(f'Param file does not contain selected parameters: nothing for {node_name}'
+                           f"{did_you_mean(node_name, nodes)}; it has: {', '.join(nodes) or 'no nodes'}")
+    parameters = []
+    for name, value in values.items():
+        try:
+            parameters.append(Parameter(name, value=value).to_parameter_msg())
+        except (TypeError, ValueError):
+            raise RuntimeError(f"parameter '{name}' has a value of no parameter type: {value!r} "
+                               '(lists must hold values of one type)') from None
+    return parameters
+
+
+def flatten(tree: dict[str, Any], prefix: str = '') -> dict[str, Any]:
+    """{'a': {'b': 1}} -> {'a.b': 1}."""
+    flat: dict[str, Any] = {}
+    for key, value in tree.items():
+        name = f'{prefix}{key}'
+        if isinstance(value, dict):
+            flat.update(flatten(value, name + '.'))
+        else:
+            flat[name] = value
+    return flat
+
+
+def read_parameter_file(path: str) -> Any:
+    """The parsed YAML of a parameter file; RuntimeError with one line when it cannot be read."""
+    from ros2cli.message_yaml import FieldError, parse_yaml
+    try:
+        with open(path, encoding='utf-8') as parameter_file:
+            text = parameter_file.read()
+    except FileNotFoundError:
+        raise RuntimeError(f"No such file or directory: '{path}'") from None
+    except OSError as error:
+        raise RuntimeError(f"Cannot read '{path}': {error.strerror}") from None
+    try:
+        return parse_yaml(text)
+    except FieldError as error:
+        raise RuntimeError(f"'{path}': {str(error).split(': ' + repr(text))[0]}") from None
+
+
+class LoadVerb(Verb):
+    DESCRIPTION = 'Load parameter file for a node'
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        _add_common(parser)
+        parser.add_argument('parameter_file', help='Parameter file')
+        parser.add_argument('--no-use-wildcard', action='store_true',
+                            help="Do not load parameters in the '/**' namespace into the node")
+
+    def main(self, args: argparse.Namespace) -> int:
+        parameters = parameters_for_node(read_parameter_file(args.parameter_file), full_name(args.node_name),
+                                         not args.no_use_wildcard)
+        with ParameterSession(args, args.node_name) as session:
+            results = session.set(parameters)
+        for parameter, result in zip(parameters, results, strict=True):
+            reason = f': {result.reason}' if result.reason else ''
+            if result.successful:
+                print(f'Set parameter {parameter.name} successful{reason}')
+            else:
+                print(f'Set parameter {parameter.name} failed{reason}', file=sys.stderr)
+        return 0
+
+
+def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:
+    add_verbs(parser, cli_name, {
+        'delete': DeleteVerb, 'describe': DescribeVerb, 'dump': DumpVerb, 'get': GetVerb, 'list': ListVerb,
+        'load': LoadVerb, 'set': SetVerb})
+
+
+def main(args: argparse.Namespace) -> Any:
+    return run_verb(args)

@@ -1,0 +1,190 @@
+"""`ros2 service list | type | find | call`."""
+
+import argparse
+import sys
+import time
+from typing import Any
+
+from ros2cli.verb import Verb, add_verbs, run_verb
+
+DESCRIPTION = 'Various service related sub-commands'
+
+
+def _include_hidden(args: argparse.Namespace) -> bool:
+    return bool(getattr(args, 'include_hidden_services', False)
+                or getattr(args, 'command_include_hidden', False))
+
+
+def _add_hidden_argument(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument('--include-hidden-services', action='store_true',
+                        help='Consider hidden services as well')
+
+
+def visible_services(graph: Any, include_hidden: bool) -> list[list[Any]]:
+    from ros2cli.names import is_hidden_name
+    return [[name, types] for name, types in graph.service_names_and_types()
+            if include_hidden or not is_hidden_name(name)]
+
+
+def service_types(graph: Any, service: str) -> list[str] | None:
+    return next((types for name, types in graph.service_names_and_types() if name == service), None)
+
+
+def _service_argument(parser: argparse.ArgumentParser, help_text: str) -> None:
+    from ros2cli.completion import service_completer
+    parser.add_argument('service_name', help=help_text).completer = service_completer
+
+
+class ListVerb(Verb):
+    DESCRIPTION = 'Output a list of available services'
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        from ros2cli.node.strategy import add_strategy_arguments
+        add_strategy_arguments(parser)
+        parser.add_argument('-t', '--show-types', action='store_true',
+                            help='Additionally show the service type')
+        parser.add_argument('-c', '--count-services', action='store_true',
+                            help='Only display the number of services discovered')
+        _add_hidden_argument(parser)
+
+    def main(self, args: argparse.Namespace) -> int:
+        from ros2cli.node.strategy import NodeStrategy
+        with NodeStrategy(args) as strategy:
+            services = visible_services(strategy.graph, _include_hidden(args))
+        if args.count_services:
+            print(len(services))
+            return 0
+        for name, types in services:
+            print(f"{name} [{', '.join(types)}]" if args.show_types else name)
+        return 0
+
+
+class TypeVerb(Verb):
+    DESCRIPTION = 'Output a service\'s type'
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        from ros2cli.node.strategy import add_strategy_arguments
+        _service_argument(parser, "Name of the ROS service to get type (e.g. '/add_two_ints')")
+        add_strategy_arguments(parser)
+
+    def main(self, args: argparse.Namespace) -> int:
+        from ros2cli.node.strategy import NodeStrategy
+        with NodeStrategy(args) as strategy:
+            strategy.wait_until(lambda: service_types(strategy.graph, args.service_name) is not None)
+            types = service_types(strategy.graph, args.service_name)
+        if types is None:
+            return 1
+        for service_type in types:
+            print(service_type)
+        return 0
+
+
+class FindVerb(Verb):
+    DESCRIPTION = 'Output a list of available services of a given type'
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        from ros2cli.completion import service_type_completer
+        from ros2cli.node.strategy import add_strategy_arguments
+        parser.add_argument('service_type', help="Name of the ROS service type to filter for "
+                            "(e.g. 'rcl_interfaces/srv/ListParameters')").completer = service_type_completer
+        add_strategy_arguments(parser)
+        parser.add_argument('-c', '--count-services', action='store_true',
+                            help='Only display the number of services discovered')
+        _add_hidden_argument(parser)
+
+    def main(self, args: argparse.Namespace) -> int:
+        from ros2cli.node.strategy import NodeStrategy
+        with NodeStrategy(args) as strategy:
+            names = [name for name, types in visible_services(strategy.graph, _include_hidden(args))
+                     if args.service_type in types]
+        if args.count_services:
+            print(len(names))
+        else:
+            for name in names:
+                print(name)
+        return 0
+
+
+
+class CallVerb(Verb):
+    DESCRIPTION = 'Call a service'
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        from ros2cli.command.topic_pub import add_values_arguments
+        from ros2cli.completion import service_type_completer
+        _service_argument(parser, "Name of the ROS service to call to (e.g. '/add_two_ints')")
+        parser.add_argument('service_type', help="Type of the ROS service (e.g. 'std_srvs/srv/Empty')"
+                            ).completer = service_type_completer
+        add_values_arguments(parser, 'service request', 'a: 1, b: 2')
+        parser.add_argument('-r', '--rate', metavar='N', type=float,
+                            help='Repeat the call at a specific rate in Hz')
+
+    def main(self, args: argparse.Namespace) -> int | str:
+        import rclpy
+        from rclpy.node import Node
+
+        from ros2cli.command.topic_pub import read_values
+        from ros2cli.interfaces import InvalidType, import_type, split_type
+        from ros2cli.message_yaml import FieldError, fill_message
+        from ros2cli.names import expand_topic_name
+
+        if args.rate is not None and args.rate <= 0:
+            return 'rate must be greater than zero'
+        try:
+            service_class = import_type(args.service_type, 'srv')
+        except InvalidType as error:
+            return f'The passed service type is invalid: {error}'
+        values = read_values(args, 'field')
+        try:
+            request = fill_message(service_class.Request(), values)
+        except FieldError as error:
+            return f'Failed to populate field: {error}'
+        package, _, name = split_type(args.service_type, 'srv')
+
+        rclpy.init(args=[])
+        node = Node(f'_ros2cli_requester_{package}_{name}', start_parameter_services=False)
+        try:
+            client = node.create_client(service_class, expand_topic_name(args.service_name))
+            if not client.service_is_ready():
+                print('waiting for service to become available...')
+                wait_for_server(node, client, expand_topic_name(args.service_name))
+            period = None if args.rate is None else 1.0 / args.rate
+            while True:
+                started = time.monotonic()
+                print(f'requester: making request: {request!r}\n')
+                future = client.call_async(request)
+                rclpy.spin_until_future_complete(node, future)
+                if future.exception() is not None:
+                    return f'Exception while calling service: {future.exception()!r}'
+                print(f'response:\n{future.result()!r}\n')
+                if period is None:
+                    return 0
+                time.sleep(max(0.0, started + period - time.monotonic()))
+        finally:
+            node.destroy_node()
+            rclpy.try_shutdown()
+
+
+def wait_for_server(node: Any, client: Any, service: str) -> None:
+    """Wait as upstream does (forever), but say once when the name looks mistyped."""
+    from ros2cli.names import did_you_mean
+    from ros2cli.node.direct import NAMED_LOOKUP_GRACE
+
+    started = time.monotonic()
+    hinted = False
+    while not client.wait_for_service(timeout_sec=0.5):
+        if not hinted and time.monotonic() - started > NAMED_LOOKUP_GRACE:
+            hinted = True
+            names = [name for name, _ in node.get_service_names_and_types()]
+            print(f"No server for service '{service}' yet{did_you_mean(service, names)}; still waiting "
+                  '(Ctrl-C to stop)', file=sys.stderr)
+
+
+def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:
+    parser.add_argument('--include-hidden-services', dest='command_include_hidden', action='store_true',
+                        help='Consider hidden services as well')
+    add_verbs(parser, cli_name, {'call': CallVerb, 'find': FindVerb, 'list': ListVerb, 'type': TypeVerb})
+
+
+def main(args: argparse.Namespace) -> Any:
+    return run_verb(args)

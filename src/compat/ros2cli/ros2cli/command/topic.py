@@ -1,0 +1,209 @@
+"""`ros2 topic list | info | type | find | echo | pub | hz | bw`."""
+
+import argparse
+from typing import Any
+
+from ros2cli.verb import Verb, add_verbs, run_verb
+
+DESCRIPTION = 'Various topic related sub-commands'
+
+
+def _include_hidden(args: argparse.Namespace) -> bool:
+    return bool(getattr(args, 'include_hidden_topics', False)
+                or getattr(args, 'command_include_hidden', False))
+
+
+def _add_hidden_argument(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument('--include-hidden-topics', action='store_true', help='Consider hidden topics as well')
+
+
+def visible_topics(graph: Any, include_hidden: bool) -> list[list[Any]]:
+    from ros2cli.names import is_hidden_name
+    return [[name, types] for name, types in graph.topic_names_and_types()
+            if include_hidden or not is_hidden_name(name)]
+
+
+def _topic_argument(parser: argparse.ArgumentParser, help_text: str = 'Name of the ROS topic') -> None:
+    from ros2cli.completion import topic_completer
+    parser.add_argument('topic_name', help=help_text).completer = topic_completer
+
+
+def _type_argument(parser: argparse.ArgumentParser, nargs: str | None = None, help_text: str = '') -> None:
+    from ros2cli.completion import message_type_completer
+    parser.add_argument(
+        'message_type', nargs=nargs, help=help_text or "Type of the ROS message (e.g. 'std_msgs/msg/String')"
+    ).completer = message_type_completer
+
+
+def topic_types(graph: Any, topic: str) -> list[str] | None:
+    for name, types in graph.topic_names_and_types():
+        if name == topic:
+            return types
+    return None
+
+
+def unknown_topic(graph: Any, topic: str) -> str:
+    from ros2cli.names import did_you_mean
+    return f"Unknown topic '{topic}'{did_you_mean(topic, [n for n, _ in graph.topic_names_and_types()])}"
+
+
+class ListVerb(Verb):
+    DESCRIPTION = 'Output a list of available topics'
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        from ros2cli.node.strategy import add_strategy_arguments
+        add_strategy_arguments(parser)
+        parser.add_argument('-t', '--show-types', action='store_true',
+                            help='Additionally show the topic type')
+        parser.add_argument('-c', '--count-topics', action='store_true',
+                            help='Only display the number of topics discovered')
+        _add_hidden_argument(parser)
+        parser.add_argument('-v', '--verbose', action='store_true',
+                            help='List full details about each topic')
+
+    def main(self, args: argparse.Namespace) -> int:
+        from ros2cli.node.strategy import NodeStrategy
+        with NodeStrategy(args) as strategy:
+            topics = visible_topics(strategy.graph, _include_hidden(args))
+            if args.count_topics:
+                print(len(topics))
+                return 0
+            if args.verbose:
+                graph = strategy.graph
+                counts = {name: (graph.count_publishers(name), graph.count_subscribers(name))
+                          for name, _ in topics}
+        if args.verbose:
+            for title, index, word in (('Published topics:', 0, 'publisher'),
+                                       ('Subscribed topics:', 1, 'subscriber')):
+                print(title)
+                for name, types in topics:
+                    count = counts[name][index]
+                    if count:
+                        print(f" * {name} [{', '.join(types)}] {count} {word}{'s' if count > 1 else ''}")
+                print()
+            return 0
+        for name, types in topics:
+            print(f"{name} [{', '.join(types)}]" if args.show_types else name)
+        return 0
+
+
+def endpoint_text(endpoint: dict[str, Any]) -> str:
+    """An endpoint as upstream prints it (rclpy's TopicEndpointInfo.__str__)."""
+    history = endpoint['history']
+    if history == 'KEEP_LAST':
+        history = f"KEEP_LAST ({endpoint['depth']})"
+    gid = '.'.join(f'{byte:02x}' for byte in endpoint['endpoint_gid'])
+    return '\n'.join([
+        f"Node name: {endpoint['node_name']}",
+        f"Node namespace: {endpoint['node_namespace']}",
+        f"Topic type: {endpoint['topic_type']}",
+        f"Topic type hash: {endpoint['topic_type_hash']}",
+        f"Endpoint type: {endpoint['endpoint_type']}",
+        f'GID: {gid}',
+        'QoS profile:',
+        f"  Reliability: {endpoint['reliability']}",
+        f'  History (Depth): {history}',
+        f"  Durability: {endpoint['durability']}",
+        f"  Lifespan: {endpoint['lifespan']}",
+        f"  Deadline: {endpoint['deadline']}",
+        f"  Liveliness: {endpoint['liveliness']}",
+        f"  Liveliness lease duration: {endpoint['liveliness_lease_duration']}",
+    ])
+
+
+class InfoVerb(Verb):
+    DESCRIPTION = 'Print information about a topic'
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        from ros2cli.node.strategy import add_strategy_arguments
+        _topic_argument(parser, 'Name of the ROS topic to get info (e.g. \'/chatter\')')
+        parser.add_argument('--verbose', '-v', action='store_true',
+                            help='Prints detailed information like the node name, node namespace, topic '
+                                 'type, topic type hash, GUID, and QoS Profile of the publishers and '
+                                 'subscribers to this topic')
+        add_strategy_arguments(parser)
+
+    def main(self, args: argparse.Namespace) -> int | str:
+        from ros2cli.node.strategy import NodeStrategy
+        with NodeStrategy(args) as strategy:
+            graph = strategy.graph
+            strategy.wait_until(lambda: topic_types(graph, args.topic_name) is not None)
+            types = topic_types(graph, args.topic_name)
+            if types is None:
+                return unknown_topic(graph, args.topic_name)
+            type_text = types[0] if len(types) == 1 else str(types)
+            end = '\n' if args.verbose else ''
+            print(f'Type: {type_text}\n{end}', end='')
+            publishers = graph.publishers_info(args.topic_name)
+            subscriptions = graph.subscriptions_info(args.topic_name)
+        for title, endpoints in (('Publisher count', publishers), ('Subscription count', subscriptions)):
+            print(f'{title}: {len(endpoints)}\n{end}', end='')
+            if args.verbose:
+                for endpoint in endpoints:
+                    print(endpoint_text(endpoint), end='\n\n')
+        return 0
+
+
+class TypeVerb(Verb):
+    DESCRIPTION = 'Print a topic\'s type'
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        from ros2cli.node.strategy import add_strategy_arguments
+        _topic_argument(parser, 'Name of the ROS topic to get type (e.g. \'/chatter\')')
+        _add_hidden_argument(parser)
+        add_strategy_arguments(parser)
+
+    def main(self, args: argparse.Namespace) -> int:
+        from ros2cli.node.strategy import NodeStrategy
+        with NodeStrategy(args) as strategy:
+            strategy.wait_until(lambda: topic_types(strategy.graph, args.topic_name) is not None)
+            topics = dict(visible_topics(strategy.graph, _include_hidden(args)))
+        if args.topic_name not in topics:
+            return 1
+        for topic_type in topics[args.topic_name]:
+            print(topic_type)
+        return 0
+
+
+class FindVerb(Verb):
+    DESCRIPTION = 'Output a list of available topics of a given type'
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        from ros2cli.node.strategy import add_strategy_arguments
+        _type_argument(parser, help_text='Name of the ROS topic type to filter for '
+                       "(e.g. 'std_msgs/msg/String')")
+        add_strategy_arguments(parser)
+        parser.add_argument('-c', '--count-topics', action='store_true',
+                            help='Only display the number of topics discovered')
+        _add_hidden_argument(parser)
+
+    def main(self, args: argparse.Namespace) -> int:
+        from ros2cli.node.strategy import NodeStrategy
+        with NodeStrategy(args) as strategy:
+            names = [name for name, types in visible_topics(strategy.graph, _include_hidden(args))
+                     if args.message_type in types]
+        if args.count_topics:
+            print(len(names))
+        else:
+            for name in names:
+                print(name)
+        return 0
+
+
+def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:
+    parser.add_argument('--include-hidden-topics', dest='command_include_hidden', action='store_true',
+                        help='Consider hidden topics as well')
+    # Imported here: those modules use this one's helpers.
+    from ros2cli.command.topic_bw import BwVerb
+    from ros2cli.command.topic_echo import EchoVerb
+    from ros2cli.command.topic_hz import HzVerb
+    from ros2cli.command.topic_pub import PubVerb
+
+    add_verbs(parser, cli_name, {
+        'bw': BwVerb, 'echo': EchoVerb, 'find': FindVerb, 'hz': HzVerb, 'info': InfoVerb,
+        'list': ListVerb, 'pub': PubVerb, 'type': TypeVerb})
+
+
+def main(args: argparse.Namespace) -> Any:
+    return run_verb(args)
+

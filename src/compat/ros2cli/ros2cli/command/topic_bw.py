@@ -1,0 +1,87 @@
+"""`ros2 topic bw <topic>`: bandwidth used by a topic (serialized message sizes per second)."""
+
+import argparse
+import time
+from collections import deque
+from typing import Any
+
+from ros2cli.command.topic import _topic_argument, topic_types
+from ros2cli.command.topic_hz import positive_int
+from ros2cli.verb import Verb
+
+
+def size_text(size: float) -> str:
+    for unit, scale in (('MB', 1e6), ('KB', 1e3)):
+        if size >= scale:
+            return f'{size / scale:.2f} {unit}'
+    return f'{size:.0f} B'
+
+
+class BandwidthStatistics:
+    """(arrival time, size) samples in, a bandwidth report out, over the last `window` messages."""
+
+    def __init__(self, window: int) -> None:
+        self.samples: deque[tuple[float, int]] = deque(maxlen=window)
+
+    def add(self, arrival: float, size: int) -> None:
+        self.samples.append((arrival, size))
+
+    def report(self, now: float) -> str | None:
+        if len(self.samples) < 2:
+            return None
+        sizes = [size for _, size in self.samples]
+        elapsed = now - self.samples[0][0]
+        rate = sum(sizes) / elapsed if elapsed > 0 else 0.0
+        mean = size_text(sum(sizes) / len(sizes))
+        return (f'{size_text(rate)}/s from {len(sizes)} messages\n\tMessage size mean: {mean} '
+                f'min: {size_text(min(sizes))} max: {size_text(max(sizes))}')
+
+
+class BwVerb(Verb):
+    DESCRIPTION = 'Display bandwidth used by topic'
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        from ros2cli.node.direct import add_direct_node_arguments
+        _topic_argument(parser, "Name of the ROS topic to listen to (e.g. '/chatter')")
+        parser.add_argument('--window', '-w', type=positive_int, default=100,
+                            help='maximum window size, in # of messages, for calculating rate (default: 100)')
+        add_direct_node_arguments(parser)
+
+    def main(self, args: argparse.Namespace) -> int | str:
+        from rclpy.executors import SingleThreadedExecutor
+        from rclpy.qos import qos_profile_sensor_data
+
+        from ros2cli.interfaces import InvalidType, import_type
+        from ros2cli.names import expand_topic_name
+        from ros2cli.node.direct import DirectNode
+
+        topic = expand_topic_name(args.topic_name)
+        with DirectNode(args) as direct:
+            types = topic_types(direct.graph, topic)
+            if types is None:
+                print(f'WARNING: topic [{topic}] does not appear to be published yet')
+                while types is None:
+                    direct.spin_for(0.1)
+                    types = topic_types(direct.graph, topic)
+            try:
+                message_class = import_type(types[0], 'msg')
+            except InvalidType as error:
+                return f"The message type '{types[0]}' is invalid: {error}"
+            statistics = BandwidthStatistics(args.window)
+
+            def on_message(data: Any) -> None:
+                statistics.add(time.monotonic(), len(data))
+
+            direct.node.create_subscription(message_class, topic, on_message, qos_profile_sensor_data,
+                                            raw=True)
+            print(f'Subscribed to [{topic}]')
+            executor = SingleThreadedExecutor(context=direct.node.context)
+            executor.add_node(direct.node)
+            next_report = time.monotonic() + 1.0
+            while True:
+                executor.spin_once(timeout_sec=max(0.0, next_report - time.monotonic()))
+                if time.monotonic() >= next_report:
+                    next_report += 1.0
+                    text = statistics.report(time.monotonic())
+                    if text:
+                        print(text)

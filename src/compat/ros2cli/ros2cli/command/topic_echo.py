@@ -1,0 +1,226 @@
+"""`ros2 topic echo <topic> [type]`: print the messages of a topic as YAML (or CSV, raw bytes)."""
+
+import argparse
+import sys
+from typing import Any
+
+from ros2cli.command.topic import _topic_argument, _type_argument, topic_types
+from ros2cli.verb import Verb
+
+RELIABLE_FALLBACK = ('Some, but not all, publishers are offering QoSReliabilityPolicy.RELIABLE. Falling back '
+                     'to QoSReliabilityPolicy.BEST_EFFORT as it will connect to all publishers')
+DURABLE_FALLBACK = ('Some, but not all, publishers are offering QoSDurabilityPolicy.TRANSIENT_LOCAL. Falling '
+                    'back to QoSDurabilityPolicy.VOLATILE as it will connect to all publishers')
+
+
+def positive_float(text: str) -> float:
+    value = float(text)
+    if value <= 0:
+        raise argparse.ArgumentTypeError(f'{text} is not a positive number')
+    return value
+
+
+def add_message_output_arguments(parser: argparse.ArgumentParser) -> None:
+    """The formatting options echo shares with other message printers."""
+    parser.add_argument('--csv', action='store_true', help='Output all recursive fields separated by commas '
+                        '(e.g. for plotting)')
+    parser.add_argument('--field', type=str, default=None,
+                        help="Echo a selected field of a message. Use '.' to select sub-fields. For "
+                             'example, to echo the position field of a nav_msgs/msg/Odometry message: '
+                             "'ros2 topic echo /odom --field pose.pose.position'")
+    parser.add_argument('--full-length', '-f', action='store_true',
+                        help='Output all elements for arrays, bytes, and string with a length > '
+                             '\'--truncate-length\', by default they are truncated after '
+                             '\'--truncate-length\' elements with \'...\'')
+    parser.add_argument('--truncate-length', '-l', type=int, default=128,
+                        help='The length to truncate arrays, bytes, and string to (default: 128)')
+    parser.add_argument('--no-arr', action='store_true', help="Don't print array fields of messages")
+    parser.add_argument('--no-str', action='store_true', help="Don't print string fields of messages")
+    parser.add_argument('--flow-style', action='store_true', help='Print collections in the block style '
+                        '(not available with csv format)')
+
+
+def choose_qos(args: argparse.Namespace, publishers: list[dict[str, Any]]) -> Any:
+    """Explicit policies win; otherwise match the publishers (reliable/durable only if all are)."""
+    from rclpy.qos import QoSDurabilityPolicy, QoSReliabilityPolicy
+
+    from ros2cli.qos import has_overrides, profile_from_args
+
+    profile = profile_from_args(args)
+    if has_overrides(args) or not publishers:
+        return profile
+    reliable = sum(p['reliability'] == 'RELIABLE' for p in publishers)
+    durable = sum(p['durability'] == 'TRANSIENT_LOCAL' for p in publishers)
+    if reliable == len(publishers):
+        profile.reliability = QoSReliabilityPolicy.RELIABLE
+    else:
+        if reliable:
+            print(RELIABLE_FALLBACK)
+        profile.reliability = QoSReliabilityPolicy.BEST_EFFORT
+    if durable == len(publishers):
+        profile.durability = QoSDurabilityPolicy.TRANSIENT_LOCAL
+    else:
+        if durable:
+            print(DURABLE_FALLBACK)
+        profile.durability = QoSDurabilityPolicy.VOLATILE
+    return profile
+
+
+class MessagePrinter:
+    """Formats one received message as the options ask; returns the text to print or None."""
+
+    def __init__(self, args: argparse.Namespace) -> None:
+        self.args = args
+        self.truncate = None if args.full_length else args.truncate_length
+        self.field_path: list[str] | None = None
+        if args.field is not None:
+            self.field_path = [part for part in args.field.split('.') if part]
+            if not self.field_path:
+                raise RuntimeError(f"Invalid field value '{args.field}'")
+        self.predicate = None
+        if getattr(args, 'filter_expr', None):
+            try:
+                self.predicate = eval(f'lambda m: {args.filter_expr}')  # the user's own expression
+            except SyntaxError as error:
+                raise RuntimeError(f"Invalid filter expression '{args.filter_expr}': {error.msg}") from None
+
+    def matches(self, message: Any) -> bool:
+        if self.predicate is None:
+            return True
+        try:
+            return bool(self.predicate(message))
+        except Exception as error:
+            raise RuntimeError(f"Filter expression '{self.args.filter_expr}' failed: "
+                               f'{type(error).__name__}: {error}') from None
+
+    def select(self, message: Any) -> Any:
+        value = message
+        for part in self.field_path or []:
+            try:
+                value = getattr(value, part)
+            except AttributeError:
+                raise RuntimeError(f"Invalid field '{self.args.field}': '{type(value).__name__}' object has "
+                                   f"no attribute '{part}'") from None
+        return value
+
+    def format(self, message: Any) -> str:
+        from ros2cli.message_yaml import is_message, message_to_csv, message_to_yaml
+
+        value = self.select(message)
+        args = self.args
+        if not is_message(value):
+            return f'{value}\n---' if not args.csv else str(value)
+        if args.csv:
+            return message_to_csv(value, self.truncate, args.no_arr, args.no_str)
+        return message_to_yaml(value, self.truncate, args.no_arr, args.no_str, args.flow_style) + '---'
+
+
+class EchoVerb(Verb):
+    DESCRIPTION = 'Output messages from a topic'
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        from ros2cli.node.strategy import add_strategy_arguments
+        from ros2cli.qos import add_qos_arguments
+
+        add_strategy_arguments(parser)
+        _topic_argument(parser, "Name of the ROS topic to listen to (e.g. '/chatter')")
+        _type_argument(parser, nargs='?', help_text="Type of the ROS message (e.g. 'std_msgs/msg/String')")
+        add_qos_arguments(parser, 'subscribe', 'sensor_data')
+        add_message_output_arguments(parser)
+        parser.add_argument('--no-lost-messages', action='store_true',
+                            help="Don't report when a message is lost")
+        parser.add_argument('--raw', action='store_true', help='Echo the raw binary representation')
+        parser.add_argument('--filter', dest='filter_expr', help='Python expression to filter messages that '
+                            'are printed. Expression can use Python builtins as well as m (the message).')
+        parser.add_argument('--once', action='store_true',
+                            help='Print the first message received and then exit.')
+        parser.add_argument('--timeout', type=positive_float, help='Exit after the given number of seconds')
+        parser.add_argument('--include-message-info', '-i', action='store_true',
+                            help='Shows the associated message info.')
+
+    def main(self, args: argparse.Namespace) -> int | str:
+        from ros2cli.interfaces import InvalidType, import_type
+        from ros2cli.names import expand_topic_name
+        from ros2cli.node.direct import NAMED_LOOKUP_GRACE, DirectNode
+
+        printer = MessagePrinter(args)
+        topic = expand_topic_name(args.topic_name)
+        with DirectNode(args) as direct:
+            graph = direct.graph
+            if args.message_type is not None:
+                type_name = args.message_type
+            else:
+                direct.wait_until(lambda: topic_types(graph, topic) is not None, NAMED_LOOKUP_GRACE)
+                types = topic_types(graph, topic)
+                if types is None:
+                    print(f'WARNING: topic [{topic}] does not appear to be published yet')
+                    from ros2cli.command.topic import unknown_topic
+                    hint = unknown_topic(graph, topic).partition(f"'{topic}'")[2]
+                    return f'Could not determine the type for the passed topic{hint}'
+                if len(types) > 1:
+                    return (f"Cannot echo topic '{topic}', as it contains more than one type: "
+                            f"[{', '.join(types)}]")
+                type_name = types[0]
+            try:
+                message_class = import_type(type_name, 'msg')
+            except InvalidType as error:
+                if args.message_type is not None:
+                    return f'The passed message type is invalid: {error}'
+                return f"The message type '{type_name}' is invalid: {error}"
+            qos = choose_qos(args, graph.publishers_info(topic))
+            return self._echo(direct, topic, message_class, qos, printer)
+
+    def _echo(self, direct: Any, topic: str, message_class: Any, qos: Any,
+              printer: MessagePrinter) -> int | str:
+        import time
+
+        from rclpy.event_handler import SubscriptionEventCallbacks
+        from rclpy.executors import SingleThreadedExecutor
+
+        args = printer.args
+        state: dict[str, Any] = {'done': False, 'error': None}
+
+        def on_message(message: Any, info: Any = None) -> None:
+            if state['done']:
+                return
+            try:
+                if args.raw:
+                    text = f'{message}\n---'
+                else:
+                    if not printer.matches(message):
+                        return
+                    text = printer.format(message)
+                if args.include_message_info and info is not None:
+                    from ros2cli.message_yaml import dump_yaml
+                    details = {key: info[key] for key in sorted(info)}
+                    text = (','.join(str(v) for v in details.values()) + ',' + text if args.csv
+                            else dump_yaml(details) + '---\n' + text)
+                print(text)
+            except RuntimeError as error:
+                state['error'] = str(error)
+                state['done'] = True
+                return
+            if args.once:
+                state['done'] = True
+
+        def on_lost(info: Any) -> None:
+            print(f'A message was lost!!!\n\ttotal count change:{info.total_count_change}'
+                  f'\n\ttotal count: {info.total_count}---')
+
+        callbacks = None if args.no_lost_messages else SubscriptionEventCallbacks(message_lost=on_lost)
+        callback = ((lambda message, info: on_message(message, info)) if args.include_message_info
+                    else on_message)
+        try:
+            direct.node.create_subscription(message_class, topic, callback, qos,
+                                            event_callbacks=callbacks, raw=args.raw)
+        except Exception:  # the RMW cannot report lost messages: subscribe without it
+            direct.node.create_subscription(message_class, topic, callback, qos, raw=args.raw)
+        executor = SingleThreadedExecutor(context=direct.node.context)
+        executor.add_node(direct.node)
+        deadline = None if args.timeout is None else time.monotonic() + args.timeout
+        while not state['done'] and (deadline is None or time.monotonic() < deadline):
+            left = 0.1 if deadline is None else deadline - time.monotonic()
+            executor.spin_once(timeout_sec=max(0.0, min(0.1, left)))
+        executor.remove_node(direct.node)
+        sys.stdout.flush()
+        return state['error'] or 0

@@ -1,0 +1,149 @@
+"""`ros2 topic pub <topic> <type> [values]`: publish a message given as YAML, once, N times or at a rate."""
+
+import argparse
+import sys
+import time
+from typing import Any
+
+from ros2cli.command.topic import _topic_argument, _type_argument
+from ros2cli.command.topic_echo import positive_float
+from ros2cli.verb import Verb
+
+
+def nonnegative_int(text: str) -> int:
+    value = int(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError(f'{text} is not a non-negative integer')
+    return value
+
+
+def read_values(args: argparse.Namespace, kind: str) -> Any:
+    """The YAML values of the positional argument or --stdin, parsed; RuntimeError when malformed."""
+    from ros2cli.message_yaml import FieldError, parse_yaml
+    text = sys.stdin.read() if getattr(args, 'stdin', False) else (args.values or '{}')
+    try:
+        return parse_yaml(text)
+    except FieldError as error:
+        raise RuntimeError(f'Failed to populate {kind}: {error}') from None
+
+
+def add_values_arguments(parser: argparse.ArgumentParser, what: str, example: str) -> None:
+    group = parser.add_mutually_exclusive_group()
+    group.add_argument('values', nargs='?', default='{}',
+                       help=f"Values to fill the {what} with in YAML format (e.g. '{example}'), "
+                            f'otherwise the {what} will be published with default values')
+    group.add_argument('--stdin', action='store_true', help=f'Read {what} values from stdin.')
+
+
+class PubVerb(Verb):
+    DESCRIPTION = 'Publish a message to a topic'
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        from ros2cli.node.direct import add_direct_node_arguments
+        from ros2cli.qos import add_qos_arguments
+
+        _topic_argument(parser, "Name of the ROS topic to publish to (e.g. '/chatter')")
+        _type_argument(parser, help_text="Type of the ROS message (e.g. 'std_msgs/String')")
+        add_values_arguments(parser, 'message', 'data: Hello World')
+        parser.add_argument('-r', '--rate', metavar='N', type=positive_float, default=1.0,
+                            help='Publishing rate in Hz (default: 1)')
+        parser.add_argument('-p', '--print', metavar='N', type=int, default=1,
+                            help='Only print every N-th published message (default: 1)')
+        group = parser.add_mutually_exclusive_group()
+        group.add_argument('-1', '--once', action='store_true', help='Publish one message and exit')
+        group.add_argument('-t', '--times', type=nonnegative_int, default=0,
+                           help='Publish this number of times and then exit')
+        parser.add_argument('-w', '--wait-matching-subscriptions', type=nonnegative_int, default=None,
+                            help='Wait until finding the specified number of matching subscriptions. '
+                                 'Defaults to 1 when using "-1"/"--once"/"--times", otherwise defaults to 0.')
+        parser.add_argument('--max-wait-time-secs', type=positive_float, default=None,
+                            help='Maximum time in seconds to wait for matching subscriptions (default: wait '
+                                 'forever)')
+        parser.add_argument('--keep-alive', metavar='N', type=positive_float, default=0.1,
+                            help='Keep publishing node alive for N seconds after the last msg (default: 0.1)')
+        parser.add_argument('-n', '--node-name', help='Name of the created publishing node')
+        add_qos_arguments(parser, 'publish', 'default')
+        add_direct_node_arguments(parser)
+
+    def main(self, args: argparse.Namespace) -> int | str:
+        from ros2cli.interfaces import InvalidType, import_type
+        from ros2cli.message_yaml import FieldError, fill_message
+        from ros2cli.names import expand_topic_name
+        from ros2cli.node.direct import DirectNode
+        from ros2cli.qos import profile_from_args
+
+        times = 1 if args.once else args.times
+        wait_count = args.wait_matching_subscriptions
+        if wait_count is None:
+            wait_count = 1 if times else 0
+        if wait_count == 0 and args.max_wait_time_secs is not None:
+            return ('--max-wait-time-secs option is only effective with --wait-matching-subscriptions, '
+                    '--once or --times')
+        try:
+            message_class = import_type(args.message_type, 'msg')
+        except InvalidType as error:
+            return f'The passed message type is invalid: {error}'
+        values = read_values(args, 'field')
+        if not isinstance(values, dict) and values is not None:
+            return 'The passed value needs to be a dictionary in YAML format'
+        stamps: list[Any] = []
+        try:
+            message = fill_message(message_class(), values, stamps)
+        except FieldError as error:
+            return f'Failed to populate field: {error}'
+
+        with DirectNode(args, node_name=args.node_name) as direct:
+            node = direct.node
+            publisher = node.create_publisher(message_class, expand_topic_name(args.topic_name),
+                                              profile_from_args(args))
+            if wait_count and not self._wait_for_subscriptions(direct, publisher, wait_count,
+                                                               args.max_wait_time_secs):
+                return (f'Timed out waiting for subscribers: Expected {wait_count} subcribers but only got '
+                        f'{publisher.get_subscription_count()} subscribers')
+            print('publisher: beginning loop')
+            self._publish_loop(direct, publisher, message, stamps, times, args)
+        return 0
+
+    @staticmethod
+    def _wait_for_subscriptions(direct: Any, publisher: Any, count: int, max_wait: float | None) -> bool:
+        start = time.monotonic()
+        next_notice = start
+        while publisher.get_subscription_count() < count:
+            now = time.monotonic()
+            if now >= next_notice:
+                print(f'Waiting for at least {count} matching subscription(s)...')
+                next_notice += 1.0
+            if max_wait is not None and now - start >= max_wait:
+                return False
+            direct.spin_for(0.1)
+        return True
+
+    @staticmethod
+    def _publish_loop(direct: Any, publisher: Any, message: Any, stamps: list[Any], times: int,
+                      args: argparse.Namespace) -> None:
+        from rclpy.executors import SingleThreadedExecutor
+
+        node = direct.node
+        count = 0
+
+        def publish() -> None:
+            nonlocal count
+            if stamps:
+                now = node.get_clock().now().to_msg()
+                for refresh in stamps:
+                    refresh(now)
+            publisher.publish(message)
+            count += 1
+            if args.print > 0 and count % args.print == 0:
+                print(f'publishing #{count}: {message!r}\n')
+
+        publish()
+        if times != 1:
+            timer = node.create_timer(1.0 / args.rate, publish)
+            executor = SingleThreadedExecutor(context=node.context)
+            executor.add_node(node)
+            while times == 0 or count < times:
+                executor.spin_once(timeout_sec=0.5)
+            timer.cancel()
+            executor.remove_node(node)
+        time.sleep(args.keep_alive)

@@ -1,0 +1,74 @@
+"""argcomplete completers for package, executable, node, topic, service, action and type names.
+
+Graph names come from the daemon when it runs (instant), else from a short-lived DirectNode.
+"""
+
+import argparse
+import os
+from collections.abc import Iterable
+from typing import Any
+
+
+def package_completer(prefix: str, **_kwargs: Any) -> Iterable[str]:
+    from ament_index_python.packages import get_packages_with_prefixes
+    return sorted(p for p in get_packages_with_prefixes() if p.startswith(prefix))
+
+
+def executable_completer(prefix: str, parsed_args: argparse.Namespace, **_kwargs: Any) -> Iterable[str]:
+    from ament_index_python.packages import get_package_prefix
+
+    from ros2cli.command.run import package_executables
+    try:
+        package_prefix = get_package_prefix(parsed_args.package_name)
+    except Exception:
+        return []
+    names = {os.path.basename(p) for p in package_executables(package_prefix, parsed_args.package_name)}
+    return sorted(n for n in names if n.startswith(prefix))
+
+
+def _graph_names(query: str, parsed_args: argparse.Namespace | None) -> list[str]:
+    from ros2cli.daemon.client import DaemonGraph, is_daemon_running
+    from ros2cli.node.direct import DirectNode
+
+    if is_daemon_running(timeout=1.0) and not getattr(parsed_args, 'no_daemon', False):
+        graph: Any = DaemonGraph()
+        return _names_from(graph, query)
+    with DirectNode(parsed_args) as direct:
+        return _names_from(direct.graph, query)
+
+
+def _names_from(graph: Any, query: str) -> list[str]:
+    from ros2cli.names import full_node_name
+    if query == 'nodes':
+        return sorted(full_node_name(ns, n) for n, ns in graph.node_names_and_namespaces())
+    return [name for name, _ in getattr(graph, f'{query}_names_and_types')()]
+
+
+def _graph_completer(query: str) -> Any:
+    def complete(prefix: str, parsed_args: argparse.Namespace | None = None, **_kwargs: Any) -> list[str]:
+        return [n for n in _graph_names(query, parsed_args) if n.startswith(prefix)]
+    return complete
+
+
+node_completer = _graph_completer('nodes')
+topic_completer = _graph_completer('topic')
+service_completer = _graph_completer('service')
+action_completer = _graph_completer('action')
+
+
+def _type_completer(kind: str) -> Any:
+    def complete(prefix: str, **_kwargs: Any) -> list[str]:
+        from ros2cli.interfaces import interface_index
+        return [f'{package}/{kind}/{name}' for package, kinds in sorted(interface_index().items())
+                for name in kinds[kind] if f'{package}/{kind}/{name}'.startswith(prefix)]
+    return complete
+
+
+message_type_completer = _type_completer('msg')
+service_type_completer = _type_completer('srv')
+action_type_completer = _type_completer('action')
+
+
+def any_type_completer(prefix: str, **kwargs: Any) -> list[str]:
+    return [*message_type_completer(prefix), *service_type_completer(prefix),
+            *action_type_completer(prefix)]

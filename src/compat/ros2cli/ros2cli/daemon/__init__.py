@@ -1,0 +1,21 @@
+"""The `ros2` daemon: one background process per ROS domain that keeps a warm graph cache.
+
+It serves the graph queries of ros2cli.node.graph.GraphQueries over XML-RPC at
+http://127.0.0.1:<11511 + ROS_DOMAIN_ID>/ros2cli/, like upstream's daemon.
+"""
+
+import os
+
+BASE_PORT = 11511
+RPC_PATH = '/ros2cli/'
+
+
+def domain_id() -> int:
+    try:
+        return int(os.environ.get('ROS_DOMAIN_ID') or 0)
+    except ValueError:
+        return 0
+
+
+def daemon_port(domain: int | None = None) -> int:
+    return BASE_PORT + (domain_id() if domain is None else domain)

@@ -1,0 +1,80 @@
+"""The daemon process: a hidden node whose graph cache stays warm, served over XML-RPC.
+
+Started by ros2cli.daemon.client.spawn_daemon() with the already bound listening socket.
+"""
+
+import argparse
+import os
+import socket
+import time
+import uuid
+from xmlrpc.server import SimpleXMLRPCRequestHandler, SimpleXMLRPCServer
+
+from ros2cli.daemon import RPC_PATH, daemon_port
+
+IDLE_TIMEOUT = 2 * 60 * 60.0  # seconds without a request, as upstream
+
+
+class _RequestHandler(SimpleXMLRPCRequestHandler):
+    rpc_paths = (RPC_PATH,)
+
+
+class _Server(SimpleXMLRPCServer):
+    timed_out = False
+
+    def handle_timeout(self) -> None:
+        self.timed_out = True
+
+
+def serve(domain: int, listener: socket.socket, idle_timeout: float) -> None:
+    import rclpy
+    from rclpy.node import Node
+
+    from ros2cli.node.graph import GraphQueries
+
+    server = _Server(
+        ('127.0.0.1', daemon_port(domain)), requestHandler=_RequestHandler, logRequests=False,
+        allow_none=True, bind_and_activate=False)
+    server.socket.close()
+    server.socket = listener
+    server.timeout = 1.0
+
+    rclpy.init(args=[], domain_id=domain)
+    node = Node(f'_ros2cli_daemon_{domain}_{uuid.uuid4().hex}', start_parameter_services=False)
+    stopping = []
+    server.register_introspection_functions()
+    server.register_instance(GraphQueries(node))
+    server.register_function(node.get_name, 'get_name')
+    server.register_function(node.get_namespace, 'get_namespace')
+    server.register_function(lambda: domain, 'get_domain_id')
+    server.register_function(lambda: stopping.append(True) or True, 'system.shutdown')
+
+    last_request = time.monotonic()
+    try:
+        while not stopping and time.monotonic() - last_request < idle_timeout:
+            server.timed_out = False
+            server.handle_request()
+            if not server.timed_out:
+                last_request = time.monotonic()
+    finally:
+        server.server_close()
+        node.destroy_node()
+        rclpy.try_shutdown()
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(prog='ros2-daemon')
+    parser.add_argument('--ros-domain-id', type=int, required=True)
+    parser.add_argument('--fd', type=int, required=True, help='the bound, listening socket')
+    parser.add_argument('--idle-timeout', type=float, default=IDLE_TIMEOUT)
+    args = parser.parse_args()
+    os.environ['ROS_DOMAIN_ID'] = str(args.ros_domain_id)
+    listener = socket.socket(fileno=args.fd)
+    try:
+        serve(args.ros_domain_id, listener, args.idle_timeout)
+    except KeyboardInterrupt:
+        pass
+
+
+if __name__ == '__main__':
+    main()

@@ -1,0 +1,73 @@
+"""DirectNode: a hidden rclpy node of the verb itself, given a moment for DDS discovery."""
+
+import argparse
+import os
+import time
+from collections.abc import Callable
+from typing import Any
+
+DEFAULT_SPIN_TIME = 0.5
+# A verb that looks for one named entity (node, topic, service) keeps looking this much longer
+# before it says "unknown": DDS discovery of a just started participant sometimes takes ~2 s.
+NAMED_LOOKUP_GRACE = 2.0
+
+
+def add_direct_node_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        '--spin-time', type=float, default=DEFAULT_SPIN_TIME,
+        help='Spin time in seconds to wait for discovery (only applies when not using an already '
+             'running daemon)')
+    parser.add_argument('-s', '--use-sim-time', action='store_true', help='Enable ROS simulation time')
+
+
+class DirectNode:
+    """Owns rclpy for the verb: init on creation, shutdown on close()."""
+
+    def __init__(self, args: argparse.Namespace | None = None, node_name: str | None = None,
+                 spin_time: float | None = None) -> None:
+        import rclpy
+        from rclpy.node import Node
+        from rclpy.parameter import Parameter
+
+        self._rclpy = rclpy
+        use_sim_time = bool(getattr(args, 'use_sim_time', False))
+        if spin_time is None:
+            spin_time = getattr(args, 'spin_time', DEFAULT_SPIN_TIME)
+        rclpy.init(args=[])
+        self.node = Node(
+            node_name or f'_ros2cli_{os.getpid()}', start_parameter_services=False,
+            parameter_overrides=[Parameter('use_sim_time', value=use_sim_time)])
+        self._graph: Any = None
+        self.spin_for(spin_time)
+
+    def spin_for(self, seconds: float) -> None:
+        """Serve callbacks for that long; what DDS discovery needs to fill the graph cache."""
+        deadline = time.monotonic() + max(0.0, seconds)
+        while (remaining := deadline - time.monotonic()) > 0:
+            self._rclpy.spin_once(self.node, timeout_sec=min(remaining, 0.05))
+
+    def wait_until(self, condition: Callable[[], bool], timeout: float) -> bool:
+        """Spin until condition() holds (True) or timeout seconds have passed (False)."""
+        deadline = time.monotonic() + timeout
+        while not condition():
+            if time.monotonic() >= deadline:
+                return False
+            self.spin_for(0.05)
+        return True
+
+    @property
+    def graph(self) -> Any:
+        if self._graph is None:
+            from ros2cli.node.graph import GraphQueries
+            self._graph = GraphQueries(self.node)
+        return self._graph
+
+    def close(self) -> None:
+        self.node.destroy_node()
+        self._rclpy.try_shutdown()
+
+    def __enter__(self) -> 'DirectNode':
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()

@@ -1,0 +1,61 @@
+"""NodeStrategy: ask the daemon when it runs, else a DirectNode (and start the daemon for next time)."""
+
+import argparse
+from collections.abc import Callable
+from typing import Any
+
+from ros2cli.node.direct import NAMED_LOOKUP_GRACE, DirectNode, add_direct_node_arguments
+
+
+def add_strategy_arguments(parser: argparse.ArgumentParser) -> None:
+    add_direct_node_arguments(parser)
+    parser.add_argument('--no-daemon', action='store_true',
+                        help='Do not spawn nor use an already running daemon')
+
+
+class NodeStrategy:
+    """`.graph` answers graph queries; `.direct` is a DirectNode for everything else (lazy)."""
+
+    def __init__(self, args: argparse.Namespace, spin_time: float | None = None) -> None:
+        from ros2cli.daemon import client
+
+        self._args = args
+        self._spin_time = spin_time
+        self._direct: DirectNode | None = None
+        self.graph: Any = None
+        if not getattr(args, 'no_daemon', False):
+            if client.is_daemon_running():
+                self.graph = client.DaemonGraph()
+            else:
+                client.spawn_daemon()
+        if self.graph is None:
+            self.graph = self.direct.graph
+
+    @property
+    def uses_daemon(self) -> bool:
+        return self._direct is None or self.graph is not self._direct.graph
+
+    def wait_until(self, condition: Callable[[], bool], timeout: float = NAMED_LOOKUP_GRACE) -> bool:
+        """condition() now, or after up to timeout more seconds of discovery (DirectNode only).
+
+        The daemon's cache is warm already, so a miss there is final.
+        """
+        if self.uses_daemon:
+            return condition()
+        return self.direct.wait_until(condition, timeout)
+
+    @property
+    def direct(self) -> DirectNode:
+        if self._direct is None:
+            self._direct = DirectNode(self._args, spin_time=self._spin_time)
+        return self._direct
+
+    def close(self) -> None:
+        if self._direct is not None:
+            self._direct.close()
+
+    def __enter__(self) -> 'NodeStrategy':
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
