@@ -142,7 +142,7 @@ class Node(ExecuteProcess):
     # ---- names ----
     @property
     def node_name(self) -> str:
-        """The fully qualified node name, once executed ('/**' style unknowns as '<unknown>')."""
+        """The fully qualified node name once executed ('<unknown>' where the node picks its own)."""
         namespace = self.__expanded_namespace or '/'
         name = self.__expanded_name or '<unknown>'
         return namespace.rstrip('/') + '/' + name
@@ -185,14 +185,15 @@ class Node(ExecuteProcess):
 
     def execute(self, context: LaunchContext) -> None:
         self._expand_names(context)
-        if self.__expanded_name is not None:
+        super().execute(context)
+        label = self.process_description.final_name
+        if self.__expanded_name is not None and label is not None:
             count = context._node_names.get(self.node_name, 0) + 1
             context._node_names[self.node_name] = count
             if count > 1:
-                get_logger(self.node_name).warning(
+                get_logger(label).warning(
                     f'there are now at least {count} nodes with the name {self.node_name} created '
                     'within this launch context')
-        return super().execute(context)
 
     def _extra_arguments(self, context: LaunchContext) -> list[str]:
         args = ['--ros-args']

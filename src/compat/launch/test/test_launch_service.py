@@ -1,0 +1,162 @@
+"""The launch core in-process: scoping, environment, conditions, errors and return codes."""
+
+import os
+import re
+import sys
+import threading
+
+import pytest
+from launch import LaunchDescription, LaunchService
+from launch.actions import (
+    AppendEnvironmentVariable,
+    DeclareLaunchArgument,
+    ExecuteProcess,
+    GroupAction,
+    LogInfo,
+    OpaqueFunction,
+    SetEnvironmentVariable,
+    SetLaunchConfiguration,
+    TimerAction,
+    UnsetEnvironmentVariable,
+)
+from launch.conditions import IfCondition
+from launch.substitutions import (
+    Command,
+    EnvironmentVariable,
+    EqualsSubstitution,
+    IfElseSubstitution,
+    LaunchConfiguration,
+    NotSubstitution,
+    PythonExpression,
+)
+
+
+@pytest.fixture(autouse=True)
+def isolated(tmp_path, monkeypatch):
+    """Logs under tmp_path; the environment launch changes is restored afterwards."""
+    monkeypatch.setenv('ROS_LOG_DIR', str(tmp_path / 'log'))
+    saved = dict(os.environ)
+    yield
+    os.environ.clear()
+    os.environ.update(saved)
+
+
+def run(*entities, argv=None) -> int:
+    service = LaunchService(argv=argv, noninteractive=True)
+    service.include_launch_description(LaunchDescription(list(entities)))
+    return service.run()
+
+
+def user_lines(capsys) -> list[str]:
+    return [line.split(': ', 1)[1] for line in capsys.readouterr().out.splitlines()
+            if line.startswith('[INFO] [launch.user]')]
+
+
+def say(*parts) -> LogInfo:
+    return LogInfo(msg=list(parts))
+
+
+def test_group_scopes(capsys):
+    value = LaunchConfiguration('v', default='none')
+    assert run(
+        SetLaunchConfiguration('v', 'outer'),
+        GroupAction([SetLaunchConfiguration('v', 'scoped'), say(value)]),
+        say(value),
+        GroupAction([say(value)], forwarding=False, launch_configurations={'w': 'kept'}),
+        GroupAction([say(LaunchConfiguration('w'))], forwarding=False, launch_configurations={'w': 'kept'}),
+        GroupAction([SetLaunchConfiguration('v', 'leaked')], scoped=False),
+        say(value),
+    ) == 0
+    assert user_lines(capsys) == ['scoped', 'outer', 'none', 'kept', 'leaked']
+
+
+def test_timer_actions_keep_the_scope_they_were_started_in(capsys):
+    late = TimerAction(period=0.1, actions=[say(LaunchConfiguration('v', default='lost'))])
+    assert run(GroupAction([SetLaunchConfiguration('v', 'inside'), late])) == 0
+    assert user_lines(capsys) == ['inside']
+
+
+def test_environment_actions_and_group_restore(capsys):
+    os.environ['OWL_PATHS'] = 'b'
+    env = EnvironmentVariable('OWL_PATHS', default_value='unset')
+    assert run(
+        AppendEnvironmentVariable('OWL_PATHS', 'c'),
+        AppendEnvironmentVariable('OWL_PATHS', 'a', prepend=True, separator=':'),
+        say(env),
+        GroupAction([SetEnvironmentVariable('OWL_PATHS', 'group'), say(env)]),
+        say(env),
+        UnsetEnvironmentVariable('OWL_PATHS'),
+        say(env),
+    ) == 0
+    assert user_lines(capsys) == ['a:b:c', 'group', 'a:b:c', 'unset']
+
+
+def test_logic_substitutions_and_conditions(capsys):
+    assert run(
+        say(PythonExpression(['hypot(3, 4)'])),
+        say(PythonExpression(['os.sep'], python_modules=['os'])),
+        say(NotSubstitution('true'), ' ', EqualsSubstitution('a', 'a'), ' ',
+            IfElseSubstitution('false', 'yes', 'no')),
+        say(Command(['printf ', 'hello'])),
+        LogInfo(msg='shown', condition=IfCondition(' TRUE ')),
+        LogInfo(msg='hidden', condition=IfCondition('0')),
+    ) == 0
+    assert user_lines(capsys) == ['5.0', '/', 'false true no', 'hello', 'shown']
+
+
+@pytest.mark.parametrize(('entity', 'message'), [
+    (LogInfo(msg='x', condition=IfCondition('yes')),
+     "invalid condition expression, expected one of [true, 1, false, 0] but got 'yes', expanded from "
+     "''yes''"),
+    (say(EnvironmentVariable('OWL_NO_SUCH_VARIABLE')),
+     "environment variable 'OWL_NO_SUCH_VARIABLE' does not exist"),
+    (say(Command('false')), 'executed command failed. Command: false'),
+    (DeclareLaunchArgument('needed', description='a value'),
+     'Required launch argument "needed" was not provided.'),
+    (DeclareLaunchArgument('c', default_value='a', choices=['a', 'b']), None),
+])
+def test_errors_give_return_code_1_and_one_message(capsys, entity, message):
+    code = run(entity, argv=[])
+    out = capsys.readouterr().out
+    if message is None:
+        assert code == 0, out
+        return
+    assert code == 1
+    assert f'[ERROR] [launch]: Caught exception in launch (see debug for traceback): {message}' in out
+
+
+def test_construction_errors():
+    with pytest.raises(TypeError, match="'float' object is not iterable"):
+        DeclareLaunchArgument('x', default_value=1.0)
+    with pytest.raises(RuntimeError, match='choices'):
+        DeclareLaunchArgument('x', default_value='c', choices=['a', 'b'])
+    with pytest.raises(TypeError, match='callable'):
+        OpaqueFunction(function='not callable')
+    with pytest.raises(TypeError, match="Failed to normalize given item of type"):
+        LogInfo(msg=['a', 1])
+    with pytest.raises(ValueError, match='is not a valid standard output config'):
+        ExecuteProcess(cmd=['true'], output={'stdout': 'printer'})
+
+
+def test_executing_an_action_twice_is_an_error(capsys):
+    process = ExecuteProcess(cmd=['true'])
+    assert run(process, OpaqueFunction(function=lambda context: [process])) == 1
+    assert "executed more than once" in capsys.readouterr().out
+
+
+def test_emulate_tty_gives_the_child_a_terminal(capsys):
+    check = [sys.executable, '-c', 'import sys; print(sys.stdout.isatty(), sys.stderr.isatty())']
+    assert run(ExecuteProcess(cmd=check, output='screen', name='piped'),
+               ExecuteProcess(cmd=check, output='screen', name='tty', emulate_tty=True)) == 0
+    out = capsys.readouterr().out
+    assert re.search(r'^\[piped-\d+\] False False$', out, re.MULTILINE), out
+    assert re.search(r'^\[tty-\d+\] True True$', out, re.MULTILINE), out
+
+
+def test_shutdown_from_another_thread():
+    service = LaunchService(noninteractive=True)
+    service.include_launch_description(LaunchDescription([ExecuteProcess(cmd=['sleep', '60'])]))
+    timer = threading.Timer(0.5, service.shutdown)
+    timer.start()
+    assert service.run() == 0
+    timer.join()
