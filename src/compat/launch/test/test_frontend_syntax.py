@@ -81,3 +81,16 @@ def test_yaml_unknown_key_names_file_line_and_key(tmp_path):
 def test_malformed_files(tmp_path, name, text, fmt, message):
     with pytest.raises(LaunchFileError, match=message):
         load_launch_file(write(tmp_path, name, text), fmt)
+
+
+def test_command_lines_split_like_a_shell_around_substitutions():
+    from launch.actions.execute_process import split_command_line
+
+    context = LaunchContext()
+    context.launch_configurations.update({'msg': 'two words', 'topic': 'chat'})
+    line = "ros2 topic pub /$(var topic)_x std_msgs/String '{data: $(var msg)}' \"\" $(var msg)"
+    argv = [perform_substitutions(context, item) for item in split_command_line(parse_substitution(line))]
+    assert argv == ['ros2', 'topic', 'pub', '/chat_x', 'std_msgs/String', '{data: two words}', '',
+                    'two words']
+    with pytest.raises(ValueError, match='cannot split command line'):
+        split_command_line(parse_substitution("echo 'unclosed"))

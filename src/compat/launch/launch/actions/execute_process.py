@@ -493,31 +493,31 @@ class ExecuteProcess(Action):
 
 
 def split_command_line(substitutions: list[Substitution]) -> list[list[Substitution]]:
-    """Split a frontend `cmd` into argv items at unquoted spaces of its literal text.
+    """Split a frontend `cmd` into argv items with shell quoting rules applied to its literal text.
 
-    A substitution glued to literal text stays in the same item; a substitution's own value is
-    never split.
+    Substitutions (also inside quotes) stay where they are, each a placeholder while splitting, so
+    a substitution glued to text is in the same item and its own value is never split.
     """
-    items: list[list[Substitution]] = []
-    current: list[Substitution] = []
+    placeholders: dict[str, Substitution] = {}
+    text = []
     for sub in substitutions:
-        if not isinstance(sub, TextSubstitution):
-            current.append(sub)
-            continue
-        text = sub.text
-        pieces = shlex.split(text) if text.strip() else []
-        if text[:1].isspace() and current:
-            items.append(current)
-            current = []
-        for index, piece in enumerate(pieces):
-            current.append(TextSubstitution(text=piece))
-            last = index == len(pieces) - 1
-            if not last or text[-1:].isspace():
-                items.append(current)
-                current = []
-        if not pieces and text and current:
-            items.append(current)
-            current = []
-    if current:
-        items.append(current)
+        if isinstance(sub, TextSubstitution):
+            text.append(sub.text)
+        else:
+            marker = f'\0{len(placeholders)}\0'
+            placeholders[marker] = sub
+            text.append(marker)
+    try:
+        tokens = shlex.split(''.join(text))
+    except ValueError as error:  # e.g. an unclosed quote
+        raise ValueError(f"cannot split command line '{''.join(text)}': {error}") from None
+    items = []
+    for token in tokens:
+        item: list[Substitution] = []
+        for piece in re.split('(\0\\d+\0)', token):
+            if piece in placeholders:
+                item.append(placeholders[piece])
+            elif piece:
+                item.append(TextSubstitution(text=piece))
+        items.append(item or [TextSubstitution(text='')])
     return items
