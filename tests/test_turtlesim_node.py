@@ -249,3 +249,15 @@ def test_canvas_image_topic_is_opt_in_and_save_errors_are_reported(ros, tmp_path
 
 def _decode(message) -> Image.Image:
     return Image.open(io.BytesIO(bytes(message.data))).convert('RGB')
+
+
+def test_without_headless_flag_runs_headless_when_no_display_can_be_opened(ros):
+    no_display = ros.run('turtlesim', 'turtlesim_node', env={'DISPLAY': ''})
+    no_display.wait_for(r'Spawning turtle \[turtle1\]', timeout=30)
+    unreachable = ros.run('turtlesim', 'turtlesim_node', '--ros-args', '-r', '__node:=second',
+                          env={'DISPLAY': ':4242'})
+    unreachable.wait_for(r'\[WARN\].*\[second\]: No window \(.*\); running headless', timeout=30)
+    assert ros.probe.get_parameters('second', 'background_r') == [69]  # serving
+    assert no_display.stop() == 0 and unreachable.stop() == 0
+    assert 'No window' not in no_display.output
+    assert 'Traceback' not in no_display.output + unreachable.output

@@ -13,7 +13,9 @@ import random
 import sys
 import time
 from pathlib import Path
+from typing import TYPE_CHECKING
 
+import rclpy
 from geometry_msgs.msg import Twist
 from owl_common.run import spin_node
 from PIL import Image
@@ -39,6 +41,9 @@ from turtlesim_py import world
 from turtlesim_py.canvas import DEFAULT_BACKGROUND, SHELL_COLORS, Canvas, SpriteView, encode_png
 from turtlesim_py.rclcpp_parameters import declare_parameter_events_qos
 from turtlesim_py.turtle import RotationGoal, Turtle
+
+if TYPE_CHECKING:
+    from turtlesim_py.window import CanvasWindow
 
 # Humble: keep last 7, otherwise the defaults (reliable, volatile).
 TOPIC_QOS = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=7)
@@ -170,7 +175,7 @@ class TurtlesimNode(Node):
     def __init__(self, canvas_png: Path = Path('turtlesim.png'), publish_image: bool = False,
                  window: bool = False) -> None:
         # Set first: rclpy destroys a half-built node (bad --ros-args parameter) via destroy_node().
-        self.window = None
+        self.window: CanvasWindow | None = None
         super().__init__('turtlesim')
         for channel, default in zip(('red', 'green', 'blue'), DEFAULT_BACKGROUND, strict=True):
             name = f'background_{channel[0]}'
@@ -183,8 +188,6 @@ class TurtlesimNode(Node):
         self._random = random.Random(time.time())
         self._last_tick: float | None = None
         self._dirty = True
-        self.frame: Image.Image | None = None  # latest render, for a window; None until wanted
-        self.want_frames = False
 
         self.create_subscription(ParameterEvent, '/parameter_events', self._on_parameter_event,
                                  PARAMETER_EVENTS_QOS)
@@ -203,9 +206,24 @@ class TurtlesimNode(Node):
         self.spawn_turtle('', world.CENTER, world.CENTER, 0.0)
         self.create_timer(world.TICK_DT, self._tick)
         if window and os.environ.get('DISPLAY'):
-            from turtlesim_py.window import CanvasWindow  # tkinter only when there is a display
-            self.want_frames = True
-            self.window = CanvasWindow(self)
+            self._open_window()
+
+    def _open_window(self) -> None:
+        try:  # tkinter only when there is a display to use
+            import tkinter
+
+            from turtlesim_py.window import CanvasWindow
+        except ImportError as error:
+            self.get_logger().warning(f'No window ({error}); running headless')
+            return
+        try:
+            self.window = CanvasWindow(on_close=self._on_window_closed)
+        except tkinter.TclError as error:
+            self.get_logger().warning(f'No window ({error}); running headless')
+
+    def _on_window_closed(self) -> None:
+        # Closing the window ends the process, as upstream's does.
+        rclpy.try_shutdown(context=self.context)
 
     def destroy_node(self) -> None:
         if self.window is not None:
@@ -307,6 +325,8 @@ class TurtlesimNode(Node):
 
     def _tick(self) -> None:
         now = self.now()
+        if self.window is not None:
+            self.window.pump()  # the window's events, between ticks like every ROS callback
         if self._last_tick is None:
             # The first tick only records the time (with sim time and no /clock it stays 0).
             if now != 0.0:
@@ -331,11 +351,12 @@ class TurtlesimNode(Node):
 
     def _publish_frame(self, now: float) -> None:
         frame_due = self._image_pub is not None and now - self._last_image >= IMAGE_PERIOD
-        if not (self.want_frames or frame_due):
+        if not (self.window is not None or frame_due):
             return
         self._dirty = False
         frame = self.render()
-        self.frame = frame
+        if self.window is not None:
+            self.window.show(frame)
         if frame_due:
             self._last_image = now
             message = CompressedImage(format='png', data=encode_png(frame))
