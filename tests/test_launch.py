@@ -5,9 +5,11 @@ Ctrl-C; and every kind of bad input (one readable error, exit code 1, no process
 import os
 import re
 import signal
+import subprocess
 import textwrap
 
 import pytest
+from ros_harness import wait_until
 
 STARTED = r'\[INFO\] \[([\w.-]+)\]: process started with pid \[(\d+)\]'
 # Generous: the machine is shared; launch's own escalation is at most sigterm+sigkill timeouts.
@@ -495,3 +497,55 @@ def test_launch_prefix_filter_needs_a_prefix(ros, tmp_path):
     process = launch(ros, write(tmp_path, 'features.launch.xml', XML_FEATURES), '--launch-prefix-filter', 'x')
     assert finish(process) == 1
     assert process.lines == ["'--launch-prefix-filter' must be used together with '--launch-prefix'"]
+
+
+COUNT_SIGINT = '''
+import signal, time
+count = 0
+def on_sigint(*_):
+    global count
+    count += 1
+    print('got SIGINT', flush=True)
+signal.signal(signal.SIGINT, on_sigint)
+print('ready', flush=True)
+while count == 0:
+    time.sleep(0.05)
+time.sleep(1.0)
+'''
+
+
+def test_interactive_launch_leaves_ctrl_c_to_the_terminal(ros, tmp_path):
+    """With a terminal on stdin, the terminal's Ctrl-C reaches every child itself: launch must not
+    send a second SIGINT.  Without one (scripts, CI) launch forwards it, as upstream does."""
+    script = write(tmp_path, 'count.py', COUNT_SIGINT)
+    path = write(tmp_path, 'count.launch.xml', f'''
+        <launch>
+          <executable cmd="python3 {script}" name="a" output="screen"/>
+          <executable cmd="python3 {script}" name="b" output="screen"/>
+        </launch>
+        ''')
+    terminal, terminal_side = os.openpty()
+    log = tmp_path / 'interactive.log'
+    with open(log, 'w') as out:
+        interactive = subprocess.Popen(['ros2', 'launch', path], stdin=terminal_side, stdout=out,
+                                       stderr=subprocess.STDOUT, env=ros.env, start_new_session=True)
+    os.close(terminal_side)
+    try:
+        wait_until(lambda: log.read_text().count('] ready') == 2, EXIT_TIMEOUT, 'both children ready')
+        os.killpg(interactive.pid, signal.SIGINT)
+        assert interactive.wait(EXIT_TIMEOUT) == 0
+    finally:
+        os.close(terminal)
+        if interactive.poll() is None:
+            os.killpg(interactive.pid, signal.SIGKILL)
+    output = log.read_text()
+    assert output.count('got SIGINT') == 2, output
+    assert "sending signal 'SIGINT'" not in output
+    assert output.count('process has finished cleanly') == 2, output
+
+    forwarded = launch(ros, path)
+    forwarded.wait_for(r'\] ready$', count=2)
+    forwarded.send_signal(signal.SIGINT)
+    assert finish(forwarded) == 0
+    # Launch forwards it to each child (two signals close together may reach a child as one).
+    assert forwarded.output.count("sending signal 'SIGINT'") == 2, forwarded.output
