@@ -2,6 +2,7 @@
 
 import os
 import re
+import signal
 import sys
 import threading
 
@@ -10,6 +11,7 @@ from launch import LaunchDescription, LaunchService
 from launch.actions import (
     AppendEnvironmentVariable,
     DeclareLaunchArgument,
+    EmitEvent,
     ExecuteProcess,
     GroupAction,
     LogInfo,
@@ -20,6 +22,8 @@ from launch.actions import (
     UnsetEnvironmentVariable,
 )
 from launch.conditions import IfCondition
+from launch.events import matches_action
+from launch.events.process import ShutdownProcess, SignalProcess
 from launch.substitutions import (
     Command,
     EnvironmentVariable,
@@ -160,3 +164,29 @@ def test_shutdown_from_another_thread():
     timer.start()
     assert service.run() == 0
     timer.join()
+
+
+def test_shutdown_process_and_signal_process_events(capsys):
+    sleeper = ExecuteProcess(cmd=['sleep', '60'], name='sleeper')
+    stubborn = ExecuteProcess(cmd=['sleep', '61'], name='signalled')
+    assert run(sleeper, stubborn, TimerAction(period=0.3, actions=[
+        EmitEvent(event=ShutdownProcess(process_matcher=matches_action(sleeper))),
+        EmitEvent(event=SignalProcess(signal_number=signal.SIGUSR1,
+                                      process_matcher=matches_action(stubborn))),
+    ])) == 0
+    out = capsys.readouterr().out
+    assert re.search(r"\[INFO\] \[sleeper-\d+\]: sending signal 'SIGINT' to process\[sleeper-\d+\]", out)
+    assert re.search(r"\[INFO\] \[signalled-\d+\]: sending signal 'SIGUSR1' to process\[signalled-\d+\]", out)
+    assert re.search(r'process has died \[pid \d+, exit code -10, cmd .sleep 61.\]', out), out
+
+
+def test_own_log_output_goes_to_files_of_the_process(tmp_path, capsys):
+    assert run(ExecuteProcess(cmd=['sh', '-c', 'echo to-out; echo to-err >&2'], name='own',
+                              output='own_log')) == 0
+    assert 'to-out' not in capsys.readouterr().out
+    [log_dir] = [p for p in (tmp_path / 'log').iterdir() if not p.is_symlink()]
+    label = next(p.name for p in log_dir.iterdir() if p.name.endswith('-stdout.log'))[:-len('-stdout.log')]
+    assert (log_dir / f'{label}-stdout.log').read_text().endswith(f'[{label}] to-out\n')
+    assert 'to-err' in (log_dir / f'{label}-stderr.log').read_text()
+    assert 'to-out' in (log_dir / f'{label}.log').read_text()
+    assert (tmp_path / 'log' / 'latest').resolve() == log_dir.resolve()

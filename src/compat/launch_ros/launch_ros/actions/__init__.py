@@ -1,6 +1,7 @@
 """The actions of launch_ros."""
 
 from launch_ros.actions.node import Node
+from launch_ros.actions.ros_timer import ROSTimer, RosTimer
 from launch_ros.actions.scoped import (
     PushROSNamespace,
     PushRosNamespace,
@@ -10,5 +11,6 @@ from launch_ros.actions.scoped import (
 )
 
 __all__ = [
-    'Node', 'PushROSNamespace', 'PushRosNamespace', 'SetParameter', 'SetParametersFromFile', 'SetRemap',
+    'Node', 'PushROSNamespace', 'PushRosNamespace', 'ROSTimer', 'RosTimer', 'SetParameter',
+    'SetParametersFromFile', 'SetRemap',
 ]
