@@ -3,7 +3,6 @@
 from launch import LaunchDescription
 from launch.actions import LogInfo
 from launch_ros.actions import Node
-
 from olive_sim.kit import OWL_KIT, topic_table
 
 

@@ -60,8 +60,7 @@ class CameraModule(OliveModule):
         self.create_subscription(JointState, value('tilt_joint_topic').value, self._on_tilt, 10)
         self.add_post_set_parameters_callback(self._apply_parameters)
         self.output = ImuOutput(self, self.topic, f'{namespace}_body_link', self.orientation)
-        self.frame_timer = self.create_timer(1.0 / value('fps').value, self.publish_frame)
-        self._epoch = time.monotonic()
+        self.frame_thread = self.create_periodic(value('fps').value, self.publish_frame, 'frames')
 
     def _apply_parameters(self, parameters: list[Parameter]) -> SetParametersResult:
         for p in parameters:

@@ -47,7 +47,8 @@ class ImuModule(OliveModule):
     def _on_command(self, msg: QuaternionMsg) -> None:
         q: Quaternion = (msg.x, msg.y, msg.z, msg.w)
         try:
-            self.motion.command(q)
+            with self.output.lock:
+                self.motion.command(q)
         except ValueError as error:
             self.get_logger().warning(f'true_orientation ignored: {error}')
 
@@ -58,15 +59,20 @@ class ImuModule(OliveModule):
         return response
 
     def _on_set_bias(self, request: Trigger.Request, response: Trigger.Response) -> Trigger.Response:
-        return self._answer(response, self.output.sensor.set_bias())
+        with self.output.lock:
+            result = self.output.sensor.set_bias()
+        return self._answer(response, result)
 
     def _on_set_zero_quaternion(self, request: Trigger.Request,
                                 response: Trigger.Response) -> Trigger.Response:
-        return self._answer(response, self.output.sensor.set_zero_orientation())
+        with self.output.lock:
+            result = self.output.sensor.set_zero_orientation()
+        return self._answer(response, result)
 
     def _on_set_zero_pose(self, request: Trigger.Request, response: Trigger.Response) -> Trigger.Response:
         # The pose of a still-standing IMU is its orientation: position is not integrated here.
-        ok, _ = self.output.sensor.set_zero_orientation()
+        with self.output.lock:
+            ok, _ = self.output.sensor.set_zero_orientation()
         return self._answer(response, (ok, 'pose zeroed: orientation is now the identity'))
 
     def temperature(self) -> float:

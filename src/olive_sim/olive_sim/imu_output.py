@@ -2,16 +2,16 @@
 
 from __future__ import annotations
 
+import threading
 import time
 from collections.abc import Callable
 
 from rcl_interfaces.msg import FloatingPointRange, IntegerRange
-from rclpy.node import Node
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from sensor_msgs.msg import Imu, MagneticField
 
 from olive_sim.imu_model import ImuNoise, ImuSensor
-from olive_sim.module_node import describe
+from olive_sim.module_node import OliveModule, describe
 from olive_sim.quaternion import Quaternion
 
 NOISE_DESCRIPTIONS = {
@@ -33,7 +33,7 @@ def reliability(name: str, parameter: str) -> ReliabilityPolicy:
 class ImuOutput:
     """Declares the IMU parameters on `node`, owns the sensor model and publishes its readings."""
 
-    def __init__(self, node: Node, topic: Callable[[str], str], frame_id: str,
+    def __init__(self, node: OliveModule, topic: Callable[[str], str], frame_id: str,
                  true_orientation: Callable[[float], Quaternion]) -> None:
         self.node = node
         self.true_orientation = true_orientation
@@ -58,31 +58,33 @@ class ImuOutput:
         qos = QoSProfile(depth=10, reliability=reliability(value('imu_reliability').value, 'imu_reliability'))
         self.imu_publisher = node.create_publisher(Imu, topic('imu'), qos)
         self.mag_publisher = node.create_publisher(MagneticField, topic('magnetometer'), qos)
+        self.lock = threading.Lock()  # the sensor is sampled on the output thread, reset by services
+        self._imu = Imu()
+        self._imu.header.frame_id = self.frame_id
+        self._imu.orientation_covariance = _diagonal(self.noise.orientation_noise ** 2)
+        self._imu.angular_velocity_covariance = _diagonal(self.noise.gyro_noise ** 2)
+        self._imu.linear_acceleration_covariance = _diagonal(self.noise.accel_noise ** 2)
+        self._mag = MagneticField()
+        self._mag.header.frame_id = self.frame_id
+        self._mag.magnetic_field_covariance = _diagonal(self.noise.mag_noise ** 2)
         self._epoch = time.monotonic()
-        self.timer = node.create_timer(1.0 / value('imu_rate').value, self.publish)
+        self.thread = node.create_periodic(value('imu_rate').value, self.publish, 'imu')
 
     def publish(self) -> None:
-        stamp_time = self.node.get_clock().now()
+        stamp = self.node.get_clock().now().to_msg()
         t = time.monotonic() - self._epoch
-        reading = self.sensor.sample(t, self.true_orientation(t))
-        stamp = stamp_time.to_msg()
-        imu = Imu()
+        with self.lock:
+            reading = self.sensor.sample(t, self.true_orientation(t))
+        imu, mag = self._imu, self._mag  # reused: building messages costs more than filling them
         imu.header.stamp = stamp
-        imu.header.frame_id = self.frame_id
-        imu.orientation.x, imu.orientation.y, imu.orientation.z, imu.orientation.w = reading.orientation
-        av, la = imu.angular_velocity, imu.linear_acceleration
+        o, av, la = imu.orientation, imu.angular_velocity, imu.linear_acceleration
+        o.x, o.y, o.z, o.w = reading.orientation
         av.x, av.y, av.z = reading.angular_velocity
         la.x, la.y, la.z = reading.linear_acceleration
-        n = self.noise
-        imu.orientation_covariance = _diagonal(n.orientation_noise ** 2)
-        imu.angular_velocity_covariance = _diagonal(n.gyro_noise ** 2)
-        imu.linear_acceleration_covariance = _diagonal(n.accel_noise ** 2)
         self.imu_publisher.publish(imu)
-        mag = MagneticField()
-        mag.header = imu.header
+        mag.header.stamp = stamp
         mf = mag.magnetic_field
         mf.x, mf.y, mf.z = reading.magnetic_field
-        mag.magnetic_field_covariance = _diagonal(n.mag_noise ** 2)
         self.mag_publisher.publish(mag)
 
 

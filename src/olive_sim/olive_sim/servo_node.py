@@ -7,6 +7,7 @@ publication and every command, so a goal takes effect at the millisecond it arri
 from __future__ import annotations
 
 import math
+import threading
 import time
 from dataclasses import fields
 
@@ -81,7 +82,10 @@ class ServoModule(OliveModule):
         self.sim.set_mode(mode)
         self.physics_rate = physics_rate
         self._wall_start = time.monotonic()
-        self.joint_name = f'{namespace}_joint'
+        # The model is stepped on the joint thread and commanded from executor callbacks.
+        self.lock = threading.RLock()
+        self.joint_msg = JointState(name=[f'{namespace}_joint'])
+        self.joint_msg.header.frame_id = f'{namespace}_rotor_link'
 
         self.add_on_set_parameters_callback(self._check_parameters)
         self.add_post_set_parameters_callback(self._apply_parameters)
@@ -92,14 +96,14 @@ class ServoModule(OliveModule):
         self._subscribe_for_mode(mode)
         self.create_service(Trigger, self.topic('setTorqueEnable'), self._on_torque_enable)
         self.create_service(Trigger, self.topic('setTorqueDisable'), self._on_torque_disable)
-        self.joint_timer = self.create_timer(1.0 / self.get_parameter('joint_rate').value,
-                                             self._publish_joint)
+        self.joint_thread = self.create_periodic(self.get_parameter('joint_rate').value,
+                                                 self._publish_joint, 'joint')
         self.diagnostics_timer = self.create_timer(1.0, self._publish_diagnostics)
 
     # -- physics pacing ---------------------------------------------------------------------
 
-    def advance_to_now(self) -> None:
-        """Run the fixed-step model until its time reaches the wall clock."""
+    def _advance_to_now(self) -> None:
+        """Run the fixed-step model until its time reaches the wall clock (hold self.lock)."""
         elapsed = time.monotonic() - self._wall_start
         behind = elapsed - self.sim.time
         if behind > MAX_CATCH_UP:
@@ -122,12 +126,14 @@ class ServoModule(OliveModule):
         return SetParametersResult(successful=True)
 
     def _apply_parameters(self, parameters: list[Parameter]) -> None:
-        self.advance_to_now()
         for p in parameters:
-            if p.name in GAIN_LIMITS:
-                setattr(self.sim.pid.gains, p.name, p.value)
-            elif p.name == 'control_mode' and p.value != self.sim.mode:
-                self.sim.set_mode(p.value)
+            with self.lock:
+                self._advance_to_now()
+                if p.name in GAIN_LIMITS:
+                    setattr(self.sim.pid.gains, p.name, p.value)
+                elif p.name == 'control_mode' and p.value != self.sim.mode:
+                    self.sim.set_mode(p.value)
+            if p.name == 'control_mode':
                 self._subscribe_for_mode(p.value)
 
     def _subscribe_for_mode(self, mode: str) -> None:
@@ -159,24 +165,26 @@ class ServoModule(OliveModule):
     def _on_goal_position(self, msg: Float32) -> None:
         if not self._accept('goal/position', msg.data):
             return
-        self.advance_to_now()
         goal = self.sim.clamp_goal(msg.data)
         if goal != msg.data:
             p = self.sim.params
             self.warn('position clamped', f'goal/position {msg.data:.4f} rad is outside '
                       f'[{p.min_position:.4f}, {p.max_position:.4f}]: clamped to {goal:.4f}')
-        self.sim.goal_position = goal
+        with self.lock:
+            self._advance_to_now()
+            self.sim.goal_position = goal
 
     def _on_goal_velocity(self, msg: Float32) -> None:
         if not self._accept('goal/velocity', msg.data):
             return
-        self.advance_to_now()
         limit = self.sim.params.no_load_speed
         goal = max(-limit, min(limit, msg.data))
         if goal != msg.data:
             self.warn('velocity clamped', f'goal/velocity {msg.data:.3f} rad/s is beyond the speed '
                       f'limit {limit:.3f}: clamped')
-        self.sim.goal_velocity = goal
+        with self.lock:
+            self._advance_to_now()
+            self.sim.goal_velocity = goal
 
     def _on_pwm(self, msg: Float32) -> None:
         if not self._accept('pwm', msg.data):
@@ -184,22 +192,25 @@ class ServoModule(OliveModule):
         if not -1.0 <= msg.data <= 1.0:
             self.warn('pwm range', f'pwm {msg.data} ignored: the duty cycle must be within -1..1')
             return
-        self.advance_to_now()
-        self.sim.pwm = msg.data
+        with self.lock:
+            self._advance_to_now()
+            self.sim.pwm = msg.data
 
     def _on_torque_enable(self, request: Trigger.Request, response: Trigger.Response) -> Trigger.Response:
-        self.advance_to_now()
-        already = self.sim.torque_enabled
-        self.sim.enable_torque(True)
+        with self.lock:
+            self._advance_to_now()
+            already = self.sim.torque_enabled
+            self.sim.enable_torque(True)
         response.success = True
         response.message = 'torque already enabled' if already else 'torque enabled'
         self.get_logger().info(response.message)
         return response
 
     def _on_torque_disable(self, request: Trigger.Request, response: Trigger.Response) -> Trigger.Response:
-        self.advance_to_now()
-        already = not self.sim.torque_enabled
-        self.sim.enable_torque(False)
+        with self.lock:
+            self._advance_to_now()
+            already = not self.sim.torque_enabled
+            self.sim.enable_torque(False)
         response.success = True
         response.message = 'torque already disabled' if already else 'torque disabled'
         self.get_logger().info(response.message)
@@ -208,20 +219,26 @@ class ServoModule(OliveModule):
     # -- outputs ----------------------------------------------------------------------------
 
     def _publish_joint(self) -> None:
-        self.advance_to_now()
-        msg = JointState()
+        msg = self.joint_msg  # reused: building messages costs more than filling them
+        with self.lock:
+            self._advance_to_now()
+            msg.position = [self.sim.measured_position()]
+            msg.velocity = [self.sim.state.velocity]
+            msg.effort = [self.sim.state.torque]
         msg.header.stamp = self.get_clock().now().to_msg()
-        msg.header.frame_id = f'{self.namespace_name}_rotor_link'
-        msg.name = [self.joint_name]
-        msg.position = [self.sim.measured_position()]
-        msg.velocity = [self.sim.state.velocity]
-        msg.effort = [self.sim.state.torque]
         self.joint_publisher.publish(msg)
 
     def _publish_diagnostics(self) -> None:
-        s = self.sim
+        with self.lock:
+            values = self._diagnostic_values()
         level, message = self.status_level()
-        values = {
+        self.diagnostics_publisher.publish(DiagnosticStatus(
+            level=level, name=self.topic('joint').rstrip('/'), message=message,
+            hardware_id=self.serial, values=[KeyValue(key=k, value=v) for k, v in values.items()]))
+
+    def _diagnostic_values(self) -> dict[str, str]:
+        s = self.sim
+        return {
             'torque_enabled': str(s.torque_enabled).lower(),
             'control_mode': s.mode,
             'goal_position': f'{s.goal_position:.4f}',
@@ -233,9 +250,6 @@ class ServoModule(OliveModule):
             'motor_effort': f'{s.effort:.3f}',
             'temperature': f'{s.state.temperature:.2f}',
         }
-        self.diagnostics_publisher.publish(DiagnosticStatus(
-            level=level, name=self.topic('joint').rstrip('/'), message=message,
-            hardware_id=self.serial, values=[KeyValue(key=k, value=v) for k, v in values.items()]))
 
     def temperature(self) -> float:
         return self.sim.state.temperature

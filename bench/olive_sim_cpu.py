@@ -1,0 +1,176 @@
+"""CPU cost of the simulated Owl Kit, the camera's highest frame rate and the servo's real-time margin.
+
+Everything is measured in one run, against baselines measured in the same run:
+- CPU (% of one core, from /proc utime+stime over --seconds) of each module alone at its defaults,
+  and of the whole kit (IMU, servo pan, servo tilt, camera eye with the launch file's parameters),
+  against a bare rclpy node publishing a JointState at 100 Hz (the cheapest "module").
+- Highest camera frame rate at 640x480: render + JPEG encode in this process (no ROS), and what a
+  best-effort subscriber receives from camera_sim asked for 240 fps.
+- Servo physics: time of each fixed step of the model (p50/p99) against its 1 ms period.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import sys
+import time
+
+import rclpy
+from olive_sim.camera_render import CameraRenderer
+from olive_sim.kit import OWL_KIT
+from olive_sim.servo_model import PidGains, ServoSim
+from owl_common.processes import RosProcess, RosSandbox
+from rclpy.context import Context
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.node import Node
+from rclpy.qos import qos_profile_sensor_data
+from sensor_msgs.msg import CompressedImage, JointState
+
+TICKS = os.sysconf('SC_CLK_TCK')
+
+
+def baseline_node() -> None:
+    """The baseline: a bare rclpy node publishing a one-joint JointState at 100 Hz."""
+    rclpy.init()
+    node = Node('bench_baseline')
+    publisher = node.create_publisher(JointState, 'baseline/joint', 10)
+    node.create_timer(0.01, lambda: publisher.publish(JointState(name=['j'], position=[0.0])))
+    try:
+        rclpy.spin(node)
+    except KeyboardInterrupt:
+        pass
+    finally:
+        rclpy.try_shutdown()
+
+
+def cpu_seconds(pid: int) -> float:
+    with open(f'/proc/{pid}/stat') as stat:
+        fields = stat.read().rsplit(')', 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / TICKS  # utime, stime
+
+
+def cpu_percent(processes: list[RosProcess], warmup: float, seconds: float) -> float:
+    """Combined CPU of the processes over `seconds`, after `warmup`, in % of one core."""
+    time.sleep(warmup)
+    before = sum(cpu_seconds(p.pid) for p in processes)
+    started = time.monotonic()
+    time.sleep(seconds)
+    used = sum(cpu_seconds(p.pid) for p in processes) - before
+    for process in processes:
+        if not process.running():
+            raise SystemExit(f'{process.label} died:\n{process.output}')
+    return 100.0 * used / (time.monotonic() - started)
+
+
+def module_args(parameters: dict) -> list[str]:
+    args = ['--ros-args']
+    for name, value in parameters.items():
+        args += ['-p', f'{name}:={value}']
+    return args
+
+
+def measure_cpu(args: argparse.Namespace) -> dict[str, float]:
+    results = {}
+    singles = {'imu_sim': [], 'servo_sim': [], 'camera_sim': []}
+    with RosSandbox() as sandbox:
+        baseline = sandbox.command([sys.executable, __file__, '--baseline-node'], label='baseline')
+        results['baseline (rclpy JointState 100 Hz)'] = cpu_percent([baseline], args.warmup, args.seconds)
+    for executable, extra in singles.items():
+        with RosSandbox() as sandbox:
+            process = sandbox.run('olive_sim', executable, *extra)
+            results[executable] = cpu_percent([process], args.warmup, args.seconds)
+    with RosSandbox() as sandbox:
+        kit = [sandbox.run('olive_sim', m.executable, *module_args(m.parameters)) for m in OWL_KIT]
+        results['whole kit (4 processes)'] = cpu_percent(kit, args.warmup, args.seconds)
+    return results
+
+
+def camera_render_rate(frames: int) -> float:
+    renderer = CameraRenderer(640, 480)
+    renderer.jpeg(0.0, 0.0, 'warm-up')
+    started = time.perf_counter()
+    for index in range(frames):
+        # A moving head: pan and tilt change every frame, so the tilt lookup is rebuilt too.
+        renderer.jpeg(0.3 * math.sin(index / 10), 0.2 * math.cos(index / 15), f'#{index}')
+    return frames / (time.perf_counter() - started)
+
+
+def camera_delivered_rate(seconds: float) -> float:
+    with RosSandbox() as sandbox:
+        sandbox.run('olive_sim', 'camera_sim', '--ros-args', '-p', 'fps:=240.0')
+        context = Context()
+        rclpy.init(context=context, domain_id=sandbox.domain_id)
+        try:
+            node = Node('bench_camera_viewer', context=context)
+            stamps: list[float] = []
+            node.create_subscription(CompressedImage, '/olive/camera/eye/image/compressed',
+                                     lambda m: stamps.append(time.monotonic()), qos_profile_sensor_data)
+            executor = SingleThreadedExecutor(context=context)
+            executor.add_node(node)
+            deadline = time.monotonic() + 30
+            while not stamps and time.monotonic() < deadline:
+                executor.spin_once(timeout_sec=0.1)
+            first = len(stamps)
+            end = time.monotonic() + seconds
+            while time.monotonic() < end:
+                executor.spin_once(timeout_sec=0.1)
+            window = stamps[first:]
+            return (len(window) - 1) / (window[-1] - window[0]) if len(window) > 1 else 0.0
+        finally:
+            rclpy.try_shutdown(context=context)
+
+
+def servo_step_times(steps: int) -> list[float]:
+    sim = ServoSim(gains=PidGains(5.0, 10.0, 0.3))
+    sim.enable_torque(True)
+    durations = []
+    for index in range(steps):
+        if index % 3000 == 0:
+            sim.goal_position = 1.57 if sim.goal_position == 0.0 else 0.0  # the course's script
+        started = time.perf_counter_ns()
+        sim.step()
+        durations.append((time.perf_counter_ns() - started) / 1000.0)
+    return sorted(durations)
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument('--seconds', type=float, default=10.0, help='CPU measuring window per case')
+    parser.add_argument('--warmup', type=float, default=4.0, help='wait after start before measuring')
+    parser.add_argument('--baseline-node', action='store_true', help=argparse.SUPPRESS)
+    args = parser.parse_args()
+    if args.baseline_node:
+        baseline_node()
+        return 0
+
+    cpu = measure_cpu(args)
+    base = cpu['baseline (rclpy JointState 100 Hz)']
+    print(f'CPU over {args.seconds:.0f} s at default settings (% of one core; {os.cpu_count()} cores)')
+    print(f'{"process":<38}{"CPU %":>8}{"x baseline":>12}')
+    for name, value in cpu.items():
+        print(f'{name:<38}{value:>8.1f}{value / base:>12.2f}')
+    kit = cpu['whole kit (4 processes)']
+    print(f'whole kit: {kit:.1f} % of one core (target < 60 %: {"met" if kit < 60 else "NOT met"})')
+
+    render = camera_render_rate(120)
+    delivered = camera_delivered_rate(5.0)
+    print('\nCamera at 640x480 (jpeg quality 80)')
+    print(f'render + encode in process (moving head): {render:.1f} fps')
+    print(f'camera_sim asked for 240 fps, received:   {delivered:.1f} fps '
+          f'({delivered / 30.0:.2f}x the default 30 fps)')
+
+    durations = servo_step_times(30000)
+    p50 = durations[len(durations) // 2]
+    p99 = durations[int(0.99 * len(durations))]
+    period = 1e6 / 1000.0
+    print('\nServo physics step (1 kHz, position PID at 500 Hz, course step goals)')
+    print(f'p50 {p50:.1f} us, p99 {p99:.1f} us, max {durations[-1]:.1f} us against a {period:.0f} us period: '
+          f'p99 uses {100 * p99 / period:.1f} % of the period (margin {period / p99:.0f}x)')
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
