@@ -190,3 +190,11 @@ def test_own_log_output_goes_to_files_of_the_process(tmp_path, capsys):
     assert 'to-err' in (log_dir / f'{label}-stderr.log').read_text()
     assert 'to-out' in (log_dir / f'{label}.log').read_text()
     assert (tmp_path / 'log' / 'latest').resolve() == log_dir.resolve()
+
+
+def test_a_program_that_cannot_start_is_logged_not_fatal(capsys):
+    assert run(ExecuteProcess(cmd=['owl_no_such_program'], output='screen')) == 0
+    out = capsys.readouterr().out
+    assert re.search(r"\[ERROR\] \[owl_no_such_program-\d+\]: exception occurred while executing process:\n"
+                     r"FileNotFoundError: .*'owl_no_such_program'\n", out), out
+    assert 'Traceback' not in out

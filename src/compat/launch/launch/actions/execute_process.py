@@ -354,10 +354,13 @@ class ExecuteProcess(Action):
                     ' '.join(description.final_cmd), **options)
             else:
                 process = await asyncio.create_subprocess_exec(*description.final_cmd, **options)
-        except Exception:
+        except Exception as error:
             for fd in (out_read, err_read):
                 os.close(fd)
-            self._logger.error('exception occurred while executing process:\n' + traceback.format_exc())
+            # Upstream prints the whole traceback here; the error line says all a user can act on.
+            self._logger.error('exception occurred while executing process:\n'
+                               f'{type(error).__name__}: {error}')
+            self._logger.debug(traceback.format_exc())
             return False
         finally:
             os.close(out_write)
