@@ -101,23 +101,27 @@ class CameraRenderer:
         self._pixels = np.concatenate([pano, pano], axis=1).reshape(-1, 3)
         self._tilt: float | None = None
         self._base_index = np.empty(0)
+        self._rays: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
         self._font = _font(16)
 
     def _rebuild(self, tilt: float) -> None:
-        u = (np.arange(self.width, dtype=np.float32) - self.cx) / self.fx
-        v = (np.arange(self.height, dtype=np.float32) - self.cy) / self.fy
-        right, down = np.meshgrid(u, v)
-        # Body frame x forward, y left, z up; pitch the ray down by tilt about y.
-        c, s = math.cos(tilt), math.sin(tilt)
-        x = c * 1.0 + s * (-down)
-        z = -s * 1.0 + c * (-down)
-        y = -right
-        azimuth = np.arctan2(y, x)
-        elevation = np.arctan2(z, np.hypot(x, y))
-        columns = np.mod(np.rint(azimuth * (PANORAMA_WIDTH / (2 * math.pi))), PANORAMA_WIDTH)
-        rows = np.clip(np.rint((math.pi / 2 - elevation) * (PANORAMA_HEIGHT / math.pi)),
-                       0, PANORAMA_HEIGHT - 1)
-        self._base_index = (rows * (2 * PANORAMA_WIDTH) + columns).astype(np.int32)
+        if self._rays is None:
+            u = (np.arange(self.width, dtype=np.float32) - self.cx) / self.fx
+            v = (np.arange(self.height, dtype=np.float32) - self.cy) / self.fy
+            right, down = np.meshgrid(u, v)
+            # Body frame x forward, y left, z up; a rotation keeps each ray's length.
+            self._rays = (-right, -down, 1.0 / np.sqrt(1.0 + right * right + down * down))
+        left, up, inverse_length = self._rays
+        c, s = np.float32(math.cos(tilt)), np.float32(math.sin(tilt))
+        x = c + s * up       # pitch the ray down by tilt about y
+        z = c * up - s
+        azimuth = np.arctan2(left, x)
+        elevation = np.arcsin(np.clip(z * inverse_length, -1.0, 1.0))
+        columns = np.rint(azimuth * np.float32(PANORAMA_WIDTH / (2 * math.pi))).astype(np.int32)
+        columns %= PANORAMA_WIDTH
+        rows = np.rint((np.float32(math.pi / 2) - elevation) * np.float32(PANORAMA_HEIGHT / math.pi))
+        rows = np.clip(rows, 0, PANORAMA_HEIGHT - 1).astype(np.int32)
+        self._base_index = rows * (2 * PANORAMA_WIDTH) + columns
         self._tilt = tilt
 
     def render(self, pan: float, tilt: float) -> np.ndarray:
