@@ -65,10 +65,3 @@ def perform_substitutions(context: LaunchContext, subs: Iterable[Substitution]) 
 def describe_substitutions(subs: Iterable[Substitution]) -> str:
     return ' + '.join(sub.describe() for sub in subs)
 
-
-def is_substitution_like(value: object) -> bool:
-    """True for a str, a Substitution or a non-empty list/tuple made only of those."""
-    if isinstance(value, (str, Substitution)):
-        return True
-    return (isinstance(value, (list, tuple)) and bool(value)
-            and all(isinstance(item, (str, Substitution)) for item in value))

@@ -41,7 +41,7 @@ def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:
                         'or the path to a launch file')
     parser.add_argument('launch_file_name', nargs='?',
                         help='Name of the launch file (or the first launch argument with a path)')
-    parser.add_argument('launch_arguments', nargs='*',
+    parser.add_argument('launch_arguments', nargs='*', default=[],
                         help="Arguments to the launch file; '<name>:=<value>' (for duplicates, last "
                              'one wins)')
 
