@@ -549,3 +549,61 @@ def test_interactive_launch_leaves_ctrl_c_to_the_terminal(ros, tmp_path):
     assert finish(forwarded) == 0
     # Launch forwards it to each child (two signals close together may reach a child as one).
     assert forwarded.output.count("sending signal 'SIGINT'") == 2, forwarded.output
+
+
+CROSS_FORMAT = '''
+from launch import LaunchDescription
+from launch.actions import IncludeLaunchDescription, LogInfo
+from launch.launch_description_sources import AnyLaunchDescriptionSource
+from launch.substitutions import PathJoinSubstitution, ThisLaunchFileDir
+from launch_ros.substitutions import FindPackagePrefix, FindPackageShare
+from launch_xml.launch_description_sources import XMLLaunchDescriptionSource
+from launch_yaml.launch_description_sources import YAMLLaunchDescriptionSource
+
+
+def generate_launch_description():
+    here = ThisLaunchFileDir()
+    return LaunchDescription([
+        LogInfo(msg=['share: ', FindPackageShare('olive_launch')]),
+        LogInfo(msg=['prefix: ', FindPackagePrefix('olive_launch')]),
+        IncludeLaunchDescription(XMLLaunchDescriptionSource(PathJoinSubstitution([here, 'x.launch.xml'])),
+                                 launch_arguments=[('from_py', 'one')]),
+        IncludeLaunchDescription(YAMLLaunchDescriptionSource([here, '/y.launch.yaml'])),
+        IncludeLaunchDescription(AnyLaunchDescriptionSource([here, '/z_launch.py'])),
+    ])
+'''
+CROSS_XML = '''
+<launch>
+  <log message="xml got $(var from_py) and $(find-pkg-share olive_launch) $(find-pkg-prefix olive_launch)"/>
+  <include file="$(dirname)/w_launch.py"/>
+</launch>
+'''
+CROSS_YAML = '''
+launch:
+- log: {message: 'yaml sees $(var from_py) and $(find-pkg-share olive_launch)'}
+'''
+CROSS_PY = '''
+from launch import LaunchDescription
+from launch.actions import LogInfo
+from launch.substitutions import ThisLaunchFile
+
+
+def generate_launch_description():
+    return LaunchDescription([LogInfo(msg=['python file ', ThisLaunchFile()])])
+'''
+
+
+def test_includes_across_formats_and_package_substitutions(ros, tmp_path):
+    main = write(tmp_path, 'main_launch.py', CROSS_FORMAT)
+    write(tmp_path, 'x.launch.xml', CROSS_XML)
+    write(tmp_path, 'y.launch.yaml', CROSS_YAML)
+    write(tmp_path, 'z_launch.py', CROSS_PY)
+    write(tmp_path, 'w_launch.py', CROSS_PY)
+    process = launch(ros, main)
+    assert finish(process) == 0, process.output
+    lines = user_lines(process)
+    share = lines[0].removeprefix('share: ')
+    prefix = lines[1].removeprefix('prefix: ')
+    assert share == os.path.join(prefix, 'share', 'olive_launch') and os.path.isdir(share)
+    assert lines[2:] == [f'xml got one and {share} {prefix}', f'python file {tmp_path}/w_launch.py',
+                         f'yaml sees one and {share}', f'python file {tmp_path}/z_launch.py']
