@@ -304,7 +304,7 @@ def test_respawn_restarts_with_the_same_label_until_shutdown(ros, tmp_path):
     process = launch(ros, path)
     assert finish(process) == 0, process.output
     labels = [label for label, _pid in re.findall(STARTED, process.output)]
-    assert len(labels) >= 3 and set(labels) == {labels[0]}, labels
+    assert len(labels) >= 2 and set(labels) == {labels[0]}, labels
     assert re.fullmatch(r'flaky-\d+', labels[0])
     assert process.output.count(f'[{labels[0]}] run') == len(labels)
 

@@ -17,6 +17,14 @@ SCREEN_FORMAT = '[{levelname}] [{name}]: {msg}'
 LOG_FILE_FORMAT = '{created:.7f} [{levelname}] [{name}]: {msg}'
 # A process's output lines are already `[label] line`; on disk they get a timestamp.
 PROCESS_LOG_FILE_FORMAT = '{created:.7f} {msg}'
+# Names usable in OVERRIDE_LAUNCH_SCREEN_FORMAT / OVERRIDE_LAUNCH_LOG_FORMAT besides a format.
+FORMAT_ALIASES = {'default': SCREEN_FORMAT, 'default_with_timestamp': LOG_FILE_FORMAT}
+
+
+def _format(variable: str, default: str) -> logging.Formatter:
+    """The format an OVERRIDE_LAUNCH_*_FORMAT variable asks for, else the default."""
+    chosen = os.environ.get(variable) or default
+    return logging.Formatter(FORMAT_ALIASES.get(chosen, chosen), style='{')
 
 _root = logging.RootLogger(logging.INFO)
 _manager = logging.Manager(_root)
@@ -42,7 +50,7 @@ class _Config:
 
     def __init__(self) -> None:
         self.screen = _StdoutHandler()
-        self.screen.setFormatter(logging.Formatter(SCREEN_FORMAT, style='{'))
+        self.screen.setFormatter(_format('OVERRIDE_LAUNCH_SCREEN_FORMAT', SCREEN_FORMAT))
         _root.addHandler(self.screen)
         self.log_dir: Path | None = None
         self.file_handler: logging.FileHandler | None = None
@@ -81,6 +89,7 @@ def setup_log_dir() -> Path | None:
         launch_config.file_handler.close()
         launch_config.file_handler = None
     launch_config._process_files.clear()
+    launch_config.screen.setFormatter(_format('OVERRIDE_LAUNCH_SCREEN_FORMAT', SCREEN_FORMAT))
     stamp = datetime.datetime.now().strftime('%Y-%m-%d-%H-%M-%S-%f')
     root = default_log_root()
     log_dir = root / f'{stamp}-{socket.gethostname()}-{os.getpid()}'
@@ -94,7 +103,7 @@ def setup_log_dir() -> Path | None:
     except OSError:
         launch_config.log_dir = None  # an unwritable log root must not stop the launch
         return None
-    handler.setFormatter(logging.Formatter(LOG_FILE_FORMAT, style='{'))
+    handler.setFormatter(_format('OVERRIDE_LAUNCH_LOG_FORMAT', LOG_FILE_FORMAT))
     _root.addHandler(handler)
     launch_config.file_handler = handler
     launch_config.log_dir = log_dir

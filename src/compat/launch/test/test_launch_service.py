@@ -198,3 +198,11 @@ def test_a_program_that_cannot_start_is_logged_not_fatal(capsys):
     assert re.search(r"\[ERROR\] \[owl_no_such_program-\d+\]: exception occurred while executing process:\n"
                      r"FileNotFoundError: .*'owl_no_such_program'\n", out), out
     assert 'Traceback' not in out
+
+
+def test_screen_and_log_formats_can_be_overridden(tmp_path, capsys, monkeypatch):
+    monkeypatch.setenv('OVERRIDE_LAUNCH_SCREEN_FORMAT', '<{levelname}> {msg}')
+    monkeypatch.setenv('OVERRIDE_LAUNCH_LOG_FORMAT', 'default')
+    assert run(LogInfo(msg='formatted')) == 0
+    assert '<INFO> formatted' in capsys.readouterr().out.splitlines()
+    assert '[INFO] [launch.user]: formatted' in (tmp_path / 'log' / 'latest' / 'launch.log').read_text()
