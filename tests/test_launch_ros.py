@@ -4,6 +4,7 @@ Node's name, namespace, parameters and remappings as the running node sees them.
 import os
 import re
 import signal
+import subprocess
 import textwrap
 import time
 from pathlib import Path
@@ -27,11 +28,15 @@ def alive(pid: int) -> bool:
         return False
 
 
+def child_pids_of(output: str) -> list[int]:
+    return [int(pid) for _label, pid in re.findall(STARTED, output)]
+
+
 def child_pids(process) -> list[int]:
-    return [int(pid) for _label, pid in re.findall(STARTED, process.output)]
+    return child_pids_of(process.output)
 
 
-def test_course_launch_file_verbatim_starts_two_turtles_and_ctrl_c_stops_them(ros):
+def test_course_launch_file_verbatim_starts_two_turtles_and_sigint_stops_them(ros):
     # As in the course: `ros2 launch turtle.launch.py` inside the package's launch directory.
     process = ros.command(['ros2', 'launch', 'turtle.launch.py'], cwd=str(COURSE_LAUNCH_DIR))
     process.wait_for(STARTED, timeout=30, count=2)
@@ -42,15 +47,45 @@ def test_course_launch_file_verbatim_starts_two_turtles_and_ctrl_c_stops_them(ro
     process.wait_for(r'\[turtlesim_node-\d+\] .*\[turtle1\]')
     process.wait_for(r'\[turtlesim_node-\d+\] .*\[turtle2\]')
     started = time.monotonic()
-    # SIGINT to launch alone: a non-interactive launch forwards it to each node exactly once.
-    # (A terminal's Ctrl-C reaches the nodes itself, and an interactive launch does not repeat it.)
+    # SIGINT to launch alone (a script, or `kill -INT`): launch forwards it to each node once.
     os.kill(process.pid, signal.SIGINT)
     assert process.wait(30) == 0, process.output
     elapsed = time.monotonic() - started
     assert elapsed < CTRL_C_LIMIT, f'took {elapsed:.1f} s\n{process.output}'
     process.wait_for(r'\[WARNING\] \[launch\]: user interrupted with ctrl-c \(SIGINT\)')
+    process.wait_for(r"\[INFO\] \[turtlesim_node-\d+\]: sending signal 'SIGINT'", count=2)
     process.wait_for(r'\[INFO\] \[turtlesim_node-\d+\]: process has finished cleanly \[pid \d+\]', count=2)
     assert not [pid for pid in pids if alive(pid)]
+
+
+def test_ctrl_c_in_a_terminal_stops_the_package_launch_file(ros, tmp_path):
+    """`ros2 launch olive_launch turtle_launch.py` in a terminal, then Ctrl-C: the terminal signals
+    launch and both nodes; launch does not repeat the SIGINT and everything is down within 5 s."""
+    terminal, terminal_side = os.openpty()
+    log = tmp_path / 'terminal.log'
+    with open(log, 'w') as out:
+        launch = subprocess.Popen(['ros2', 'launch', 'olive_launch', 'turtle_launch.py'],
+                                  stdin=terminal_side, stdout=out, stderr=subprocess.STDOUT, env=ros.env,
+                                  start_new_session=True)
+    os.close(terminal_side)
+    try:
+        ros.probe.wait_for_node('turtle1', timeout=30)
+        ros.probe.wait_for_node('turtle2', timeout=30)
+        started = time.monotonic()
+        os.killpg(launch.pid, signal.SIGINT)  # what Ctrl-C in the terminal does
+        assert launch.wait(30) == 0
+        elapsed = time.monotonic() - started
+    finally:
+        os.close(terminal)
+        if launch.poll() is None:
+            os.killpg(launch.pid, signal.SIGKILL)
+    output = log.read_text()
+    assert elapsed < CTRL_C_LIMIT, f'took {elapsed:.1f} s\n{output}'
+    assert '[WARNING] [launch]: user interrupted with ctrl-c (SIGINT)' in output
+    assert "sending signal 'SIGINT'" not in output
+    finished = re.findall(r'\[INFO\] \[turtlesim_node-\d+\]: process has finished cleanly', output)
+    assert len(finished) == 2, output
+    assert not [pid for pid in child_pids_of(output) if alive(pid)]
 
 
 @pytest.mark.parametrize('launch_file', ['turtle_launch.py', 'turtle_launch.xml', 'turtle_launch.yaml'])
