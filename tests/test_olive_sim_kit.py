@@ -2,6 +2,7 @@
 
 from olive_sim.kit import OWL_KIT
 from ros_harness import wait_until
+from sensor_msgs.msg import JointState
 from std_msgs.msg import Float32
 from std_srvs.srv import Trigger
 
@@ -36,6 +37,17 @@ def test_the_kit_launch_brings_up_four_modules_with_the_course_topics(ros):
     info = run_until(ros, ['ros2', 'topic', 'info', '/olive/camera/eye/image/compressed', '-v'],
                      lambda lines: '  Reliability: BEST_EFFORT' in lines)
     assert '  Reliability: BEST_EFFORT' in info.lines and '  Durability: VOLATILE' in info.lines, info.output
+    params = run_until(ros, ['ros2', 'param', 'list'], lambda lines: '/olive_servo_pan_dcm_srv:' in lines)
+    pan_params = params.lines[params.lines.index('/olive_servo_pan_dcm_srv:') + 1:]
+    assert {'  kp', '  ki', '  kd'} <= set(pan_params), params.output
+    enable = ros.command(['ros2', 'service', 'call', '/olive/servo/pan/setTorqueEnable',
+                          'std_srvs/srv/Trigger'], label='service_call')
+    assert enable.wait(30) == 0 and "message='torque enabled'" in enable.output, enable.output
+    joints = probe.collect(JointState, '/olive/servo/pan/joint')
+    publish = ros.command(['ros2', 'topic', 'pub', '--once', '/olive/servo/pan/goal/position',
+                           'std_msgs/msg/Float32', '{data: 1.0}'], label='topic_pub')
+    assert publish.wait(30) == 0
+    wait_until(lambda: joints and abs(joints[-1].position[0] - 1.0) < 0.01, 15, 'pan at 1.0 rad')
     # Tilt carries the camera: its parameters came through the launch file.
     assert probe.get_parameters('olive_servo_tilt_dcm_srv', 'load_mass', 'max_position') == [0.12, 0.9]
     response = probe.call(Trigger, '/olive/servo/tilt/setTorqueEnable', Trigger.Request())

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 import time
 
-from rcl_interfaces.msg import FloatingPointRange, IntegerRange, SetParametersResult
+from rcl_interfaces.msg import FloatingPointRange, IntegerRange
 from rclpy.parameter import Parameter
 from rclpy.qos import DurabilityPolicy, QoSProfile
 from sensor_msgs.msg import CameraInfo, CompressedImage, JointState
@@ -62,7 +62,7 @@ class CameraModule(OliveModule):
         self.output = ImuOutput(self, self.topic, f'{namespace}_body_link', self.orientation)
         self.frame_thread = self.create_periodic(value('fps').value, self.publish_frame, 'frames')
 
-    def _apply_parameters(self, parameters: list[Parameter]) -> SetParametersResult:
+    def _apply_parameters(self, parameters: list[Parameter]) -> None:
         for p in parameters:
             if p.name == 'jpeg_quality':
                 self.jpeg_quality = p.value
