@@ -54,9 +54,10 @@ def test_interface_rate_and_gyro_integration_with_the_scripted_motion(ros):
     assert endpoints(probe, PREFIX + 'led', 'subscriptions')[0].topic_type == 'std_msgs/msg/Bool'
     topics = {t for t, _ in probe.node.get_topic_names_and_types() if t.startswith(PREFIX)}
     assert topics == {PREFIX + t for t in (*PUBLISHED, 'led')}  # the course's list
-    services = dict(probe.node.get_service_names_and_types_by_node(NODE, '/'))
-    for name in ('setBias', 'setZeroQuaternion', 'setZeroPose'):
-        assert services[PREFIX + name] == ['std_srvs/srv/Trigger']
+    expected = {PREFIX + name: ['std_srvs/srv/Trigger']
+                for name in ('setBias', 'setZeroQuaternion', 'setZeroPose')}
+    wait_until(lambda: expected.items() <= dict(
+        probe.node.get_service_names_and_types_by_node(NODE, '/')).items(), 15, 'the module services')
     names = list_parameter_names(probe, NODE)
     assert names == sorted(DEFAULTS)
     assert dict(zip(names, probe.get_parameters(NODE, *names), strict=True)) == pytest.approx(DEFAULTS)

@@ -68,9 +68,9 @@ def test_interface_matches_the_course(ros):
         assert (info.node_name, info.topic_type) == (NODE, type_name)
     topics = {t for t, _ in probe.node.get_topic_names_and_types() if t.startswith(PREFIX)}
     assert topics == {PREFIX + t for t in (*PUBLISHED, *SUBSCRIBED)}  # as the course lists them
-    services = dict(probe.node.get_service_names_and_types_by_node(NODE, '/'))
-    for name in ('setTorqueEnable', 'setTorqueDisable'):
-        assert services[PREFIX + name] == ['std_srvs/srv/Trigger']
+    expected = {PREFIX + name: ['std_srvs/srv/Trigger'] for name in ('setTorqueEnable', 'setTorqueDisable')}
+    wait_until(lambda: expected.items() <= dict(
+        probe.node.get_service_names_and_types_by_node(NODE, '/')).items(), 15, 'the module services')
     names = list_parameter_names(probe, NODE)
     assert names == sorted(DEFAULTS)
     assert dict(zip(names, probe.get_parameters(NODE, *names), strict=True)) == pytest.approx(DEFAULTS)
