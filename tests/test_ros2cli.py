@@ -15,7 +15,8 @@ import pytest
 from ros_harness import RosHarness
 
 FIXTURES = 'ros2cli_test_fixtures'
-FIXTURE_NODES = ['/echo_server', '/fibonacci_server', '/listener', '/parameter_node', '/talker']
+FIXTURE_NODES = ['/echo_server', '/fibonacci_server', '/listener', '/mutable_params', '/parameter_node',
+                 '/talker']
 
 
 def ros2(sandbox, *args, stdin=None, timeout=30.0):
@@ -61,6 +62,7 @@ def graph():
         harness.run(FIXTURES, 'talker', '--ros-args', '-p', 'rate:=5.0')
         harness.run(FIXTURES, 'listener')
         harness.run(FIXTURES, 'parameter_node')
+        harness.run(FIXTURES, 'parameter_node', '--ros-args', '-r', '__node:=mutable_params')
         harness.run(FIXTURES, 'echo_server')
         harness.run(FIXTURES, 'fibonacci_server')
         assert ros2(harness, 'daemon', 'start').returncode == 0
@@ -88,6 +90,8 @@ def test_help_at_every_level(graph):
         assert f'  {command} ' in top.stdout
     bare = ros2(graph)
     assert bare.returncode == 0 and bare.stdout == top.stdout
+    for command in ('action', 'daemon', 'interface', 'node', 'param', 'service', 'topic'):
+        assert ros2(graph, command, '-h').stdout.startswith(f'usage: ros2 {command}')
     topic = ros2(graph, 'topic')
     assert topic.returncode == 0 and 'Call `ros2 topic <command> -h` for more detailed usage.' in topic.stdout
     verb = ros2(graph, 'topic', 'pub', '--help')
@@ -416,3 +420,306 @@ def test_first_call_without_daemon_starts_one(cli):
     assert eventually(lambda: lines(ros2(cli, 'daemon', 'status')) == ['The daemon is running'], 10)
     assert ros2(cli, 'node', 'list', '--no-daemon').returncode == 0
 
+
+
+# ---- ros2 service -----------------------------------------------------------------------------
+
+PARAMETER_SERVICES = ['describe_parameters', 'get_parameter_types', 'get_parameters', 'get_type_description',
+                      'list_parameters', 'set_parameters', 'set_parameters_atomically']
+
+
+def test_service_list_type_find(graph):
+    listing = lines(ros2(graph, 'service', 'list'))
+    assert listing[:8] == ['/echo'] + [f'/echo_server/{name}' for name in PARAMETER_SERVICES]
+    assert len(listing) == 1 + 7 * len(FIXTURE_NODES)
+    assert lines(ros2(graph, 'service', 'list', '-c')) == [str(len(listing))]
+    typed = lines(ros2(graph, 'service', 'list', '-t'))
+    assert typed[:2] == ['/echo [std_srvs/srv/SetBool]',
+                         '/echo_server/describe_parameters [rcl_interfaces/srv/DescribeParameters]']
+    assert not any('_action' in name for name in listing)
+    hidden = lines(ros2(graph, 'service', 'list', '--include-hidden-services'))
+    assert '/fibonacci/_action/send_goal' in hidden
+    assert lines(ros2(graph, 'service', 'type', '/echo')) == ['std_srvs/srv/SetBool']
+    unknown = ros2(graph, 'service', 'type', '/nope')
+    assert unknown.returncode == 1 and unknown.stdout == ''
+    assert lines(ros2(graph, 'service', 'find', 'std_srvs/srv/SetBool')) == ['/echo']
+    assert lines(ros2(graph, 'service', 'find', '-c', 'rcl_interfaces/srv/GetParameters')) == \
+        [str(len(FIXTURE_NODES))]
+    nothing = ros2(graph, 'service', 'find', 'std_srvs/SetBool')
+    assert nothing.returncode == 0 and nothing.stdout == ''
+
+
+def test_service_call_exact_output(graph):
+    result = ros2(graph, 'service', 'call', '/echo', 'std_srvs/srv/SetBool', '{data: true}')
+    assert result.returncode == 0, result.stderr
+    output = [line for line in lines(result) if line != 'waiting for service to become available...']
+    assert output == ['requester: making request: std_srvs.srv.SetBool_Request(data=True)', '', 'response:',
+                      "std_srvs.srv.SetBool_Response(success=True, message='received True')", '']
+    defaults = ros2(graph, 'service', 'call', 'echo', 'std_srvs/SetBool')
+    assert "std_srvs.srv.SetBool_Response(success=False, message='received False')" in defaults.stdout
+
+
+def test_service_call_repeats_at_a_rate(graph):
+    call = graph.command(['ros2', 'service', 'call', '-r', '5', '/echo', 'std_srvs/srv/SetBool',
+                          'data: true'])
+    call.wait_for('^response:$', count=3, timeout=20)
+    assert call.stop() == 2
+    assert 'Traceback' not in call.output
+
+
+@pytest.mark.parametrize(('args', 'fragments'), [
+    (['std_srvs/srv/SetBol'], ['The passed service type is invalid', "did you mean 'SetBool'?"]),
+    (['std_srvs/msg/SetBool'], ['The passed service type is invalid',
+                                "'std_srvs/msg/SetBool' is not a service"]),
+    (['std_srvs/srv/SetBool', '{dat: true}'], ['Failed to populate field', "unknown field 'dat'",
+                                                "did you mean 'data'?"]),
+    (['std_srvs/srv/SetBool', '{data: 3}'], ["field 'data' expects a boolean"]),
+    (['std_srvs/srv/SetBool', 'data: [true'], ['Failed to populate field: invalid YAML']),
+    (['std_srvs/srv/SetBool', '-r', '0'], ['rate must be greater than zero']),
+])
+def test_service_call_bad_input(graph, args, fragments):
+    assert_one_line_error(ros2(graph, 'service', 'call', '/echo', *args), *fragments)
+
+
+def test_service_call_unknown_service_says_so_while_waiting(graph):
+    call = graph.command(['ros2', 'service', 'call', '/ech', 'std_srvs/srv/SetBool'])
+    call.wait_for("No server for service '/ech' yet \\(did you mean '/echo'\\?\\); still waiting", timeout=20)
+    assert call.stop() == 2 and 'Traceback' not in call.output
+
+
+# ---- ros2 param -------------------------------------------------------------------------------
+
+PARAMETER_NAMES = ['bool_array_param', 'bool_param', 'double_array_param', 'double_param', 'fixed',
+                   'foo.bar.str_param', 'foo.str_param', 'int_array_param', 'int_param', 'level',
+                   'start_type_description_service', 'str_array_param', 'str_param', 'use_sim_time']
+PARAMETER_DUMP = """/parameter_node:
+  ros__parameters:
+    bool_array_param:
+    - false
+    - false
+    - true
+    bool_param: true
+    double_array_param:
+    - 3.125
+    - 6.25
+    - 12.5
+    double_param: 1.23
+    fixed: cannot change
+    foo:
+      bar:
+        str_param: foobar
+      str_param: foo
+    int_array_param:
+    - 1
+    - 2
+    - 3
+    int_param: 42
+    level: 5
+    start_type_description_service: true
+    str_array_param:
+    - foo
+    - bar
+    - baz
+    str_param: Hello World
+    use_sim_time: false
+
+"""
+
+
+def test_param_list(graph):
+    assert lines(ros2(graph, 'param', 'list', '/parameter_node')) == [f'  {n}' for n in PARAMETER_NAMES]
+    assert lines(ros2(graph, 'param', 'list', 'parameter_node', '--filter', 'bool.*')) == \
+        ['  bool_array_param', '  bool_param']
+    assert lines(ros2(graph, 'param', 'list', '/parameter_node', '--param-type', '--filter', 'int')) == \
+        ['  int_array_param (type: integer array)', '  int_param (type: integer)']
+    everything = lines(ros2(graph, 'param', 'list'))
+    assert [line for line in everything if not line.startswith('  ')] == [f'{n}:' for n in FIXTURE_NODES]
+    assert everything[everything.index('/talker:') + 1:] == ['  rate', '  start_type_description_service',
+                                                               '  use_sim_time']
+
+
+@pytest.mark.parametrize(('name', 'expected'), [
+    ('bool_param', 'Boolean value is: True'),
+    ('int_param', 'Integer value is: 42'),
+    ('double_param', 'Double value is: 1.23'),
+    ('str_param', 'String value is: Hello World'),
+    ('bool_array_param', 'Boolean values are: [False, False, True]'),
+    ('int_array_param', 'Integer values are: [1, 2, 3]'),
+    ('double_array_param', 'Double values are: [3.125, 6.25, 12.5]'),
+    ('str_array_param', "String values are: ['foo', 'bar', 'baz']"),
+    ('foo.bar.str_param', 'String value is: foobar'),
+])
+def test_param_get_every_type(graph, name, expected):
+    assert lines(ros2(graph, 'param', 'get', '/parameter_node', name)) == [expected]
+
+
+def test_param_get_hide_type_and_bad_names(graph):
+    assert lines(ros2(graph, 'param', 'get', '/parameter_node', 'int_param', '--hide-type')) == ['42']
+    assert_one_line_error(ros2(graph, 'param', 'get', '/parameter_node', 'int_parm'), 'Parameter not set',
+                          "'int_parm'", "did you mean 'int_param'?")
+    assert_one_line_error(ros2(graph, 'param', 'get', '/parameter_nod', 'int_param'), 'Node not found',
+                          "did you mean '/parameter_node'?")
+    assert_one_line_error(ros2(graph, 'param', 'list', 'invalid_ns/parameter_node'), 'Node not found')
+    usage = ros2(graph, 'param', 'load')
+    assert usage.returncode == 2
+    assert 'ros2 param load: error: the following arguments are required: node_name, parameter_file' \
+        in usage.stderr
+
+
+def test_param_set_delete_and_their_errors(graph):
+    node = '/mutable_params'
+    assert lines(ros2(graph, 'param', 'set', node, 'int_param', '7')) == ['Set parameter successful']
+    assert lines(ros2(graph, 'param', 'get', node, 'int_param')) == ['Integer value is: 7']
+    assert lines(ros2(graph, 'param', 'set', node, 'int_array_param', '[4, 5]')) == \
+        ['Set parameter successful']
+    assert lines(ros2(graph, 'param', 'get', node, 'int_array_param')) == ['Integer values are: [4, 5]']
+    wrong = ros2(graph, 'param', 'set', node, 'int_param', 'seven')
+    assert_one_line_error(wrong, "Setting parameter failed: Wrong parameter type for 'int_param': "
+                                 'expected integer, got string', code=0)
+    assert_one_line_error(ros2(graph, 'param', 'set', node, 'fixed', 'x'),
+                          'Setting parameter failed: Trying to set a read-only parameter: fixed.', code=0)
+    assert_one_line_error(ros2(graph, 'param', 'set', node, 'level', '11'),
+                          'Setting parameter failed', 'out of range', code=0)
+    assert_one_line_error(ros2(graph, 'param', 'set', node, 'int_parm', '1'),
+                          "Setting parameter failed: node '/mutable_params' has no parameter 'int_parm'",
+                          "did you mean 'int_param'?", code=0)
+    assert_one_line_error(ros2(graph, 'param', 'delete', node, 'int_param'),
+                          'Deleting parameter failed: Static parameter cannot be undeclared', code=0)
+    assert lines(ros2(graph, 'param', 'get', node, 'int_param')) == ['Integer value is: 7']
+
+
+def test_param_describe(graph):
+    result = ros2(graph, 'param', 'describe', '/parameter_node', 'level', 'fixed', 'levl')
+    assert lines(result) == [
+        'Parameter name: level', '  Type: integer', '  Description: A level from 0 to 10', '  Constraints:',
+        '    Min value: 0', '    Max value: 10', '    Step: 1',
+        'Parameter name: fixed', '  Type: string', '  Description: A read-only parameter', '  Constraints:',
+        '    Read only: true']
+    assert_one_line_error(result, "Parameter 'levl' is not declared by node '/parameter_node'",
+                          "did you mean 'level'?", code=0)
+
+
+def test_param_dump_exact_and_load_round_trip(graph, tmp_path):
+    dump = ros2(graph, 'param', 'dump', '/parameter_node')
+    assert dump.returncode == 0 and dump.stdout == PARAMETER_DUMP
+    saved = tmp_path / 'params.yaml'
+    changed = PARAMETER_DUMP.replace('/parameter_node:', '/mutable_params:').replace(
+        'int_param: 42', 'int_param: -42').replace('str_param: Hello World', 'str_param: Bye World').replace(
+        '    - 12.5', '    - 25.0')
+    saved.write_text(changed)
+    load = ros2(graph, 'param', 'load', '/mutable_params', str(saved))
+    assert load.returncode == 0
+    assert 'Set parameter int_param successful' in lines(load)
+    assert 'Set parameter fixed failed: Trying to set a read-only parameter: fixed.' in load.stderr
+    assert ros2(graph, 'param', 'dump', '/mutable_params').stdout == changed
+
+
+def test_param_load_wildcard_and_overrides(graph, tmp_path):
+    wildcard = tmp_path / 'wildcard.yaml'
+    wildcard.write_text('/**:\n  ros__parameters:\n    str_param: Wildcard\n    int_param: 12345\n')
+    refused = ros2(graph, 'param', 'load', '--no-use-wildcard', '/mutable_params', str(wildcard))
+    assert_one_line_error(refused, 'Param file does not contain selected parameters')
+    assert ros2(graph, 'param', 'load', '/mutable_params', str(wildcard)).returncode == 0
+    assert lines(ros2(graph, 'param', 'get', '/mutable_params', 'int_param')) == ['Integer value is: 12345']
+    overlay = tmp_path / 'overlay.yaml'
+    overlay.write_text(wildcard.read_text()
+                       + 'mutable_params:\n  ros__parameters:\n    str_param: Override\n')
+    assert ros2(graph, 'param', 'load', '/mutable_params', str(overlay)).returncode == 0
+    assert lines(ros2(graph, 'param', 'get', '/mutable_params', 'str_param')) == ['String value is: Override']
+
+
+def test_param_load_bad_files(graph, tmp_path):
+    missing = ros2(graph, 'param', 'load', '/mutable_params', str(tmp_path / 'none.yaml'))
+    assert_one_line_error(missing, 'No such file or directory', 'none.yaml')
+    broken = tmp_path / 'broken.yaml'
+    broken.write_text('/mutable_params:\n  ros__parameters: [1\n')
+    assert_one_line_error(ros2(graph, 'param', 'load', '/mutable_params', str(broken)),
+                          'broken.yaml', 'invalid YAML (line 3')
+    other = tmp_path / 'other.yaml'
+    other.write_text('/mutable_param:\n  ros__parameters:\n    int_param: 1\n')
+    assert_one_line_error(ros2(graph, 'param', 'load', '/mutable_params', str(other)),
+                          'nothing for /mutable_params', "did you mean '/mutable_param'?")
+    flat = tmp_path / 'flat.yaml'
+    flat.write_text('/mutable_params:\n  int_param: 1\n')
+    assert_one_line_error(ros2(graph, 'param', 'load', '/mutable_params', str(flat)),
+                          "the entry '/mutable_params' of the file has no 'ros__parameters' mapping")
+    mixed = tmp_path / 'mixed.yaml'
+    mixed.write_text('/mutable_params:\n  ros__parameters:\n    int_param: [1, a]\n')
+    assert_one_line_error(ros2(graph, 'param', 'load', '/mutable_params', str(mixed)),
+                          "parameter 'int_param' has a value of no parameter type")
+
+
+# ---- ros2 action ------------------------------------------------------------------------------
+
+ACTION_TYPE = f'{FIXTURES}/action/Fibonacci'
+
+
+def test_action_list_info_type_find(graph):
+    assert lines(ros2(graph, 'action', 'list')) == ['/fibonacci']
+    assert lines(ros2(graph, 'action', 'list', '-t')) == [f'/fibonacci [{ACTION_TYPE}]']
+    assert lines(ros2(graph, 'action', 'list', '-c')) == ['1']
+    assert lines(ros2(graph, 'action', 'info', '/fibonacci')) == [
+        'Action: /fibonacci', 'Action clients: 0', 'Action servers: 1', '    /fibonacci_server']
+    assert lines(ros2(graph, 'action', 'info', '/fibonacci', '-t')) == [
+        'Action: /fibonacci', 'Action clients: 0', 'Action servers: 1',
+        f'    /fibonacci_server [{ACTION_TYPE}]']
+    assert lines(ros2(graph, 'action', 'info', '/fibonacci', '-c')) == [
+        'Action: /fibonacci', 'Action clients: 0', 'Action servers: 1']
+    assert lines(ros2(graph, 'action', 'type', '/fibonacci')) == [ACTION_TYPE]
+    assert lines(ros2(graph, 'action', 'find', ACTION_TYPE)) == ['/fibonacci']
+    unknown = ros2(graph, 'action', 'info', '/fibonaci')
+    assert lines(unknown) == ['Action: /fibonaci', 'Action clients: 0', 'Action servers: 0']
+    assert_one_line_error(unknown, "No action '/fibonaci' in the graph (did you mean '/fibonacci'?)", code=0)
+    assert ros2(graph, 'action', 'type', '/fibonaci').returncode == 1
+
+
+def test_action_send_goal_exact_output(graph):
+    result = ros2(graph, 'action', 'send_goal', '/fibonacci', ACTION_TYPE, '{order: 3}')
+    assert result.returncode == 0, result.stderr
+    output = lines(result)
+    assert output[:4] == ['Waiting for an action server to become available...', 'Sending goal:',
+                          '     order: 3', '']
+    assert re.fullmatch('Goal accepted with ID: [0-9a-f]{32}', output[4])
+    assert output[5:] == ['', 'Result:', '    sequence:', '- 0', '- 1', '- 1', '- 2', '',
+                          'Goal finished with status: SUCCEEDED']
+
+
+def test_action_send_goal_feedback(graph):
+    result = ros2(graph, 'action', 'send_goal', '-f', 'fibonacci', ACTION_TYPE, 'order: 2')
+    assert result.returncode == 0, result.stderr
+    assert 'Feedback:\n    sequence:\n- 0\n- 1\n- 1\n\n' in result.stdout
+    assert result.stdout.endswith('Goal finished with status: SUCCEEDED\n')
+
+
+@pytest.mark.parametrize(('args', 'fragments'), [
+    ([f'{FIXTURES}/action/Fibonaci'], ['The passed action type is invalid', "did you mean 'Fibonacci'?"]),
+    ([ACTION_TYPE, '{ordr: 3}'], ['Failed to populate message fields', "unknown field 'ordr'",
+                                 "did you mean 'order'?"]),
+    ([ACTION_TYPE, '{order: 2.5}'], ["field 'order' expects an integer (int32), got 2.5"]),
+    ([ACTION_TYPE, '{order: 3'], ['Failed to populate message fields: invalid YAML']),
+])
+def test_action_send_goal_bad_input(graph, args, fragments):
+    assert_one_line_error(ros2(graph, 'action', 'send_goal', '/fibonacci', *args), *fragments)
+
+
+# ---- shell completion -------------------------------------------------------------------------
+
+@pytest.mark.parametrize(('line', 'expected'), [
+    ('ros2 run ros2cli_test_fi', [FIXTURES]),
+    (f'ros2 run {FIXTURES} ta', ['talker']),
+    ('ros2 node info /talk', ['/talker']),
+    ('ros2 topic echo /cha', ['/chatter']),
+    ('ros2 service type /ec', ['/echo', '/echo_server/describe_parameters']),
+    ('ros2 action info /fib', ['/fibonacci']),
+    ('ros2 interface show std_srvs/srv/SetB', ['std_srvs/srv/SetBool']),
+    ('ros2 topic pub /x geometry_msgs/msg/Twis',
+     ['geometry_msgs/msg/Twist', 'geometry_msgs/msg/TwistStamped']),
+])
+def test_shell_completion(graph, tmp_path, line, expected):
+    output = tmp_path / 'completions'
+    env = dict(graph.env, _ARGCOMPLETE='1', _ARGCOMPLETE_IFS='\n', COMP_LINE=line, COMP_POINT=str(len(line)),
+               _ARGCOMPLETE_STDOUT_FILENAME=str(output))
+    subprocess.run(['ros2'], env=env, capture_output=True, timeout=30, check=False)
+    candidates = [c.strip() for c in output.read_text().splitlines()]
+    for name in expected:
+        assert name in candidates, candidates

@@ -190,7 +190,7 @@ class SendGoalVerb(Verb):
                 if not hinted and time.monotonic() - started > NAMED_LOOKUP_GRACE:
                     hinted = True
                     from rclpy.action import get_action_names_and_types
-                    names = [name for name, _ in get_action_names_and_types(node)]
+                    names = [name for name, _ in get_action_names_and_types(node) if name != action_name]
                     print(f"No action server for '{action_name}' yet{did_you_mean(action_name, names)}; "
                           'still waiting (Ctrl-C to stop)', file=sys.stderr)
             print(f'Sending goal:\n{indented_yaml(goal, "     ")}')

@@ -2,12 +2,14 @@
 
 import argparse
 import sys
+from collections.abc import Callable
 from typing import Any
 
 from ros2cli.verb import Verb, add_verbs, run_verb
 
 DESCRIPTION = 'Various param related sub-commands'
 SERVICE_TIMEOUT = 5.0
+CALL_ATTEMPTS = 3
 TYPE_NAMES = {0: 'not set', 1: 'boolean', 2: 'integer', 3: 'double', 4: 'string', 5: 'byte array',
               6: 'boolean array', 7: 'integer array', 8: 'double array', 9: 'string array'}
 VALUE_LABELS = {1: 'Boolean value is:', 2: 'Integer value is:', 3: 'Double value is:', 4: 'String value is:',
@@ -34,11 +36,13 @@ def value_text(value: Any) -> str:
 class ParameterSession:
     """A DirectNode with a parameter client for one remote node, found through NodeStrategy first."""
 
-    def __init__(self, args: argparse.Namespace, node_name: str, wait: float | None = None) -> None:
+    def __init__(self, args: argparse.Namespace, node_name: str, wait: float | None = None,
+                 strategy: Any = None) -> None:
         self.args = args
         self.node_name = full_name(node_name)
         self.wait = getattr(args, 'timeout', 1) if wait is None else wait
-        self._strategy: Any = None
+        self._strategy: Any = strategy
+        self._owns_strategy = strategy is None
         self.client: Any = None
 
     def __enter__(self) -> 'ParameterSession':
@@ -48,7 +52,8 @@ class ParameterSession:
         from ros2cli.names import did_you_mean
         from ros2cli.node.strategy import NodeStrategy
 
-        self._strategy = NodeStrategy(self.args, spin_time=0.0)
+        if self._strategy is None:
+            self._strategy = NodeStrategy(self.args, spin_time=0.0)
         hidden = getattr(self.args, 'include_hidden_nodes', False)
         graph = self._strategy.graph
         if not self._strategy.wait_until(lambda: self.node_name in node_names(graph, hidden), self.wait):
@@ -62,9 +67,21 @@ class ParameterSession:
                 f'Wait for service timed out waiting for parameter services for node {self.node_name}')
         return self
 
-    def call(self, future: Any, service: str) -> Any:
+    def call(self, request: Callable[[], Any], service: str) -> Any:
+        """Send request() and wait for the response; resend if none comes.
+
+        A response can be lost when the server has not yet matched this client's response
+        reader (a fresh client, a loaded machine): the requests here are idempotent, so the
+        remedy is to ask again.
+        """
         import rclpy
-        rclpy.spin_until_future_complete(self._strategy.direct.node, future, timeout_sec=SERVICE_TIMEOUT)
+        node = self._strategy.direct.node
+        future = None
+        for attempt in range(1, CALL_ATTEMPTS + 1):
+            future = request()
+            rclpy.spin_until_future_complete(node, future, timeout_sec=SERVICE_TIMEOUT * attempt / 3)
+            if future.done():
+                break
         if not future.done() or future.exception() is not None:
             problem = future.exception() if future.done() else 'no response'
             raise RuntimeError(f"Exception while calling {service} service of node '{self.node_name}': "
@@ -72,13 +89,13 @@ class ParameterSession:
         return future.result()
 
     def names(self) -> list[str]:
-        return sorted(self.call(self.client.list_parameters(), 'list_parameters').result.names)
+        return sorted(self.call(self.client.list_parameters, 'list_parameters').result.names)
 
     def values(self, names: list[str]) -> list[Any]:
-        return list(self.call(self.client.get_parameters(names), 'get_parameters').values)
+        return list(self.call(lambda: self.client.get_parameters(names), 'get_parameters').values)
 
     def set(self, parameters: list[Any]) -> list[Any]:
-        return list(self.call(self.client.set_parameters(parameters), 'set_parameters').results)
+        return list(self.call(lambda: self.client.set_parameters(parameters), 'set_parameters').results)
 
     def unknown(self, name: str) -> str:
         """' (did you mean ...)' for an undeclared parameter name."""
@@ -86,9 +103,9 @@ class ParameterSession:
         return did_you_mean(name, self.names())
 
     def close(self) -> None:
-        if self._strategy is not None:
+        if self._strategy is not None and self._owns_strategy:
             self._strategy.close()
-            self._strategy = None
+        self._strategy = None
 
     def __exit__(self, *exc: object) -> None:
         self.close()
@@ -127,32 +144,36 @@ class ListVerb(Verb):
             pattern = re.compile(args.filter) if args.filter else None
         except re.error as error:
             return f"Invalid --filter regex '{args.filter}': {error}"
-        if args.node_name:
-            targets = [full_name(args.node_name)]
-        else:
-            with NodeStrategy(args) as strategy:
+        with NodeStrategy(args, spin_time=0.0 if args.node_name else None) as strategy:
+            if args.node_name:
+                targets = [full_name(args.node_name)]
+            else:
                 services = {name for name, _ in strategy.graph.service_names_and_types()}
                 targets = [n for n in sorted(set(node_names(strategy.graph, args.include_hidden_nodes)))
                            if f'{n}/list_parameters' in services]
-        for target in targets:
-            try:
-                with ParameterSession(args, target, wait=0.0 if not args.node_name else 1.0) as session:
-                    response = session.call(session.client.list_parameters(args.param_prefixes or None),
-                                            'list_parameters')
-                    names = sorted(n for n in response.result.names if not pattern or pattern.match(n))
-                    types = {}
-                    if args.param_type and names:
-                        types = dict(zip(names, (v.type for v in session.values(names)), strict=True))
-            except RuntimeError as error:
-                if args.node_name:
-                    raise
-                print(error)
-                continue
-            if names and not args.node_name:
-                print(f'{target}:')
-            for name in names:
-                print(f'  {name} (type: {TYPE_NAMES[types[name]]})' if args.param_type else f'  {name}')
+            for target in targets:
+                self._list_node(args, strategy, target, pattern)
         return 0
+
+    @staticmethod
+    def _list_node(args: argparse.Namespace, strategy: Any, target: str, pattern: Any) -> None:
+        try:
+            with ParameterSession(args, target, 1.0 if args.node_name else 0.0, strategy) as session:
+                prefixes = args.param_prefixes or None
+                response = session.call(lambda: session.client.list_parameters(prefixes), 'list_parameters')
+                names = sorted(n for n in response.result.names if not pattern or pattern.match(n))
+                types = {}
+                if args.param_type and names:
+                    types = dict(zip(names, (v.type for v in session.values(names)), strict=True))
+        except RuntimeError as error:
+            if args.node_name:
+                raise
+            print(error)
+            return
+        if names and not args.node_name:
+            print(f'{target}:')
+        for name in names:
+            print(f'  {name} (type: {TYPE_NAMES[types[name]]})' if args.param_type else f'  {name}')
 
 
 class GetVerb(Verb):
@@ -244,7 +265,8 @@ class DescribeVerb(Verb):
             # One request per name: a node answers nothing at all when any name is undeclared.
             descriptors, hints = [], {}
             for name in args.parameter_names:
-                found = session.call(session.client.describe_parameters([name]), 'describe_parameters')
+                found = session.call(lambda name=name: session.client.describe_parameters([name]),
+                                     'describe_parameters')
                 descriptors += list(found.descriptors)
                 if not found.descriptors:
                     hints[name] = session.unknown(name)

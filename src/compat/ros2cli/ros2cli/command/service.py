@@ -175,7 +175,7 @@ def wait_for_server(node: Any, client: Any, service: str) -> None:
     while not client.wait_for_service(timeout_sec=0.5):
         if not hinted and time.monotonic() - started > NAMED_LOOKUP_GRACE:
             hinted = True
-            names = [name for name, _ in node.get_service_names_and_types()]
+            names = [name for name, _ in node.get_service_names_and_types() if name != service]
             print(f"No server for service '{service}' yet{did_you_mean(service, names)}; still waiting "
                   '(Ctrl-C to stop)', file=sys.stderr)
 
