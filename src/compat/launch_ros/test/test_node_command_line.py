@@ -162,3 +162,13 @@ def test_find_package_share():
     share = FindPackageShare(PACKAGE).perform(LaunchContext())
     assert share.endswith(os.path.join('share', PACKAGE))
     assert os.path.isfile(os.path.join(share, 'package.xml'))
+
+
+def test_upstream_module_paths_used_by_launch_files():
+    from launch.some_substitutions_type import SomeSubstitutionsType
+    from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
+    from launch_ros.descriptions import ParameterValue as DescribedValue
+
+    assert DescribedValue is ParameterValue and SomeSubstitutionsType is not None
+    context = LaunchContext()
+    assert perform_substitutions(context, normalize_to_list_of_substitutions(['a', 'b'])) == 'ab'
