@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import pytest
 from action_msgs.msg import GoalStatus
 from geometry_msgs.msg import Twist
@@ -72,6 +74,13 @@ def test_goal_succeeds_with_feedback_and_upstream_delta_then_preempt_cancel_abor
     cmd.publish(Twist())
     assert result_of(running).status == GoalStatus.STATUS_ABORTED
     sim.wait_for(r'\[WARN\].*Velocity command received during rotation goal. Aborting goal')
+
+    # A heading that can never be reached is refused instead of turning forever.
+    for theta in (math.nan, math.inf):
+        future = client.send_goal_async(RotateAbsolute.Goal(theta=theta))
+        wait_until(future.done, 10, 'goal response')
+        assert not future.result().accepted
+    sim.wait_for(r'\[ERROR\].*Rejecting rotation goal for turtle \[turtle1\]: theta must be finite \(nan\)')
     assert sim.running() and 'Traceback' not in sim.output
 
 

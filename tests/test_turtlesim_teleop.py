@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import pty
+import select
 import signal
 import subprocess
 import termios
@@ -31,11 +32,15 @@ class TerminalProcess:
         self.popen = subprocess.Popen(argv, env=env, stdin=self.slave, stdout=self.slave,
                                       stderr=self.slave, start_new_session=True)
         self._chunks: list[bytes] = []
+        self._stop = threading.Event()
         self._reader = threading.Thread(target=self._read, daemon=True)
         self._reader.start()
 
     def _read(self) -> None:
-        while True:
+        # Short selects, so hang_up() can stop this thread before closing the descriptors.
+        while not self._stop.is_set():
+            if not select.select([self.master], [], [], 0.05)[0]:
+                continue
             try:
                 data = os.read(self.master, 4096)
             except OSError:
@@ -51,12 +56,20 @@ class TerminalProcess:
     def type(self, keys: str) -> None:
         os.write(self.master, keys.encode())
 
+    def hang_up(self) -> None:
+        """Close our ends of the terminal, as closing a terminal window does."""
+        self._stop.set()
+        self._reader.join(5)
+        for fd in (self.master, self.slave):
+            if fd >= 0:
+                os.close(fd)
+        self.master = self.slave = -1
+
     def close(self) -> None:
         if self.popen.poll() is None:
             os.killpg(self.popen.pid, signal.SIGKILL)
             self.popen.wait(5)
-        os.close(self.slave)
-        os.close(self.master)
+        self.hang_up()
 
 
 @pytest.fixture
@@ -130,3 +143,9 @@ def test_ctrl_c_exits_cleanly_and_restores_the_terminal(ros, terminal):
     assert teleop.popen.wait(15) == 0
     assert termios.tcgetattr(teleop.slave) == teleop.mode_before
     assert 'Traceback' not in teleop.output
+
+
+def test_terminal_hang_up_ends_teleop_instead_of_spinning(ros, terminal):
+    teleop = terminal()
+    teleop.hang_up()
+    assert teleop.popen.wait(15) == 0

@@ -8,6 +8,7 @@ non-canonical no-echo mode (Ctrl-C still works) and restored on every way out.
 from __future__ import annotations
 
 import os
+import select
 import sys
 import termios
 import threading
@@ -31,6 +32,7 @@ Use G|B|V|C|D|E|R|T keys to rotate to absolute orientations. 'F' to cancel a rot
 'Q' to quit."""
 HUMBLE_QOS_DEPTH = 1
 NOT_A_TERMINAL_EXIT = 2
+READ_TIMEOUT_MS = 100
 
 # Arrow keys arrive as ESC [ A..D; like upstream, only the last byte counts.
 ARROWS = {ord('A'): (1.0, 0.0), ord('B'): (-1.0, 0.0), ord('C'): (0.0, -1.0), ord('D'): (0.0, 1.0)}
@@ -81,6 +83,8 @@ class RawTerminal:
     def __init__(self, fd: int) -> None:
         self.fd = fd
         self._saved = termios.tcgetattr(fd)
+        self._poll = select.poll()
+        self._poll.register(fd, select.POLLIN)
 
     def __enter__(self) -> RawTerminal:
         mode = termios.tcgetattr(self.fd)
@@ -91,11 +95,24 @@ class RawTerminal:
         return self
 
     def __exit__(self, *exc_info: object) -> None:
-        termios.tcsetattr(self.fd, termios.TCSANOW, self._saved)
+        try:
+            termios.tcsetattr(self.fd, termios.TCSANOW, self._saved)
+        except termios.error:
+            pass  # the terminal is gone (hung up): nothing left to restore
 
     def read_byte(self) -> int | None:
+        """One byte, or None after 0.1 s without input. EOFError once the terminal hangs up.
+
+        Polling first tells a hang-up from a timeout; a bare read returns nothing for both, and
+        looping on that would spin a core after the terminal closes.
+        """
+        ready = self._poll.poll(READ_TIMEOUT_MS)
+        if not ready:
+            return None
         data = os.read(self.fd, 1)
-        return data[0] if data else None
+        if not data:
+            raise EOFError('the terminal hung up')
+        return data[0]
 
 
 class TeleopTurtle(Node):
@@ -179,7 +196,7 @@ def main(args: list[str] | None = None) -> None:
                     break
                 if action is not None:
                     node.perform(action)
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, EOFError):
         pass
     except OSError as error:
         print(f'read(): {error}', file=sys.stderr)

@@ -101,7 +101,7 @@ class TurtleEndpoints:
                 ActionServer(
                     node, RotateAbsolute, f'{name}/rotate_absolute',
                     execute_callback=self._execute_goal,
-                    goal_callback=lambda _goal: GoalResponse.ACCEPT,
+                    goal_callback=self._on_goal_request,
                     handle_accepted_callback=self._on_goal_accepted,
                     cancel_callback=lambda _handle: CancelResponse.ACCEPT),
             ]
@@ -159,6 +159,14 @@ class TurtleEndpoints:
         self._node.get_logger().error(
             f'Refusing {service} of turtle [{self.turtle.name}]: every value must be finite ({shown})')
         return False
+
+    def _on_goal_request(self, goal: RotateAbsolute.Goal) -> GoalResponse:
+        if math.isfinite(goal.theta):
+            return GoalResponse.ACCEPT
+        # Upstream accepts it and then turns forever: a NaN heading is never reached.
+        self._node.get_logger().error(
+            f'Rejecting rotation goal for turtle [{self.turtle.name}]: theta must be finite ({goal.theta})')
+        return GoalResponse.REJECT
 
     def _on_goal_accepted(self, handle: ServerGoalHandle) -> None:
         goal = GoalOfHandle(handle)

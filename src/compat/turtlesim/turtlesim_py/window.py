@@ -20,20 +20,18 @@ class CanvasWindow:
         self._root = tkinter.Tk()
         self._root.title('TurtleSim')
         self._root.resizable(False, False)
-        self._label = tkinter.Label(self._root, borderwidth=0)
+        # One photo image, repainted in place: a new one per frame costs several times more.
+        self._photo = ImageTk.PhotoImage(Image.new('RGB', (world.CANVAS_PX, world.CANVAS_PX)))
+        self._label = tkinter.Label(self._root, borderwidth=0, image=self._photo)
         self._label.pack()
-        self._photo: ImageTk.PhotoImage | None = None
         self._root.protocol('WM_DELETE_WINDOW', on_close)
-        self.show(Image.new('RGB', (world.CANVAS_PX, world.CANVAS_PX)))
 
     def show(self, frame: Image.Image) -> None:
-        self._photo = ImageTk.PhotoImage(frame)
-        self._label.configure(image=self._photo)
+        self._photo.paste(frame)
 
     def pump(self) -> None:
         """Handle pending window events and redraws, without blocking."""
         self._root.update()
 
     def close(self) -> None:
-        self._photo = None
         self._root.destroy()
