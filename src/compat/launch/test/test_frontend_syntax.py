@@ -94,3 +94,11 @@ def test_command_lines_split_like_a_shell_around_substitutions():
                     'two words']
     with pytest.raises(ValueError, match='cannot split command line'):
         split_command_line(parse_substitution("echo 'unclosed"))
+
+
+def test_action_construction_errors_name_the_tag_location(tmp_path):
+    path = write(tmp_path, 'c.launch.xml',
+                 '<launch>\n  <arg name="c" default="z">\n    <choice value="a"/>\n  </arg>\n</launch>\n')
+    expected = r"c.launch.xml:2: RuntimeError: Provided default_value 'z' is not in"
+    with pytest.raises(LaunchFileError, match=expected):
+        load_launch_file(path, 'xml')

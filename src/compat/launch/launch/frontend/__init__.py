@@ -105,7 +105,7 @@ class Parser:
             return action_class(**kwargs)
         except LaunchFileError:
             raise
-        except (ValueError, TypeError, KeyError) as error:
+        except (ValueError, TypeError, KeyError, RuntimeError) as error:
             raise entity.error(f'{type(error).__name__}: {error}') from None
 
     def parse_actions(self, entities: list[Entity]) -> list[Action]:
