@@ -1,6 +1,8 @@
 """random_number_ps over real DDS: publisher range and parameters, subscriber, exercises."""
 
 import re
+import signal
+import time
 
 from geometry_msgs.msg import Twist
 from ros_harness import wait_until
@@ -119,3 +121,14 @@ def test_every_node_stops_cleanly_on_ctrl_c(ros):
     for node in nodes:
         assert node.stop() == 0, node.output
         assert 'Traceback' not in node.output
+
+
+def test_a_second_ctrl_c_during_shutdown_is_still_clean(ros):
+    # A launcher forwarding SIGINT on top of the terminal's own gives a node two in a row.
+    subscriber = ros.run('random_number_ps', 'random_number_subscriber')
+    ros.probe.wait_for_node('random_number_subscriber')
+    subscriber.send_signal(signal.SIGINT)
+    time.sleep(0.05)  # the second one lands while the node is cleaning up
+    subscriber.send_signal(signal.SIGINT)
+    assert subscriber.wait(10) == 0, subscriber.output
+    assert 'Traceback' not in subscriber.output

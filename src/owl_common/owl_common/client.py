@@ -10,6 +10,8 @@ from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.utilities import remove_ros_args
 
+from owl_common.run import ignore_further_interrupts
+
 
 class UsageError(Exception):
     """The command line cannot become a request; the message says why."""
@@ -74,6 +76,7 @@ def run_client(
     except (KeyboardInterrupt, ExternalShutdownException):
         code = 0
     finally:
+        ignore_further_interrupts()
         if node is not None:
             node.destroy_node()
         rclpy.try_shutdown()

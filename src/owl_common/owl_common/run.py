@@ -1,5 +1,6 @@
 """Run a node until Ctrl-C or an external shutdown, then exit quietly with code 0."""
 
+import signal
 import sys
 from collections.abc import Callable
 
@@ -10,6 +11,12 @@ from rclpy.node import Node
 
 # What a node's constructor raises for a bad --ros-args parameter or name: a user error.
 STARTUP_ERRORS = (ParameterException, NameValidationException, ValueError)
+
+
+def ignore_further_interrupts() -> None:
+    """Let cleanup finish: a second SIGINT (a group Ctrl-C plus a launcher's forwarded one)
+    must not turn a clean exit into a traceback."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 def spin_node(make_node: Callable[[], Node], args: list[str] | None = None) -> None:
@@ -31,6 +38,7 @@ def spin_node(make_node: Callable[[], Node], args: list[str] | None = None) -> N
     except (KeyboardInterrupt, ExternalShutdownException):
         pass  # Ctrl-C is how the course stops nodes: no traceback.
     finally:
+        ignore_further_interrupts()
         if node is not None:
             node.destroy_node()
         rclpy.try_shutdown()
