@@ -80,7 +80,8 @@ def test_goal_succeeds_with_feedback_and_upstream_delta_then_preempt_cancel_abor
         future = client.send_goal_async(RotateAbsolute.Goal(theta=theta))
         wait_until(future.done, 10, 'goal response')
         assert not future.result().accepted
-    sim.wait_for(r'\[ERROR\].*Rejecting rotation goal for turtle \[turtle1\]: theta must be finite \(nan\)')
+    sim.wait_for(r'\[ERROR\].*Refusing rotation goal for turtle \[turtle1\]: '
+                 r'every value must be finite \(theta=nan\)')
     assert sim.running() and 'Traceback' not in sim.output
 
 

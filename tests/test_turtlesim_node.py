@@ -84,7 +84,7 @@ def test_starts_headless_and_publishes_turtle1_pose_and_color(ros):
 
 
 def test_cmd_vel_drives_the_turtle_and_times_out(ros):
-    start_turtlesim(ros)
+    sim = start_turtlesim(ros)
     poses = ros.probe.collect(Pose, '/turtle1/pose', TURTLE_QOS)
     cmd = ros.probe.node.create_publisher(Twist, '/turtle1/cmd_vel', TURTLE_QOS)
     latest(poses)
@@ -103,6 +103,8 @@ def test_cmd_vel_drives_the_turtle_and_times_out(ros):
 
     twist.linear.x, twist.angular.z = math.nan, 0.0
     cmd.publish(twist)  # refused with an error; the pose stays finite
+    sim.wait_for(r'\[ERROR\].*Refusing velocity command for turtle \[turtle1\]: every value must be finite '
+                 r'\(linear.x=nan, linear.y=0.0, angular.z=0.0\)')
     twist.linear.x, twist.angular.z = 10.0, 0.0
     cmd.publish(twist)
     settled(poses, lambda p: p.x == pytest.approx(11.088889), 'turtle1 at the east wall')
@@ -171,12 +173,13 @@ def test_bad_input_is_refused_and_logged_never_fatal(ros):
         assert spawn(ros, bad) == ''
         sim.wait_for(rf'\[ERROR\].*Cannot spawn a turtle named \[{bad.replace("?", "[?]")}\]')
     assert spawn(ros, 'fine', x=math.nan) == ''
-    sim.wait_for(r'\[ERROR\].*Refusing to spawn: every value must be finite')
+    sim.wait_for(r'\[ERROR\].*Refusing to spawn \[fine\]: every value must be finite \(x=nan')
     teleport(ros, 'turtle1', math.nan, 1.0)
     ros.probe.call(TeleportRelative, '/turtle1/teleport_relative',
                    TeleportRelative.Request(linear=math.inf, angular=0.0))
-    sim.wait_for(r'\[ERROR\].*Refusing teleport_absolute of turtle \[turtle1\]')
-    sim.wait_for(r'\[ERROR\].*Refusing teleport_relative of turtle \[turtle1\]')
+    sim.wait_for(r'\[ERROR\].*Refusing teleport_absolute for turtle \[turtle1\]: every value must be finite '
+                 r'\(x=nan, y=1.0, theta=0.0\)')
+    sim.wait_for(r'\[ERROR\].*Refusing teleport_relative for turtle \[turtle1\]')
     latest(poses, count=5)
     assert (poses[-1].x, poses[-1].y) == (pytest.approx(CENTER), pytest.approx(CENTER))
     # Huge but finite teleports are clamped to the wall, as upstream does.

@@ -9,6 +9,7 @@ import signal
 import subprocess
 import termios
 import threading
+import time
 
 import pytest
 from geometry_msgs.msg import Twist
@@ -102,6 +103,16 @@ def test_keys_publish_twists_and_goals_and_q_restores_the_terminal(ros, terminal
     teleop = terminal()
     ros.probe.wait_for_node('teleop_turtle')
     wait_until(lambda: ros.probe.node.count_publishers('/turtle1/cmd_vel') == 1, 10, 'teleop publisher')
+    # Until teleop's publisher has matched the probe, a key's Twist can be lost: press Up until
+    # one gets through, then start counting.
+    for _ in range(40):
+        teleop.type('\x1b[A')
+        time.sleep(0.25)
+        if twists:
+            break
+    assert twists and twists[-1].linear.x == 2.0  # up
+    time.sleep(0.25)
+    twists.clear()
 
     def press(keys: str, count: int) -> Twist:
         teleop.type(keys)
@@ -118,6 +129,10 @@ def test_keys_publish_twists_and_goals_and_q_restores_the_terminal(ros, terminal
     teleop.type('xyz')  # unknown keys: nothing
     (result,) = ros.probe.set_parameters('teleop_turtle', scale_linear=0.5)
     assert result.successful
+    for wrong in ({'scale_linear': 'fast'}, {'scale_angular': True}):
+        (result,) = ros.probe.set_parameters('teleop_turtle', **wrong)
+        assert not result.successful
+    assert ros.probe.get_parameters('teleop_turtle', 'scale_angular') == [2.0]
     assert press('\x1b[A', 5).linear.x == 0.5
     assert len(twists) == 5
 

@@ -37,7 +37,11 @@ def test_mimic_replays_speed_magnitude_on_another_turtle(ros):
     wait_until(lambda: cmd.get_subscription_count() > 0, 10, 'cmd_vel subscriber')
     twist = Twist()
     twist.linear.x, twist.angular.z = -1.0, 0.5  # the leader reverses
-    cmd.publish(twist)
-    wait_until(lambda: follower and follower[-1].linear_velocity == 1.0
-               and follower[-1].angular_velocity == 0.5, 10, 'the follower mimicking')
+
+
+    def mimicking() -> bool:
+        cmd.publish(twist)  # kept up, like `ros2 topic pub -r`, until mimic's links are discovered
+        return bool(follower) and (follower[-1].linear_velocity, follower[-1].angular_velocity) == (1.0, 0.5)
+
+    wait_until(mimicking, 20, 'the follower mimicking')
     wait_until(lambda: follower[-1].x > 2.05, 10, 'the follower driving forwards')

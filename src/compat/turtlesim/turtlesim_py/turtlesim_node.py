@@ -57,6 +57,16 @@ def background_descriptor(channel: str) -> ParameterDescriptor:
         integer_range=[IntegerRange(from_value=0, to_value=255, step=1)])
 
 
+def non_finite(**values: float) -> str | None:
+    """None when every value is finite, else 'name=value, ...' for the error log.
+
+    Upstream would carry a NaN into the pose for good; we refuse such requests instead.
+    """
+    if all(math.isfinite(v) for v in values.values()):
+        return None
+    return ', '.join(f'{name}={value}' for name, value in values.items())
+
+
 class GoalOfHandle(RotationGoal):
     """A rotation goal bound to its rclpy goal handle; `done` resolves with the result."""
 
@@ -127,14 +137,10 @@ class TurtleEndpoints:
         self.color_pub.publish(color)
 
     def _on_cmd_vel(self, msg: Twist) -> None:
-        values = (msg.linear.x, msg.linear.y, msg.angular.z)
-        if not all(math.isfinite(v) for v in values):
-            # Upstream would integrate NaN into the pose for good; refuse the command instead.
-            self._node.get_logger().error(
-                f'Ignoring velocity command for [{self.turtle.name}] with a non-finite value: '
-                f'linear.x={values[0]}, linear.y={values[1]}, angular.z={values[2]}')
+        if self._refused('velocity command', **{
+                'linear.x': msg.linear.x, 'linear.y': msg.linear.y, 'angular.z': msg.angular.z}):
             return
-        self.turtle.command_velocity(*values, now=self._node.now())
+        self.turtle.command_velocity(msg.linear.x, msg.linear.y, msg.angular.z, now=self._node.now())
 
     def _on_set_pen(self, request: SetPen.Request, response: SetPen.Response) -> SetPen.Response:
         self.turtle.set_pen(request.r, request.g, request.b, request.width, request.off)
@@ -142,31 +148,29 @@ class TurtleEndpoints:
 
     def _on_teleport_absolute(self, request: TeleportAbsolute.Request,
                               response: TeleportAbsolute.Response) -> TeleportAbsolute.Response:
-        if self._finite('teleport_absolute', x=request.x, y=request.y, theta=request.theta):
+        if not self._refused('teleport_absolute', x=request.x, y=request.y, theta=request.theta):
             self.turtle.teleport_absolute(request.x, request.y, request.theta)
         return response
 
     def _on_teleport_relative(self, request: TeleportRelative.Request,
                               response: TeleportRelative.Response) -> TeleportRelative.Response:
-        if self._finite('teleport_relative', linear=request.linear, angular=request.angular):
+        if not self._refused('teleport_relative', linear=request.linear, angular=request.angular):
             self.turtle.teleport_relative(request.linear, request.angular)
         return response
 
-    def _finite(self, service: str, **values: float) -> bool:
-        if all(math.isfinite(v) for v in values.values()):
-            return True
-        shown = ', '.join(f'{k}={v}' for k, v in values.items())
-        self._node.get_logger().error(
-            f'Refusing {service} of turtle [{self.turtle.name}]: every value must be finite ({shown})')
-        return False
+    def _refused(self, what: str, **values: float) -> bool:
+        """True (and an error logged) when a request carries NaN or infinity."""
+        shown = non_finite(**values)
+        if shown is not None:
+            self._node.get_logger().error(
+                f'Refusing {what} for turtle [{self.turtle.name}]: every value must be finite ({shown})')
+        return shown is not None
 
     def _on_goal_request(self, goal: RotateAbsolute.Goal) -> GoalResponse:
-        if math.isfinite(goal.theta):
-            return GoalResponse.ACCEPT
-        # Upstream accepts it and then turns forever: a NaN heading is never reached.
-        self._node.get_logger().error(
-            f'Rejecting rotation goal for turtle [{self.turtle.name}]: theta must be finite ({goal.theta})')
-        return GoalResponse.REJECT
+        # Upstream accepts any goal, but a NaN heading is never reached: the turtle would spin on.
+        if self._refused('rotation goal', theta=goal.theta):
+            return GoalResponse.REJECT
+        return GoalResponse.ACCEPT
 
     def _on_goal_accepted(self, handle: ServerGoalHandle) -> None:
         goal = GoalOfHandle(handle)
@@ -270,10 +274,10 @@ class TurtlesimNode(Node):
                 return name
 
     def _on_spawn(self, request: Spawn.Request, response: Spawn.Response) -> Spawn.Response:
-        values = {'x': request.x, 'y': request.y, 'theta': request.theta}
-        if not all(math.isfinite(v) for v in values.values()):
-            shown = ', '.join(f'{k}={v}' for k, v in values.items())
-            self.get_logger().error(f'Refusing to spawn: every value must be finite ({shown})')
+        shown = non_finite(x=request.x, y=request.y, theta=request.theta)
+        if shown is not None:
+            self.get_logger().error(
+                f'Refusing to spawn [{request.name}]: every value must be finite ({shown})')
             response.name = ''
             return response
         response.name = self.spawn_turtle(request.name, request.x, request.y, request.theta)
