@@ -49,6 +49,7 @@ if TYPE_CHECKING:
 TOPIC_QOS = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=7)
 PARAMETER_EVENTS_QOS = QoSProfile(depth=100, reliability=ReliabilityPolicy.BEST_EFFORT)
 IMAGE_PERIOD = 0.1  # s between CompressedImage messages, when they are enabled
+WINDOW_PERIOD = 0.03  # s between window repaints: every other tick, plenty for the eye
 
 
 def background_descriptor(channel: str) -> ParameterDescriptor:
@@ -199,7 +200,8 @@ class TurtlesimNode(Node):
         self._spawn_counter = 0
         self._random = random.Random(time.time())
         self._last_tick: float | None = None
-        self._dirty = True
+        self._stale: set[str] = set()  # frame consumers ('window', 'image') owed a new frame
+        self._last_frame = {'window': -math.inf, 'image': -math.inf}
 
         self.create_subscription(ParameterEvent, '/parameter_events', self._on_parameter_event,
                                  PARAMETER_EVENTS_QOS)
@@ -210,7 +212,6 @@ class TurtlesimNode(Node):
         # Hidden (leading underscore), so `ros2 service list` looks exactly like upstream's.
         self.create_service(Trigger, '~/_save_canvas', self._on_save_canvas)
         self._image_pub = None
-        self._last_image = 0.0
         if publish_image:
             self._image_pub = self.create_publisher(CompressedImage, '~/canvas/compressed', 1)
 
@@ -232,6 +233,8 @@ class TurtlesimNode(Node):
             self.window = CanvasWindow(on_close=self._on_window_closed)
         except tkinter.TclError as error:
             self.get_logger().warning(f'No window ({error}); running headless')
+            return
+        self._mark_changed()
 
     def _on_window_closed(self) -> None:
         # Closing the window ends the process, as upstream's does.
@@ -262,7 +265,7 @@ class TurtlesimNode(Node):
             reason = str(error).splitlines()[0].rstrip(':')  # rclpy adds a caret diagram below
             self.get_logger().error(f'Cannot spawn a turtle named [{name}]: {reason}')
             return ''
-        self._dirty = True
+        self._mark_changed()
         self.get_logger().info(f'Spawning turtle [{name}] at x=[{x:f}], y=[{y:f}], theta=[{theta:f}]')
         return name
 
@@ -289,13 +292,13 @@ class TurtlesimNode(Node):
             self.get_logger().error(f'Tried to kill turtle [{request.name}], which does not exist')
         else:
             endpoints.destroy()
-            self._dirty = True
+            self._mark_changed()
         return response
 
     def _on_clear(self, request: Empty.Request, response: Empty.Response) -> Empty.Response:
         self.get_logger().info('Clearing turtlesim.')
         self.canvas.clear()
-        self._dirty = True
+        self._mark_changed()
         return response
 
     def _on_reset(self, request: Empty.Request, response: Empty.Response) -> Empty.Response:
@@ -306,14 +309,14 @@ class TurtlesimNode(Node):
         self._spawn_counter = 0
         self.spawn_turtle('', world.CENTER, world.CENTER, 0.0)
         self.canvas.clear()
-        self._dirty = True
+        self._mark_changed()
         return response
 
     # --- canvas --------------------------------------------------------------------------
 
     def _on_parameter_event(self, event: ParameterEvent) -> None:
         if event.node == self.get_fully_qualified_name():
-            self._dirty = True
+            self._mark_changed()
 
     def background(self) -> tuple[int, int, int]:
         return tuple(self.get_parameter(f'background_{c}').value for c in 'rgb')  # type: ignore[return-value]
@@ -353,24 +356,34 @@ class TurtlesimNode(Node):
                 PoseMsg(x=pose.x, y=pose.y, theta=pose.theta, linear_velocity=pose.linear_velocity,
                         angular_velocity=pose.angular_velocity),
                 Color(r=result.color[0], g=result.color[1], b=result.color[2]))
-            self._dirty |= result.modified
+            if result.modified:
+                self._mark_changed()
             if debug:
                 turtle = endpoints.turtle
                 self.get_logger().debug(f'[{self.get_namespace()}]: pos_x: {turtle.x:f} '
                                         f'pos_y: {turtle.y_down:f} theta: {turtle.theta:f}')
-        if self._dirty:
+        if self._stale:
             self._publish_frame(now)
 
-    def _publish_frame(self, now: float) -> None:
-        frame_due = self._image_pub is not None and now - self._last_image >= IMAGE_PERIOD
-        if not (self.window is not None or frame_due):
-            return
-        self._dirty = False
-        frame = self.render()
+    def _mark_changed(self) -> None:
+        """Something visible changed: every frame consumer needs a new frame."""
         if self.window is not None:
+            self._stale.add('window')
+        if self._image_pub is not None:
+            self._stale.add('image')
+
+    def _publish_frame(self, now: float) -> None:
+        periods = {'window': WINDOW_PERIOD, 'image': IMAGE_PERIOD}
+        due = {c for c in self._stale if now - self._last_frame[c] >= periods[c] - 0.001}
+        if not due:
+            return
+        frame = self.render()
+        self._stale -= due
+        for consumer in due:
+            self._last_frame[consumer] = now
+        if 'window' in due:
             self.window.show(frame)
-        if frame_due:
-            self._last_image = now
+        if 'image' in due:
             message = CompressedImage(format='png', data=encode_png(frame))
             message.header.stamp = self.get_clock().now().to_msg()
             message.header.frame_id = 'turtlesim'
