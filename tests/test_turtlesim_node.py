@@ -74,6 +74,10 @@ def test_starts_headless_and_publishes_turtle1_pose_and_color(ros):
     assert (pose.linear_velocity, pose.angular_velocity) == (0.0, 0.0)
     color = latest(colors)
     assert (color.r, color.g, color.b) == (255, 255, 255)  # an untouched path layer reads white
+    # Over a trail it reads the pen: a teleport onto itself leaves a dot under the turtle.
+    set_pen(ros, 'turtle1', r=200, g=10, b=20, width=10)
+    ros.probe.call(TeleportRelative, '/turtle1/teleport_relative', TeleportRelative.Request())
+    wait_until(lambda: (colors[-1].r, colors[-1].g, colors[-1].b) == (200, 10, 20), 10, 'pen colour sensed')
     assert 'Spawning turtle [turtle1] at x=[5.544445], y=[5.544445], theta=[0.000000]' in sim.output
     for topic in ('/turtle1/pose', '/turtle1/color_sensor'):
         (info,) = ros.probe.node.get_publishers_info_by_topic(topic)
