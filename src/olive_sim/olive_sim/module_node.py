@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import math
 import re
-import signal
 import threading
 import time
 from collections.abc import Callable
@@ -138,9 +137,7 @@ class OliveModule(Node):
         return periodic
 
     def destroy_node(self) -> None:
-        # Ctrl-C in a terminal running `ros2 launch` reaches each module twice (from the terminal
-        # and forwarded by launch); the second one must not interrupt the clean-up with a traceback.
-        signal.signal(signal.SIGINT, signal.SIG_IGN)
+        # spin_node already ignores a second Ctrl-C during this clean-up.
         for periodic in self._periodic:
             periodic.stop()
         super().destroy_node()
