@@ -415,10 +415,18 @@ def test_daemon_start_stop_status(cli):
     assert lines(ros2(cli, 'daemon', 'status')) == ['The daemon is not running']
 
 
-def test_first_call_without_daemon_starts_one(cli):
+def test_first_call_starts_a_daemon_that_leaves_when_alone(cli):
+    cli.env['ROS2CLI_DAEMON_ALONE_TIMEOUT'] = '3'
+    talker = cli.run(FIXTURES, 'talker')
     assert ros2(cli, 'node', 'list').returncode == 0
     assert eventually(lambda: lines(ros2(cli, 'daemon', 'status')) == ['The daemon is running'], 10)
-    assert ros2(cli, 'node', 'list', '--no-daemon').returncode == 0
+    assert eventually(lambda: lines(ros2(cli, 'node', 'list')) == ['/talker'])
+    talker.stop()
+    assert eventually(lambda: lines(ros2(cli, 'daemon', 'status')) == ['The daemon is not running'], 20)
+    explicit = ros2(cli, 'daemon', 'start')
+    assert lines(explicit) == ['The daemon has been started']
+    time.sleep(5)  # `ros2 daemon start` means: stay, even alone
+    assert lines(ros2(cli, 'daemon', 'status')) == ['The daemon is running']
 
 
 

@@ -111,6 +111,8 @@ def main(argv: list[str] | None = None) -> int | str:
         sys.stdout = None
         return 0
     except RuntimeError as error:
+        if os.environ.get('ROS2CLI_TRACEBACK'):
+            raise
         result = str(error)
     except Exception as error:  # the promise: one line, never a traceback
         if type(error).__name__ == 'ExternalShutdownException':

@@ -2,14 +2,12 @@
 
 import argparse
 import sys
-from collections.abc import Callable
 from typing import Any
 
 from ros2cli.verb import Verb, add_verbs, run_verb
 
 DESCRIPTION = 'Various param related sub-commands'
 SERVICE_TIMEOUT = 5.0
-CALL_ATTEMPTS = 3
 TYPE_NAMES = {0: 'not set', 1: 'boolean', 2: 'integer', 3: 'double', 4: 'string', 5: 'byte array',
               6: 'boolean array', 7: 'integer array', 8: 'double array', 9: 'string array'}
 VALUE_LABELS = {1: 'Boolean value is:', 2: 'Integer value is:', 3: 'Double value is:', 4: 'String value is:',
@@ -34,7 +32,10 @@ def value_text(value: Any) -> str:
 
 
 class ParameterSession:
-    """A DirectNode with a parameter client for one remote node, found through NodeStrategy first."""
+    """Parameter service calls to one node, once NodeStrategy has found it in the graph.
+
+    With a daemon the daemon's warm node makes the calls; otherwise a DirectNode does.
+    """
 
     def __init__(self, args: argparse.Namespace, node_name: str, wait: float | None = None,
                  strategy: Any = None) -> None:
@@ -43,59 +44,59 @@ class ParameterSession:
         self.wait = getattr(args, 'timeout', 1) if wait is None else wait
         self._strategy: Any = strategy
         self._owns_strategy = strategy is None
-        self.client: Any = None
+        self._caller: Any = None
 
     def __enter__(self) -> 'ParameterSession':
-        from rclpy.parameter_client import AsyncParameterClient
-
         from ros2cli.command.node import node_names
         from ros2cli.names import did_you_mean
+        from ros2cli.node.direct import NAMED_LOOKUP_GRACE
         from ros2cli.node.strategy import NodeStrategy
+        from ros2cli.service_call import DaemonServiceCaller, ServiceCaller
 
         if self._strategy is None:
             self._strategy = NodeStrategy(self.args, spin_time=0.0)
         hidden = getattr(self.args, 'include_hidden_nodes', False)
         graph = self._strategy.graph
-        if not self._strategy.wait_until(lambda: self.node_name in node_names(graph, hidden), self.wait):
+        # A DirectNode may need the discovery grace (see NAMED_LOOKUP_GRACE) beyond --timeout.
+        direct = not self._strategy.uses_daemon and self.wait
+        wait = max(self.wait, NAMED_LOOKUP_GRACE) if direct else self.wait
+        if not self._strategy.wait_until(lambda: self.node_name in node_names(graph, hidden), wait):
+            hint = did_you_mean(self.node_name, node_names(graph, hidden))
             self.close()
-            raise RuntimeError(f'Node not found{did_you_mean(self.node_name, node_names(graph, hidden))}')
-        direct = self._strategy.direct
-        self.client = AsyncParameterClient(direct.node, self.node_name)
-        if not direct.wait_until(self.client.services_are_ready, SERVICE_TIMEOUT):
-            self.close()
-            raise RuntimeError(
-                f'Wait for service timed out waiting for parameter services for node {self.node_name}')
+            raise RuntimeError(f'Node not found{hint}')
+        self._caller = (DaemonServiceCaller(SERVICE_TIMEOUT) if self._strategy.uses_daemon
+                        else ServiceCaller(self._strategy.direct.node))
         return self
 
-    def call(self, request: Callable[[], Any], service: str) -> Any:
-        """Send request() and wait for the response; resend if none comes.
-
-        A response can be lost when the server has not yet matched this client's response
-        reader (a fresh client, a loaded machine): the requests here are idempotent, so the
-        remedy is to ask again.
-        """
-        import rclpy
-        node = self._strategy.direct.node
-        future = None
-        for attempt in range(1, CALL_ATTEMPTS + 1):
-            future = request()
-            rclpy.spin_until_future_complete(node, future, timeout_sec=SERVICE_TIMEOUT * attempt / 3)
-            if future.done():
-                break
-        if not future.done() or future.exception() is not None:
-            problem = future.exception() if future.done() else 'no response'
+    def call(self, service: str, srv_class: Any, request: Any) -> Any:
+        from ros2cli.service_call import ServiceCallError, ServiceUnavailable
+        try:
+            return self._caller.call(f'{self.node_name}/{service}', srv_class, request, SERVICE_TIMEOUT)
+        except ServiceUnavailable:
+            raise RuntimeError('Wait for service timed out waiting for parameter services for node '
+                               f'{self.node_name}') from None
+        except ServiceCallError as error:
             raise RuntimeError(f"Exception while calling {service} service of node '{self.node_name}': "
-                               f'{problem}')
-        return future.result()
+                               f'{error}') from None
 
-    def names(self) -> list[str]:
-        return sorted(self.call(self.client.list_parameters, 'list_parameters').result.names)
+    def names(self, prefixes: list[str] | None = None) -> list[str]:
+        from rcl_interfaces.srv import ListParameters
+        request = ListParameters.Request(prefixes=prefixes or [], depth=0)
+        return sorted(self.call('list_parameters', ListParameters, request).result.names)
 
     def values(self, names: list[str]) -> list[Any]:
-        return list(self.call(lambda: self.client.get_parameters(names), 'get_parameters').values)
+        from rcl_interfaces.srv import GetParameters
+        return list(self.call('get_parameters', GetParameters, GetParameters.Request(names=names)).values)
 
     def set(self, parameters: list[Any]) -> list[Any]:
-        return list(self.call(lambda: self.client.set_parameters(parameters), 'set_parameters').results)
+        from rcl_interfaces.srv import SetParameters
+        request = SetParameters.Request(parameters=parameters)
+        return list(self.call('set_parameters', SetParameters, request).results)
+
+    def describe(self, name: str) -> list[Any]:
+        from rcl_interfaces.srv import DescribeParameters
+        request = DescribeParameters.Request(names=[name])
+        return list(self.call('describe_parameters', DescribeParameters, request).descriptors)
 
     def unknown(self, name: str) -> str:
         """' (did you mean ...)' for an undeclared parameter name."""
@@ -159,9 +160,7 @@ class ListVerb(Verb):
     def _list_node(args: argparse.Namespace, strategy: Any, target: str, pattern: Any) -> None:
         try:
             with ParameterSession(args, target, 1.0 if args.node_name else 0.0, strategy) as session:
-                prefixes = args.param_prefixes or None
-                response = session.call(lambda: session.client.list_parameters(prefixes), 'list_parameters')
-                names = sorted(n for n in response.result.names if not pattern or pattern.match(n))
+                names = [n for n in session.names(args.param_prefixes) if not pattern or pattern.match(n)]
                 types = {}
                 if args.param_type and names:
                     types = dict(zip(names, (v.type for v in session.values(names)), strict=True))
@@ -265,10 +264,9 @@ class DescribeVerb(Verb):
             # One request per name: a node answers nothing at all when any name is undeclared.
             descriptors, hints = [], {}
             for name in args.parameter_names:
-                found = session.call(lambda name=name: session.client.describe_parameters([name]),
-                                     'describe_parameters')
-                descriptors += list(found.descriptors)
-                if not found.descriptors:
+                found = session.describe(name)
+                descriptors += found
+                if not found:
                     hints[name] = session.unknown(name)
         for descriptor in descriptors:
             print(f'Parameter name: {descriptor.name}')

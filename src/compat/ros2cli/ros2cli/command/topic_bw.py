@@ -6,7 +6,7 @@ from collections import deque
 from typing import Any
 
 from ros2cli.command.topic import _topic_argument, topic_types
-from ros2cli.command.topic_hz import positive_int
+from ros2cli.command.topic_hz import positive_int, receive_profile
 from ros2cli.verb import Verb
 
 
@@ -49,7 +49,6 @@ class BwVerb(Verb):
 
     def main(self, args: argparse.Namespace) -> int | str:
         from rclpy.executors import SingleThreadedExecutor
-        from rclpy.qos import qos_profile_sensor_data
 
         from ros2cli.interfaces import InvalidType, import_type
         from ros2cli.names import expand_topic_name
@@ -72,8 +71,7 @@ class BwVerb(Verb):
             def on_message(data: Any) -> None:
                 statistics.add(time.monotonic(), len(data))
 
-            direct.node.create_subscription(message_class, topic, on_message, qos_profile_sensor_data,
-                                            raw=True)
+            direct.node.create_subscription(message_class, topic, on_message, receive_profile(), raw=True)
             print(f'Subscribed to [{topic}]')
             executor = SingleThreadedExecutor(context=direct.node.context)
             executor.add_node(direct.node)

@@ -7,6 +7,8 @@ from typing import Any
 from ros2cli.command.topic import _topic_argument, _type_argument, topic_types
 from ros2cli.verb import Verb
 
+RECEIVE_DEPTH = 1000
+
 RELIABLE_FALLBACK = ('Some, but not all, publishers are offering QoSReliabilityPolicy.RELIABLE. Falling back '
                      'to QoSReliabilityPolicy.BEST_EFFORT as it will connect to all publishers')
 DURABLE_FALLBACK = ('Some, but not all, publishers are offering QoSDurabilityPolicy.TRANSIENT_LOCAL. Falling '
@@ -47,7 +49,12 @@ def choose_qos(args: argparse.Namespace, publishers: list[dict[str, Any]]) -> An
     from ros2cli.qos import has_overrides, profile_from_args
 
     profile = profile_from_args(args)
-    if has_overrides(args) or not publishers:
+    if has_overrides(args):
+        return profile
+    # A deeper queue than the preset's 5: a burst that arrives while a message is being printed
+    # waits instead of being dropped (the preset's purpose is its policies, not its depth).
+    profile.depth = max(profile.depth, RECEIVE_DEPTH)
+    if not publishers:
         return profile
     reliable = sum(p['reliability'] == 'RELIABLE' for p in publishers)
     durable = sum(p['durability'] == 'TRANSIENT_LOCAL' for p in publishers)

@@ -55,6 +55,16 @@ class RateStatistics:
                 f'max: {max(self.intervals):.3f}s std dev: {std_dev:.5f}s window: {count}')
 
 
+def receive_profile() -> Any:
+    """sensor_data's policies (best effort: hears every publisher) with room for bursts."""
+    from rclpy.qos import QoSProfile, qos_profile_sensor_data
+
+    from ros2cli.command.topic_echo import RECEIVE_DEPTH
+    return QoSProfile(history=qos_profile_sensor_data.history, depth=RECEIVE_DEPTH,
+                      reliability=qos_profile_sensor_data.reliability,
+                      durability=qos_profile_sensor_data.durability)
+
+
 class HzVerb(Verb):
     DESCRIPTION = 'Print the average publishing rate to screen'
 
@@ -73,7 +83,6 @@ class HzVerb(Verb):
     def main(self, args: argparse.Namespace) -> int | str:
         from rclpy.clock import Clock, ClockType
         from rclpy.executors import SingleThreadedExecutor
-        from rclpy.qos import qos_profile_sensor_data
 
         from ros2cli.interfaces import InvalidType, import_type
         from ros2cli.names import expand_topic_name
@@ -110,8 +119,7 @@ class HzVerb(Verb):
                 elif statistics.due(now):
                     print(statistics.report())
 
-            direct.node.create_subscription(message_class, topic, on_message, qos_profile_sensor_data,
-                                            raw=raw)
+            direct.node.create_subscription(message_class, topic, on_message, receive_profile(), raw=raw)
             executor = SingleThreadedExecutor(context=direct.node.context)
             executor.add_node(direct.node)
             while True:

@@ -46,8 +46,11 @@ def is_daemon_running(timeout: float = 5.0) -> bool:
         return False
 
 
-def spawn_daemon() -> bool:
+def spawn_daemon(on_demand: bool = False) -> bool:
     """Start the daemon in the background; False if one already holds the port.
+
+    on_demand: started by a verb rather than `ros2 daemon start`; such a daemon also exits
+    once it has been alone in its domain for a while (see server.ALONE_TIMEOUT).
 
     The listening socket is bound here and handed to the child, so two callers racing to start
     a daemon cannot both succeed, and clients may connect before the child serves.
@@ -62,7 +65,7 @@ def spawn_daemon() -> bool:
         listener.listen(32)
         subprocess.Popen(
             [sys.executable, '-m', 'ros2cli.daemon.server', '--ros-domain-id', str(domain_id()),
-             '--fd', str(listener.fileno())],
+             '--fd', str(listener.fileno()), *(['--exit-when-alone'] if on_demand else [])],
             pass_fds=[listener.fileno()], start_new_session=True, stdin=subprocess.DEVNULL,
             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=dict(os.environ))
         return True

@@ -13,6 +13,11 @@ from xmlrpc.server import SimpleXMLRPCRequestHandler, SimpleXMLRPCServer
 from ros2cli.daemon import RPC_PATH, daemon_port
 
 IDLE_TIMEOUT = 2 * 60 * 60.0  # seconds without a request, as upstream
+# A daemon that a verb started on its own (not `ros2 daemon start`) also leaves once it has been
+# the only node in its domain this long: the nodes it served are gone (a test ended, the user
+# stopped everything), and a forgotten daemon per domain would pile up on the machine.
+# ROS2CLI_DAEMON_ALONE_TIMEOUT (seconds) overrides it.
+ALONE_TIMEOUT = 60.0
 
 
 class _RequestHandler(SimpleXMLRPCRequestHandler):
@@ -26,11 +31,12 @@ class _Server(SimpleXMLRPCServer):
         self.timed_out = True
 
 
-def serve(domain: int, listener: socket.socket, idle_timeout: float) -> None:
+def serve(domain: int, listener: socket.socket, idle_timeout: float, alone_timeout: float | None) -> None:
     import rclpy
     from rclpy.node import Node
 
     from ros2cli.node.graph import GraphQueries
+    from ros2cli.service_call import ServiceCaller, serve_call
 
     server = _Server(
         ('127.0.0.1', daemon_port(domain)), requestHandler=_RequestHandler, logRequests=False,
@@ -47,15 +53,25 @@ def serve(domain: int, listener: socket.socket, idle_timeout: float) -> None:
     server.register_function(node.get_name, 'get_name')
     server.register_function(node.get_namespace, 'get_namespace')
     server.register_function(lambda: domain, 'get_domain_id')
+    caller = ServiceCaller(node)
+    server.register_function(
+        lambda service, type_name, data, timeout: serve_call(caller, service, type_name, data, timeout),
+        'call_service')
     server.register_function(lambda: stopping.append(True) or True, 'system.shutdown')
 
-    last_request = time.monotonic()
+    last_request = last_company = time.monotonic()
     try:
         while not stopping and time.monotonic() - last_request < idle_timeout:
             server.timed_out = False
             server.handle_request()
+            now = time.monotonic()
             if not server.timed_out:
-                last_request = time.monotonic()
+                last_request = now
+            if alone_timeout is not None:
+                if any(not name.startswith('_ros2cli') for name in node.get_node_names()):
+                    last_company = now
+                elif now - last_company > alone_timeout:
+                    break
     finally:
         server.server_close()
         node.destroy_node()
@@ -67,11 +83,15 @@ def main() -> None:
     parser.add_argument('--ros-domain-id', type=int, required=True)
     parser.add_argument('--fd', type=int, required=True, help='the bound, listening socket')
     parser.add_argument('--idle-timeout', type=float, default=IDLE_TIMEOUT)
+    parser.add_argument('--exit-when-alone', action='store_true',
+                        help=f'also exit after {ALONE_TIMEOUT:.0f} s as the only node in the domain')
     args = parser.parse_args()
     os.environ['ROS_DOMAIN_ID'] = str(args.ros_domain_id)
     listener = socket.socket(fileno=args.fd)
     try:
-        serve(args.ros_domain_id, listener, args.idle_timeout)
+        alone_timeout = float(os.environ.get('ROS2CLI_DAEMON_ALONE_TIMEOUT', ALONE_TIMEOUT)) \
+            if args.exit_when_alone else None
+        serve(args.ros_domain_id, listener, args.idle_timeout, alone_timeout)
     except KeyboardInterrupt:
         pass
 

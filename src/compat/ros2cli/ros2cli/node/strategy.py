@@ -27,7 +27,7 @@ class NodeStrategy:
             if client.is_daemon_running():
                 self.graph = client.DaemonGraph()
             else:
-                client.spawn_daemon()
+                client.spawn_daemon(on_demand=True)
         if self.graph is None:
             self.graph = self.direct.graph
 

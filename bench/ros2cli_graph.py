@@ -1,0 +1,171 @@
+"""`ros2` CLI latency and throughput against one graph of 20 nodes, in a private ROS domain.
+
+Measures, in one run:
+- wall time of `ros2 topic list`, `ros2 node list`, `ros2 param get` cold (--no-daemon) and warm
+  (daemon running), and whether each listing saw all 20 nodes / topics;
+  targets: lists complete in < 0.8 s cold and < 0.3 s warm;
+- `ros2 topic hz` on a 100 Hz publisher (target 100 +- 1 Hz);
+- `ros2 topic pub -r 100` as measured by a subscriber here (target 100 +- 1 Hz);
+- `ros2 topic echo` of a 1 kHz std_msgs/Int32 stream: messages lost (target 0).
+
+The baseline, run in the same invocation, is a bare rclpy script doing what a cold CLI call
+must do: start Python, create a node, wait 0.5 s for discovery, list the nodes. Ratios are
+ours / baseline.
+"""
+
+from __future__ import annotations
+
+import argparse
+import re
+import statistics
+import subprocess
+import sys
+import time
+
+from owl_common.processes import RosSandbox
+
+NODES = 20
+FIXTURES = 'ros2cli_test_fixtures'
+BASELINE = """
+import rclpy
+from rclpy.node import Node
+rclpy.init()
+node = Node('_baseline')
+end = node.get_clock().now().nanoseconds + 500_000_000
+while node.get_clock().now().nanoseconds < end:
+    rclpy.spin_once(node, timeout_sec=0.05)
+print('\\n'.join(sorted(node.get_node_names())))
+"""
+
+
+def timed(sandbox: RosSandbox, argv: list[str]) -> tuple[float, str]:
+    started = time.perf_counter()
+    result = subprocess.run(argv, env=sandbox.env, capture_output=True, text=True, timeout=60, check=False)
+    return time.perf_counter() - started, result.stdout
+
+
+def sample(sandbox: RosSandbox, argv: list[str], runs: int, complete: re.Pattern[str]) -> tuple[float, int]:
+    """Median wall time over runs, and how many runs saw all NODES entities."""
+    times, full = [], 0
+    for _ in range(runs):
+        seconds, output = timed(sandbox, argv)
+        times.append(seconds)
+        full += len(complete.findall(output)) >= NODES if complete.pattern else 1
+    return statistics.median(times), full
+
+
+def wait_for_graph(sandbox: RosSandbox) -> None:
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline:
+        _, output = timed(sandbox, ['ros2', 'node', 'list'])
+        if len(re.findall(r'/graph_node_\d+', output)) == NODES:
+            return
+        time.sleep(0.5)
+    raise SystemExit('the 20-node graph did not come up within 60 s')
+
+
+def latency(sandbox: RosSandbox, runs: int) -> None:
+    node_pattern = re.compile(r'^/graph_node_\d+$', re.M)
+    topic_pattern = re.compile(r'^/graph_topic_\d+$', re.M)
+    verbs = [
+        ('topic list', ['ros2', 'topic', 'list'], topic_pattern),
+        ('node list', ['ros2', 'node', 'list'], node_pattern),
+        ('param get', ['ros2', 'param', 'get', '/graph_node_07', 'index'], re.compile('')),
+    ]
+    baseline, baseline_full = sample(sandbox, [sys.executable, '-c', BASELINE], runs,
+                                     re.compile(r'^graph_node_\d+$', re.M))
+    print(f'baseline (bare rclpy node, 0.5 s discovery): {baseline:.3f} s, all {NODES} nodes seen in '
+          f'{baseline_full}/{runs} runs')
+    subprocess.run(['ros2', 'daemon', 'stop'], env=sandbox.env, capture_output=True, check=False)
+    print(f"{'verb':<12} {'mode':<5} {'median s':>9} {'target':>7} {'complete':>9} {'x baseline':>11}")
+    for mode, extra, target in (('cold', ['--no-daemon'], 0.8), ('warm', [], 0.3)):
+        if mode == 'warm':
+            subprocess.run(['ros2', 'daemon', 'start'], env=sandbox.env, capture_output=True, check=False)
+            wait_for_graph(sandbox)
+        for name, argv, complete in verbs:
+            seconds, full = sample(sandbox, argv + extra, runs, complete)
+            verdict = 'ok' if seconds < target else 'MISS'
+            print(f'{name:<12} {mode:<5} {seconds:>9.3f} {target:>6.1f}s {full:>4}/{runs:<4} '
+                  f'{seconds / baseline:>10.2f}  {verdict}')
+
+
+def hz(sandbox: RosSandbox, seconds: float) -> None:
+    counter = sandbox.run(FIXTURES, 'counter', '--ros-args', '-p', 'rate:=100.0', '-r', 'count:=/hz_count')
+    process = sandbox.command(['ros2', 'topic', 'hz', '/hz_count'])
+    time.sleep(seconds)
+    process.stop()
+    counter.stop()
+    rates = [float(m) for m in re.findall(r'average rate: (\d+\.\d+)', process.output)]
+    if not rates:
+        print('topic hz: no report')
+        return
+    print(f'topic hz on a 100 Hz publisher: {rates[-1]:.3f} Hz (target 100 +- 1) '
+          f"{'ok' if abs(rates[-1] - 100) <= 1 else 'MISS'}")
+
+
+def pub_rate(sandbox: RosSandbox, seconds: float) -> None:
+    import rclpy
+    from rclpy.context import Context
+    from rclpy.executors import SingleThreadedExecutor
+    from rclpy.node import Node
+    from std_msgs.msg import Int32
+
+    context = Context()
+    rclpy.init(context=context, domain_id=sandbox.domain_id)
+    node = Node('bench_subscriber', context=context)
+    arrivals: list[float] = []
+    node.create_subscription(Int32, '/pub_rate', lambda _m: arrivals.append(time.monotonic()), 100)
+    executor = SingleThreadedExecutor(context=context)
+    executor.add_node(node)
+    publisher = sandbox.command(['ros2', 'topic', 'pub', '-p', '0', '-r', '100', '/pub_rate',
+                                 'std_msgs/msg/Int32', '{data: 1}'])
+    deadline = time.monotonic() + seconds + 3.0
+    while time.monotonic() < deadline:
+        executor.spin_once(timeout_sec=0.05)
+    publisher.stop()
+    node.destroy_node()
+    rclpy.try_shutdown(context=context)
+    window = [t for t in arrivals if t >= arrivals[0] + 1.0] if arrivals else []
+    if len(window) < 2:
+        print('topic pub -r 100: nothing received')
+        return
+    rate = (len(window) - 1) / (window[-1] - window[0])
+    print(f'topic pub -r 100 measured by a subscriber: {rate:.3f} Hz (target 100 +- 1) '
+          f"{'ok' if abs(rate - 100) <= 1 else 'MISS'}")
+
+
+def echo_loss(sandbox: RosSandbox, count: int) -> None:
+    echo = sandbox.command(['ros2', 'topic', 'echo', '--field', 'data', '/echo_count', 'std_msgs/msg/Int32'])
+    counter = sandbox.run(FIXTURES, 'counter', '--ros-args', '-p', 'rate:=1000.0', '-p', f'limit:={count}',
+                          '-p', 'wait_for:=1', '-r', 'count:=/echo_count')
+    counter.wait_for(f'published {count} messages', timeout=60)
+    time.sleep(1.0)
+    echo.stop()
+    counter.stop()
+    received = [int(line) for line in echo.lines if line.isdigit()]
+    lost = count - len(set(received))
+    print(f'topic echo of a 1 kHz Int32 stream: {len(set(received))}/{count} received, {lost} lost '
+          f"(target 0) {'ok' if lost == 0 else 'MISS'}")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument('--runs', type=int, default=7, help='runs per latency measurement')
+    parser.add_argument('--seconds', type=float, default=8.0, help='length of the hz / pub measurements')
+    parser.add_argument('--messages', type=int, default=5000, help='messages of the echo loss test')
+    args = parser.parse_args()
+    with RosSandbox() as sandbox:
+        graph = sandbox.run(FIXTURES, 'graph_nodes', str(NODES))
+        graph.wait_for(f'{NODES} nodes up', timeout=60)
+        try:
+            wait_for_graph(sandbox)
+            latency(sandbox, args.runs)
+            hz(sandbox, args.seconds)
+            pub_rate(sandbox, args.seconds)
+            echo_loss(sandbox, args.messages)
+        finally:
+            subprocess.run(['ros2', 'daemon', 'stop'], env=sandbox.env, capture_output=True, check=False)
+
+
+if __name__ == '__main__':
+    main()

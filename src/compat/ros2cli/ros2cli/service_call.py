@@ -1,0 +1,99 @@
+"""One service call with patience: wait for the server, send, resend when the answer is lost.
+
+A response can be lost when the server has not yet matched a fresh client's response reader
+(a new participant, a loaded machine). The callers here send idempotent requests (parameter
+services), so the remedy is to ask again. Used by `ros2 param` directly and by the daemon,
+which makes the calls for a verb from its warm node.
+"""
+
+from typing import Any
+
+CALL_ATTEMPTS = 3
+
+
+class ServiceCallError(RuntimeError):
+    """A call that did not produce a response; str() says why."""
+
+
+class ServiceUnavailable(ServiceCallError):
+    pass
+
+
+class NoResponse(ServiceCallError):
+    pass
+
+
+class ServiceCaller:
+    """Calls services from one rclpy node, keeping a client per service for later calls."""
+
+    def __init__(self, node: Any) -> None:
+        self._node = node
+        self._clients: dict[tuple[str, Any], Any] = {}
+
+    def call(self, service: str, srv_class: Any, request: Any, timeout: float) -> Any:
+        import rclpy
+
+        client = self._clients.get((service, srv_class))
+        if client is None:
+            client = self._clients[(service, srv_class)] = self._node.create_client(srv_class, service)
+        if not client.wait_for_service(timeout_sec=timeout):
+            raise ServiceUnavailable(f'service {service} is not available')
+        future = None
+        for attempt in range(1, CALL_ATTEMPTS + 1):
+            future = client.call_async(request)
+            wait = timeout * attempt / CALL_ATTEMPTS
+            rclpy.spin_until_future_complete(self._node, future, timeout_sec=wait)
+            if future.done():
+                break
+            client.remove_pending_request(future)
+        if not future.done():
+            raise NoResponse(f'no response from {service}')
+        if future.exception() is not None:
+            raise ServiceCallError(f'{future.exception()!r}')
+        return future.result()
+
+
+# XML-RPC fault codes of the daemon's call_service
+FAULTS: dict[int, type[ServiceCallError]] = {1: ServiceUnavailable, 2: NoResponse, 3: ServiceCallError}
+
+
+class DaemonServiceCaller:
+    """The same calls, made by the daemon's node (already discovered by everyone)."""
+
+    def __init__(self, timeout: float) -> None:
+        from ros2cli.daemon.client import DaemonGraph
+        self._daemon = DaemonGraph(timeout=timeout * 2 + 5.0)
+
+    def call(self, service: str, srv_class: Any, request: Any, timeout: float) -> Any:
+        import xmlrpc.client
+
+        from rclpy.serialization import deserialize_message, serialize_message
+
+        from ros2cli.interfaces import type_name_of
+
+        try:
+            data = self._daemon.call_service(service, type_name_of(srv_class),
+                                             xmlrpc.client.Binary(serialize_message(request)), timeout)
+        except xmlrpc.client.Fault as fault:
+            raise FAULTS.get(fault.faultCode, ServiceCallError)(fault.faultString) from None
+        return deserialize_message(data.data, srv_class.Response)
+
+
+def serve_call(caller: ServiceCaller, service: str, type_name: str, data: Any, timeout: float) -> Any:
+    """The daemon's side of DaemonServiceCaller.call: serialized request in, serialized response out."""
+    import xmlrpc.client
+
+    from rclpy.serialization import deserialize_message, serialize_message
+
+    from ros2cli.interfaces import InvalidType, import_type
+
+    try:
+        srv_class = import_type(type_name, 'srv')
+    except InvalidType as error:
+        raise xmlrpc.client.Fault(3, str(error)) from None
+    try:
+        response = caller.call(service, srv_class, deserialize_message(data.data, srv_class.Request), timeout)
+    except ServiceCallError as error:
+        code = next(c for c, kind in FAULTS.items() if isinstance(error, kind))
+        raise xmlrpc.client.Fault(code, str(error)) from None
+    return xmlrpc.client.Binary(serialize_message(response))
