@@ -23,5 +23,7 @@ def declare_parameter_events_qos(node: Node) -> None:
         'reliability': profile.reliability.name.lower(),
     }
     for policy, value in values.items():
+        # A --params-file (e.g. a `ros2 param dump`) cannot change them: they report, not configure.
         node.declare_parameter(PREFIX + policy, value, ParameterDescriptor(
-            description=f'{policy} of the /parameter_events publisher', read_only=True))
+            description=f'{policy} of the /parameter_events publisher', read_only=True),
+            ignore_override=True)
