@@ -150,11 +150,12 @@ def test_keys_publish_twists_and_goals_and_q_restores_the_terminal(ros, terminal
     assert 'Traceback' not in teleop.output
 
 
-def test_ctrl_c_exits_cleanly_and_restores_the_terminal(ros, terminal):
+@pytest.mark.parametrize('sig', [signal.SIGINT, signal.SIGTERM])
+def test_ctrl_c_or_term_exits_cleanly_and_restores_the_terminal(ros, terminal, sig):
     teleop = terminal()
     raw = termios.tcgetattr(teleop.slave)
     assert not raw[3] & termios.ICANON and not raw[3] & termios.ECHO
-    os.killpg(teleop.popen.pid, signal.SIGINT)
+    os.killpg(teleop.popen.pid, sig)
     assert teleop.popen.wait(15) == 0
     assert termios.tcgetattr(teleop.slave) == teleop.mode_before
     assert 'Traceback' not in teleop.output
