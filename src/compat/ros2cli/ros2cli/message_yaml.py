@@ -90,21 +90,15 @@ def _array_placeholder(slot_type: Any, length: int) -> str:
     return f'<sequence type: {element}, length: {length}>'
 
 
-def _truncated(items: list[Any], truncate_length: int | None) -> list[Any]:
-    if truncate_length is not None and len(items) > truncate_length:
-        return [*items[:truncate_length], '...']
-    return items
-
-
 def _plain_value(value: Any, slot_type: Any, truncate_length: int | None, no_arr: bool,
                  no_str: bool) -> Any:
     if isinstance(slot_type, AbstractNestedType):
         if no_arr:
             return _array_placeholder(slot_type, len(value))
         items = value.tolist() if hasattr(value, 'tolist') else list(value)
-        element_type = slot_type.value_type
-        return [_plain_value(item, element_type, truncate_length, no_arr, no_str)
-                for item in _truncated(items, truncate_length)]
+        shown = [_plain_value(item, slot_type.value_type, truncate_length, no_arr, no_str)
+                 for item in items[:truncate_length]]
+        return [*shown, '...'] if truncate_length is not None and len(items) > truncate_length else shown
     if is_message(value):
         return message_to_plain(value, truncate_length, no_arr, no_str)
     if isinstance(value, bytes):
@@ -148,10 +142,9 @@ def _csv_values(value: Any, slot_type: Any, truncate_length: int | None, no_arr:
             return [_array_placeholder(slot_type, len(value))]
         items = value.tolist() if hasattr(value, 'tolist') else list(value)
         values: list[str] = []
-        for item in _truncated(items, truncate_length):
-            values += ['...'] if item == '...' else _csv_values(
-                item, slot_type.value_type, truncate_length, no_arr, no_str)
-        return values
+        for item in items[:truncate_length]:
+            values += _csv_values(item, slot_type.value_type, truncate_length, no_arr, no_str)
+        return [*values, '...'] if truncate_length is not None and len(items) > truncate_length else values
     if is_message(value):
         return message_to_csv(value, truncate_length, no_arr, no_str).split(',') \
             if fields_of(value) else []

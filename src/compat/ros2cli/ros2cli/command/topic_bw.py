@@ -26,12 +26,13 @@ class BandwidthStatistics:
     def add(self, arrival: float, size: int) -> None:
         self.samples.append((arrival, size))
 
-    def report(self, now: float) -> str | None:
+    def report(self) -> str | None:
         if len(self.samples) < 2:
             return None
         sizes = [size for _, size in self.samples]
-        elapsed = now - self.samples[0][0]
-        rate = sum(sizes) / elapsed if elapsed > 0 else 0.0
+        # The bytes that arrived after the first sample, over the time they took.
+        elapsed = self.samples[-1][0] - self.samples[0][0]
+        rate = sum(sizes[1:]) / elapsed if elapsed > 0 else 0.0
         mean = size_text(sum(sizes) / len(sizes))
         return (f'{size_text(rate)}/s from {len(sizes)} messages\n\tMessage size mean: {mean} '
                 f'min: {size_text(min(sizes))} max: {size_text(max(sizes))}')
@@ -80,6 +81,6 @@ class BwVerb(Verb):
                 executor.spin_once(timeout_sec=max(0.0, next_report - time.monotonic()))
                 if time.monotonic() >= next_report:
                     next_report += 1.0
-                    text = statistics.report(time.monotonic())
+                    text = statistics.report()
                     if text:
                         print(text)

@@ -1,0 +1,92 @@
+"""Node-free logic of the verbs: names, interface definitions, rate statistics, parameter files."""
+
+import pytest
+from ros2cli.command.interface import nested_type, render_definition, split_comment
+from ros2cli.command.param import flatten, nested_parameters, parameters_for_node
+from ros2cli.command.topic_bw import BandwidthStatistics, size_text
+from ros2cli.command.topic_hz import RateStatistics
+from ros2cli.interfaces import InvalidType, canonical_type, import_type, split_type
+from ros2cli.names import did_you_mean, full_node_name, is_hidden_name, is_hidden_node, split_node_name
+
+
+def test_names():
+    assert full_node_name('/', 'talker') == '/talker'
+    assert full_node_name('/ns', 'talker') == '/ns/talker'
+    assert split_node_name('ns/talker') == ('/ns', 'talker')
+    assert split_node_name('/talker') == ('/', 'talker')
+    assert is_hidden_node('/ns/_hidden') and not is_hidden_node('/_ns/visible')
+    assert is_hidden_name('/fibonacci/_action/status') and not is_hidden_name('/chatter')
+    assert did_you_mean('/chatt', ['/chatter', '/rosout']) == " (did you mean '/chatter'?)"
+    assert did_you_mean('/xyz', ['/chatter']) == ''
+
+
+def test_type_names():
+    assert split_type('std_msgs/String', 'msg') == ('std_msgs', 'msg', 'String')
+    assert canonical_type('std_srvs/SetBool', 'srv') == 'std_srvs/srv/SetBool'
+    with pytest.raises(InvalidType, match="'std_msgs/srv/String' is not a message type name"):
+        split_type('std_msgs/srv/String', 'msg')
+    with pytest.raises(InvalidType, match="package 'std_msgs' has no message 'Strin' "
+                                          r"\(did you mean 'String'\?\)"):
+        import_type('std_msgs/msg/Strin', 'msg')
+    with pytest.raises(InvalidType, match=r"it is 'std_srvs/srv/SetBool'"):
+        import_type('std_srvs/msg/SetBool', 'msg')
+
+
+def test_interface_lines():
+    assert split_comment('string a "#x" # note') == ('string a "#x"', '# note')
+    assert nested_type('Vector3  linear', 'geometry_msgs') == ('geometry_msgs', 'Vector3')
+    assert nested_type('std_msgs/Header header', 'sensor_msgs') == ('std_msgs', 'Header')
+    assert nested_type('geometry_msgs/Pose[] poses', 'x') == ('geometry_msgs', 'Pose')
+    assert nested_type('string<=5 name', 'x') is None
+    assert nested_type('bool FLAG=true', 'x') is None
+
+
+def test_render_expands_nested_types_with_tabs():
+    rendered = render_definition(['# top', 'Vector3 v # why', ''], 'geometry_msgs', 'default')
+    assert rendered == ['# top', 'Vector3 v # why', '\tfloat64 x', '\tfloat64 y', '\tfloat64 z', '']
+    assert render_definition(['# top', 'Vector3 v # why'], 'geometry_msgs', 'none') == [
+        'Vector3 v', '\tfloat64 x', '\tfloat64 y', '\tfloat64 z']
+
+
+def test_rate_statistics():
+    statistics = RateStatistics(window=100)
+    reports = []
+    for index in range(31):
+        statistics.add(index * 0.1)
+        if statistics.due(index * 0.1):
+            reports.append(statistics.report())
+    assert len(reports) == 3
+    assert reports[-1].startswith('average rate: 10.000\n\tmin: 0.100s max: 0.100s std dev: 0.00000s '
+                                  'window: 30')
+    assert not statistics.add(0.0)  # the clock went back: counters reset
+    assert not statistics.intervals
+
+
+def test_bandwidth_statistics():
+    statistics = BandwidthStatistics(window=10)
+    for index in range(11):
+        statistics.add(index * 0.1, 2000)
+    assert statistics.report() == ('20.00 KB/s from 10 messages\n\tMessage size mean: 2.00 KB '
+                                      'min: 2.00 KB max: 2.00 KB')
+    assert size_text(12) == '12 B' and size_text(3_500_000) == '3.50 MB'
+
+
+def test_parameter_file_shapes():
+    assert flatten({'a': {'b': 1, 'c': {'d': 'x'}}}) == {'a.b': 1, 'a.c.d': 'x'}
+    document = {'/**': {'ros__parameters': {'x': 1, 'y': 'w'}},
+                '/node': {'ros__parameters': {'y': 'n', 'z': {'k': [1.5, 2.5]}}},
+                '/other': {'ros__parameters': {'x': 9}}}
+    parameters = {p.name: p for p in parameters_for_node(document, '/node', True)}
+    assert sorted(parameters) == ['x', 'y', 'z.k']
+    assert parameters['y'].value.string_value == 'n'
+    assert list(parameters['z.k'].value.double_array_value) == [1.5, 2.5]
+    assert [p.name for p in parameters_for_node({'node': {'ros__parameters': {'a': True}}}, '/node', False)] \
+        == ['a']
+    with pytest.raises(RuntimeError, match="nothing for /node \\(did you mean '/nod'\\?\\); it has: /nod"):
+        parameters_for_node({'/nod': {'ros__parameters': {}}}, '/node', True)
+
+
+def test_nested_parameters_for_dump():
+    from rcl_interfaces.msg import ParameterValue
+    values = [ParameterValue(type=2, integer_value=1), ParameterValue(type=7, integer_array_value=[1, 2])]
+    assert nested_parameters(['a.b', 'c'], values) == {'a': {'b': 1}, 'c': [1, 2]}
