@@ -139,6 +139,7 @@ def test_keys_publish_twists_and_goals_and_q_restores_the_terminal(ros, terminal
     teleop.type('r')  # rotate to 1.5708
     sim.wait_for(r'Rotation goal completed successfully', timeout=15)
     wait_until(lambda: poses[-1].angular_velocity == 0.0, 10, 'turtle1 done turning')
+    assert abs(poses[-1].theta - 1.5708) < 0.02  # r is the key straight above f
     teleop.type('d')  # a long turn; f cancels it once it is under way (teleop holds its handle)
     wait_until(lambda: poses[-1].angular_velocity == 1.0, 10, 'turtle1 turning towards d')
     teleop.type('f')
