@@ -231,6 +231,29 @@ def test_topic_echo_formats(graph):
     assert int(even.stdout.split(': ')[2].split("'")[0]) % 2 == 0
 
 
+def test_topic_echo_raw_info_timeout(graph):
+    raw = ros2(graph, 'topic', 'echo', '/chatter', '--once', '--raw')
+    assert re.fullmatch(r"b'\\x00\\x01\\x00\\x00.*Hello World: \d+\\x00.*'\n---\n", raw.stdout), raw.stdout
+    info = ros2(graph, 'topic', 'echo', '/chatter', '--once', '-i')
+    assert re.match(r'publication_sequence_number: \d+\nreceived_timestamp: \d+\n'
+                    r'reception_sequence_number: (\d+|null)\nsource_timestamp: \d+\n---\ndata: ',
+                    info.stdout), info.stdout
+    quiet = ros2(graph, 'topic', 'echo', '--timeout', '1', '/quiet', 'std_msgs/msg/String')
+    assert quiet.returncode == 0 and quiet.stdout == ''
+
+
+def test_topic_echo_no_arr_and_lossless_burst(cli):
+    echo = cli.command(['ros2', 'topic', 'echo', '--no-arr', '/imu', 'sensor_msgs/msg/Imu'])
+    counts = cli.command(['ros2', 'topic', 'echo', '--field', 'data', '/burst', 'std_msgs/msg/Int32'])
+    cli.command(['ros2', 'topic', 'pub', '-r', '5', '/imu', 'sensor_msgs/msg/Imu', '{header: auto}'])
+    echo.wait_for("^orientation_covariance: '<array type: double\\[9\\]>'$", timeout=20)
+    counter = cli.run(FIXTURES, 'counter', '--ros-args', '-p', 'rate:=1000.0', '-p', 'limit:=500',
+                      '-p', 'wait_for:=1', '-r', 'count:=/burst')
+    counter.wait_for('published 500 messages', timeout=30)
+    counts.wait_for('^500$', timeout=10)
+    assert [int(line) for line in counts.lines if line.isdigit()] == list(range(1, 501))
+
+
 @pytest.mark.parametrize(('args', 'fragments'), [
     (['--field', 'dat'], ["Invalid field 'dat': 'String' object has no attribute 'dat'"]),
     (['--field', '.'], ["Invalid field value '.'"]),

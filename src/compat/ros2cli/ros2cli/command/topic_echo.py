@@ -8,6 +8,9 @@ from ros2cli.command.topic import _topic_argument, _type_argument, topic_types
 from ros2cli.verb import Verb
 
 RECEIVE_DEPTH = 1000
+# What upstream (Jazzy) shows of a message's receive information (printed with sorted keys).
+MESSAGE_INFO_KEYS = ('publication_sequence_number', 'reception_sequence_number', 'received_timestamp',
+                     'source_timestamp')
 
 RELIABLE_FALLBACK = ('Some, but not all, publishers are offering QoSReliabilityPolicy.RELIABLE. Falling back '
                      'to QoSReliabilityPolicy.BEST_EFFORT as it will connect to all publishers')
@@ -199,7 +202,7 @@ class EchoVerb(Verb):
                     text = printer.format(message)
                 if args.include_message_info and info is not None:
                     from ros2cli.message_yaml import dump_yaml
-                    details = {key: info[key] for key in sorted(info)}
+                    details = {key: info[key] for key in MESSAGE_INFO_KEYS if key in info}
                     text = (','.join(str(v) for v in details.values()) + ',' + text if args.csv
                             else dump_yaml(details) + '---\n' + text)
                 print(text)
