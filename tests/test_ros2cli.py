@@ -86,14 +86,25 @@ def cli(ros):
 def test_help_at_every_level(graph):
     top = ros2(graph, '-h')
     assert top.returncode == 0 and 'ros2 is an extensible command-line tool for ROS 2.' in top.stdout
-    for command in ('action', 'daemon', 'interface', 'node', 'param', 'run', 'service', 'topic'):
-        assert f'  {command} ' in top.stdout
+    assert top.stdout.endswith('Commands:\n  action     Various action related sub-commands\n'
+                               '  daemon     Various daemon related sub-commands\n'
+                               '  interface  Show information about ROS interfaces\n'
+                               '  launch     Run a launch file\n'
+                               '  node       Various node related sub-commands\n'
+                               '  param      Various param related sub-commands\n'
+                               '  pkg        Various package related sub-commands\n'
+                               '  run        Run a package specific executable\n'
+                               '  service    Various service related sub-commands\n'
+                               '  topic      Various topic related sub-commands\n\n'
+                               '  Call `ros2 <command> -h` for more detailed usage.\n')
     bare = ros2(graph)
     assert bare.returncode == 0 and bare.stdout == top.stdout
     for command in ('action', 'daemon', 'interface', 'node', 'param', 'service', 'topic'):
         assert ros2(graph, command, '-h').stdout.startswith(f'usage: ros2 {command}')
     topic = ros2(graph, 'topic')
-    assert topic.returncode == 0 and 'Call `ros2 topic <command> -h` for more detailed usage.' in topic.stdout
+    assert topic.returncode == 0
+    assert '\n  bw    Display bandwidth used by topic\n  echo  Output messages from a topic\n' in topic.stdout
+    assert topic.stdout.endswith('\n\n  Call `ros2 topic <command> -h` for more detailed usage.\n')
     verb = ros2(graph, 'topic', 'pub', '--help')
     assert verb.returncode == 0 and verb.stdout.startswith('usage: ros2 topic pub')
 
@@ -126,6 +137,12 @@ def test_run_delivers_sigint_to_the_child_exactly_once(cli, to_group):
         os.kill(process.pid, signal.SIGINT)
     assert process.wait(10) == 5
     process.wait_for('received SIGINT$')
+
+
+def test_run_prefix(cli):
+    result = ros2(cli, 'run', '--prefix', 'echo prefixed', FIXTURES, 'exit_code', '4')
+    assert result.returncode == 0
+    assert re.fullmatch(r'prefixed \S+/lib/ros2cli_test_fixtures/exit_code 4\n', result.stdout), result.stdout
 
 
 def test_run_unknown_executable_lists_the_package_executables(cli):
@@ -161,6 +178,19 @@ def test_node_info_sections(graph):
     assert not any('_action' in line for line in output)
     hidden = lines(ros2(graph, 'node', 'info', '/fibonacci_server', '--include-hidden'))
     assert any('/fibonacci/_action/feedback' in line for line in hidden)
+
+
+def test_duplicate_node_names_are_reported(cli):
+    cli.run(FIXTURES, 'talker')
+    cli.run(FIXTURES, 'talker')
+    assert eventually(lambda: lines(ros2(cli, 'node', 'list')) == ['/talker', '/talker'], 30)
+    listing = ros2(cli, 'node', 'list')
+    assert listing.stderr == ('WARNING: Be aware that there are nodes in the graph that share an exact name, '
+                              'which can have unintended side effects.\n')
+    info = ros2(cli, 'node', 'info', '/talker')
+    assert info.returncode == 0 and lines(info)[0] == '/talker'
+    assert info.stderr == ('There are 2 nodes in the graph with the exact name "/talker". '
+                           'You are seeing information about only one of them.\n')
 
 
 def test_node_info_unknown_node(graph):
@@ -229,6 +259,15 @@ def test_topic_echo_formats(graph):
     even = ros2(graph, 'topic', 'echo', '/chatter', '--once', '--filter',
                 'int(m.data.rpartition(" ")[2]) % 2 == 0')
     assert int(even.stdout.split(': ')[2].split("'")[0]) % 2 == 0
+
+
+def test_topic_echo_incompatible_qos_and_stdin_values(graph):
+    echo = graph.command(['ros2', 'topic', 'echo', '--qos-durability', 'transient_local', '--qos-reliability',
+                          'reliable', '/chatter'])
+    echo.wait_for("New publisher discovered on topic '/chatter', offering incompatible QoS.", timeout=20)
+    assert echo.stop() == 2
+    call = ros2(graph, 'service', 'call', '--stdin', '/echo', 'std_srvs/srv/SetBool', stdin='data: true\n')
+    assert "std_srvs.srv.SetBool_Response(success=True, message='received True')" in call.stdout
 
 
 def test_topic_echo_raw_info_timeout(graph):

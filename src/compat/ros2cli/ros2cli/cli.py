@@ -14,6 +14,7 @@ import sys
 from types import ModuleType
 
 from ros2cli.command_table import COMMANDS
+from ros2cli.verb import add_command_subparsers
 
 # One line per command for `ros2 -h`, without importing every command.
 DESCRIPTIONS = {
@@ -55,21 +56,20 @@ def build_parser(argv: list[str]) -> argparse.ArgumentParser:
         help='Do not force line buffering in stdout and instead use the python default buffering, '
              'which might be affected by PYTHONUNBUFFERED/-u and depends on whatever stdout is '
              'interactive or not')
-    subparsers = parser.add_subparsers(
-        title='Commands', metavar='Call `ros2 <command> -h` for more detailed usage.')
-    # Only the chosen command is imported; `ros2 -h` lists the rest by name.
+    summaries = {name: DESCRIPTIONS.get(name, f'`ros2 {name} -h` for its verbs and options')
+                 for name in COMMANDS}
+    subparsers = add_command_subparsers(parser, 'ros2', summaries, '_command')
+    # Only the chosen command is imported; `ros2 -h` lists the rest from DESCRIPTIONS.
     chosen = next((arg for arg in argv if not arg.startswith('-')), None)
     for name in sorted(COMMANDS):
-        summary = DESCRIPTIONS.get(name, f'`ros2 {name} -h` for its verbs and options')
         if name == chosen:
             module = load_command(name)
             command_parser = subparsers.add_parser(
-                name, help=module.DESCRIPTION, description=module.DESCRIPTION,
-                formatter_class=argparse.RawDescriptionHelpFormatter)
+                name, description=module.DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter)
             module.add_arguments(command_parser, f'ros2 {name}')
             command_parser.set_defaults(_main=module.main, _parser=command_parser)
         else:
-            subparsers.add_parser(name, help=summary)
+            subparsers.add_parser(name)
     return parser
 
 
