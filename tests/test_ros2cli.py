@@ -380,6 +380,10 @@ def test_topic_hz_and_bw(graph):
     bw.wait_for(r'^\tMessage size mean: \d+ B min: \d+ B max: \d+ B$')
     assert hz.stop() == 2 and bw.stop() == 2
     assert 'Traceback' not in hz.output + bw.output
+    mistyped = graph.command(['ros2', 'topic', 'hz', '/chatt'])
+    mistyped.wait_for(r'^WARNING: topic \[/chatt\] does not appear to be published yet$')
+    mistyped.wait_for("No topic '/chatt' yet \\(did you mean '/chatter'\\?\\); still waiting", timeout=20)
+    assert mistyped.stop() == 2
 
 
 # ---- ros2 interface ---------------------------------------------------------------------------

@@ -207,3 +207,27 @@ def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:
 def main(args: argparse.Namespace) -> Any:
     return run_verb(args)
 
+
+
+def wait_for_topic_type(direct: Any, topic: str) -> list[str]:
+    """The topic's types once it is in the graph; like upstream this waits for as long as it takes,
+    and says once when the name looks mistyped."""
+    import sys
+    import time
+
+    from ros2cli.node.direct import NAMED_LOOKUP_GRACE
+
+    types = topic_types(direct.graph, topic)
+    if types is None:
+        print(f'WARNING: topic [{topic}] does not appear to be published yet')
+        started = time.monotonic()
+        hinted = False
+        while types is None:
+            direct.spin_for(0.1)
+            types = topic_types(direct.graph, topic)
+            if types is None and not hinted and time.monotonic() - started > NAMED_LOOKUP_GRACE:
+                hinted = True
+                hint = unknown_topic(direct.graph, topic).partition(f"'{topic}'")[2]
+                if hint:
+                    print(f"No topic '{topic}' yet{hint}; still waiting (Ctrl-C to stop)", file=sys.stderr)
+    return types

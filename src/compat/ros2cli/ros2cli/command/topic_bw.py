@@ -5,7 +5,7 @@ import time
 from collections import deque
 from typing import Any
 
-from ros2cli.command.topic import _topic_argument, topic_types
+from ros2cli.command.topic import _topic_argument, wait_for_topic_type
 from ros2cli.command.topic_hz import positive_int, receive_profile
 from ros2cli.verb import Verb
 
@@ -57,12 +57,7 @@ class BwVerb(Verb):
 
         topic = expand_topic_name(args.topic_name)
         with DirectNode(args) as direct:
-            types = topic_types(direct.graph, topic)
-            if types is None:
-                print(f'WARNING: topic [{topic}] does not appear to be published yet')
-                while types is None:
-                    direct.spin_for(0.1)
-                    types = topic_types(direct.graph, topic)
+            types = wait_for_topic_type(direct, topic)
             try:
                 message_class = import_type(types[0], 'msg')
             except InvalidType as error:

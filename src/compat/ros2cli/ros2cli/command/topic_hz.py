@@ -6,7 +6,7 @@ import sys
 from collections import deque
 from typing import Any
 
-from ros2cli.command.topic import _topic_argument, topic_types
+from ros2cli.command.topic import _topic_argument, wait_for_topic_type
 from ros2cli.verb import Verb
 
 
@@ -96,12 +96,7 @@ class HzVerb(Verb):
             except SyntaxError as error:
                 return f"Invalid filter expression '{args.filter_expr}': {error.msg}"
         with DirectNode(args) as direct:
-            types = topic_types(direct.graph, topic)
-            if types is None:
-                print(f'WARNING: topic [{topic}] does not appear to be published yet')
-                while types is None:
-                    direct.spin_for(0.1)
-                    types = topic_types(direct.graph, topic)
+            types = wait_for_topic_type(direct, topic)
             try:
                 message_class = import_type(types[0], 'msg')
             except InvalidType as error:
