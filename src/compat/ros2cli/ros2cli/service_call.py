@@ -67,33 +67,36 @@ class DaemonServiceCaller:
     def call(self, service: str, srv_class: Any, request: Any, timeout: float) -> Any:
         import xmlrpc.client
 
-        from rclpy.serialization import deserialize_message, serialize_message
-
         from ros2cli.interfaces import type_name_of
+        from ros2cli.message_yaml import dump_yaml, fill_message, message_to_plain, parse_yaml
 
         try:
-            data = self._daemon.call_service(service, type_name_of(srv_class),
-                                             xmlrpc.client.Binary(serialize_message(request)), timeout)
+            text = self._daemon.call_service(service, type_name_of(srv_class),
+                                             dump_yaml(message_to_plain(request)), timeout)
         except xmlrpc.client.Fault as fault:
             raise FAULTS.get(fault.faultCode, ServiceCallError)(fault.faultString) from None
-        return deserialize_message(data.data, srv_class.Response)
+        return fill_message(srv_class.Response(), parse_yaml(text))
 
 
-def serve_call(caller: ServiceCaller, service: str, type_name: str, data: Any, timeout: float) -> Any:
-    """The daemon's side of DaemonServiceCaller.call: serialized request in, serialized response out."""
+def serve_call(caller: ServiceCaller, service: str, type_name: str, request_yaml: str, timeout: float) -> str:
+    """The daemon's side of DaemonServiceCaller.call.
+
+    Requests and responses travel as YAML text of the codec: plain data for XML-RPC (which has
+    no 64-bit integers), and the client needs no rclpy import for it, which keeps warm calls fast.
+    """
     import xmlrpc.client
 
-    from rclpy.serialization import deserialize_message, serialize_message
-
     from ros2cli.interfaces import InvalidType, import_type
+    from ros2cli.message_yaml import FieldError, dump_yaml, fill_message, message_to_plain, parse_yaml
 
     try:
         srv_class = import_type(type_name, 'srv')
-    except InvalidType as error:
+        request = fill_message(srv_class.Request(), parse_yaml(request_yaml))
+    except (InvalidType, FieldError) as error:
         raise xmlrpc.client.Fault(3, str(error)) from None
     try:
-        response = caller.call(service, srv_class, deserialize_message(data.data, srv_class.Request), timeout)
+        response = caller.call(service, srv_class, request, timeout)
     except ServiceCallError as error:
         code = next(c for c, kind in FAULTS.items() if isinstance(error, kind))
         raise xmlrpc.client.Fault(code, str(error)) from None
-    return xmlrpc.client.Binary(serialize_message(response))
+    return dump_yaml(message_to_plain(response))

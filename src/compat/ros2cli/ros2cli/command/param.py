@@ -19,10 +19,16 @@ def full_name(node_name: str) -> str:
     return node_name if node_name.startswith('/') else '/' + node_name
 
 
+VALUE_FIELDS = {1: 'bool_value', 2: 'integer_value', 3: 'double_value', 4: 'string_value',
+                5: 'byte_array_value', 6: 'bool_array_value', 7: 'integer_array_value',
+                8: 'double_array_value', 9: 'string_array_value'}
+
+
 def python_value(value: Any) -> Any:
-    """A ParameterValue as a plain Python value (arrays as lists)."""
-    from rclpy.parameter import parameter_value_to_python
-    result = parameter_value_to_python(value)
+    """A ParameterValue as a plain Python value (arrays as lists, not set as None)."""
+    if value.type not in VALUE_FIELDS:
+        return None
+    result = getattr(value, VALUE_FIELDS[value.type])
     return list(result) if value.type >= 5 else result
 
 

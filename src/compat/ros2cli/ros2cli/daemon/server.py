@@ -55,7 +55,7 @@ def serve(domain: int, listener: socket.socket, idle_timeout: float, alone_timeo
     server.register_function(lambda: domain, 'get_domain_id')
     caller = ServiceCaller(node)
     server.register_function(
-        lambda service, type_name, data, timeout: serve_call(caller, service, type_name, data, timeout),
+        lambda service, type_name, text, timeout: serve_call(caller, service, type_name, text, timeout),
         'call_service')
     server.register_function(lambda: stopping.append(True) or True, 'system.shutdown')
 
