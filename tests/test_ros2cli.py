@@ -105,8 +105,16 @@ def test_help_at_every_level(graph):
     assert topic.returncode == 0
     assert '\n  bw    Display bandwidth used by topic\n  echo  Output messages from a topic\n' in topic.stdout
     assert topic.stdout.endswith('\n\n  Call `ros2 topic <command> -h` for more detailed usage.\n')
-    verb = ros2(graph, 'topic', 'pub', '--help')
-    assert verb.returncode == 0 and verb.stdout.startswith('usage: ros2 topic pub')
+    verbs = {'action': ['find', 'info', 'list', 'send_goal', 'type'], 'daemon': ['start', 'status', 'stop'],
+             'interface': ['list', 'package', 'packages', 'proto', 'show'], 'node': ['info', 'list'],
+             'param': ['delete', 'describe', 'dump', 'get', 'list', 'load', 'set'],
+             'service': ['call', 'find', 'list', 'type'],
+             'topic': ['bw', 'echo', 'find', 'hz', 'info', 'list', 'pub', 'type']}
+    for command, names in verbs.items():
+        for name in names:
+            verb = ros2(graph, command, name, '--help')
+            assert verb.returncode == 0 and verb.stdout.startswith(f'usage: ros2 {command} {name}'), verb
+    assert ros2(graph, 'run', '-h').stdout.startswith('usage: ros2 run [-h] [--prefix PREFIX]')
 
 
 def test_missing_argument_is_a_usage_error(graph):
@@ -464,7 +472,9 @@ def test_interface_list_package_packages_proto(graph):
 
 def test_no_daemon_gives_the_same_answers(graph):
     for args in (['node', 'list'], ['topic', 'list', '-t'], ['node', 'info', '/talker'],
-                 ['topic', 'info', '/chatter']):
+                 ['topic', 'info', '/chatter'], ['service', 'list', '-t'], ['action', 'list', '-t'],
+                 ['action', 'info', '/fibonacci'], ['param', 'get', '/parameter_node', 'str_param'],
+                 ['param', 'dump', '/parameter_node']):
         warm = ros2(graph, *args)
         assert warm.returncode == 0
         cold = lambda args=args: ros2(graph, *args, '--no-daemon').stdout  # noqa: E731
