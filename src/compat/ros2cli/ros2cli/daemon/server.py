@@ -52,7 +52,9 @@ def serve(domain: int, listener: socket.socket, idle_timeout: float, alone_timeo
     server.register_instance(GraphQueries(node))
     server.register_function(node.get_name, 'get_name')
     server.register_function(node.get_namespace, 'get_namespace')
+    started = time.monotonic()
     server.register_function(lambda: domain, 'get_domain_id')
+    server.register_function(lambda: time.monotonic() - started, 'get_uptime')
     caller = ServiceCaller(node)
     server.register_function(
         lambda service, type_name, text, timeout: serve_call(caller, service, type_name, text, timeout),

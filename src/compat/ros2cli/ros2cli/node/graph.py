@@ -88,8 +88,3 @@ class GraphQueries:
 
     def count_subscribers(self, topic: str) -> int:
         return self._node.count_subscribers(topic)
-
-    def graph_summary(self) -> list[Any]:
-        """One answer with the whole graph (saves round trips for the daemon)."""
-        return [self.node_names_and_namespaces(), self.topic_names_and_types(),
-                self.service_names_and_types()]

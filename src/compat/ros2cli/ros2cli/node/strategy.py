@@ -1,10 +1,14 @@
 """NodeStrategy: ask the daemon when it runs, else a DirectNode (and start the daemon for next time)."""
 
 import argparse
+import time
 from collections.abc import Callable
 from typing import Any
 
 from ros2cli.node.direct import NAMED_LOOKUP_GRACE, DirectNode, add_direct_node_arguments
+
+# Seconds of discovery a fresh daemon gets before its answers are used.
+DAEMON_WARM_UP = 1.0
 
 
 def add_strategy_arguments(parser: argparse.ArgumentParser) -> None:
@@ -26,6 +30,8 @@ class NodeStrategy:
         if not getattr(args, 'no_daemon', False):
             if client.is_daemon_running():
                 self.graph = client.DaemonGraph()
+                # A daemon started a moment ago (by the previous call) is still discovering.
+                time.sleep(max(0.0, DAEMON_WARM_UP - self.graph.get_uptime()))
             else:
                 client.spawn_daemon(on_demand=True)
         if self.graph is None:
