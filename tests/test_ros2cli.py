@@ -786,6 +786,13 @@ def test_action_send_goal_bad_input(graph, args, fragments):
     assert_one_line_error(ros2(graph, 'action', 'send_goal', '/fibonacci', *args), *fragments)
 
 
+def test_action_send_goal_to_a_mistyped_action_says_so_while_waiting(graph):
+    goal = graph.command(['ros2', 'action', 'send_goal', '/fibonaci', ACTION_TYPE, '{order: 1}'])
+    goal.wait_for("No action server for '/fibonaci' yet \\(did you mean '/fibonacci'\\?\\); still waiting",
+                  timeout=20)
+    assert goal.stop() == 2 and 'Traceback' not in goal.output
+
+
 # ---- shell completion -------------------------------------------------------------------------
 
 @pytest.mark.parametrize(('line', 'expected'), [

@@ -1,7 +1,7 @@
 """Names on the command line: node/topic name rules, hidden names, 'did you mean' hints."""
 
 import difflib
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 
 
 def full_node_name(namespace: str, name: str) -> str:
@@ -34,3 +34,25 @@ def did_you_mean(name: str, candidates: Iterable[str]) -> str:
     """' (did you mean 'x'?)' for the closest candidate, or '' when nothing is close."""
     close = difflib.get_close_matches(name, list(candidates), n=1, cutoff=0.6)
     return f" (did you mean '{close[0]}'?)" if close else ''
+
+
+class WaitingHint:
+    """While a verb waits for a name (as upstream, forever), say so once on stderr after a grace
+    period, and once more when a close name shows up: the name is probably mistyped."""
+
+    def __init__(self, subject: str, name: str, grace: float) -> None:
+        import time
+        self._subject = subject  # e.g. "server for service '/ech'"
+        self._name = name
+        self._grace_end = time.monotonic() + grace
+        self._said = self._suggested = False
+
+    def update(self, candidates: Callable[[], Iterable[str]]) -> None:
+        import sys
+        import time
+        if self._suggested or time.monotonic() < self._grace_end:
+            return
+        hint = did_you_mean(self._name, [c for c in candidates() if c != self._name])
+        if hint or not self._said:
+            print(f'No {self._subject} yet{hint}; still waiting (Ctrl-C to stop)', file=sys.stderr)
+            self._said, self._suggested = True, bool(hint)

@@ -2,7 +2,6 @@
 
 import argparse
 import sys
-import time
 from typing import Any
 
 from ros2cli.verb import Verb, add_verbs, run_verb
@@ -170,11 +169,11 @@ class SendGoalVerb(Verb):
 
     def _send(self, args: argparse.Namespace, action_class: Any, goal: Any, node_name: str) -> int | str:
         import rclpy
-        from rclpy.action import ActionClient
+        from rclpy.action import ActionClient, get_action_names_and_types
         from rclpy.node import Node
 
         from ros2cli.message_yaml import message_to_yaml
-        from ros2cli.names import did_you_mean, expand_topic_name
+        from ros2cli.names import WaitingHint, expand_topic_name
         from ros2cli.node.direct import NAMED_LOOKUP_GRACE
 
         rclpy.init(args=[])
@@ -184,15 +183,9 @@ class SendGoalVerb(Verb):
         goal_handle = None
         try:
             print('Waiting for an action server to become available...')
-            started = time.monotonic()
-            hinted = False
+            hint = WaitingHint(f"action server for '{action_name}'", action_name, NAMED_LOOKUP_GRACE)
             while not client.wait_for_server(timeout_sec=0.5):
-                if not hinted and time.monotonic() - started > NAMED_LOOKUP_GRACE:
-                    hinted = True
-                    from rclpy.action import get_action_names_and_types
-                    names = [name for name, _ in get_action_names_and_types(node) if name != action_name]
-                    print(f"No action server for '{action_name}' yet{did_you_mean(action_name, names)}; "
-                          'still waiting (Ctrl-C to stop)', file=sys.stderr)
+                hint.update(lambda: [name for name, _ in get_action_names_and_types(node)])
             print(f'Sending goal:\n{indented_yaml(goal, "     ")}')
 
             def on_feedback(feedback: Any) -> None:

@@ -1,7 +1,6 @@
 """`ros2 service list | type | find | call`."""
 
 import argparse
-import sys
 import time
 from typing import Any
 
@@ -166,18 +165,13 @@ class CallVerb(Verb):
 
 
 def wait_for_server(node: Any, client: Any, service: str) -> None:
-    """Wait as upstream does (forever), but say once when the name looks mistyped."""
-    from ros2cli.names import did_you_mean
+    """Wait as upstream does (forever), but say when the name looks mistyped."""
+    from ros2cli.names import WaitingHint
     from ros2cli.node.direct import NAMED_LOOKUP_GRACE
 
-    started = time.monotonic()
-    hinted = False
+    hint = WaitingHint(f"server for service '{service}'", service, NAMED_LOOKUP_GRACE)
     while not client.wait_for_service(timeout_sec=0.5):
-        if not hinted and time.monotonic() - started > NAMED_LOOKUP_GRACE:
-            hinted = True
-            names = [name for name, _ in node.get_service_names_and_types() if name != service]
-            print(f"No server for service '{service}' yet{did_you_mean(service, names)}; still waiting "
-                  '(Ctrl-C to stop)', file=sys.stderr)
+        hint.update(lambda: [name for name, _ in node.get_service_names_and_types()])
 
 
 def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:

@@ -211,23 +211,16 @@ def main(args: argparse.Namespace) -> Any:
 
 def wait_for_topic_type(direct: Any, topic: str) -> list[str]:
     """The topic's types once it is in the graph; like upstream this waits for as long as it takes,
-    and says once when the name looks mistyped."""
-    import sys
-    import time
-
+    and says when the name looks mistyped."""
+    from ros2cli.names import WaitingHint
     from ros2cli.node.direct import NAMED_LOOKUP_GRACE
 
     types = topic_types(direct.graph, topic)
     if types is None:
         print(f'WARNING: topic [{topic}] does not appear to be published yet')
-        started = time.monotonic()
-        hinted = False
+        hint = WaitingHint(f"topic '{topic}'", topic, NAMED_LOOKUP_GRACE)
         while types is None:
             direct.spin_for(0.1)
             types = topic_types(direct.graph, topic)
-            if types is None and not hinted and time.monotonic() - started > NAMED_LOOKUP_GRACE:
-                hinted = True
-                hint = unknown_topic(direct.graph, topic).partition(f"'{topic}'")[2]
-                if hint:
-                    print(f"No topic '{topic}' yet{hint}; still waiting (Ctrl-C to stop)", file=sys.stderr)
+            hint.update(lambda: [name for name, _ in direct.graph.topic_names_and_types()])
     return types
