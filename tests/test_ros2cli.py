@@ -377,6 +377,17 @@ def test_topic_pub_bad_input(cli, message_type, values, fragments):
     assert 'publisher: beginning loop' not in result.stdout
 
 
+@pytest.mark.parametrize(('args', 'fragments'), [
+    (['topic', 'pub', '-1', '/bad name', 'std_msgs/msg/String'], ['Invalid topic name', "'/bad name'"]),
+    (['topic', 'pub', '-1', '-n', 'bad name', '/t', 'std_msgs/msg/String'],
+     ['Invalid node name', "'bad name'"]),
+    (['service', 'call', 'bad name', 'std_srvs/srv/SetBool'], ['Invalid service name', "'/bad name'"]),
+])
+def test_invalid_names_are_one_line(cli, args, fragments):
+    line = assert_one_line_error(ros2(cli, *args), *fragments)
+    assert '.c:' not in line
+
+
 def test_topic_hz_and_bw(graph):
     hz = graph.command(['ros2', 'topic', 'hz', '/chatter'])
     match = hz.wait_for(r'^average rate: (\d+\.\d{3})$', timeout=20)[0]

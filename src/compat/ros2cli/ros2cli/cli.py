@@ -73,6 +73,14 @@ def build_parser(argv: list[str]) -> argparse.ArgumentParser:
     return parser
 
 
+def one_line(message: str) -> str:
+    """An exception message on one line: rcl's multi-line name errors (text, the name, a caret
+    line) joined, and the C source location rcl appends dropped."""
+    import re
+    parts = [line.strip() for line in message.splitlines() if line.strip() and set(line.strip()) != {'^'}]
+    return re.sub(r', at \S+\.c:\d+', '', ' '.join(parts))
+
+
 def _completion_argv() -> list[str] | None:
     """The words being completed, when argcomplete drives this process (shell completion)."""
     if '_ARGCOMPLETE' not in os.environ:
@@ -103,6 +111,9 @@ def main(argv: list[str] | None = None) -> int | str:
     if command_main is None:
         parser.print_help()
         return 0
+    import warnings
+    # rclpy warns while it cleans up after a failed construction; the error itself is reported.
+    warnings.filterwarnings('ignore', category=RuntimeWarning, module=r'rclpy(\.|$)')
     try:
         result = command_main(args)
     except KeyboardInterrupt:
@@ -119,7 +130,7 @@ def main(argv: list[str] | None = None) -> int | str:
             return signal.SIGTERM
         if os.environ.get('ROS2CLI_TRACEBACK'):
             raise
-        result = f'ros2: {type(error).__name__}: {error}'
+        result = f'ros2: {type(error).__name__}: {one_line(str(error))}'
     if isinstance(result, str):
         print(result, file=sys.stderr)
         return 1
