@@ -17,8 +17,8 @@ test: setup
 lint: setup
 	@$(ENV) ruff check .
 
-bench: setup
-	@$(ENV) python bench/service_roundtrip.py
+bench: setup  # every benchmark in turn; each prints its numbers and ratio to its baseline
+	@$(ENV) for script in bench/*.py; do echo "== $$script"; python "$$script"; done
 
 clean:
 	rm -rf build install log .venv .pytest_cache

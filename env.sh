@@ -48,6 +48,11 @@ export ROS_PYTHON_VERSION=3
 export RCUTILS_LOGGING_BUFFERED_STREAM="${RCUTILS_LOGGING_BUFFERED_STREAM:-1}"
 unset -f _owl_prepend
 
+# Tab completion of ros2's commands, packages, executables, nodes, topics and types.
+if [ -n "${BASH_VERSION:-}" ] && command -v register-python-argcomplete >/dev/null 2>&1; then
+  eval "$(register-python-argcomplete ros2)"
+fi
+
 # The workspace overlay, once `make setup` (or `colcon build`) has built it.
 if [ -n "${ZSH_VERSION:-}" ] && [ -f "$OWL_ROOT/install/local_setup.zsh" ]; then
   # shellcheck disable=SC1091
