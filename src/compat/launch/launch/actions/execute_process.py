@@ -473,8 +473,11 @@ class ExecuteProcess(Action):
             return
         label = self.process_description.final_name
         self._logger.info(f"sending signal '{signal.Signals(signal_number).name}' to process[{label}]")
+        # os.kill, not process.send_signal: Popen.send_signal first polls, and that poll would reap
+        # a child that has just died, leaving asyncio's watcher with an "unknown" pid (code 255).
+        # The pid cannot be reused before the watcher reaps it, so signalling it here is safe.
         try:
-            process.send_signal(signal_number)
+            os.kill(process.pid, signal_number)
         except ProcessLookupError:
             pass
 
