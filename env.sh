@@ -41,6 +41,8 @@ unset _owl_libs
 _owl_prepend LD_LIBRARY_PATH "$VIRTUAL_ENV/lib"
 export _ROS_WHEELS_BOOTSTRAP_COMPLETE=1
 export RMW_IMPLEMENTATION="${RMW_IMPLEMENTATION:-rmw_fastrtps_cpp}"
+# Faster DDS discovery (see the file for why); a profile of your own takes precedence.
+export FASTDDS_DEFAULT_PROFILES_FILE="${FASTDDS_DEFAULT_PROFILES_FILE:-$OWL_ROOT/config/fastdds.xml}"
 export ROS_DISTRO="${ROS_DISTRO:-kilted}"
 export ROS_VERSION=2
 export ROS_PYTHON_VERSION=3
