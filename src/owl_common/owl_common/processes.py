@@ -10,13 +10,17 @@ from __future__ import annotations
 import fcntl
 import os
 import re
+import shutil
 import signal
+import socket
 import subprocess
 import threading
 import time
 from collections.abc import Iterable
 from pathlib import Path
 
+# `ros2` verbs start a graph daemon per domain that outlives them, listening on this port + N.
+ROS2_DAEMON_BASE_PORT = 11511
 # Fast DDS maps domain N to UDP ports 7400 + 250 N and up; up to 101 stays clear of the
 # Linux ephemeral range. 0 is left to the user's own shell.
 DOMAIN_IDS = range(1, 102)
@@ -188,6 +192,7 @@ class RosSandbox:
         for process in reversed(self.processes):
             if process.running():
                 process.stop(timeout=3.0)
+        stop_ros2_daemon(self.domain_id, self.env)
         self._lease.release()
 
     def __enter__(self) -> RosSandbox:
@@ -196,3 +201,15 @@ class RosSandbox:
     def __exit__(self, *exc_info: object) -> None:
         self.close()
 
+
+def stop_ros2_daemon(domain_id: int, env: dict[str, str]) -> None:
+    """Stop the `ros2` daemon of a domain, if one runs, so the next user of the domain starts
+    with an empty graph cache instead of one remembering this sandbox's nodes."""
+    try:
+        with socket.create_connection(('127.0.0.1', ROS2_DAEMON_BASE_PORT + domain_id), timeout=0.2):
+            pass
+    except OSError:
+        return
+    ros2 = shutil.which('ros2', path=env.get('PATH'))
+    if ros2 is not None:
+        subprocess.run([ros2, 'daemon', 'stop'], env=env, capture_output=True, timeout=15, check=False)

@@ -1,0 +1,30 @@
+"""The shared sandbox leaves its domain as it found it."""
+
+import socket
+import subprocess
+
+from owl_common.processes import ROS2_DAEMON_BASE_PORT, RosSandbox
+
+
+def daemon_listening(domain_id: int) -> bool:
+    try:
+        socket.create_connection(('127.0.0.1', ROS2_DAEMON_BASE_PORT + domain_id), timeout=0.2).close()
+    except OSError:
+        return False
+    return True
+
+
+def test_closing_a_sandbox_stops_the_ros2_daemon_of_its_domain():
+    with RosSandbox() as sandbox:
+        domain_id = sandbox.domain_id
+        started = subprocess.run(['ros2', 'daemon', 'start'], env=sandbox.env, capture_output=True,
+                                 text=True, timeout=30)
+        assert started.returncode == 0, started.stderr
+        assert daemon_listening(domain_id)
+    assert not daemon_listening(domain_id)
+
+
+def test_processes_of_a_closed_sandbox_are_gone():
+    with RosSandbox() as sandbox:
+        sleeper = sandbox.command(['sleep', '60'])
+    assert not sleeper.running()
