@@ -18,6 +18,7 @@ import sys
 import time
 
 import rclpy
+from measure import cpu_seconds
 from olive_sim.camera_render import CameraRenderer
 from olive_sim.kit import OWL_KIT
 from olive_sim.servo_model import PidGains, ServoSim
@@ -27,8 +28,6 @@ from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.qos import qos_profile_sensor_data
 from sensor_msgs.msg import CompressedImage, JointState
-
-TICKS = os.sysconf('SC_CLK_TCK')
 
 
 def baseline_node() -> None:
@@ -43,12 +42,6 @@ def baseline_node() -> None:
         pass
     finally:
         rclpy.try_shutdown()
-
-
-def cpu_seconds(pid: int) -> float:
-    with open(f'/proc/{pid}/stat') as stat:
-        fields = stat.read().rsplit(')', 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / TICKS  # utime, stime
 
 
 def cpu_percent(processes: list[RosProcess], warmup: float, seconds: float) -> float:

@@ -13,6 +13,7 @@ import sys
 import time
 
 import rclpy
+from measure import percentile
 from olive_interfaces.srv import TempConv
 from owl_common.processes import RosSandbox
 from rclpy.context import Context
@@ -48,11 +49,6 @@ def measure(node: Node, executor: SingleThreadedExecutor, service: str, calls: i
         if index >= 20:
             latencies.append((time.perf_counter() - started) * 1000.0)
     return latencies
-
-
-def percentile(values: list[float], fraction: float) -> float:
-    ordered = sorted(values)
-    return ordered[min(len(ordered) - 1, int(fraction * len(ordered)))]
 
 
 def main() -> int:

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 
 import rclpy
 from geometry_msgs.msg import Twist
+from measure import cpu_seconds, percentile
 from owl_common.processes import RosSandbox
 from rclpy.context import Context
 from rclpy.executors import SingleThreadedExecutor
@@ -58,16 +59,6 @@ def baseline_publisher(turtles: int) -> None:
     finally:
         rclpy.try_shutdown()
 
-
-def cpu_seconds(pid: int) -> float:
-    with open(f'/proc/{pid}/stat') as stat:
-        fields = stat.read().rsplit(')', 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / os.sysconf('SC_CLK_TCK')
-
-
-def percentile(values: list[float], fraction: float) -> float:
-    ordered = sorted(values)
-    return ordered[min(len(ordered) - 1, int(fraction * len(ordered)))]
 
 
 class Observer:
