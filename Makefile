@@ -2,6 +2,7 @@
 SHELL := /bin/bash
 .SHELLFLAGS := -e -o pipefail -c
 ENV := source ./env.sh &&
+BENCHMARKS := $(filter-out bench/measure.py,$(wildcard bench/*.py))
 
 .PHONY: setup demo test lint bench clean
 
@@ -18,7 +19,7 @@ lint: setup
 	@$(ENV) ruff check .
 
 bench: setup  # every benchmark in turn; each prints its numbers and ratio to its baseline
-	@$(ENV) for script in bench/*.py; do echo "== $$script"; python "$$script"; done
+	@$(ENV) for script in $(BENCHMARKS); do echo "== $$script"; python "$$script"; done
 
 clean:
 	rm -rf build install log .venv .pytest_cache
