@@ -6,6 +6,7 @@ import os
 from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
+from launch.actions.named_value_actions import SetNamedValue, UnsetNamedValue
 from launch.conditions import evaluate_condition_expression
 from launch.frontend.expose import expose_action
 from launch.substitution import (
@@ -20,34 +21,17 @@ if TYPE_CHECKING:
 
 
 @expose_action('set_env')
-class SetEnvironmentVariable(Action):
-    def __init__(self, name: SomeSubstitutionsType, value: SomeSubstitutionsType, **kwargs: Any) -> None:
-        super().__init__(**kwargs)
-        self.name = normalize_to_list_of_substitutions(name)
-        self.value = normalize_to_list_of_substitutions(value)
-
-    @classmethod
-    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
-        return cls, {'name': parser.substitutions(entity.get_attr('name')),
-                     'value': parser.substitutions(entity.get_attr('value'))}
-
-    def execute(self, context: LaunchContext) -> None:
-        context.environment[perform_substitutions(context, self.name)] = (
-            perform_substitutions(context, self.value))
+class SetEnvironmentVariable(SetNamedValue):
+    @staticmethod
+    def entries(context: LaunchContext) -> dict[str, str]:
+        return context.environment
 
 
 @expose_action('unset_env')
-class UnsetEnvironmentVariable(Action):
-    def __init__(self, name: SomeSubstitutionsType, **kwargs: Any) -> None:
-        super().__init__(**kwargs)
-        self.name = normalize_to_list_of_substitutions(name)
-
-    @classmethod
-    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
-        return cls, {'name': parser.substitutions(entity.get_attr('name'))}
-
-    def execute(self, context: LaunchContext) -> None:
-        context.environment.pop(perform_substitutions(context, self.name), None)
+class UnsetEnvironmentVariable(UnsetNamedValue):
+    @staticmethod
+    def entries(context: LaunchContext) -> dict[str, str]:
+        return context.environment
 
 
 @expose_action('append_env')

@@ -6,6 +6,7 @@ from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
+from launch.actions.named_value_actions import SetNamedValue, UnsetNamedValue
 from launch.frontend.expose import expose_action
 from launch.logging import get_logger
 from launch.substitution import (
@@ -108,38 +109,21 @@ class DeclareLaunchArgument(Action):
 
 
 @expose_action('let')
-class SetLaunchConfiguration(Action):
-    def __init__(self, name: SomeSubstitutionsType, value: SomeSubstitutionsType, **kwargs: Any) -> None:
-        super().__init__(**kwargs)
-        self.name = normalize_to_list_of_substitutions(name)
-        self.value = normalize_to_list_of_substitutions(value)
-
-    @classmethod
-    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
-        return cls, {'name': parser.substitutions(entity.get_attr('name')),
-                     'value': parser.substitutions(entity.get_attr('value'))}
+class SetLaunchConfiguration(SetNamedValue):
+    @staticmethod
+    def entries(context: LaunchContext) -> dict[str, str]:
+        return context.launch_configurations
 
     def describe(self) -> str:
         return (f'SetLaunchConfiguration({describe_substitutions(self.name)} = '
                 f'{describe_substitutions(self.value)})')
 
-    def execute(self, context: LaunchContext) -> None:
-        context.launch_configurations[perform_substitutions(context, self.name)] = (
-            perform_substitutions(context, self.value))
-
 
 @expose_action('unset')
-class UnsetLaunchConfiguration(Action):
-    def __init__(self, name: SomeSubstitutionsType, **kwargs: Any) -> None:
-        super().__init__(**kwargs)
-        self.name = normalize_to_list_of_substitutions(name)
-
-    @classmethod
-    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
-        return cls, {'name': parser.substitutions(entity.get_attr('name'))}
-
-    def execute(self, context: LaunchContext) -> None:
-        context.launch_configurations.pop(perform_substitutions(context, self.name), None)
+class UnsetLaunchConfiguration(UnsetNamedValue):
+    @staticmethod
+    def entries(context: LaunchContext) -> dict[str, str]:
+        return context.launch_configurations
 
 
 class PushLaunchConfigurations(Action):
