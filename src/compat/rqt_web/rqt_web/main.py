@@ -1,0 +1,74 @@
+"""`rqt`: start the rqt node and its page on http://127.0.0.1:<port>/."""
+
+import argparse
+import os
+import sys
+import webbrowser
+
+from owl_common.run import spin_node
+from rclpy.utilities import remove_ros_args
+
+from rqt_web.http_api import ApiServer
+from rqt_web.node import RqtWebNode
+
+DEFAULT_PORT = 8090
+# upstream plugin name -> the page's tab (rqt -s rqt_graph opens the Node Graph)
+PLUGINS = {'rqt_graph': 'node-graph', 'rqt_publisher': 'message-publisher',
+           'rqt_service_caller': 'service-caller', 'rqt_image_view': 'image-view'}
+
+
+def port_number(text: str) -> int:
+    if not text.isdigit() or int(text) > 65535:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a port number (0..65535)")
+    return int(text)
+
+
+def parse_arguments(argv: list[str]) -> argparse.Namespace:
+    parser = argparse.ArgumentParser(
+        prog='rqt', description='rqt in a web browser: Node Graph, Message Publisher, Service Caller '
+                                'and Image View on one local page.')
+    parser.add_argument('--port', type=port_number, default=DEFAULT_PORT,
+                        help=f'HTTP port on 127.0.0.1 (default: {DEFAULT_PORT}; 0 picks a free one)')
+    parser.add_argument('--no-browser', action='store_true',
+                        help='only print the address, do not open a browser')
+    parser.add_argument('-s', '--standalone', choices=sorted(PLUGINS), metavar='PLUGIN',
+                        help=f"open the page on one plugin ({', '.join(sorted(PLUGINS))})")
+    return parser.parse_args(argv)
+
+
+def open_browser(url: str) -> None:
+    """Try the desktop's browser; headless or failing, the printed address is enough."""
+    if not (os.environ.get('DISPLAY') or os.environ.get('WAYLAND_DISPLAY')):
+        return
+    try:
+        webbrowser.open(url)
+    except Exception:  # any browser trouble: the user still has the printed address
+        pass
+
+
+def main(argv: list[str] | None = None) -> None:
+    argv = sys.argv if argv is None else argv
+    args = parse_arguments(remove_ros_args(argv)[1:])
+    try:
+        server = ApiServer(args.port)
+    except OSError as error:
+        print(f'rqt: cannot serve on 127.0.0.1:{args.port}: {error.strerror or error} '
+              '(is another rqt running? choose a port with --port N)', file=sys.stderr)
+        sys.exit(1)
+    url = server.url + (f'#{PLUGINS[args.standalone]}' if args.standalone else '')
+
+    def start() -> RqtWebNode:
+        node = RqtWebNode(server)
+        print(f'rqt: open {url} in a browser (Ctrl-C to quit)', flush=True)
+        if not args.no_browser:
+            open_browser(url)
+        return node
+
+    try:
+        spin_node(start, argv)
+    finally:
+        server.server_close()
+
+
+if __name__ == '__main__':
+    main()

@@ -1,0 +1,332 @@
+"""The rqt node: answers the page's requests from the ROS graph, publishes, calls, subscribes.
+
+Its methods are called from the HTTP server's threads while rclpy spins the node in the main
+thread; they take plain data (parsed JSON) and return plain data, raising ApiError for bad input.
+"""
+
+import os
+import threading
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+from rclpy.exceptions import InvalidServiceNameException, InvalidTopicNameException
+from rclpy.node import Node
+from rclpy.qos import qos_profile_sensor_data
+from ros2cli.interfaces import InvalidType, canonical_type, import_type, type_name_of
+from ros2cli.message_yaml import FieldError, fill_message
+from ros2cli.names import full_node_name, is_hidden_name
+from ros2cli.node.graph import GraphQueries
+
+from rqt_web import api_input
+from rqt_web.api_input import ApiError
+from rqt_web.graph_model import build_model, layout
+from rqt_web.images import ImageError, compressed_for_browser, raw_to_png
+from rqt_web.interface_template import field_template, message_fields
+
+IMAGE_TYPES = ('sensor_msgs/msg/Image', 'sensor_msgs/msg/CompressedImage')
+PUBLISHER_KEYS = ('topic', 'type', 'rate', 'fields', 'enabled')
+CALL_KEYS = ('service', 'type', 'request', 'timeout')
+DEFAULT_CALL_TIMEOUT = 10.0  # s
+FIRST_FRAME_TIMEOUT = 5.0  # s
+NEXT_FRAME_TIMEOUT = 2.0  # s
+FEED_IDLE_TIME = 10.0  # s without a request before an image subscription is dropped
+
+
+@dataclass
+class MessagePublisher:
+    """One row of Message Publisher: a message published at a rate while enabled."""
+
+    id: int
+    topic: str
+    type_name: str
+    rate: float
+    enabled: bool
+    fields: dict[str, Any]
+    message: Any
+    stamps: list[Any]
+    publisher: Any
+    timer: Any = None
+    published: int = 0
+
+    def as_dict(self) -> dict[str, Any]:
+        return {'id': self.id, 'topic': self.topic, 'type': self.type_name, 'rate': self.rate,
+                'enabled': self.enabled, 'fields': self.fields,
+                'message': message_fields(self.message), 'published': self.published}
+
+
+@dataclass
+class ImageFeed:
+    """The latest frame of an image topic, for Image View."""
+
+    topic: str
+    type_name: str
+    subscription: Any = None
+    latest: Any = None
+    sequence: int = 0
+    last_request: float = field(default_factory=time.monotonic)
+    converted: tuple[int, str, bytes] | None = None  # (sequence, content type, bytes)
+    changed: threading.Condition = field(default_factory=threading.Condition)
+
+    def receive(self, message: Any) -> None:
+        with self.changed:
+            self.latest = message
+            self.sequence += 1
+            self.changed.notify_all()
+
+
+def _message_type(type_name: str, kind: str) -> Any:
+    try:
+        return import_type(type_name, kind)
+    except InvalidType as error:
+        raise ApiError(404, f"unknown {'message' if kind == 'msg' else 'service'} type: {error}") from None
+
+
+def _filled(message: Any, values: Any, stamps: list[Any] | None = None) -> Any:
+    try:
+        return fill_message(message, values, stamps)
+    except FieldError as error:
+        raise ApiError(400, str(error)) from None
+
+
+class RqtWebNode(Node):
+    """The backend of the page: one node for all four plugins."""
+
+    def __init__(self, server: Any) -> None:
+        super().__init__(f'rqt_gui_py_node_{os.getpid()}')
+        self._graph_queries = GraphQueries(self)
+        self._state_lock = threading.Lock()
+        self._message_publishers: dict[int, MessagePublisher] = {}
+        self._next_publisher_id = 1
+        self._service_clients: dict[tuple[str, Any], Any] = {}
+        self._image_feeds: dict[str, ImageFeed] = {}
+        self._feed_reaper = self.create_timer(FEED_IDLE_TIME / 2, self._drop_idle_feeds)
+        self._server = server
+        server.backend = self
+        self._server_thread = threading.Thread(target=server.serve_forever, kwargs={'poll_interval': 0.2},
+                                               name='rqt_web http', daemon=True)
+        self._server_thread.start()
+
+    def destroy_node(self) -> None:
+        self._server.shutdown()
+        self._server.server_close()
+        super().destroy_node()
+
+    # ---- graph -------------------------------------------------------------------------------
+
+    def topic_types(self) -> dict[str, list[str]]:
+        return {name: types for name, types in self._graph_queries.topic_names_and_types()
+                if not is_hidden_name(name)}
+
+    def service_types(self) -> dict[str, list[str]]:
+        return {name: types for name, types in self._graph_queries.service_names_and_types()
+                if not is_hidden_name(name)}
+
+    def graph(self, hide_debug: bool, hide_leaf_topics: bool) -> dict[str, Any]:
+        """Node Graph of every node but this one."""
+        own_name = self.get_fully_qualified_name()
+        endpoints = {}
+        for name, namespace in self._graph_queries.node_names_and_namespaces():
+            full_name = full_node_name(namespace, name)
+            if full_name == own_name:
+                continue
+            try:
+                endpoints[full_name] = (self._graph_queries.publishers_by_node(name, namespace),
+                                        self._graph_queries.subscribers_by_node(name, namespace))
+            except RuntimeError:  # the node left between the two questions
+                continue
+        return layout(build_model(endpoints, hide_debug, hide_leaf_topics))
+
+    def interface(self, type_name: str) -> dict[str, Any]:
+        """Field templates of a message type or of a service type's request and response."""
+        kinds = [part for part in ('msg', 'srv') if f'/{part}/' in type_name] or ['msg', 'srv']
+        errors = []
+        for kind in kinds:
+            try:
+                type_class = import_type(type_name, kind)
+            except InvalidType as error:
+                errors.append(str(error))
+                continue
+            if kind == 'msg':
+                return {'type': canonical_type(type_name, kind), 'kind': kind,
+                        'fields': field_template(type_class())}
+            return {'type': canonical_type(type_name, kind), 'kind': kind,
+                    'request': field_template(type_class.Request()),
+                    'response': field_template(type_class.Response())}
+        raise ApiError(404, f'unknown interface type: {errors[0]}')
+
+    # ---- Message Publisher ---------------------------------------------------------------------
+
+    def message_publishers(self) -> list[dict[str, Any]]:
+        with self._state_lock:
+            return [entry.as_dict() for entry in self._message_publishers.values()]
+
+    def add_message_publisher(self, body: dict[str, Any]) -> dict[str, Any]:
+        api_input.check_keys(body, PUBLISHER_KEYS, required=('topic',))
+        topic = api_input.name(body['topic'], 'topic')
+        rate = api_input.rate(body.get('rate', 1.0))
+        enabled = api_input.boolean(body.get('enabled', False), 'enabled')
+        values = api_input.fields(body.get('fields'), 'fields')
+        given_type = api_input.optional_text(body.get('type'), 'type')
+        existing = self.topic_types().get(topic)
+        if given_type is None:
+            known = api_input.known_name(topic, self.topic_types(), 'topic')
+            given_type = api_input.single_type(topic, known, 'topic')
+        message_class = _message_type(given_type, 'msg')
+        type_name = type_name_of(message_class)
+        if existing and type_name not in existing:
+            raise ApiError(400, f"topic '{topic}' has type {', '.join(existing)}, not {type_name}")
+        stamps: list[Any] = []
+        message = _filled(message_class(), values, stamps)
+        try:
+            publisher = self.create_publisher(message_class, topic, 10)
+        except InvalidTopicNameException as error:
+            raise ApiError(400, f"invalid topic name '{topic}': {str(error).splitlines()[0]}") from None
+        with self._state_lock:
+            entry = MessagePublisher(self._next_publisher_id, topic, type_name, rate, enabled, values,
+                                     message, stamps, publisher)
+            self._next_publisher_id += 1
+            self._message_publishers[entry.id] = entry
+            self._start_timer(entry)
+            return entry.as_dict()
+
+    def update_message_publisher(self, publisher_id: int, body: dict[str, Any]) -> dict[str, Any]:
+        """Change rate, fields (replacing the previous values) or enabled."""
+        api_input.check_keys(body, ('rate', 'fields', 'enabled'))
+        entry = self._message_publisher(publisher_id)
+        rate = api_input.rate(body['rate']) if 'rate' in body else entry.rate
+        enabled = api_input.boolean(body['enabled'], 'enabled') if 'enabled' in body else entry.enabled
+        stamps: list[Any] = []
+        if 'fields' in body:
+            values = api_input.fields(body['fields'], 'fields')
+            message = _filled(type(entry.message)(), values, stamps)
+        with self._state_lock:
+            if 'fields' in body:
+                entry.fields, entry.message, entry.stamps = values, message, stamps
+            if rate != entry.rate or enabled != entry.enabled:
+                entry.rate, entry.enabled = rate, enabled
+                self.destroy_timer(entry.timer)
+                self._start_timer(entry)
+            return entry.as_dict()
+
+    def remove_message_publisher(self, publisher_id: int) -> None:
+        entry = self._message_publisher(publisher_id)
+        with self._state_lock:
+            del self._message_publishers[publisher_id]
+            self.destroy_timer(entry.timer)
+            self.destroy_publisher(entry.publisher)
+
+    def _message_publisher(self, publisher_id: int) -> MessagePublisher:
+        with self._state_lock:
+            if publisher_id not in self._message_publishers:
+                ids = ', '.join(map(str, self._message_publishers)) or 'none'
+                raise ApiError(404, f'no publisher {publisher_id} (publishers: {ids})')
+            return self._message_publishers[publisher_id]
+
+    def _start_timer(self, entry: MessagePublisher) -> None:
+        def publish() -> None:
+            if entry.stamps:
+                now = self.get_clock().now().to_msg()
+                for refresh in entry.stamps:
+                    refresh(now)
+            entry.publisher.publish(entry.message)
+            entry.published += 1
+
+        entry.timer = self.create_timer(1.0 / entry.rate, publish, autostart=entry.enabled)
+
+    # ---- Service Caller ------------------------------------------------------------------------
+
+    def call_service(self, body: dict[str, Any]) -> dict[str, Any]:
+        api_input.check_keys(body, CALL_KEYS, required=('service',))
+        service = api_input.name(body['service'], 'service')
+        timeout = api_input.timeout(body.get('timeout', DEFAULT_CALL_TIMEOUT))
+        values = api_input.fields(body.get('request'), 'request')
+        given_type = api_input.optional_text(body.get('type'), 'type')
+        known = api_input.known_name(service, self.service_types(), 'service')
+        service_class = _message_type(given_type or api_input.single_type(service, known, 'service'), 'srv')
+        request = _filled(service_class.Request(), values)
+        started = time.monotonic()
+        response = self._call(service, service_class, request, timeout)
+        return {'service': service, 'type': type_name_of(service_class),
+                'response': message_fields(response), 'seconds': round(time.monotonic() - started, 3)}
+
+    def _call(self, service: str, service_class: Any, request: Any, timeout: float) -> Any:
+        with self._state_lock:
+            client = self._service_clients.get((service, service_class))
+            if client is None:
+                try:
+                    client = self.create_client(service_class, service)
+                except InvalidServiceNameException as error:
+                    raise ApiError(400, f"invalid service name '{service}': "
+                                        f'{str(error).splitlines()[0]}') from None
+                self._service_clients[(service, service_class)] = client
+        deadline = time.monotonic() + timeout
+        if not client.wait_for_service(timeout_sec=timeout):
+            raise ApiError(504, f'service {service} did not become available within {timeout:g} s')
+        answered = threading.Event()
+        future = client.call_async(request)
+        future.add_done_callback(lambda _: answered.set())
+        if not answered.wait(max(0.0, deadline - time.monotonic())):
+            client.remove_pending_request(future)
+            raise ApiError(504, f'no response from {service} within {timeout:g} s')
+        if future.exception() is not None:
+            raise ApiError(502, f'the call of {service} failed: {future.exception()!r}')
+        return future.result()
+
+    # ---- Image View ----------------------------------------------------------------------------
+
+    def image_topic_types(self) -> dict[str, list[str]]:
+        return {name: types for name, types in self.topic_types().items()
+                if any(t in IMAGE_TYPES for t in types)}
+
+    def latest_image(self, topic: str, after: int) -> tuple[int, str, bytes]:
+        """(frame number, content type, bytes) of the newest frame; with after, of a newer one
+        if it comes within a moment. Subscribes on the first request for a topic."""
+        feed = self._image_feed(topic)
+        with feed.changed:
+            feed.last_request = time.monotonic()
+            wait = FIRST_FRAME_TIMEOUT if feed.sequence == 0 else NEXT_FRAME_TIMEOUT
+            feed.changed.wait_for(lambda: feed.sequence > max(after, 0), wait)
+            if feed.sequence == 0:
+                raise ApiError(504, f"no image on '{topic}' within {FIRST_FRAME_TIMEOUT:g} s")
+            sequence, message, converted = feed.sequence, feed.latest, feed.converted
+        if converted is not None and converted[0] == sequence:
+            return converted
+        try:
+            if feed.type_name == 'sensor_msgs/msg/CompressedImage':
+                content_type, data = compressed_for_browser(message.format, bytes(message.data))
+            else:
+                content_type, data = 'image/png', raw_to_png(
+                    message.width, message.height, message.encoding, message.step,
+                    bool(message.is_bigendian), bytes(message.data))
+        except ImageError as error:
+            raise ApiError(502, f"cannot show the image on '{topic}': {error}") from None
+        feed.converted = (sequence, content_type, data)
+        return feed.converted
+
+    def _image_feed(self, wanted: str) -> ImageFeed:
+        topic = api_input.name(wanted, 'topic')
+        with self._state_lock:
+            if topic in self._image_feeds:
+                return self._image_feeds[topic]
+        types = api_input.known_name(topic, self.topic_types(), 'topic')
+        image_type = next((t for t in types if t in IMAGE_TYPES), None)
+        if image_type is None:
+            raise ApiError(400, f"topic '{topic}' has type {', '.join(types)}; Image View shows "
+                                f"{' and '.join(IMAGE_TYPES)}")
+        with self._state_lock:
+            if topic not in self._image_feeds:
+                feed = ImageFeed(topic, image_type)
+                # Best effort matches reliable and best-effort publishers (the camera is best effort).
+                feed.subscription = self.create_subscription(
+                    import_type(image_type, 'msg'), topic, feed.receive, qos_profile_sensor_data)
+                self._image_feeds[topic] = feed
+            return self._image_feeds[topic]
+
+    def _drop_idle_feeds(self) -> None:
+        now = time.monotonic()
+        with self._state_lock:
+            for topic, feed in list(self._image_feeds.items()):
+                if now - feed.last_request > FEED_IDLE_TIME:
+                    self.destroy_subscription(feed.subscription)
+                    del self._image_feeds[topic]

@@ -1,0 +1,284 @@
+"""`rqt` (package rqt_web) over real DDS: the page, Node Graph, Message Publisher, Service Caller and
+Image View through the HTTP API the page uses, bad input, port handling and Ctrl-C."""
+
+import io
+import json
+import socket
+import time
+import urllib.error
+import urllib.request
+from typing import Any
+
+import numpy as np
+from geometry_msgs.msg import Twist
+from PIL import Image as PilImage
+from ros_harness import wait_for_messages, wait_until
+from sensor_msgs.msg import Image
+from std_srvs.srv import Trigger
+from turtlesim.msg import Pose
+
+URL_LINE = r'^rqt: open (http://127\.0\.0\.1:\d+/)(#[a-z-]+)? in a browser \(Ctrl-C to quit\)$'
+PLUGINS = ('Node Graph', 'Message Publisher', 'Service Caller', 'Image View')
+CAMERA_TOPIC = '/olive/camera/eye/image/compressed'
+
+
+def free_port() -> int:
+    with socket.socket() as probe:
+        probe.bind(('127.0.0.1', 0))
+        return probe.getsockname()[1]
+
+
+def http(method: str, url: str, body: Any = None) -> tuple[int, dict[str, str], bytes]:
+    """(status, headers, body) of one request; a dict body goes as JSON, bytes as they are."""
+    data = body if isinstance(body, bytes) or body is None else json.dumps(body).encode()
+    request = urllib.request.Request(url, data=data, method=method)
+    if data is not None:
+        request.add_header('Content-Type', 'application/json')
+    try:
+        with urllib.request.urlopen(request, timeout=30) as response:
+            return response.status, dict(response.headers), response.read()
+    except urllib.error.HTTPError as error:
+        return error.code, dict(error.headers), error.read()
+
+
+class Rqt:
+    """A running `rqt --no-browser` and its JSON API."""
+
+    def __init__(self, ros: Any, *argv: str) -> None:
+        self.process = ros.command(argv or ['rqt', '--port', str(free_port()), '--no-browser'])
+        self.base, self.fragment = self.process.wait_for(URL_LINE, timeout=30)[0].groups()
+
+    def call(self, method: str, path: str, body: Any = None) -> tuple[int, Any]:
+        status, _, data = http(method, self.base + path.lstrip('/'), body)
+        return status, json.loads(data)
+
+    def ok(self, method: str, path: str, body: Any = None, status: int = 200) -> Any:
+        got, data = self.call(method, path, body)
+        assert got == status, data
+        return data
+
+    def refused(self, status: int, method: str, path: str, body: Any = None) -> str:
+        """The error line of a refused request; the server must still answer afterwards."""
+        got, data = self.call(method, path, body)
+        assert got == status, data
+        assert list(data) == ['error'] and '\n' not in data['error'] and data['error'], data
+        assert self.call('GET', '/api/topics')[0] == 200
+        return data['error']
+
+    def wait_for(self, condition: Any, what: str, timeout: float = 20.0) -> None:
+        wait_until(condition, timeout, what)
+
+    def stop_cleanly(self) -> None:
+        assert self.process.stop() == 0, self.process.output
+        assert 'Traceback' not in self.process.output
+
+
+def start_turtlesim_and_rqt(ros: Any) -> Rqt:
+    ros.run('turtlesim', 'turtlesim_node')
+    rqt = Rqt(ros)
+    rqt.wait_for(lambda: '/turtle1/cmd_vel' in topic_names(rqt), 'rqt to see turtlesim')
+    return rqt
+
+
+def topic_names(rqt: Rqt) -> set[str]:
+    return {topic['name'] for topic in rqt.ok('GET', '/api/topics')}
+
+
+def test_page_node_graph_and_ctrl_c(ros):
+    rqt = start_turtlesim_and_rqt(ros)
+    status, headers, page = http('GET', rqt.base)
+    assert status == 200 and headers['Content-Type'].startswith('text/html')
+    assert all(name in page.decode() for name in PLUGINS)
+    for asset in ('static/app.js', 'static/style.css'):
+        assert http('GET', rqt.base + asset)[0] == 200
+    assert http('GET', rqt.base + 'static/../setup.py')[0] == 404
+    assert rqt.refused(404, 'GET', '/api/grph').startswith("no API path '/api/grph'; known: ")
+    assert rqt.refused(405, 'DELETE', '/api/graph') == 'DELETE is not allowed on /api/graph'
+
+    ros.probe.node.create_publisher(Twist, '/turtle1/cmd_vel', 10)
+    expected = {('/owl_test_probe', '/turtle1/cmd_vel'), ('/turtle1/cmd_vel', '/turtlesim'),
+                ('/turtlesim', '/turtle1/pose')}
+
+    def edges() -> set[tuple[str, str]]:
+        return {(edge['from'], edge['to']) for edge in rqt.ok('GET', '/api/graph')['edges']}
+    rqt.wait_for(lambda: expected <= edges(), 'the probe publishing /turtle1/cmd_vel in the graph')
+    graph = rqt.ok('GET', '/api/graph')
+    assert set(graph['nodes']) == {'/turtlesim', '/owl_test_probe'}  # not rqt's own node
+    assert {box['id'] for box in graph['boxes']} == {*graph['nodes'], *(t['name'] for t in graph['topics'])}
+    assert '/rosout' not in {t['name'] for t in graph['topics']}
+    layer = {box['id']: box['layer'] for box in graph['boxes']}
+    assert layer['/owl_test_probe'] < layer['/turtle1/cmd_vel'] < layer['/turtlesim'] < layer['/turtle1/pose']
+    everything = rqt.ok('GET', '/api/graph?hide_debug=0')
+    assert {'from': '/turtlesim', 'to': '/rosout'} in everything['edges']
+    leafless = rqt.ok('GET', '/api/graph?hide_leaf_topics=1')
+    assert [t['name'] for t in leafless['topics']] == ['/turtle1/cmd_vel']
+    rqt.stop_cleanly()
+
+
+def test_message_publisher_moves_the_turtle(ros):
+    rqt = start_turtlesim_and_rqt(ros)
+    poses = ros.probe.collect(Pose, '/turtle1/pose')
+    wait_for_messages(poses, 1)
+    start = poses[-1]
+    twist = {'linear': {'x': 1.0}, 'angular': {'z': 1.0}}
+    # Added disabled, as rqt's Message Publisher does; the type comes from the graph.
+    entry = rqt.ok('POST', '/api/publishers', {'topic': '/turtle1/cmd_vel', 'rate': 10, 'fields': twist},
+                   status=201)
+    assert (entry['type'], entry['rate'], entry['enabled']) == ('geometry_msgs/msg/Twist', 10.0, False)
+    assert entry['message'] == {'linear': {'x': 1.0, 'y': 0.0, 'z': 0.0},
+                                'angular': {'x': 0.0, 'y': 0.0, 'z': 1.0}}
+    path = f"/api/publishers/{entry['id']}"
+    assert rqt.ok('PATCH', path, {'enabled': True})['enabled'] is True
+    rqt.wait_for(lambda: abs(poses[-1].x - start.x) > 0.2 and abs(poses[-1].theta - start.theta) > 0.2,
+                 'the turtle to drive a circle')
+    assert rqt.ok('GET', '/api/publishers')[0]['published'] > 0
+
+    assert rqt.ok('PATCH', path, {'enabled': False})['enabled'] is False
+    time.sleep(1.5)  # turtlesim stops a turtle 1 s after its last command
+    count = len(poses)
+    wait_for_messages(poses, count + 20)
+    assert {(p.x, p.y, p.theta) for p in poses[count:]} == {(poses[-1].x, poses[-1].y, poses[-1].theta)}
+    changed = rqt.ok('PATCH', path, {'rate': 2.5, 'fields': {'linear': {'x': 0.5}}})
+    assert (changed['rate'], changed['message']['linear']['x'], changed['enabled']) == (2.5, 0.5, False)
+
+    # bad input: one line each, nothing changes, the server lives on
+    assert rqt.refused(400, 'PATCH', path, {'rate': 0}) == \
+        'rate must be greater than 0 and at most 1000 Hz, got 0'
+    assert rqt.refused(400, 'PATCH', path, {'rate': 'fast'}) == "rate must be a number of Hz, got 'fast'"
+    assert rqt.refused(400, 'PATCH', path, {'fields': {'linear': {'w': 1.0}}}) == \
+        "unknown field 'linear.w'; geometry_msgs/msg/Vector3 has: x, y, z"
+    assert rqt.ok('GET', '/api/publishers')[0]['rate'] == 2.5
+    bad_creations = [
+        (404, {'topic': '/turtle1/cmd_vl'},
+         "unknown topic '/turtle1/cmd_vl' (did you mean '/turtle1/cmd_vel'?)"),
+        (404, {'topic': '/new', 'type': 'geometry_msgs/msg/Twst'},
+         "unknown message type: package 'geometry_msgs' has no message 'Twst' (did you mean 'Twist'?)"),
+        (400, {'topic': '/turtle1/cmd_vel', 'fields': {'linear': {'x': 'fast'}}},
+         "field 'linear.x' expects a number (double), got 'fast' (str)"),
+        (400, {'topic': '/turtle1/cmd_vel', 'fields': {'linar': {}}},
+         "unknown field 'linar' (did you mean 'linear'?); geometry_msgs/msg/Twist has: linear, angular"),
+        (400, {'topic': '/rqt_test/color', 'type': 'turtlesim/msg/Color', 'fields': {'r': 300}},
+         "field 'r' expects a uint8 in [0, 255], got 300"),
+        (400, {'topic': '/turtle1/cmd_vel', 'rate': -1},
+         'rate must be greater than 0 and at most 1000 Hz, got -1'),
+        (400, {'topic': '/turtle1/cmd_vel', 'type': 'std_msgs/msg/String'},
+         "topic '/turtle1/cmd_vel' has type geometry_msgs/msg/Twist, not std_msgs/msg/String"),
+        (400, {'topic': '/bad name', 'type': 'std_msgs/msg/String'}, "invalid topic name '/bad name'"),
+        (400, {'topic': '/turtle1/cmd_vel', 'rte': 1},
+         "unknown key 'rte' (did you mean 'rate'?); expected: topic, type, rate, fields, enabled"),
+        (400, b'{"topic": ', 'malformed JSON in the request body: Expecting value (line 1, column 11)'),
+    ]
+    for status, body, message in bad_creations:
+        assert rqt.refused(status, 'POST', '/api/publishers', body).startswith(message)
+    assert len(rqt.ok('GET', '/api/publishers')) == 1
+
+    assert rqt.ok('DELETE', path) == {'deleted': entry['id']}
+    assert rqt.ok('GET', '/api/publishers') == []
+    assert rqt.refused(404, 'DELETE', path) == f"no publisher {entry['id']} (publishers: none)"
+    assert rqt.refused(404, 'PATCH', '/api/publishers/abc', {'enabled': True}) == "no publisher 'abc'"
+    rqt.stop_cleanly()
+
+
+def test_service_caller_spawns_a_turtle(ros):
+    rqt = start_turtlesim_and_rqt(ros)
+    services = {s['name']: s['types'] for s in rqt.ok('GET', '/api/services')}
+    assert services['/spawn'] == ['turtlesim/srv/Spawn']
+    form = rqt.ok('GET', '/api/interface?type=turtlesim/srv/Spawn')
+    assert [field['name'] for field in form['request']] == ['x', 'y', 'theta', 'name']
+    answer = rqt.ok('POST', '/api/call', {'service': '/spawn',
+                                          'request': {'x': 2.0, 'y': 2.0, 'theta': 0.0, 'name': ''}})
+    assert answer['response'] == {'name': 'turtle2'} and answer['type'] == 'turtlesim/srv/Spawn'
+    rqt.wait_for(lambda: '/turtle2/pose' in topic_names(rqt), '/turtle2/pose')
+
+    def slow(request: Any, response: Any) -> Any:
+        time.sleep(1.5)
+        return response
+    ros.probe.node.create_service(Trigger, '/rqt_test/slow', slow)
+    rqt.wait_for(lambda: '/rqt_test/slow' in {s['name'] for s in rqt.ok('GET', '/api/services')},
+                 'the slow service')
+    bad_calls = [
+        (404, {'service': '/spwan'}, "unknown service '/spwan' (did you mean '/spawn'?)"),
+        (400, {'service': '/spawn', 'request': {'z': 1.0}},
+         "unknown field 'z'; turtlesim/srv/Spawn_Request has: x, y, theta, name"),
+        (400, {'service': '/spawn', 'request': {'x': 'left'}},
+         "field 'x' expects a number (float), got 'left' (str)"),
+        (400, {'service': '/spawn', 'timeout': 0}, 'timeout must be greater than 0 and at most 300 s, got 0'),
+        (404, {'service': '/spawn', 'type': 'turtlesim/srv/Spwn'},
+         "unknown service type: package 'turtlesim' has no service 'Spwn' (did you mean 'Spawn'?)"),
+        (400, {'request': {}}, "missing key 'service'"),
+        (504, {'service': '/rqt_test/slow', 'timeout': 0.3}, 'no response from /rqt_test/slow within 0.3 s'),
+    ]
+    for status, body, message in bad_calls:
+        assert rqt.refused(status, 'POST', '/api/call', body) == message
+    assert rqt.refused(404, 'GET', '/api/interface?type=turtlesim/Spwn').startswith(
+        "unknown interface type: package 'turtlesim' has no message 'Spwn'")
+    assert rqt.refused(400, 'GET', '/api/interface') == "missing query parameter 'type'"
+    rqt.stop_cleanly()
+
+
+def raw_image(encoding: str, pixels: np.ndarray) -> Image:
+    height, width = pixels.shape[:2]
+    return Image(height=height, width=width, encoding=encoding, step=pixels[0].nbytes,
+                 data=pixels.tobytes())
+
+
+def test_image_view_shows_the_camera_and_raw_images(ros):
+    ros.run('olive_sim', 'camera_sim')
+    rqt = Rqt(ros)
+    rqt.wait_for(lambda: CAMERA_TOPIC in {t['name'] for t in rqt.ok('GET', '/api/image_topics')},
+                 'the camera topic', timeout=30)
+    status, headers, jpeg = http('GET', rqt.base + f'api/image?topic={CAMERA_TOPIC}')
+    assert status == 200 and headers['Content-Type'] == 'image/jpeg', jpeg[:200]
+    assert PilImage.open(io.BytesIO(jpeg)).size == (640, 480)
+    frame = int(headers['X-Frame'])
+    status, headers, _ = http('GET', rqt.base + f'api/image?topic={CAMERA_TOPIC}&after={frame}')
+    assert status == 200 and int(headers['X-Frame']) > frame
+
+    pixels = np.zeros((6, 8, 3), dtype=np.uint8)
+    pixels[:, :, 0] = np.arange(8) * 30
+    pixels[:, :, 1] = np.arange(6)[:, None] * 40
+    sources = (('/rqt_test/rgb', 'rgb8', pixels), ('/rqt_test/bgr', 'bgr8', pixels[..., ::-1]),
+               ('/rqt_test/mono', 'mono8', pixels[..., 0]), ('/rqt_test/yuv', 'yuv422', pixels[..., :2]))
+    for topic, encoding, data in sources:
+        publisher = ros.probe.node.create_publisher(Image, topic, 10)
+        message = raw_image(encoding, np.ascontiguousarray(data))
+        ros.probe.node.create_timer(0.1, lambda p=publisher, m=message: p.publish(m))
+    rqt.wait_for(lambda: {'/rqt_test/rgb', '/rqt_test/bgr', '/rqt_test/mono'} <=
+                 {t['name'] for t in rqt.ok('GET', '/api/image_topics')}, 'the raw image topics')
+    for topic, expected in (('/rqt_test/rgb', pixels), ('/rqt_test/bgr', pixels),
+                            ('/rqt_test/mono', pixels[..., 0])):
+        status, headers, png = http('GET', rqt.base + f'api/image?topic={topic}')
+        assert status == 200 and headers['Content-Type'] == 'image/png', png[:200]
+        assert np.array_equal(np.asarray(PilImage.open(io.BytesIO(png))), expected)
+
+    assert rqt.refused(404, 'GET', '/api/image?topic=/olive/camera/eye/image/compresed') == \
+        f"unknown topic '/olive/camera/eye/image/compresed' (did you mean '{CAMERA_TOPIC}'?)"
+    assert rqt.refused(400, 'GET', '/api/image?topic=/olive/camera/eye/temperature') == \
+        "topic '/olive/camera/eye/temperature' has type sensor_msgs/msg/Temperature; Image View shows " \
+        'sensor_msgs/msg/Image and sensor_msgs/msg/CompressedImage'
+    assert rqt.refused(502, 'GET', '/api/image?topic=/rqt_test/yuv').startswith(
+        "cannot show the image on '/rqt_test/yuv': unsupported image encoding 'yuv422'")
+    assert rqt.refused(400, 'GET', f'/api/image?topic={CAMERA_TOPIC}&after=x') == \
+        "'after' must be a frame number, got 'x'"
+    rqt.stop_cleanly()
+
+
+def test_port_in_use_ros2_run_and_bad_arguments(ros):
+    with socket.socket() as taken:
+        taken.bind(('127.0.0.1', 0))
+        taken.listen()
+        port = taken.getsockname()[1]
+        busy = ros.command(['rqt', '--port', str(port), '--no-browser'])
+        assert busy.wait(timeout=30) == 1
+        assert busy.lines == [f'rqt: cannot serve on 127.0.0.1:{port}: Address already in use '
+                              '(is another rqt running? choose a port with --port N)']
+    bad = ros.command(['rqt', '--port', 'eighty'])
+    assert bad.wait(timeout=30) == 2
+    assert "rqt: error: argument --port: 'eighty' is not a port number (0..65535)" in bad.output
+    assert 'Traceback' not in bad.output
+
+    # `ros2 run rqt_web rqt` is the same program; --port 0 takes any free port
+    run = Rqt(ros, 'ros2', 'run', 'rqt_web', 'rqt', '--port', '0', '--no-browser', '-s', 'rqt_graph')
+    assert run.fragment == '#node-graph'
+    assert http('GET', run.base)[0] == 200
+    run.stop_cleanly()
