@@ -154,3 +154,7 @@ def list_parameter_names(probe: Probe, node: str, timeout: float = 10.0) -> list
     from rcl_interfaces.srv import ListParameters
     response = probe.call(ListParameters, f'{node}/list_parameters', ListParameters.Request(), timeout)
     return sorted(response.result.names)
+
+# Longer than launch's own escalation (SIGTERM 5 s after SIGINT, SIGKILL 5 s later), so a test
+# stopping `ros2 launch` never races it: a slow child shows up in launch's log, not as a SIGTERM here.
+LAUNCH_STOP_TIMEOUT = 15.0

@@ -1,8 +1,9 @@
-"""The shared sandbox leaves its domain as it found it."""
+"""The shared sandbox leaves its domain as it found it, and reports unclean stops usefully."""
 
 import socket
 import subprocess
 
+import pytest
 from owl_common.processes import ROS2_DAEMON_BASE_PORT, RosSandbox
 
 
@@ -28,3 +29,13 @@ def test_processes_of_a_closed_sandbox_are_gone():
     with RosSandbox() as sandbox:
         sleeper = sandbox.command(['sleep', '60'])
     assert not sleeper.running()
+
+
+def test_stop_cleanly_reports_the_exit_code_signal_and_output_of_an_unclean_stop():
+    with RosSandbox() as sandbox:
+        stubborn = sandbox.command(['sh', '-c', 'trap "echo cleaning up; exit 3" INT; echo ready; '
+                                   'while :; do sleep 0.05; done'])
+        stubborn.wait_for('ready')
+        with pytest.raises(AssertionError) as failure:
+            stubborn.stop_cleanly()
+    assert 'exit code 3 after SIGINT' in str(failure.value) and 'cleaning up' in str(failure.value)

@@ -10,7 +10,7 @@ import time
 from pathlib import Path
 
 import pytest
-from ros_harness import wait_until
+from ros_harness import LAUNCH_STOP_TIMEOUT, wait_until
 from std_msgs.msg import Int32
 
 STARTED = r'\[INFO\] \[([\w.-]+)\]: process started with pid \[(\d+)\]'
@@ -96,7 +96,7 @@ def test_olive_launch_package_files_bring_up_turtle1_and_turtle2(ros, launch_fil
     labels = sorted(label for label, _pid in re.findall(STARTED, process.output))
     assert [re.sub(r'-\d+$', '', label) for label in labels] == ['turtlesim_node'] * 2
     pids = child_pids(process)
-    assert process.stop(timeout=10) == 0, process.output
+    process.stop_cleanly(timeout=LAUNCH_STOP_TIMEOUT)
     assert not [pid for pid in pids if alive(pid)]
 
 
@@ -165,4 +165,4 @@ def test_node_name_namespace_parameters_and_remapping_reach_the_node(ros, tmp_pa
     wait_until(lambda: len(received) >= 2, 30, 'two numbers on /lab/numbers')
     assert {message.data for message in received} == {7}
     assert ros.probe.get_parameters('/lab/pub', 'lower_limit', 'upper_limit') == [7, 7]
-    assert process.stop(timeout=10) == 0
+    process.stop_cleanly(timeout=LAUNCH_STOP_TIMEOUT)

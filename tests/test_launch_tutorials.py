@@ -6,7 +6,7 @@ import re
 import signal
 import textwrap
 
-from ros_harness import wait_until
+from ros_harness import LAUNCH_STOP_TIMEOUT, wait_until
 
 STARTED = r'\[INFO\] \[(.+?)\]: process started with pid \[(\d+)\]'
 
@@ -114,7 +114,7 @@ def test_mimic_tutorial_labels_and_graph(ros, tmp_path):
     expected = {('sim', '/turtlesim1'), ('sim', '/turtlesim2'), ('mimic', '/')}
     wait_until(lambda: expected <= set(ros.probe.node.get_node_names_and_namespaces()), 30,
                'both simulators and mimic in the graph')
-    assert process.stop(timeout=10) == 0
+    process.stop_cleanly(timeout=LAUNCH_STOP_TIMEOUT)
 
 
 def test_substitutions_tutorial_include_with_arguments(ros, tmp_path):
@@ -125,7 +125,7 @@ def test_substitutions_tutorial_include_with_arguments(ros, tmp_path):
                      timeout=30)
     # The timer's conditional process ran, labelled (as upstream) by the basename of its command.
     process.wait_for(r'\[INFO\] \[sim background_r 200-\d+\]: process started with pid', timeout=40)
-    assert process.stop(timeout=10) == 0
+    process.stop_cleanly(timeout=LAUNCH_STOP_TIMEOUT)
 
 
 def test_event_handlers_tutorial(ros, tmp_path):

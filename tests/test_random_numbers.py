@@ -119,7 +119,7 @@ def test_every_node_stops_cleanly_on_ctrl_c(ros):
                  'turtle_random_velocity'):
         ros.probe.wait_for_node(name)
     for node in nodes:
-        assert node.stop() == 0, node.output
+        node.stop_cleanly()
         assert 'Traceback' not in node.output
 
 

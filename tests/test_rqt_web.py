@@ -190,6 +190,13 @@ def test_service_caller_spawns_a_turtle(ros):
     assert answer['response'] == {'name': 'turtle2'} and answer['type'] == 'turtlesim/srv/Spawn'
     rqt.wait_for(lambda: '/turtle2/pose' in topic_names(rqt), '/turtle2/pose')
 
+    # the course's servo safety switch: a Trigger with an empty request
+    ros.run('olive_sim', 'servo_sim')
+    torque = '/olive/servo/pan/setTorqueEnable'
+    rqt.wait_for(lambda: torque in {s['name'] for s in rqt.ok('GET', '/api/services')}, torque, timeout=30)
+    assert rqt.ok('GET', '/api/interface?type=std_srvs/srv/Trigger')['request'] == []
+    assert rqt.ok('POST', '/api/call', {'service': torque})['response']['success'] is True
+
     def slow(request: Any, response: Any) -> Any:
         time.sleep(1.5)
         return response

@@ -33,7 +33,7 @@ def test_temp_client_waits_for_the_server_and_says_so(ros):
 def test_temp_client_ctrl_c_while_waiting_exits_cleanly(ros):
     client = ros.run('olive_srvcli', 'temp_client', '20')
     client.wait_for('service not available')
-    assert client.stop() == 0
+    client.stop_cleanly()
     assert 'Traceback' not in client.output
 
 
@@ -107,5 +107,5 @@ def test_factorial_round_trip_and_refusals(ros):
 def test_servers_stop_cleanly_on_ctrl_c(ros, server):
     process = ros.run('olive_srvcli', server)
     ros.probe.wait_for_node(server.replace('_server', '_service'))
-    assert process.stop() == 0
+    process.stop_cleanly()
     assert 'Traceback' not in process.output

@@ -96,4 +96,4 @@ def test_killing_a_rotating_turtle_ends_its_goal_without_harm(ros):
         assert future.result().status == GoalStatus.STATUS_ABORTED
     assert sim.running()
     assert 'Traceback' not in sim.output
-    assert sim.stop() == 0
+    sim.stop_cleanly()

@@ -83,7 +83,7 @@ def test_starts_headless_and_publishes_turtle1_pose_and_color(ros):
         (info,) = ros.probe.node.get_publishers_info_by_topic(topic)
         assert info.qos_profile.reliability == ReliabilityPolicy.RELIABLE
         assert info.qos_profile.durability == DurabilityPolicy.VOLATILE
-    assert sim.stop() == 0
+    sim.stop_cleanly()
     assert 'Traceback' not in sim.output
 
 
@@ -265,6 +265,7 @@ def test_without_headless_flag_runs_headless_when_no_display_can_be_opened(ros):
                           env={'DISPLAY': ':4242'})
     unreachable.wait_for(r'\[WARN\].*\[second\]: No window \(.*\); running headless', timeout=30)
     assert ros.probe.get_parameters('second', 'background_r') == [69]  # serving
-    assert no_display.stop() == 0 and unreachable.stop() == 0
+    no_display.stop_cleanly()
+    unreachable.stop_cleanly()
     assert 'No window' not in no_display.output
     assert 'Traceback' not in no_display.output + unreachable.output

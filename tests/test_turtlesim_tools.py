@@ -22,7 +22,7 @@ def test_draw_square_resets_then_drives_the_first_side_and_turns(ros):
     square.wait_for(r'Reached goal', timeout=20)
     # Stopped within the 0.1 m tolerance short of 7.544445: now the left turn on the spot.
     square.wait_for(r'New goal \[7\.4\d+ 5\.5\d+, 1\.570796\]', timeout=10)
-    assert square.stop() == 0
+    square.stop_cleanly()
     assert 'Traceback' not in square.output + sim.output
 
 

@@ -87,6 +87,7 @@ class RosProcess:
         self.label = label or Path(self.argv[0]).name
         self.echo = echo
         self.lines: list[str] = []
+        self.last_signal: int | None = None
         self._changed = threading.Condition()
         self.popen = subprocess.Popen(
             self.argv, env=env, cwd=cwd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
@@ -156,11 +157,20 @@ class RosProcess:
         """SIGINT, then SIGTERM, then SIGKILL, each after timeout; return the exit code."""
         for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGKILL):
             self.send_signal(sig)
+            self.last_signal = sig
             try:
                 return self.wait(timeout)
             except subprocess.TimeoutExpired:
                 continue
         return self.wait(timeout)
+
+    def stop_cleanly(self, timeout: float = 5.0) -> None:
+        """stop(), and fail with the output's tail unless Ctrl-C alone ended it with exit code 0."""
+        code = self.stop(timeout)
+        if code != 0:
+            raise AssertionError(
+                f'{self.label}: exit code {code} after {signal.Signals(self.last_signal).name}; '
+                f'output:\n{self._tail()}')
 
 
 class RosSandbox:
