@@ -3,6 +3,7 @@
 import argparse
 import os
 import sys
+import threading
 import webbrowser
 
 from owl_common.run import spin_node
@@ -40,10 +41,13 @@ def open_browser(url: str) -> None:
     """Try the desktop's browser; headless or failing, the printed address is enough."""
     if not (os.environ.get('DISPLAY') or os.environ.get('WAYLAND_DISPLAY')):
         return
-    try:
-        webbrowser.open(url)
-    except Exception:  # any browser trouble: the user still has the printed address
-        pass
+    def open_page() -> None:
+        try:
+            webbrowser.open(url)
+        except Exception:  # any browser trouble: the user still has the printed address
+            pass
+    # In a thread: some browsers' launchers only return when the browser exits.
+    threading.Thread(target=open_page, name='rqt_web browser', daemon=True).start()
 
 
 def main(argv: list[str] | None = None) -> None:

@@ -168,10 +168,10 @@ class RqtWebNode(Node):
         enabled = api_input.boolean(body.get('enabled', False), 'enabled')
         values = api_input.fields(body.get('fields'), 'fields')
         given_type = api_input.optional_text(body.get('type'), 'type')
-        existing = self.topic_types().get(topic)
+        topics = self.topic_types()
+        existing = topics.get(topic)
         if given_type is None:
-            known = api_input.known_name(topic, self.topic_types(), 'topic')
-            given_type = api_input.single_type(topic, known, 'topic')
+            given_type = api_input.single_type(topic, api_input.known_name(topic, topics, 'topic'), 'topic')
         message_class = _message_type(given_type, 'msg')
         type_name = type_name_of(message_class)
         if existing and type_name not in existing:
@@ -201,6 +201,8 @@ class RqtWebNode(Node):
             values = api_input.fields(body['fields'], 'fields')
             message = _filled(type(entry.message)(), values, stamps)
         with self._state_lock:
+            if self._message_publishers.get(publisher_id) is not entry:
+                raise self._unknown_publisher(publisher_id)  # removed meanwhile
             if 'fields' in body:
                 entry.fields, entry.message, entry.stamps = values, message, stamps
             if rate != entry.rate or enabled != entry.enabled:
@@ -210,27 +212,36 @@ class RqtWebNode(Node):
             return entry.as_dict()
 
     def remove_message_publisher(self, publisher_id: int) -> None:
-        entry = self._message_publisher(publisher_id)
         with self._state_lock:
-            del self._message_publishers[publisher_id]
+            entry = self._message_publishers.pop(publisher_id, None)
+            if entry is None:
+                raise self._unknown_publisher(publisher_id)
             self.destroy_timer(entry.timer)
             self.destroy_publisher(entry.publisher)
 
     def _message_publisher(self, publisher_id: int) -> MessagePublisher:
         with self._state_lock:
             if publisher_id not in self._message_publishers:
-                ids = ', '.join(map(str, self._message_publishers)) or 'none'
-                raise ApiError(404, f'no publisher {publisher_id} (publishers: {ids})')
+                raise self._unknown_publisher(publisher_id)
             return self._message_publishers[publisher_id]
+
+    def _unknown_publisher(self, publisher_id: int) -> ApiError:
+        """The 404 for a publisher id (call with the lock held)."""
+        ids = ', '.join(map(str, self._message_publishers)) or 'none'
+        return ApiError(404, f'no publisher {publisher_id} (publishers: {ids})')
 
     def _start_timer(self, entry: MessagePublisher) -> None:
         def publish() -> None:
-            if entry.stamps:
-                now = self.get_clock().now().to_msg()
-                for refresh in entry.stamps:
-                    refresh(now)
-            entry.publisher.publish(entry.message)
-            entry.published += 1
+            # Under the lock: a request thread may be removing this publisher right now.
+            with self._state_lock:
+                if self._message_publishers.get(entry.id) is not entry:
+                    return
+                if entry.stamps:
+                    now = self.get_clock().now().to_msg()
+                    for refresh in entry.stamps:
+                        refresh(now)
+                entry.publisher.publish(entry.message)
+                entry.published += 1
 
         entry.timer = self.create_timer(1.0 / entry.rate, publish, autostart=entry.enabled)
 

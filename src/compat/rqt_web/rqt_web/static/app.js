@@ -378,8 +378,7 @@ async function showImages(topic, loop) {
       if (previous.startsWith('blob:')) URL.revokeObjectURL(previous);
       shown += 1;
       const fps = shown / ((performance.now() - started) / 1000);
-      $('img-status').textContent =
-        `frame ${frame}  ${image.naturalWidth || '?'}x${image.naturalHeight || '?'}  ${fps.toFixed(1)} fps shown`;
+      $('img-status').textContent = `frame ${frame}  ${fps.toFixed(1)} fps shown`;
       showError('img-error');
     } catch (error) {
       if (loop !== imageLoop) return;
@@ -393,7 +392,12 @@ $('img-topic').addEventListener('change', () => {
   imageLoop += 1;
   $('img-frame').removeAttribute('src');
   $('img-status').textContent = '';
+  $('img-size').textContent = '';
   showImages($('img-topic').value, imageLoop);
+});
+$('img-frame').addEventListener('load', () => {
+  const image = $('img-frame');
+  $('img-size').textContent = `${image.naturalWidth}x${image.naturalHeight}`;
 });
 $('img-refresh').addEventListener('click', refreshImageTopics);
 tabs['image-view'] = refreshImageTopics;
