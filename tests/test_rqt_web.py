@@ -213,6 +213,8 @@ def test_service_caller_spawns_a_turtle(ros):
         (404, {'service': '/spawn', 'type': 'turtlesim/srv/Spwn'},
          "unknown service type: package 'turtlesim' has no service 'Spwn' (did you mean 'Spawn'?)"),
         (400, {'request': {}}, "missing key 'service'"),
+        (400, {'service': '/spawn', 'type': 'turtlesim/srv/Kill'},
+         "service '/spawn' has type turtlesim/srv/Spawn, not turtlesim/srv/Kill"),
         (504, {'service': '/rqt_test/slow', 'timeout': 0.3}, 'no response from /rqt_test/slow within 0.3 s'),
     ]
     for status, body, message in bad_calls:
@@ -220,6 +222,9 @@ def test_service_caller_spawns_a_turtle(ros):
     assert rqt.refused(404, 'GET', '/api/interface?type=turtlesim/Spwn').startswith(
         "unknown interface type: package 'turtlesim' has no message 'Spwn'")
     assert rqt.refused(400, 'GET', '/api/interface') == "missing query parameter 'type'"
+    assert 'turtlesim/srv/Spawn' in rqt.ok('GET', '/api/interfaces?kind=srv')
+    assert rqt.refused(400, 'GET', '/api/interfaces?kind=action') == \
+        "kind must be 'msg' or 'srv', got 'action'"
     rqt.stop_cleanly()
 
 
@@ -267,6 +272,11 @@ def test_image_view_shows_the_camera_and_raw_images(ros):
         "cannot show the image on '/rqt_test/yuv': unsupported image encoding 'yuv422'")
     assert rqt.refused(400, 'GET', f'/api/image?topic={CAMERA_TOPIC}&after=x') == \
         "'after' must be a frame number, got 'x'"
+    ros.probe.node.create_publisher(Image, '/rqt_test/silent', 10)
+    rqt.wait_for(lambda: '/rqt_test/silent' in {t['name'] for t in rqt.ok('GET', '/api/image_topics')},
+                 'the silent image topic')
+    assert rqt.refused(504, 'GET', '/api/image?topic=/rqt_test/silent') == \
+        "no image on '/rqt_test/silent' within 5 s"
     rqt.stop_cleanly()
 
 

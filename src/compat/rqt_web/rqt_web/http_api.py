@@ -88,6 +88,7 @@ class ApiHandler(BaseHTTPRequestHandler):
             ('GET', '/api/image_topics'): lambda q: _names_and_types(backend.image_topic_types()),
             ('GET', '/api/services'): lambda q: _names_and_types(backend.service_types()),
             ('GET', '/api/interface'): lambda q: backend.interface(_query_text(q, 'type')),
+            ('GET', '/api/interfaces'): lambda q: backend.interface_names(_query_text(q, 'kind')),
             ('GET', '/api/publishers'): lambda q: backend.message_publishers(),
             ('POST', '/api/publishers'): lambda q: (201, backend.add_message_publisher(self._json_body())),
             ('POST', '/api/call'): lambda q: backend.call_service(self._json_body()),

@@ -13,7 +13,7 @@ from typing import Any
 from rclpy.exceptions import InvalidServiceNameException, InvalidTopicNameException
 from rclpy.node import Node
 from rclpy.qos import qos_profile_sensor_data
-from ros2cli.interfaces import InvalidType, canonical_type, import_type, type_name_of
+from ros2cli.interfaces import InvalidType, canonical_type, import_type, interface_index, type_name_of
 from ros2cli.message_yaml import FieldError, fill_message
 from ros2cli.names import full_node_name, is_hidden_name
 from ros2cli.node.graph import GraphQueries
@@ -137,6 +137,14 @@ class RqtWebNode(Node):
                 continue
         return layout(build_model(endpoints, hide_debug, hide_leaf_topics))
 
+    @staticmethod
+    def interface_names(kind: str) -> list[str]:
+        """Every installed message ('msg') or service ('srv') type, for the pickers."""
+        if kind not in ('msg', 'srv'):
+            raise ApiError(400, f"kind must be 'msg' or 'srv', got {kind!r}")
+        return sorted(f'{package}/{kind}/{name}' for package, kinds in interface_index().items()
+                      for name in kinds[kind])
+
     def interface(self, type_name: str) -> dict[str, Any]:
         """Field templates of a message type or of a service type's request and response."""
         kinds = [part for part in ('msg', 'srv') if f'/{part}/' in type_name] or ['msg', 'srv']
@@ -255,6 +263,9 @@ class RqtWebNode(Node):
         given_type = api_input.optional_text(body.get('type'), 'type')
         known = api_input.known_name(service, self.service_types(), 'service')
         service_class = _message_type(given_type or api_input.single_type(service, known, 'service'), 'srv')
+        if type_name_of(service_class) not in known:
+            raise ApiError(400, f"service '{service}' has type {', '.join(known)}, "
+                                f'not {type_name_of(service_class)}')
         request = _filled(service_class.Request(), values)
         started = time.monotonic()
         response = self._call(service, service_class, request, timeout)

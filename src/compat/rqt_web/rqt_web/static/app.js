@@ -217,10 +217,22 @@ async function refreshTopics() {
   }
 }
 
-$('pub-topic').addEventListener('change', () => {
-  const types = topicTypes[$('pub-topic').value.trim()] || [];
-  fillDatalist('pub-types', types);
-  if (types.length === 1) $('pub-type').value = types[0];
+let messageTypes = [];
+
+// A topic's own type, or for a new topic the choice of every installed message type.
+$('pub-topic').addEventListener('change', async () => {
+  const types = topicTypes[$('pub-topic').value.trim()];
+  if (types) {
+    fillDatalist('pub-types', types);
+    $('pub-type').value = types.length === 1 ? types[0] : '';
+    return;
+  }
+  try {
+    if (!messageTypes.length) messageTypes = await api('GET', '/api/interfaces?kind=msg');
+    fillDatalist('pub-types', messageTypes);
+  } catch (error) {
+    showError('pub-error', error);
+  }
 });
 
 async function patchPublisher(entry, change, box) {
