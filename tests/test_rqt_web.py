@@ -220,7 +220,7 @@ def test_service_caller_spawns_a_turtle(ros):
     for status, body, message in bad_calls:
         assert rqt.refused(status, 'POST', '/api/call', body) == message
     assert rqt.refused(404, 'GET', '/api/interface?type=turtlesim/Spwn').startswith(
-        "unknown interface type: package 'turtlesim' has no message 'Spwn'")
+        "unknown interface type: package 'turtlesim' has no service 'Spwn' (did you mean 'Spawn'?)")
     assert rqt.refused(400, 'GET', '/api/interface') == "missing query parameter 'type'"
     assert 'turtlesim/srv/Spawn' in rqt.ok('GET', '/api/interfaces?kind=srv')
     assert rqt.refused(400, 'GET', '/api/interfaces?kind=action') == \

@@ -161,7 +161,9 @@ class RqtWebNode(Node):
             return {'type': canonical_type(type_name, kind), 'kind': kind,
                     'request': field_template(type_class.Request()),
                     'response': field_template(type_class.Response())}
-        raise ApiError(404, f'unknown interface type: {errors[0]}')
+        # 'pkg/Name' was tried as both kinds: say the reason that names a close type, if one does.
+        reason = next((e for e in errors if 'did you mean' in e), errors[0])
+        raise ApiError(404, f'unknown interface type: {reason}')
 
     # ---- Message Publisher ---------------------------------------------------------------------
 
