@@ -12,7 +12,8 @@ STATUS_NAMES = {0: 'UNKNOWN', 1: 'ACCEPTED', 2: 'EXECUTING', 3: 'CANCELING', 4: 
 
 
 def action_types(graph: Any, action: str) -> list[str] | None:
-    return next((types for name, types in graph.action_names_and_types() if name == action), None)
+    from ros2cli.graph_listing import types_of
+    return types_of(graph.action_names_and_types(), action)
 
 
 def _action_argument(parser: argparse.ArgumentParser, help_text: str) -> None:
@@ -32,15 +33,11 @@ class ListVerb(Verb):
         add_strategy_arguments(parser)
 
     def main(self, args: argparse.Namespace) -> int:
+        from ros2cli.graph_listing import print_listing
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
             actions = strategy.graph.action_names_and_types()
-        if args.count_actions:
-            print(len(actions))
-            return 0
-        for name, types in actions:
-            print(f"{name} [{', '.join(types)}]" if args.show_types else name)
-        return 0
+        return print_listing(actions, args.show_types, args.count_actions)
 
 
 class InfoVerb(Verb):
@@ -95,15 +92,10 @@ class TypeVerb(Verb):
         add_strategy_arguments(parser)
 
     def main(self, args: argparse.Namespace) -> int:
+        from ros2cli.graph_listing import print_types
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
-            strategy.wait_until(lambda: action_types(strategy.graph, args.action_name) is not None)
-            types = action_types(strategy.graph, args.action_name)
-        if types is None:
-            return 1
-        for action_type in types:
-            print(action_type)
-        return 0
+            return print_types(strategy, lambda graph: graph.action_names_and_types(), args.action_name)
 
 
 class FindVerb(Verb):
@@ -119,16 +111,11 @@ class FindVerb(Verb):
         add_strategy_arguments(parser)
 
     def main(self, args: argparse.Namespace) -> int:
+        from ros2cli.graph_listing import print_names_of_type
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
-            names = [name for name, types in strategy.graph.action_names_and_types()
-                     if args.action_type in types]
-        if args.count_actions:
-            print(len(names))
-        else:
-            for name in names:
-                print(name)
-        return 0
+            actions = strategy.graph.action_names_and_types()
+        return print_names_of_type(actions, args.action_type, args.count_actions)
 
 
 def indented_yaml(message: Any, first_line_indent: str) -> str:

@@ -25,10 +25,6 @@ def visible_services(graph: Any, include_hidden: bool) -> list[list[Any]]:
             if include_hidden or not is_hidden_name(name)]
 
 
-def service_types(graph: Any, service: str) -> list[str] | None:
-    return next((types for name, types in graph.service_names_and_types() if name == service), None)
-
-
 def _service_argument(parser: argparse.ArgumentParser, help_text: str) -> None:
     from ros2cli.completion import service_completer
     parser.add_argument('service_name', help=help_text).completer = service_completer
@@ -47,15 +43,11 @@ class ListVerb(Verb):
         _add_hidden_argument(parser)
 
     def main(self, args: argparse.Namespace) -> int:
+        from ros2cli.graph_listing import print_listing
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
             services = visible_services(strategy.graph, _include_hidden(args))
-        if args.count_services:
-            print(len(services))
-            return 0
-        for name, types in services:
-            print(f"{name} [{', '.join(types)}]" if args.show_types else name)
-        return 0
+        return print_listing(services, args.show_types, args.count_services)
 
 
 class TypeVerb(Verb):
@@ -67,15 +59,10 @@ class TypeVerb(Verb):
         add_strategy_arguments(parser)
 
     def main(self, args: argparse.Namespace) -> int:
+        from ros2cli.graph_listing import print_types
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
-            strategy.wait_until(lambda: service_types(strategy.graph, args.service_name) is not None)
-            types = service_types(strategy.graph, args.service_name)
-        if types is None:
-            return 1
-        for service_type in types:
-            print(service_type)
-        return 0
+            return print_types(strategy, lambda graph: graph.service_names_and_types(), args.service_name)
 
 
 class FindVerb(Verb):
@@ -92,16 +79,11 @@ class FindVerb(Verb):
         _add_hidden_argument(parser)
 
     def main(self, args: argparse.Namespace) -> int:
+        from ros2cli.graph_listing import print_names_of_type
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
-            names = [name for name, types in visible_services(strategy.graph, _include_hidden(args))
-                     if args.service_type in types]
-        if args.count_services:
-            print(len(names))
-        else:
-            for name in names:
-                print(name)
-        return 0
+            services = visible_services(strategy.graph, _include_hidden(args))
+        return print_names_of_type(services, args.service_type, args.count_services)
 
 
 

@@ -36,10 +36,8 @@ def _type_argument(parser: argparse.ArgumentParser, nargs: str | None = None, he
 
 
 def topic_types(graph: Any, topic: str) -> list[str] | None:
-    for name, types in graph.topic_names_and_types():
-        if name == topic:
-            return types
-    return None
+    from ros2cli.graph_listing import types_of
+    return types_of(graph.topic_names_and_types(), topic)
 
 
 def unknown_topic(graph: Any, topic: str) -> str:
@@ -62,6 +60,7 @@ class ListVerb(Verb):
                             help='List full details about each topic')
 
     def main(self, args: argparse.Namespace) -> int:
+        from ros2cli.graph_listing import print_listing
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
             topics = visible_topics(strategy.graph, _include_hidden(args))
@@ -82,9 +81,7 @@ class ListVerb(Verb):
                         print(f" * {name} [{', '.join(types)}] {count} {word}{'s' if count > 1 else ''}")
                 print()
             return 0
-        for name, types in topics:
-            print(f"{name} [{', '.join(types)}]" if args.show_types else name)
-        return 0
+        return print_listing(topics, args.show_types, count_only=False)
 
 
 def endpoint_text(endpoint: dict[str, Any]) -> str:
@@ -154,15 +151,11 @@ class TypeVerb(Verb):
         add_strategy_arguments(parser)
 
     def main(self, args: argparse.Namespace) -> int:
+        from ros2cli.graph_listing import print_types
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
-            strategy.wait_until(lambda: topic_types(strategy.graph, args.topic_name) is not None)
-            topics = dict(visible_topics(strategy.graph, _include_hidden(args)))
-        if args.topic_name not in topics:
-            return 1
-        for topic_type in topics[args.topic_name]:
-            print(topic_type)
-        return 0
+            return print_types(strategy, lambda graph: visible_topics(graph, _include_hidden(args)),
+                               args.topic_name)
 
 
 class FindVerb(Verb):
@@ -178,16 +171,11 @@ class FindVerb(Verb):
         _add_hidden_argument(parser)
 
     def main(self, args: argparse.Namespace) -> int:
+        from ros2cli.graph_listing import print_names_of_type
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
-            names = [name for name, types in visible_topics(strategy.graph, _include_hidden(args))
-                     if args.message_type in types]
-        if args.count_topics:
-            print(len(names))
-        else:
-            for name in names:
-                print(name)
-        return 0
+            topics = visible_topics(strategy.graph, _include_hidden(args))
+        return print_names_of_type(topics, args.message_type, args.count_topics)
 
 
 def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:
