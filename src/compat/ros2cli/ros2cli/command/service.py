@@ -86,7 +86,6 @@ class FindVerb(Verb):
         return print_names_of_type(services, args.service_type, args.count_services)
 
 
-
 class CallVerb(Verb):
     DESCRIPTION = 'Call a service'
 
