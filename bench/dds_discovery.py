@@ -1,8 +1,13 @@
-"""How long a new process takes to see a running node's topic: Fast DDS defaults vs config/fastdds.xml.
+"""How long a new process takes to discover running nodes: Fast DDS defaults vs config/fastdds.xml.
 
-Starts one publisher (plus --others idle nodes) in a private domain, then runs --runs fresh
-processes one after another, each timing from node creation until the publisher's topic is in its
-graph. The baseline is the same measurement without our profile, in the same invocation.
+Starts --nodes idle publisher processes (node idle_<i> publishing /idle_<i>) in a private domain,
+then runs --runs fresh processes one after another, each timing from its node's creation until
+(a) it sees /idle_0 and (b) it sees the whole graph: every idle_<i> node and its topic (what a
+`ros2 node list` or `ros2 topic list` without the daemon needs). Also measured: the CPU the idle
+nodes use for their periodic announcements. The baseline is Fast DDS's defaults, in the same
+invocation; with --periods, variants of our profile with other announcement periods are measured
+too (shorter periods shorten participant discovery, but not the tail, which endpoint discovery
+sets: a missed endpoint announcement waits for Fast DDS's 1 s heartbeat).
 """
 
 from __future__ import annotations
@@ -11,20 +16,23 @@ import argparse
 import os
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
+from measure import cpu_seconds, percentile
 from owl_common.processes import RosSandbox
 
 PROFILE = Path(__file__).resolve().parents[1] / 'config' / 'fastdds.xml'
-TOPIC = '/discovery_target'
+OUR_PERIOD = '<nanosec>500000000</nanosec></leaseAnnouncement>'
+WATCH_LIMIT = 5.0  # s; a watcher that has not seen everything by then reports this
 
 PUBLISHER = '''
 import sys, rclpy
 from std_msgs.msg import Int32
 rclpy.init()
 node = rclpy.create_node(sys.argv[1])
-node.create_publisher(Int32, sys.argv[2], 10)
+node.create_publisher(Int32, '/' + sys.argv[1], 10)
 try:
     rclpy.spin(node)
 except KeyboardInterrupt:
@@ -33,54 +41,84 @@ except KeyboardInterrupt:
 
 WATCHER = '''
 import sys, time, rclpy
+nodes, limit = int(sys.argv[1]), float(sys.argv[2])
 rclpy.init()
 node = rclpy.create_node('discovery_watcher')
 start = time.monotonic()
-while time.monotonic() - start < 10.0:
+first = whole = limit
+while time.monotonic() - start < limit:
     rclpy.spin_once(node, timeout_sec=0.005)
-    if any(name == sys.argv[1] for name, _ in node.get_topic_names_and_types()):
+    names = {name for name, _ in node.get_node_names_and_namespaces()}
+    topics = {name for name, _ in node.get_topic_names_and_types()}
+    now = time.monotonic() - start
+    if first == limit and '/idle_0' in topics:
+        first = now
+    if all(f'idle_{i}' in names and f'/idle_{i}' in topics for i in range(nodes)):
+        whole = now
         break
-print(f'{time.monotonic() - start:.4f}')
+print(f'{first:.4f} {whole:.4f}')
 '''
 
 
-def measure(profile: str | None, runs: int, others: int) -> list[float]:
-    env_update = {'FASTDDS_DEFAULT_PROFILES_FILE': profile or ''}
+def measure(profile: str | None, runs: int, nodes: int) -> tuple[list[float], list[float], float]:
+    """(times to the first topic, times to the whole graph, idle CPU % of all the nodes)."""
     with RosSandbox() as sandbox:
-        sandbox.env.update(env_update)
-        if profile is None:
-            sandbox.env.pop('FASTDDS_DEFAULT_PROFILES_FILE')
-        for index in range(others):
-            sandbox.command([sys.executable, '-c', PUBLISHER, f'idle_{index}', f'/idle_{index}'])
-        sandbox.command([sys.executable, '-c', PUBLISHER, 'discovery_target', TOPIC])
+        sandbox.env.pop('FASTDDS_DEFAULT_PROFILES_FILE', None)
+        if profile is not None:
+            sandbox.env['FASTDDS_DEFAULT_PROFILES_FILE'] = profile
+        publishers = [sandbox.command([sys.executable, '-c', PUBLISHER, f'idle_{index}'])
+                      for index in range(nodes)]
         time.sleep(3.0)  # everything up and known to each other before the first watcher
-        times = []
+        cpu_before, started = sum(cpu_seconds(p.pid) for p in publishers), time.monotonic()
+        time.sleep(5.0)
+        cpu_used = sum(cpu_seconds(p.pid) for p in publishers) - cpu_before
+        idle_cpu = 100 * cpu_used / (time.monotonic() - started)
+        first, whole = [], []
         for _ in range(runs):
-            done = subprocess.run([sys.executable, '-c', WATCHER, TOPIC], env=sandbox.env,
-                                  capture_output=True, text=True, timeout=30)
-            times.append(float(done.stdout.strip()))
-    return sorted(times)
+            done = subprocess.run([sys.executable, '-c', WATCHER, str(nodes), str(WATCH_LIMIT)],
+                                  env=sandbox.env, capture_output=True, text=True, timeout=30)
+            seen_first, seen_whole = map(float, done.stdout.split())
+            first.append(seen_first)
+            whole.append(seen_whole)
+    return first, whole, idle_cpu
 
 
 def summary(times: list[float]) -> str:
-    def at(fraction: float) -> float:
-        return times[min(len(times) - 1, int(fraction * len(times)))]
-    return f'p50 {at(0.5):.3f} s  p90 {at(0.9):.3f} s  max {times[-1]:.3f} s'
+    return f'p50 {percentile(times, 0.5):.3f} s  p90 {percentile(times, 0.9):.3f} s  max {max(times):.3f} s'
+
+
+def profile_with_period(directory: str, milliseconds: int) -> str:
+    path = os.path.join(directory, f'fastdds_{milliseconds}ms.xml')
+    text = PROFILE.read_text()
+    if OUR_PERIOD not in text:
+        raise SystemExit('config/fastdds.xml no longer has the announcement period this bench varies')
+    Path(path).write_text(text.replace(OUR_PERIOD, f'<nanosec>{milliseconds * 1_000_000}</nanosec>'
+                                                   '</leaseAnnouncement>'))
+    return path
 
 
 def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__)
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument('--runs', type=int, default=20)
-    parser.add_argument('--others', type=int, default=5, help='idle nodes besides the publisher')
+    parser.add_argument('--nodes', type=int, default=6, help='idle publisher processes running')
+    parser.add_argument('--periods', type=int, nargs='*', default=[200, 100],
+                        help='other announcement periods (ms) to measure as variants of our profile')
     args = parser.parse_args()
-    os.environ.pop('FASTDDS_DEFAULT_PROFILES_FILE', None)
-    baseline = measure(None, args.runs, args.others)
-    ours = measure(str(PROFILE), args.runs, args.others)
-    print(f'time for a new process to see a topic ({args.runs} runs, {args.others + 1} nodes running)')
-    print(f'  Fast DDS defaults   : {summary(baseline)}')
-    print(f'  config/fastdds.xml  : {summary(ours)}')
-    print(f'ratio ours/defaults: p90 {ours[int(0.9 * len(ours))] / baseline[int(0.9 * len(baseline))]:.2f}x, '
-          f'max {ours[-1] / baseline[-1]:.2f}x')
+    print(f'discovery by a new process ({args.runs} runs, {args.nodes} node processes running; '
+          f'whole graph = every node and topic)')
+    print(f"{'profile':<28} {'first topic':<38} {'whole graph':<38} idle CPU")
+    with tempfile.TemporaryDirectory() as directory:
+        variants = [('Fast DDS defaults', None), ('config/fastdds.xml (500 ms)', str(PROFILE))]
+        variants += [(f'  same, announcing {ms} ms', profile_with_period(directory, ms))
+                     for ms in args.periods]
+        results = {}
+        for label, profile in variants:
+            first, whole, idle_cpu = measure(profile, args.runs, args.nodes)
+            results[label] = whole
+            print(f'{label:<28} {summary(first):<38} {summary(whole):<38} {idle_cpu:.1f} %', flush=True)
+    baseline, ours = results['Fast DDS defaults'], results['config/fastdds.xml (500 ms)']
+    print(f'ratio ours/defaults, whole graph: p50 {percentile(ours, 0.5) / percentile(baseline, 0.5):.2f}x, '
+          f'p90 {percentile(ours, 0.9) / percentile(baseline, 0.9):.2f}x')
     return 0
 
 
