@@ -1,7 +1,9 @@
 """How long `ros2 launch` takes: to start a process, to bring up the course's two turtlesim nodes,
 and to bring everything down after Ctrl-C (SIGINT to launch).
 
-Each measurement is repeated; prints median and max in milliseconds.
+Each measurement is repeated; prints median and max in milliseconds. The baseline, measured in the
+same run, starts and stops the same two turtlesim nodes directly, without launch (what launch adds
+is its own start-up, the launch file, and forwarding Ctrl-C).
 """
 
 from __future__ import annotations
@@ -45,9 +47,30 @@ def launch_and_stop(sandbox: RosSandbox, argv: list[str], ready: str, count: int
     return up, down
 
 
-def report(name: str, samples: list[float]) -> None:
+def start_and_stop_directly(sandbox: RosSandbox) -> tuple[float, float]:
+    """The baseline: both turtlesim nodes of turtle.launch.py as plain processes, then SIGINT."""
+    start = time.monotonic()
+    nodes = [sandbox.run('turtlesim', 'turtlesim_node', '--ros-args', '-r', f'__node:={name}')
+             for name in ('turtle1', 'turtle2')]
+    for node in nodes:
+        node.wait_for(r'Spawning turtle \[turtle1\]', timeout=60)
+    up = time.monotonic() - start
+    stop = time.monotonic()
+    for node in nodes:
+        node.send_signal(signal.SIGINT)
+    codes = [node.wait(30) for node in nodes]
+    down = time.monotonic() - stop
+    if any(codes):
+        raise SystemExit(f'turtlesim_node exited with {codes}:\n' + '\n'.join(node.output for node in nodes))
+    return up, down
+
+
+def report(name: str, samples: list[float], baseline: list[float] | None = None) -> None:
     values = [ms(s) for s in samples]
-    print(f'{name:<42} median {statistics.median(values):7.1f} ms   max {max(values):7.1f} ms')
+    line = f'{name:<42} median {statistics.median(values):7.1f} ms   max {max(values):7.1f} ms'
+    if baseline is not None:
+        line += f'   {statistics.median(samples) / statistics.median(baseline):5.2f}x direct'
+    print(line)
 
 
 def main() -> None:
@@ -57,7 +80,7 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as directory, RosSandbox() as sandbox:
         sleeper = Path(directory) / 'sleeper.launch.xml'
         sleeper.write_text(SLEEPER)
-        process_up, process_down, turtles_up, turtles_down = [], [], [], []
+        process_up, process_down, turtles_up, turtles_down, direct_up, direct_down = [], [], [], [], [], []
         for _ in range(args.repeat):
             up, down = launch_and_stop(sandbox, [str(sleeper)], STARTED, 1)
             process_up.append(up)
@@ -67,10 +90,15 @@ def main() -> None:
                 cwd=str(ROOT / 'src' / 'olive_launch' / 'launch'))
             turtles_up.append(up)
             turtles_down.append(down)
+            up, down = start_and_stop_directly(sandbox)
+            direct_up.append(up)
+            direct_down.append(down)
     report('ros2 launch -> process started', process_up)
     report('Ctrl-C -> launch exited (sleep)', process_down)
-    report('ros2 launch -> both turtlesim nodes spawned', turtles_up)
-    report('Ctrl-C -> launch exited (2 turtlesim)', turtles_down)
+    report('ros2 launch -> both turtlesim nodes spawned', turtles_up, direct_up)
+    report('Ctrl-C -> launch exited (2 turtlesim)', turtles_down, direct_down)
+    report('baseline: both turtlesim nodes spawned', direct_up)
+    report('baseline: Ctrl-C -> both exited', direct_down)
 
 
 if __name__ == '__main__':

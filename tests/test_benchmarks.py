@@ -1,0 +1,35 @@
+"""Every benchmark still runs: each one, shrunk to a few seconds, exits 0 and prints its numbers.
+
+Only that they run is checked here; their numbers are for `make bench` and the closing notes (timing
+assertions would be flaky on a shared machine and belong in bench/, not in tests).
+"""
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+BENCH = Path(__file__).resolve().parents[1] / 'bench'
+SHRUNK = {
+    'dds_discovery.py': ['--runs', '2', '--nodes', '2', '--periods'],
+    'launch_timings.py': ['--repeat', '1'],
+    'olive_sim_cpu.py': ['--seconds', '1', '--warmup', '1'],
+    'ros2cli_graph.py': ['--runs', '1', '--seconds', '2.5', '--messages', '200'],
+    'service_roundtrip.py': ['--calls', '20'],
+    'turtlesim_pose_rate.py': ['--seconds', '1'],
+}
+
+
+def test_every_benchmark_has_a_shrunk_run():
+    scripts = {path.name for path in BENCH.glob('*.py')} - {'measure.py'}
+    assert scripts == set(SHRUNK)
+
+
+@pytest.mark.parametrize('script', sorted(SHRUNK))
+def test_benchmark_runs(script):
+    result = subprocess.run([sys.executable, str(BENCH / script), *SHRUNK[script]], capture_output=True,
+                            text=True, timeout=110, check=False)
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert 'Traceback' not in result.stderr
+    assert any(character.isdigit() for character in result.stdout), result.stdout
