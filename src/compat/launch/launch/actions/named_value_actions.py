@@ -20,17 +20,24 @@ if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
 
 
-class SetNamedValue(Action):
-    """Base of actions that set entries(context)[name] = value."""
+class NamedValueAction(Action):
+    """Base of actions on entries(context)[name]; subclasses say which map entries() is."""
 
-    def __init__(self, name: SomeSubstitutionsType, value: SomeSubstitutionsType, **kwargs: Any) -> None:
+    def __init__(self, name: SomeSubstitutionsType, **kwargs: Any) -> None:
         super().__init__(**kwargs)
         self.name = normalize_to_list_of_substitutions(name)
-        self.value = normalize_to_list_of_substitutions(value)
 
     @staticmethod
     def entries(context: LaunchContext) -> dict[str, str]:
         raise NotImplementedError
+
+
+class SetNamedValue(NamedValueAction):
+    """Base of actions that set entries(context)[name] = value."""
+
+    def __init__(self, name: SomeSubstitutionsType, value: SomeSubstitutionsType, **kwargs: Any) -> None:
+        super().__init__(name, **kwargs)
+        self.value = normalize_to_list_of_substitutions(value)
 
     @classmethod
     def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
@@ -42,16 +49,8 @@ class SetNamedValue(Action):
             perform_substitutions(context, self.value))
 
 
-class UnsetNamedValue(Action):
+class UnsetNamedValue(NamedValueAction):
     """Base of actions that remove entries(context)[name], if present."""
-
-    def __init__(self, name: SomeSubstitutionsType, **kwargs: Any) -> None:
-        super().__init__(**kwargs)
-        self.name = normalize_to_list_of_substitutions(name)
-
-    @staticmethod
-    def entries(context: LaunchContext) -> dict[str, str]:
-        raise NotImplementedError
 
     @classmethod
     def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
