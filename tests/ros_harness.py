@@ -21,6 +21,9 @@ from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.qos import QoSProfile
 
+# Seconds before a parameter request is sent again (see Probe.call).
+PARAMETER_RESEND = 2.0
+
 
 class Probe:
     """An rclpy node of the test itself, in the sandbox's domain."""
@@ -56,15 +59,30 @@ class Probe:
         self.node.create_subscription(msg_type, topic, received.append, qos)
         return received
 
-    def call(self, srv_type: Any, service: str, request: Any, timeout: float = 10.0) -> Any:
-        """Call a service once and return the response (waits for the server first)."""
+    def call(self, srv_type: Any, service: str, request: Any, timeout: float = 10.0,
+             resend_every: float | None = None) -> Any:
+        """Call a service and return the response (waits for the server first).
+
+        With resend_every (idempotent requests only), the request goes out again when no response
+        came within that many seconds: right after start-up the server may not have discovered
+        this client yet, and then DDS drops the request or the response.
+        """
         client = self.node.create_client(srv_type, service)
         try:
             if not client.wait_for_service(timeout_sec=timeout):
                 raise AssertionError(f'service {service} did not appear within {timeout} s')
-            future = client.call_async(request)
-            wait_until(future.done, timeout, f'response from {service}')
-            return future.result()
+            deadline = time.monotonic() + timeout
+            while True:
+                future = client.call_async(request)
+                attempt = min(resend_every or timeout, deadline - time.monotonic())
+                try:
+                    wait_until(future.done, attempt, f'response from {service}')
+                    return future.result()
+                except AssertionError:
+                    client.remove_pending_request(future)
+                    if time.monotonic() >= deadline:
+                        raise AssertionError(
+                            f'timed out after {timeout} s waiting for response from {service}') from None
         finally:
             self.node.destroy_client(client)
 
@@ -72,12 +90,14 @@ class Probe:
         """Set parameters of another node through its set_parameters service, one result each."""
         request = SetParameters.Request(
             parameters=[Parameter(name=k, value=parameter_value(v)) for k, v in values.items()])
-        return list(self.call(SetParameters, f'{node}/set_parameters', request, timeout).results)
+        return list(self.call(SetParameters, f'{node}/set_parameters', request, timeout,
+                              resend_every=PARAMETER_RESEND).results)
 
     def get_parameters(self, node: str, *names: str, timeout: float = 10.0) -> list[Any]:
         """Current values of another node's parameters, as Python values."""
         response = self.call(GetParameters, f'{node}/get_parameters',
-                             GetParameters.Request(names=list(names)), timeout)
+                             GetParameters.Request(names=list(names)), timeout,
+                             resend_every=PARAMETER_RESEND)
         return [python_value(v) for v in response.values]
 
 
@@ -152,7 +172,8 @@ def endpoints(probe: Probe, topic: str, kind: str = 'publishers', count: int = 1
 def list_parameter_names(probe: Probe, node: str, timeout: float = 10.0) -> list[str]:
     """Names of all parameters of another node, through its list_parameters service."""
     from rcl_interfaces.srv import ListParameters
-    response = probe.call(ListParameters, f'{node}/list_parameters', ListParameters.Request(), timeout)
+    response = probe.call(ListParameters, f'{node}/list_parameters', ListParameters.Request(), timeout,
+                          resend_every=PARAMETER_RESEND)
     return sorted(response.result.names)
 
 # Longer than launch's own escalation (SIGTERM 5 s after SIGINT, SIGKILL 5 s later), so a test
