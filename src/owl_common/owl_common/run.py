@@ -22,24 +22,49 @@ def ignore_further_interrupts() -> None:
     signal.signal(signal.SIGTERM, signal.SIG_IGN)
 
 
+class StopRequest:
+    """SIGINT/SIGTERM handler: a stop request the spin loop polls, an exception before it spins.
+
+    While spinning, raising KeyboardInterrupt from the handler can land anywhere in this thread,
+    including inside a __del__ (rclpy's Future has one), where Python prints it as an "Exception
+    ignored" traceback and swallows it, so the node would not stop. Before spinning (node
+    construction) an exception is the only way to interrupt a blocking call.
+    """
+
+    def __init__(self) -> None:
+        self.requested = False
+        self.spinning = False
+
+    def __call__(self, signum: int, frame: object) -> None:
+        self.requested = True
+        if not self.spinning:
+            raise KeyboardInterrupt
+
+    def install(self) -> None:
+        signal.signal(signal.SIGINT, self)
+        signal.signal(signal.SIGTERM, self)
+
+
 def spin_node(make_node: Callable[[], Node], args: list[str] | None = None) -> None:
     """Initialise rclpy, spin the node make_node() builds, and clean up on every exit path.
 
     A bad startup parameter ends the process with one error line and exit code 2.
     """
-    # Ctrl-C and SIGTERM raise KeyboardInterrupt in this thread (Python's handlers), never rclpy's
-    # handler: that one invalidates the context from another thread, which raced whatever this
-    # thread was doing — building the node or the executor, or spinning (RCLError "context is not
-    # valid", a pybind conversion error, or a segfault; up to 1 in 10 stops in stress runs).
-    # Waiting at most SIGNAL_POLL at a time lets the interrupt through promptly.
+    # Ctrl-C and SIGTERM are handled in this thread (StopRequest), never by rclpy's handler: that
+    # one invalidates the context from another thread, which raced whatever this thread was doing:
+    # building the node or the executor, or spinning (RCLError "context is not valid", a pybind
+    # conversion error, or a segfault; up to 1 in 10 stops in stress runs). Waiting at most
+    # SIGNAL_POLL at a time lets the stop request through promptly.
     rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
-    signal.signal(signal.SIGTERM, signal.default_int_handler)
+    stop = StopRequest()
+    stop.install()
     node = None
     try:
         node = make_node()
         executor = rclpy.get_global_executor()
         executor.add_node(node)
-        while rclpy.ok():
+        stop.spinning = True
+        while rclpy.ok() and not stop.requested:
             executor.spin_once(timeout_sec=SIGNAL_POLL)
     except STARTUP_ERRORS as error:
         if node is not None:

@@ -175,8 +175,17 @@ class SendGoalVerb(Verb):
                 hint.update(lambda: [name for name, _ in get_action_names_and_types(node)])
             print(f'Sending goal:\n{indented_yaml(goal, "     ")}')
 
+            # Feedback can be taken before the goal response (separate DDS topics); hold it until
+            # "Goal accepted" is printed so the output keeps the order of events.
+            held_feedback: list[str] = []
+            goal_answered = False
+
             def on_feedback(feedback: Any) -> None:
-                print(f'Feedback:\n    {message_to_yaml(feedback.feedback)}')
+                text = f'Feedback:\n    {message_to_yaml(feedback.feedback)}'
+                if goal_answered:
+                    print(text)
+                else:
+                    held_feedback.append(text)
 
             future = client.send_goal_async(goal, feedback_callback=on_feedback if args.feedback else None)
             rclpy.spin_until_future_complete(node, future)
@@ -187,6 +196,9 @@ class SendGoalVerb(Verb):
                 print('Goal was rejected.')
                 return 0
             print(f'Goal accepted with ID: {bytes(goal_handle.goal_id.uuid).hex()}\n')
+            goal_answered = True
+            for text in held_feedback:
+                print(text)
             result_future = goal_handle.get_result_async()
             rclpy.spin_until_future_complete(node, result_future)
             if result_future.exception() is not None:
