@@ -206,15 +206,22 @@ async function template(type) {
   return templates[type];
 }
 
-async function refreshTopics() {
+// Topics or services from the graph: names offered in a datalist; returns name -> types, or
+// null (the error shown) when the request failed.
+async function listGraphNames(path, datalistId, errorId) {
   try {
-    const topics = await api('GET', '/api/topics');
-    topicTypes = Object.fromEntries(topics.map((topic) => [topic.name, topic.types]));
-    fillDatalist('pub-topics', topics.map((topic) => topic.name));
-    showError('pub-error');
+    const entries = await api('GET', path);
+    fillDatalist(datalistId, entries.map((entry) => entry.name));
+    showError(errorId);
+    return Object.fromEntries(entries.map((entry) => [entry.name, entry.types]));
   } catch (error) {
-    showError('pub-error', error);
+    showError(errorId, error);
+    return null;
   }
+}
+
+async function refreshTopics() {
+  topicTypes = (await listGraphNames('/api/topics', 'pub-topics', 'pub-error')) ?? topicTypes;
 }
 
 let messageTypes = [];
@@ -306,14 +313,7 @@ let serviceTypes = {};
 let requestType = null;
 
 async function refreshServices() {
-  try {
-    const services = await api('GET', '/api/services');
-    serviceTypes = Object.fromEntries(services.map((service) => [service.name, service.types]));
-    fillDatalist('srv-names', services.map((service) => service.name));
-    showError('srv-error');
-  } catch (error) {
-    showError('srv-error', error);
-  }
+  serviceTypes = (await listGraphNames('/api/services', 'srv-names', 'srv-error')) ?? serviceTypes;
 }
 
 async function chooseService() {
