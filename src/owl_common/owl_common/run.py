@@ -23,21 +23,21 @@ def ignore_further_interrupts() -> None:
 
 
 class StopRequest:
-    """SIGINT/SIGTERM handler: a stop request the spin loop polls, an exception before it spins.
+    """SIGINT/SIGTERM handler: a stop request the main loop polls, an exception before it polls.
 
-    While spinning, raising KeyboardInterrupt from the handler can land anywhere in this thread,
-    including inside a __del__ (rclpy's Future has one), where Python prints it as an "Exception
-    ignored" traceback and swallows it, so the node would not stop. Before spinning (node
-    construction) an exception is the only way to interrupt a blocking call.
+    While the main loop runs, raising KeyboardInterrupt from the handler can land anywhere in the
+    main thread, including inside a __del__ (rclpy's Future has one), where Python prints it as an
+    "Exception ignored" traceback and swallows it, so the process would not stop. Before the loop
+    (node construction) an exception is the only way to interrupt a blocking call.
     """
 
     def __init__(self) -> None:
         self.requested = False
-        self.spinning = False
+        self.polling = False
 
     def __call__(self, signum: int, frame: object) -> None:
         self.requested = True
-        if not self.spinning:
+        if not self.polling:
             raise KeyboardInterrupt
 
     def install(self) -> None:
@@ -63,7 +63,7 @@ def spin_node(make_node: Callable[[], Node], args: list[str] | None = None) -> N
         node = make_node()
         executor = rclpy.get_global_executor()
         executor.add_node(node)
-        stop.spinning = True
+        stop.polling = True
         while rclpy.ok() and not stop.requested:
             executor.spin_once(timeout_sec=SIGNAL_POLL)
     except STARTUP_ERRORS as error:

@@ -16,11 +16,13 @@ from dataclasses import dataclass
 
 import rclpy
 from geometry_msgs.msg import Twist
+from owl_common.run import StopRequest, ignore_further_interrupts
 from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.action import ActionClient
 from rclpy.action.client import ClientGoalHandle
 from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.node import Node
+from rclpy.signals import SignalHandlerOptions
 from turtlesim.action import RotateAbsolute
 
 from turtlesim_py.rclcpp_parameters import declare_parameter_events_qos
@@ -178,18 +180,24 @@ def main(args: list[str] | None = None) -> None:
         print('turtle_teleop_key: standard input is not a terminal; run it in an interactive terminal',
               file=sys.stderr)
         sys.exit(NOT_A_TERMINAL_EXIT)
-    rclpy.init(args=args)
-    node = TeleopTurtle()
+    # Our own Ctrl-C/SIGTERM handling, as in owl_common.run.spin_node: rclpy's handler shuts the
+    # context down from another thread while the spinner thread waits on it (a segfault, rarely).
+    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+    stop = StopRequest()
+    stop.install()
+    node = None
     executor = SingleThreadedExecutor()
-    executor.add_node(node)
     # Not a daemon: a thread left inside rclpy's C++ wait at interpreter exit aborts the process.
     spinner = threading.Thread(target=_spin, args=(executor,))
-    spinner.start()
     code = 0
     try:
+        node = TeleopTurtle()
+        executor.add_node(node)
+        spinner.start()
         with RawTerminal(stdin) as terminal:
             print(BANNER, flush=True)  # once the keys no longer echo
-            while rclpy.ok():
+            stop.polling = True  # read_byte returns every 0.1 s to look at it
+            while rclpy.ok() and not stop.requested:
                 byte = terminal.read_byte()
                 action = None if byte is None else action_for(byte)
                 if isinstance(action, Quit):
@@ -202,9 +210,12 @@ def main(args: list[str] | None = None) -> None:
         print(f'read(): {error}', file=sys.stderr)
         code = 1
     finally:
+        ignore_further_interrupts()
         executor.shutdown(timeout_sec=1.0)
-        spinner.join()
-        node.destroy_node()
+        if spinner.is_alive():
+            spinner.join()
+        if node is not None:
+            node.destroy_node()
         rclpy.try_shutdown()
     sys.exit(code)
 
