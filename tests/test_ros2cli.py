@@ -393,8 +393,11 @@ def test_invalid_names_are_one_line(cli, args, fragments):
 
 def test_topic_hz_and_bw(graph):
     hz = graph.command(['ros2', 'topic', 'hz', '/chatter'])
-    match = hz.wait_for(r'^average rate: (\d+\.\d{3})$', timeout=20)[0]
-    assert 4.0 < float(match.group(1)) < 6.0
+    # The third report averages ~3 s of a 5 Hz talker, so one late message on a loaded machine
+    # does not decide it; the bounds only say hz counts what arrives (bench/ros2cli_graph.py
+    # measures its accuracy).
+    match = hz.wait_for(r'^average rate: (\d+\.\d{3})$', timeout=20, count=3)[-1]
+    assert 3.0 < float(match.group(1)) < 7.0
     hz.wait_for(r'^\tmin: \d+\.\d{3}s max: \d+\.\d{3}s std dev: \d+\.\d{5}s window: \d+$')
     bw = graph.command(['ros2', 'topic', 'bw', '/chatter'])
     bw.wait_for(r'^Subscribed to \[/chatter\]$', timeout=20)
