@@ -45,19 +45,26 @@ class StopRequest:
         signal.signal(signal.SIGTERM, self)
 
 
+def init_with_stop_request(args: list[str] | None = None) -> StopRequest:
+    """rclpy.init with Ctrl-C and SIGTERM handled in the main thread by the returned StopRequest.
+
+    Never rclpy's own handler: it invalidates the context from another thread, which raced whatever
+    the main thread was doing: building the node or the executor, or spinning (RCLError "context
+    is not valid", a pybind conversion error, or a segfault; up to 1 in 10 stops in stress runs).
+    The caller's loop must return to Python every SIGNAL_POLL or so to see the request.
+    """
+    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+    stop = StopRequest()
+    stop.install()
+    return stop
+
+
 def spin_node(make_node: Callable[[], Node], args: list[str] | None = None) -> None:
     """Initialise rclpy, spin the node make_node() builds, and clean up on every exit path.
 
     A bad startup parameter ends the process with one error line and exit code 2.
     """
-    # Ctrl-C and SIGTERM are handled in this thread (StopRequest), never by rclpy's handler: that
-    # one invalidates the context from another thread, which raced whatever this thread was doing:
-    # building the node or the executor, or spinning (RCLError "context is not valid", a pybind
-    # conversion error, or a segfault; up to 1 in 10 stops in stress runs). Waiting at most
-    # SIGNAL_POLL at a time lets the stop request through promptly.
-    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
-    stop = StopRequest()
-    stop.install()
+    stop = init_with_stop_request(args)
     node = None
     try:
         node = make_node()

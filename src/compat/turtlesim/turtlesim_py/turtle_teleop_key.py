@@ -16,13 +16,12 @@ from dataclasses import dataclass
 
 import rclpy
 from geometry_msgs.msg import Twist
-from owl_common.run import StopRequest, ignore_further_interrupts
+from owl_common.run import ignore_further_interrupts, init_with_stop_request
 from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.action import ActionClient
 from rclpy.action.client import ClientGoalHandle
 from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.node import Node
-from rclpy.signals import SignalHandlerOptions
 from turtlesim.action import RotateAbsolute
 
 from turtlesim_py.rclcpp_parameters import declare_parameter_events_qos
@@ -180,11 +179,8 @@ def main(args: list[str] | None = None) -> None:
         print('turtle_teleop_key: standard input is not a terminal; run it in an interactive terminal',
               file=sys.stderr)
         sys.exit(NOT_A_TERMINAL_EXIT)
-    # Our own Ctrl-C/SIGTERM handling, as in owl_common.run.spin_node: rclpy's handler shuts the
-    # context down from another thread while the spinner thread waits on it (a segfault, rarely).
-    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
-    stop = StopRequest()
-    stop.install()
+    # Not rclpy's Ctrl-C handler: it shut the context down under the spinner thread (a segfault).
+    stop = init_with_stop_request(args)
     node = None
     executor = SingleThreadedExecutor()
     # Not a daemon: a thread left inside rclpy's C++ wait at interpreter exit aborts the process.
