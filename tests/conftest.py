@@ -16,3 +16,18 @@ def ros():
         yield harness
     finally:
         harness.close()
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_makereport(item, call):
+    """A failed test also shows what each of its ROS processes printed last and whether it exited:
+    a node that crashed or hung at start-up is otherwise invisible behind a graph timeout."""
+    outcome = yield
+    report = outcome.get_result()
+    if report.when != 'call' or not report.failed:
+        return
+    for name, value in item.funcargs.items():
+        if isinstance(value, RosHarness):
+            for process in value.processes:
+                state = 'running' if process.running() else f'exit code {process.popen.poll()}'
+                report.sections.append((f'{name}: {process.label} ({state})', process.tail()))

@@ -133,10 +133,11 @@ class RosProcess:
                 if remaining <= 0 or (not self._reader.is_alive() and self.popen.poll() is not None):
                     raise AssertionError(
                         f'{self.label}: waited {timeout:.1f} s for {count} line(s) matching '
-                        f'{pattern!r}; exit code {self.popen.poll()}; output:\n{self._tail()}')
+                        f'{pattern!r}; exit code {self.popen.poll()}; output:\n{self.tail()}')
                 self._changed.wait(min(remaining, 0.2))
 
-    def _tail(self, lines: int = 40) -> str:
+    def tail(self, lines: int = 40) -> str:
+        """The last lines of output, or "(none)"."""
         return '\n'.join(self.lines[-lines:]) or '(none)'
 
     def wait(self, timeout: float = 10.0) -> int:
@@ -170,7 +171,7 @@ class RosProcess:
         if code != 0:
             raise AssertionError(
                 f'{self.label}: exit code {code} after {signal.Signals(self.last_signal).name}; '
-                f'output:\n{self._tail()}')
+                f'output:\n{self.tail()}')
 
 
 class RosSandbox:
