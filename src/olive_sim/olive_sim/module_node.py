@@ -8,11 +8,13 @@ from __future__ import annotations
 
 import math
 import re
+import sys
 import threading
 import time
 from collections.abc import Callable
 from typing import Any
 
+import yaml
 from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
 from owl_common.run import spin_node
 from rcl_interfaces.msg import ParameterDescriptor
@@ -35,23 +37,40 @@ def check_namespace(namespace: str) -> str:
     return namespace
 
 
-def read_namespace(default: str) -> str:
-    """The `namespace` parameter given on the command line, read before the module node exists.
+def read_namespace(default: str, args: list[str]) -> str:
+    """The `namespace` parameter given on the command line (args as in sys.argv), else default.
 
-    The node's name contains the namespace, so it has to be known before the node is created;
-    a short-lived node without services reads it from the command-line overrides.
+    The node's name contains the namespace, so it has to be known before the node is created. It
+    is read from the arguments, not through a short-lived node: destroying a node right after
+    creating it raced Fast DDS's own threads (a segfault in about 1 of 30 kit launches). Like
+    rclpy, later arguments win; parameter files count with their entries for all nodes (/**).
     """
-    probe = Node('olive_sim_namespace_reader', enable_rosout=False, start_parameter_services=False,
-                 automatically_declare_parameters_from_overrides=True)
+    value: Any = default
+    in_ros_args = False
+    tokens = iter(args)
+    for token in tokens:
+        if token in ('--ros-args', '--'):
+            in_ros_args = token == '--ros-args'
+        elif in_ros_args and token in ('-p', '--param'):
+            name, _, text = next(tokens, '').partition(':=')
+            if name == 'namespace':
+                value = yaml.safe_load(text)
+        elif in_ros_args and token == '--params-file':
+            value = _params_file_namespace(next(tokens, ''), value)
+    if not isinstance(value, str):
+        raise ValueError(f'parameter namespace must be a string, got {value!r}')
+    return check_namespace(value)
+
+
+def _params_file_namespace(path: str, current: Any) -> Any:
     try:
-        if not probe.has_parameter('namespace'):
-            return default
-        value = probe.get_parameter('namespace').value
-        if not isinstance(value, str):
-            raise ValueError(f'parameter namespace must be a string, got {value!r}')
-        return check_namespace(value)
-    finally:
-        probe.destroy_node()
+        with open(path, encoding='utf-8') as stream:
+            content = yaml.safe_load(stream)
+    except (OSError, yaml.YAMLError) as error:
+        raise ValueError(f'cannot read parameter file {path!r}: {error}') from None
+    for_all_nodes = content.get('/**', {}) if isinstance(content, dict) else {}
+    parameters = for_all_nodes.get('ros__parameters', {}) if isinstance(for_all_nodes, dict) else {}
+    return parameters.get('namespace', current) if isinstance(parameters, dict) else current
 
 
 def node_name(module_type: str, namespace: str) -> str:
@@ -209,7 +228,7 @@ class OliveModule(Node):
 def run_module(make_node: Any, default_namespace: str, args: list[str] | None = None) -> None:
     """main() of a module executable: read the namespace, build the node, spin until Ctrl-C."""
     def build() -> Node:
-        return make_node(read_namespace(default_namespace))
+        return make_node(read_namespace(default_namespace, sys.argv if args is None else args))
 
     spin_node(build, args)
 
