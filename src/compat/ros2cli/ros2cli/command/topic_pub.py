@@ -9,6 +9,11 @@ from ros2cli.command.topic import _topic_argument, _type_argument
 from ros2cli.command.topic_echo import positive_float
 from ros2cli.verb import Verb
 
+# A subscriber that our writer has matched may not yet have matched our writer (each side learns of
+# the other from its own discovery message) and drops what it receives until it has; a pause after
+# the wait for subscriptions lets it catch up, so -1/--times reach `ros2 topic echo` on a busy machine.
+MATCH_SETTLE = 0.3
+
 
 def nonnegative_int(text: str) -> int:
     value = int(text)
@@ -100,6 +105,8 @@ class PubVerb(Verb):
                                                                args.max_wait_time_secs):
                 return (f'Timed out waiting for subscribers: Expected {wait_count} subcribers but only got '
                         f'{publisher.get_subscription_count()} subscribers')
+            if wait_count:
+                direct.spin_for(MATCH_SETTLE)
             print('publisher: beginning loop')
             self._publish_loop(direct, publisher, message, stamps, times, args)
         return 0
