@@ -97,6 +97,8 @@ def test_publish_and_echo_cmd_vel(turtlesim):
     assert echo.lines[:9] == ['linear:', '  x: 2.0', '  y: 0.0', '  z: 0.0', 'angular:', '  x: 0.0',
                               '  y: 0.0', '  z: 1.0', '---']
     assert ros2(turtlesim, 'topic', 'echo', '--once', '/turtle1/pose').stdout != pose_before
+    # Stopped here: the module's later tests share this turtlesim and count its subscribers.
+    assert echo.stop() == 2, echo.tail()  # Ctrl-C: exit code 2 (SIGINT's number), as upstream
 
 
 def test_services(turtlesim):
