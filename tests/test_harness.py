@@ -1,5 +1,6 @@
 """The shared sandbox leaves its domain as it found it, and reports unclean stops usefully."""
 
+import signal
 import socket
 import subprocess
 
@@ -39,3 +40,14 @@ def test_stop_cleanly_reports_the_exit_code_signal_and_output_of_an_unclean_stop
         with pytest.raises(AssertionError) as failure:
             stubborn.stop_cleanly()
     assert 'exit code 3 after SIGINT' in str(failure.value) and 'cleaning up' in str(failure.value)
+
+
+def test_children_stop_on_ctrl_c_even_when_the_runner_ignores_it():
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)  # as under `nohup` or `make test &`
+    try:
+        with RosSandbox() as sandbox:
+            sleeper = sandbox.command(['sleep', '60'])
+            assert sleeper.stop(timeout=5) == -signal.SIGINT
+            assert sleeper.last_signal == signal.SIGINT
+    finally:
+        signal.signal(signal.SIGINT, previous)

@@ -78,6 +78,12 @@ def installed_executable(package: str, executable: str) -> Path:
         '(is the workspace built and env.sh sourced?)')
 
 
+def _default_sigint() -> None:
+    """Run in the child before exec: children are stopped with Ctrl-C's signal as at a terminal, so
+    they must not inherit an ignored SIGINT (what `nohup` or a script's background job gives us)."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 class RosProcess:
     """A child process in its own process group whose merged output is collected line by line."""
 
@@ -92,7 +98,8 @@ class RosProcess:
         self.popen = subprocess.Popen(
             self.argv, env=env, cwd=cwd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
             stderr=subprocess.STDOUT, text=True, errors='replace', bufsize=1,
-            start_new_session=True)
+            start_new_session=True,
+            preexec_fn=_default_sigint if signal.getsignal(signal.SIGINT) == signal.SIG_IGN else None)
         self._reader = threading.Thread(target=self._read, daemon=True)
         self._reader.start()
 
