@@ -3,6 +3,7 @@
 import signal
 import socket
 import subprocess
+import sys
 
 import pytest
 from owl_common.processes import ROS2_DAEMON_BASE_PORT, RosSandbox
@@ -51,3 +52,30 @@ def test_children_stop_on_ctrl_c_even_when_the_runner_ignores_it():
             assert sleeper.last_signal == signal.SIGINT
     finally:
         signal.signal(signal.SIGINT, previous)
+
+
+STUCK_TEARDOWN_NODE = '''
+import time
+from owl_common import run
+from rclpy.node import Node
+run.TEARDOWN_LIMIT = 1.0
+
+class StuckOnDestroy(Node):
+    def __init__(self):
+        super().__init__('stuck_on_destroy')
+        print('spinning', flush=True)
+
+    def destroy_node(self):
+        time.sleep(60)  # stands for a deadlock inside DDS
+
+run.spin_node(StuckOnDestroy)
+'''
+
+
+def test_a_node_whose_clean_up_hangs_ends_itself_with_every_stack():
+    with RosSandbox() as sandbox:
+        node = sandbox.command([sys.executable, '-c', STUCK_TEARDOWN_NODE], label='stuck')
+        node.wait_for('spinning', timeout=30)
+        node.send_signal(signal.SIGINT)
+        assert node.wait(timeout=10) == 1, node.tail()
+        assert 'Timeout (0:00:01)!' in node.output and 'in destroy_node' in node.output, node.tail()

@@ -1,5 +1,6 @@
 """Run a node until Ctrl-C or an external shutdown, then exit quietly with code 0."""
 
+import faulthandler
 import signal
 import sys
 from collections.abc import Callable
@@ -13,6 +14,11 @@ from rclpy.signals import SignalHandlerOptions
 # What a node's constructor raises for a bad --ros-args parameter or name: a user error.
 STARTUP_ERRORS = (ParameterException, NameValidationException, ValueError)
 SIGNAL_POLL = 0.1  # s: the longest a Ctrl-C waits for the executor to return to Python
+# s: the most clean-up may take (normally well under 1 s). Fast DDS can deadlock while it tears a
+# participant down (the eProsima/Fast-DDS#6502 shape); signals are ignored by then, so without
+# a limit the process hangs until SIGKILL. faulthandler's watchdog is a C thread: it works even
+# while the blocked call holds the GIL, prints every thread's stack and exits with code 1.
+TEARDOWN_LIMIT = 5.0
 
 
 def ignore_further_interrupts() -> None:
@@ -83,6 +89,8 @@ def spin_node(make_node: Callable[[], Node], args: list[str] | None = None) -> N
         pass  # Ctrl-C is how the course stops nodes: no traceback.
     finally:
         ignore_further_interrupts()
+        # Never cancelled: the process ends after this, and the participant goes with it.
+        faulthandler.dump_traceback_later(TEARDOWN_LIMIT, exit=True)
         if node is not None:
             node.destroy_node()
         rclpy.try_shutdown()
