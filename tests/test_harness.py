@@ -63,7 +63,8 @@ run.TEARDOWN_LIMIT = 1.0
 class StuckOnDestroy(Node):
     def __init__(self):
         super().__init__('stuck_on_destroy')
-        print('spinning', flush=True)
+        # Said from the spin loop: a Ctrl-C before it would interrupt the constructor instead.
+        self.create_timer(0.1, lambda: print('spinning', flush=True))
 
     def destroy_node(self):
         time.sleep(60)  # stands for a deadlock inside DDS
