@@ -1,4 +1,4 @@
-"""Run a node until Ctrl-C or an external shutdown, then exit quietly with code 0."""
+"""Run a node until Ctrl-C or an external shutdown, then exit quietly with code 0 (1 if clean-up hangs)."""
 
 import faulthandler
 import signal
