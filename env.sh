@@ -43,7 +43,7 @@ export _ROS_WHEELS_BOOTSTRAP_COMPLETE=1
 export RMW_IMPLEMENTATION="${RMW_IMPLEMENTATION:-rmw_fastrtps_cpp}"
 # Faster DDS discovery (see the file for why); a profile of your own takes precedence.
 export FASTDDS_DEFAULT_PROFILES_FILE="${FASTDDS_DEFAULT_PROFILES_FILE:-$OWL_ROOT/config/fastdds.xml}"
-export ROS_DISTRO="${ROS_DISTRO:-kilted}"
+export ROS_DISTRO="${ROS_DISTRO:-jazzy}"
 export ROS_VERSION=2
 export ROS_PYTHON_VERSION=3
 # Log lines reach terminals and pipes as they happen, not when a buffer fills.

@@ -28,9 +28,9 @@ def test_pins_follow_markers_and_only_exact_versions(tmp_path):
     assert load_pins(tmp_path / 'missing.txt') == {} and load_pins(None) == {}
 
 
-def test_wheel_table_ships_the_kilted_wheels():
+def test_wheel_table_ships_the_jazzy_wheels():
     table = load_wheel_table()
-    assert table['ros-rclpy'] == '9.1.2' and 'ros-nav-msgs' in table
+    assert table['ros-rclpy'] == '7.1.6' and 'ros-nav-msgs' in table
     assert not any(name.startswith(('ros-jazzy-', 'ros-cdk-')) for name in table)
 
 
