@@ -492,10 +492,17 @@ def test_no_daemon_gives_the_same_answers(graph):
                  ['topic', 'info', '/chatter'], ['service', 'list', '-t'], ['action', 'list', '-t'],
                  ['action', 'info', '/fibonacci'], ['param', 'get', '/parameter_node', 'str_param'],
                  ['param', 'dump', '/parameter_node']):
-        warm = ros2(graph, *args)
-        assert warm.returncode == 0
-        cold = lambda args=args: ros2(graph, *args, '--no-daemon').stdout  # noqa: E731
-        assert eventually(lambda cold=cold, warm=warm: cold() == warm.stdout), args
+        answers = []
+
+        def agree(args=args, answers=answers):
+            # Both sides again each time: the daemon keeps a node that died without saying goodbye
+            # until its lease expires, a daemon-less run never sees it.
+            warm = ros2(graph, *args)
+            assert warm.returncode == 0
+            answers[:] = [warm.stdout, ros2(graph, *args, '--no-daemon').stdout]
+            return answers[0] == answers[1]
+
+        assert eventually(agree), (args, answers)
 
 
 def test_daemon_start_stop_status(cli):
@@ -755,7 +762,7 @@ def test_param_load_bad_files(graph, tmp_path):
 ACTION_TYPE = f'{FIXTURES}/action/Fibonacci'
 
 
-def test_action_list_info_type_find(graph):
+def test_action_list_info_type(graph):
     assert lines(ros2(graph, 'action', 'list')) == ['/fibonacci']
     assert lines(ros2(graph, 'action', 'list', '-t')) == [f'/fibonacci [{ACTION_TYPE}]']
     assert lines(ros2(graph, 'action', 'list', '-c')) == ['1']
@@ -767,7 +774,7 @@ def test_action_list_info_type_find(graph):
     assert lines(ros2(graph, 'action', 'info', '/fibonacci', '-c')) == [
         'Action: /fibonacci', 'Action clients: 0', 'Action servers: 1']
     assert lines(ros2(graph, 'action', 'type', '/fibonacci')) == [ACTION_TYPE]
-    assert lines(ros2(graph, 'action', 'find', ACTION_TYPE)) == ['/fibonacci']
+    assert ros2(graph, 'action', 'find', ACTION_TYPE).returncode == 2  # a Rolling verb, not Jazzy's
     unknown = ros2(graph, 'action', 'info', '/fibonaci')
     assert lines(unknown) == ['Action: /fibonaci', 'Action clients: 0', 'Action servers: 0']
     assert_one_line_error(unknown, "No action '/fibonaci' in the graph (did you mean '/fibonacci'?)", code=0)

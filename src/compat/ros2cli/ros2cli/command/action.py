@@ -1,4 +1,4 @@
-"""`ros2 action list | info | type | find | send_goal`."""
+"""`ros2 action list | info | type | send_goal` (Jazzy has no `action find`; Rolling added it)."""
 
 import argparse
 import sys
@@ -96,26 +96,6 @@ class TypeVerb(Verb):
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
             return print_types(strategy, lambda graph: graph.action_names_and_types(), args.action_name)
-
-
-class FindVerb(Verb):
-    DESCRIPTION = 'Find actions from type'
-
-    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
-        from ros2cli.completion import action_type_completer
-        from ros2cli.node.strategy import add_strategy_arguments
-        parser.add_argument('action_type', help="Name of the ROS action type to filter for "
-                            "(e.g. 'example_interfaces/action/Fibonacci')").completer = action_type_completer
-        parser.add_argument('-c', '--count-actions', action='store_true',
-                            help='Only display the number of actions discovered')
-        add_strategy_arguments(parser)
-
-    def main(self, args: argparse.Namespace) -> int:
-        from ros2cli.graph_listing import print_names_of_type
-        from ros2cli.node.strategy import NodeStrategy
-        with NodeStrategy(args) as strategy:
-            actions = strategy.graph.action_names_and_types()
-        return print_names_of_type(actions, args.action_type, args.count_actions)
 
 
 def indented_yaml(message: Any, first_line_indent: str) -> str:
@@ -224,7 +204,7 @@ class SendGoalVerb(Verb):
 
 
 def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:
-    add_verbs(parser, cli_name, {'find': FindVerb, 'info': InfoVerb, 'list': ListVerb,
+    add_verbs(parser, cli_name, {'info': InfoVerb, 'list': ListVerb,
                                  'send_goal': SendGoalVerb, 'type': TypeVerb})
 
 

@@ -216,11 +216,15 @@ def _set_one(args: argparse.Namespace, session: ParameterSession, value: Any, ve
 
 
 def failure_reason(reason: str, name: str, session: ParameterSession) -> str:
-    """rclpy's reason, said plainly: type names instead of type numbers, the closest declared name."""
+    """rclpy's reason, said plainly: the course's type names instead of rclpy's enum names, the closest
+    declared name."""
     import re
-    wrong_type = re.fullmatch(r"Wrong parameter type, expected '(\d+)' got '(\d+)'", reason)
+
+    from rclpy.parameter import Parameter
+    wrong_type = re.fullmatch(r"Wrong parameter type, expected 'Type\.(\w+)' got 'Type\.(\w+)'", reason)
     if wrong_type:
-        expected, got = (TYPE_NAMES.get(int(n), n) for n in wrong_type.groups())
+        expected, got = (TYPE_NAMES[Parameter.Type[n].value] if n in Parameter.Type.__members__ else n
+                         for n in wrong_type.groups())
         return f"Wrong parameter type for '{name}': expected {expected}, got {got}"
     if 'undeclared parameter' in reason:
         return f"node '{session.node_name}' has no parameter '{name}'{session.unknown(name)}"
