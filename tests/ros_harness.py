@@ -7,9 +7,11 @@ node in the same private domain, spun by a background thread.
 
 from __future__ import annotations
 
+import sys
 import threading
 import time
 from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 
 import rclpy
@@ -179,3 +181,25 @@ def list_parameter_names(probe: Probe, node: str, timeout: float = 10.0) -> list
 # Longer than launch's own escalation (SIGTERM 5 s after SIGINT, SIGKILL 5 s later), so a test
 # stopping `ros2 launch` never races it: a slow child shows up in launch's log, not as a SIGTERM here.
 LAUNCH_STOP_TIMEOUT = 15.0
+
+
+# Runs a Python executable (argv[1:]) as it is, except that destroying an rclpy node and interpreter
+# exit never end: stand-ins for a Fast DDS deadlock while a participant is torn down
+# (eProsima/Fast-DDS#6502), which happens in destroy_node or, for a node left behind, at exit.
+HUNG_TEARDOWN = """
+import atexit, runpy, sys, time
+from rclpy.node import Node
+
+def destroy_node(self):
+    time.sleep(60)
+
+Node.destroy_node = destroy_node
+atexit.register(time.sleep, 60)
+sys.argv = sys.argv[1:]
+runpy.run_path(sys.argv[0], run_name='__main__')
+"""
+
+
+def with_hung_teardown(executable: Path | str, *args: str) -> list[str]:
+    """The argv that runs an installed Python executable with its clean-up hanging (see HUNG_TEARDOWN)."""
+    return [sys.executable, '-c', HUNG_TEARDOWN, str(executable), *args]

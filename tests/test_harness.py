@@ -3,10 +3,11 @@
 import signal
 import socket
 import subprocess
-import sys
 
 import pytest
-from owl_common.processes import ROS2_DAEMON_BASE_PORT, RosSandbox
+from owl_common.processes import ROS2_DAEMON_BASE_PORT, RosSandbox, installed_executable
+from owl_common.run import TEARDOWN_LIMIT
+from ros_harness import with_hung_teardown
 
 
 def daemon_listening(domain_id: int) -> bool:
@@ -54,29 +55,11 @@ def test_children_stop_on_ctrl_c_even_when_the_runner_ignores_it():
         signal.signal(signal.SIGINT, previous)
 
 
-STUCK_TEARDOWN_NODE = '''
-import time
-from owl_common import run
-from rclpy.node import Node
-run.TEARDOWN_LIMIT = 1.0
-
-class StuckOnDestroy(Node):
-    def __init__(self):
-        super().__init__('stuck_on_destroy')
-        # Said from the spin loop: a Ctrl-C before it would interrupt the constructor instead.
-        self.create_timer(0.1, lambda: print('spinning', flush=True))
-
-    def destroy_node(self):
-        time.sleep(60)  # stands for a deadlock inside DDS
-
-run.spin_node(StuckOnDestroy)
-'''
-
-
 def test_a_node_whose_clean_up_hangs_ends_itself_with_every_stack():
+    counter = installed_executable('random_number_ps', 'counter_publisher')
     with RosSandbox() as sandbox:
-        node = sandbox.command([sys.executable, '-c', STUCK_TEARDOWN_NODE], label='stuck')
-        node.wait_for('spinning', timeout=30)
+        node = sandbox.command(with_hung_teardown(counter), label='counter_publisher')
+        node.wait_for('Publishing: 1', timeout=30)  # spinning: Ctrl-C now starts spin_node's clean-up
         node.send_signal(signal.SIGINT)
-        assert node.wait(timeout=10) == 1, node.tail()
-        assert 'Timeout (0:00:01)!' in node.output and 'in destroy_node' in node.output, node.tail()
+        assert node.wait(timeout=TEARDOWN_LIMIT + 3) == 1, node.tail()
+        assert 'Timeout (0:00:05)!' in node.output and 'in destroy_node' in node.output, node.tail()

@@ -7,12 +7,14 @@ cold start use their own `ros` domain. Every test stops the daemons it started.
 
 import os
 import re
+import shutil
 import signal
 import subprocess
 import time
 
 import pytest
-from ros_harness import RosHarness
+from owl_common.run import TEARDOWN_LIMIT
+from ros_harness import RosHarness, with_hung_teardown
 
 FIXTURES = 'ros2cli_test_fixtures'
 FIXTURE_NODES = ['/echo_server', '/fibonacci_server', '/listener', '/mutable_params', '/parameter_node',
@@ -122,6 +124,29 @@ def test_missing_argument_is_a_usage_error(graph):
     assert result.returncode == 2
     assert 'ros2 topic info: error: the following arguments are required: topic_name' in result.stderr
     assert 'Traceback' not in result.stderr
+
+
+def hung_ros2(sandbox, *args):
+    """`ros2 args...` whose clean-up hangs as in a Fast DDS teardown deadlock (see with_hung_teardown)."""
+    return sandbox.command(with_hung_teardown(shutil.which('ros2', path=sandbox.env['PATH']), *args),
+                           label='ros2')
+
+
+def test_a_verb_whose_clean_up_hangs_ends_itself_with_every_stack(cli):
+    pub = hung_ros2(cli, 'topic', 'pub', '-w', '0', '/t', 'std_msgs/msg/String', 'data: hello')
+    pub.wait_for('publishing #1', timeout=30)
+    pub.send_signal(signal.SIGINT)
+    assert pub.wait(timeout=TEARDOWN_LIMIT + 3) == 1, pub.tail()
+    assert 'Timeout (0:00:05)!' in pub.output and 'in destroy_node' in pub.output, pub.tail()
+
+
+def test_a_verb_stopped_before_it_could_clean_up_cannot_hang_at_exit(cli):
+    listing = hung_ros2(cli, 'topic', 'list', '--no-daemon', '--spin-time', '60')
+    # Still in its discovery spin: Ctrl-C leaves the node to interpreter exit.
+    assert eventually(lambda: any(name.startswith('_ros2cli_') for name in cli.probe.node.get_node_names()))
+    listing.send_signal(signal.SIGINT)
+    assert listing.wait(timeout=TEARDOWN_LIMIT + 3) == 1, listing.tail()
+    assert 'Timeout (0:00:05)!' in listing.output, listing.tail()
 
 
 # ---- ros2 run ---------------------------------------------------------------------------------

@@ -10,11 +10,14 @@ import subprocess
 import termios
 import threading
 import time
+from collections.abc import Callable
+from pathlib import Path
 
 import pytest
 from geometry_msgs.msg import Twist
 from owl_common.processes import installed_executable
-from ros_harness import wait_until
+from owl_common.run import TEARDOWN_LIMIT
+from ros_harness import wait_until, with_hung_teardown
 from turtlesim.msg import Pose
 
 BANNER = """Reading from keyboard
@@ -77,8 +80,8 @@ class TerminalProcess:
 def terminal(ros):
     started: list[TerminalProcess] = []
 
-    def start() -> TerminalProcess:
-        process = TerminalProcess([str(installed_executable('turtlesim', 'turtle_teleop_key'))], ros.env)
+    def start(wrap: Callable[[Path], list[str]] = lambda teleop: [str(teleop)]) -> TerminalProcess:
+        process = TerminalProcess(wrap(installed_executable('turtlesim', 'turtle_teleop_key')), ros.env)
         started.append(process)
         wait_until(lambda: BANNER in process.output, 30, 'the teleop banner')
         return process
@@ -166,3 +169,11 @@ def test_terminal_hang_up_ends_teleop_instead_of_spinning(ros, terminal):
     teleop = terminal()
     teleop.hang_up()
     assert teleop.popen.wait(15) == 0
+
+
+def test_a_hung_clean_up_ends_teleop_with_every_stack(ros, terminal):
+    teleop = terminal(with_hung_teardown)
+    os.killpg(teleop.popen.pid, signal.SIGINT)
+    assert teleop.popen.wait(TEARDOWN_LIMIT + 3) == 1, teleop.output
+    wait_until(lambda: 'in destroy_node' in teleop.output, 5, 'the stack of the hung clean-up')
+    assert 'Timeout (0:00:05)!' in teleop.output

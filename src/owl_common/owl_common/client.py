@@ -10,7 +10,7 @@ from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.utilities import remove_ros_args
 
-from owl_common.run import ignore_further_interrupts
+from owl_common.run import begin_cleanup
 
 
 class UsageError(Exception):
@@ -76,7 +76,7 @@ def run_client(
     except (KeyboardInterrupt, ExternalShutdownException):
         code = 0
     finally:
-        ignore_further_interrupts()
+        begin_cleanup()
         if node is not None:
             node.destroy_node()
         rclpy.try_shutdown()

@@ -21,11 +21,17 @@ SIGNAL_POLL = 0.1  # s: the longest a Ctrl-C waits for the executor to return to
 TEARDOWN_LIMIT = 5.0
 
 
-def ignore_further_interrupts() -> None:
-    """Let cleanup finish: a second SIGINT (a group Ctrl-C plus a launcher's forwarded one) or a
-    SIGTERM must not turn a clean exit into a traceback."""
+def begin_cleanup() -> None:
+    """Call when a process starts its final clean-up (destroying its nodes, shutting rclpy down).
+
+    A second SIGINT (a group Ctrl-C plus a launcher's forwarded one) or a SIGTERM must not turn a
+    clean exit into a traceback, so both are ignored from here on; and a clean-up that hangs ends
+    the process after TEARDOWN_LIMIT s with every thread's stack and exit code 1. The watchdog is
+    never cancelled: the participant may also be torn down at interpreter exit.
+    """
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_IGN)
+    faulthandler.dump_traceback_later(TEARDOWN_LIMIT, exit=True)
 
 
 class StopRequest:
@@ -88,9 +94,7 @@ def spin_node(make_node: Callable[[], Node], args: list[str] | None = None) -> N
     except (KeyboardInterrupt, ExternalShutdownException):
         pass  # Ctrl-C is how the course stops nodes: no traceback.
     finally:
-        ignore_further_interrupts()
-        # Never cancelled: the process ends after this, and the participant goes with it.
-        faulthandler.dump_traceback_later(TEARDOWN_LIMIT, exit=True)
+        begin_cleanup()
         if node is not None:
             node.destroy_node()
         rclpy.try_shutdown()

@@ -4,6 +4,8 @@ A command's main() returns None/0 (exit 0), an int (that exit code) or a string 
 stderr, exit 1); a RuntimeError's message is printed the same way. Ctrl-C exits with 2 (the
 value of SIGINT), as upstream. Any other exception is a bug or a problem of the environment:
 it is reported in one line, never as a traceback (ROS2CLI_TRACEBACK=1 shows it for debugging).
+A clean-up that hangs (a Fast DDS teardown deadlock) ends the process after 5 s with every
+thread's stack and exit code 1 (owl_common.run.begin_cleanup).
 """
 
 import argparse
@@ -11,7 +13,9 @@ import importlib
 import os
 import signal
 import sys
+from collections.abc import Callable
 from types import ModuleType
+from typing import Any
 
 from ros2cli.command_table import COMMANDS
 from ros2cli.verb import add_command_subparsers
@@ -93,6 +97,20 @@ def _completion_argv() -> list[str] | None:
         return line.split()[1:]
 
 
+def run_command(command_main: Callable[[argparse.Namespace], Any], args: argparse.Namespace) -> Any:
+    """command_main(args), after which whatever ROS state the command left is under owl_common's
+    clean-up watchdog: a command cut short (Ctrl-C during discovery, an error) leaves its node to
+    interpreter exit, where a Fast DDS teardown deadlock would otherwise hang the process."""
+    try:
+        return command_main(args)
+    finally:
+        # Armed while the exception still holds the command's frames (and node); only a command
+        # that imported rclpy can have a participant.
+        if 'rclpy' in sys.modules:
+            from owl_common.run import begin_cleanup
+            begin_cleanup()
+
+
 def main(argv: list[str] | None = None) -> int | str:
     completing = _completion_argv()
     argv = completing if completing is not None else sys.argv[1:] if argv is None else argv
@@ -115,7 +133,7 @@ def main(argv: list[str] | None = None) -> int | str:
     # rclpy warns while it cleans up after a failed construction; the error itself is reported.
     warnings.filterwarnings('ignore', category=RuntimeWarning, module=r'rclpy(\.|$)')
     try:
-        result = command_main(args)
+        result = run_command(command_main, args)
     except KeyboardInterrupt:
         return signal.SIGINT
     except BrokenPipeError:  # the reader went away (`ros2 topic list | head -1`)

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import rclpy
 from geometry_msgs.msg import Twist
-from owl_common.run import ignore_further_interrupts, init_with_stop_request
+from owl_common.run import begin_cleanup, init_with_stop_request
 from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.action import ActionClient
 from rclpy.action.client import ClientGoalHandle
@@ -206,7 +206,7 @@ def main(args: list[str] | None = None) -> None:
         print(f'read(): {error}', file=sys.stderr)
         code = 1
     finally:
-        ignore_further_interrupts()
+        begin_cleanup()
         executor.shutdown(timeout_sec=1.0)
         if spinner.is_alive():
             spinner.join()

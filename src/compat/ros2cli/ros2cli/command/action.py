@@ -141,7 +141,7 @@ class SendGoalVerb(Verb):
 
         from ros2cli.message_yaml import message_to_yaml
         from ros2cli.names import WaitingHint, expand_topic_name
-        from ros2cli.node.direct import NAMED_LOOKUP_GRACE
+        from ros2cli.node.direct import NAMED_LOOKUP_GRACE, tear_down
 
         rclpy.init(args=[])
         node = Node(node_name, start_parameter_services=False)
@@ -198,9 +198,7 @@ class SendGoalVerb(Verb):
                 print('Goal canceled.')
             return 2
         finally:
-            client.destroy()
-            node.destroy_node()
-            rclpy.try_shutdown()
+            tear_down(node, client)
 
 
 def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:

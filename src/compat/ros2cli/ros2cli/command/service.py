@@ -107,6 +107,7 @@ class CallVerb(Verb):
         from ros2cli.interfaces import InvalidType, import_type, split_type
         from ros2cli.message_yaml import FieldError, fill_message
         from ros2cli.names import expand_topic_name
+        from ros2cli.node.direct import tear_down
 
         if args.rate is not None and args.rate <= 0:
             return 'rate must be greater than zero'
@@ -141,8 +142,7 @@ class CallVerb(Verb):
                     return 0
                 time.sleep(max(0.0, started + period - time.monotonic()))
         finally:
-            node.destroy_node()
-            rclpy.try_shutdown()
+            tear_down(node)
 
 
 def wait_for_server(node: Any, client: Any, service: str) -> None:

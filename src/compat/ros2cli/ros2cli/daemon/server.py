@@ -35,6 +35,7 @@ def serve(domain: int, listener: socket.socket, idle_timeout: float, alone_timeo
     import rclpy
     from rclpy.node import Node
 
+    from ros2cli.node.direct import tear_down
     from ros2cli.node.graph import GraphQueries
     from ros2cli.service_call import ServiceCaller, serve_call
 
@@ -76,8 +77,7 @@ def serve(domain: int, listener: socket.socket, idle_timeout: float, alone_timeo
                     break
     finally:
         server.server_close()
-        node.destroy_node()
-        rclpy.try_shutdown()
+        tear_down(node)
 
 
 def main() -> None:

@@ -20,6 +20,22 @@ def add_direct_node_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('-s', '--use-sim-time', action='store_true', help='Enable ROS simulation time')
 
 
+def tear_down(node: Any, *owned: Any) -> None:
+    """Destroy what a verb owns (owned first, then node) and shut rclpy down: the process ends next.
+
+    Under owl_common's clean-up watchdog: Fast DDS can deadlock while it tears the participant down,
+    and the verb must then end with every thread's stack and exit code 1, not hang until SIGKILL.
+    """
+    import rclpy
+    from owl_common.run import begin_cleanup
+
+    begin_cleanup()
+    for entity in owned:
+        entity.destroy()
+    node.destroy_node()
+    rclpy.try_shutdown()
+
+
 class DirectNode:
     """Owns rclpy for the verb: init on creation, shutdown on close()."""
 
@@ -63,8 +79,7 @@ class DirectNode:
         return self._graph
 
     def close(self) -> None:
-        self.node.destroy_node()
-        self._rclpy.try_shutdown()
+        tear_down(self.node)
 
     def __enter__(self) -> 'DirectNode':
         return self
