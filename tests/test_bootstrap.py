@@ -69,5 +69,7 @@ def test_rerun_with_nothing_changed_does_nothing(tmp_path):
     # `make test` has just set up; a second setup must find everything in place.
     result = subprocess.run(['bash', str(BOOTSTRAP)], capture_output=True, text=True, timeout=120)
     assert result.returncode == 0, result.stderr
+    # One line, so no step ran (each prints what it does); the time it takes is bench material
+    # (about a second on an idle machine, several under a loaded suite).
     [line] = result.stdout.splitlines()
-    assert re.fullmatch(r"setup: ready in [0-3] s\. Next: .*", line), line
+    assert re.fullmatch(r"setup: ready in \d+ s\. Next: .*", line), line
