@@ -12,14 +12,16 @@ cd "$ROOT"
 die() { echo "setup: $*" >&2; exit 1; }
 
 # One log per step; on an unexpected failure show its tail, not the whole wall.
+STEP_TIMES=()  # "name N s" of each step that ran, for the closing line
 run_logged() {  # run_logged NAME COMMAND...
-  local log="$LOG_DIR/$1.log"
+  local name="$1" log="$LOG_DIR/$1.log" started=$SECONDS
   shift
   if ! "$@" >"$log" 2>&1; then
     echo "setup: '$*' failed; the last lines of $log:" >&2
     tail -n 25 "$log" >&2
     exit 1
   fi
+  STEP_TIMES+=("$name $((SECONDS - started)) s")
 }
 
 # --- Prerequisites: each missing one is a single line saying what to install. ---
@@ -82,4 +84,6 @@ if [ "$(cat "$BUILD_STAMP" 2>/dev/null)" != "$src_hash" ]; then
   echo "$src_hash" >"$BUILD_STAMP"
 fi
 
-echo "setup: ready in $((SECONDS - START)) s. Next: 'source env.sh' for the course's commands, 'make demo', 'make test'."
+steps=""
+[ ${#STEP_TIMES[@]} -eq 0 ] || steps=" ($(IFS=,; echo "${STEP_TIMES[*]}" | sed 's/,/, /g'))"
+echo "setup: ready in $((SECONDS - START)) s$steps. Next: 'source env.sh' for the course's commands, 'make demo', 'make test'."
