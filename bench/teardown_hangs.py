@@ -250,11 +250,15 @@ class PairLoop:
               f'max {max(self.stops):.2f} s')
 
 
-def version(distribution: str) -> str:
-    try:
-        return importlib.metadata.version(distribution)
-    except importlib.metadata.PackageNotFoundError:
-        return '?'
+def version(*distributions: str) -> str:
+    """The version of the first of these wheels that is installed (Fast DDS 3 is ros-fastdds, 2.x
+    ros-fastrtps; the ros-rclpy wheel's version, not that of the rclpy egg-info inside it)."""
+    for distribution in distributions:
+        try:
+            return importlib.metadata.version(distribution)
+        except importlib.metadata.PackageNotFoundError:
+            pass
+    return '?'
 
 
 def main() -> int:
@@ -271,7 +275,7 @@ def main() -> int:
         return 0
 
     print(f'{args.pairs} pairs per kind, {args.hogs} CPU hogs, {os.cpu_count()} cores; '
-          f'rclpy {version("rclpy")}, Fast DDS {version("ros-fastdds")}', flush=True)
+          f'rclpy {version("ros-rclpy")}, Fast DDS {version("ros-fastdds", "ros-fastrtps")}', flush=True)
     started = time.monotonic()
     with ExitStack() as resources:
         loops = [PairLoop('turtlesim', start_turtlesim, TURTLESIM_READY, resources),
