@@ -70,6 +70,27 @@ if [ "$(cat "$REQ_STAMP" 2>/dev/null)" != "$req_hash" ]; then
   echo "$req_hash" >"$REQ_STAMP"
 fi
 
+# --- OpenCV's headless build beside the GUI build, for machines without libGL/glib. ---
+# Falling back needs no root, so a clean clone on a minimal machine (CI, a container) still gets a
+# working `import cv2`; a desktop keeps cv2.imshow windows. See scripts/owl_cv2_fallback.py.
+CV_STAMP="$VENV/.owl-opencv-headless.sha256"
+cv_version="$(sed -n 's/^opencv-python==\([^ ;]*\).*/\1/p' requirements.txt)"
+[ -n "$cv_version" ] || die "requirements.txt pins no opencv-python."
+cv_hash="$( (echo "$cv_version"; cat scripts/owl_cv2_fallback.py) | sha256sum | cut -d' ' -f1)"
+if [ "$(cat "$CV_STAMP" 2>/dev/null)" != "$cv_hash" ]; then
+  echo "setup: installing OpenCV's headless build $cv_version as a fallback ..."
+  rm -rf "$VENV/opencv-headless"
+  run_logged opencv-headless "$VENV/bin/uv" pip install --no-progress --python "$VENV/bin/python" \
+    --no-deps --target "$VENV/opencv-headless" "opencv-python-headless==$cv_version"
+  site_packages="$(env _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/python" -c \
+    'import sysconfig; print(sysconfig.get_path("purelib"))')"
+  cp scripts/owl_cv2_fallback.py "$site_packages/"
+  echo 'import owl_cv2_fallback; owl_cv2_fallback.install()' >"$site_packages/owl_cv2_fallback.pth"
+  cv_notice="$(env _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/python" -m owl_cv2_fallback)"
+  [ -z "$cv_notice" ] || echo "setup: $cv_notice"
+  echo "$cv_hash" >"$CV_STAMP"
+fi
+
 # --- colcon build of src/, when anything in it changed. ---
 set +u  # colcon's setup scripts read unset variables
 # shellcheck disable=SC1091
