@@ -94,6 +94,27 @@ def test_course_command_on_a_created_workspace(tmp_path):
     assert (check.returncode, check.stdout) == (0, 'All system dependencies have been satisfied\n')
 
 
+def test_chapter_four_keys_are_satisfied_by_the_pinned_libraries_and_our_cv_bridge(tmp_path):
+    # section 4.5's display_camera package, as a student would declare it
+    add_package(tmp_path / 'src', 'olive_camera',
+                depend=['rclpy', 'sensor_msgs', 'cv_bridge', 'python3-opencv', 'python3-numpy'],
+                test_depend=['python3-pytest', 'python3-setuptools'])
+    add_package(tmp_path / 'src', 'olive_servo', depend=['python3-pygame', 'python3-yaml', 'python3-pil'])
+    # Were anything missing, pip must fail here rather than change the real venv.
+    env = dict(os.environ, PIP_NO_INDEX='1', PIP_TARGET=str(tmp_path / 'target'))
+    result = rosdep('install', '-i', '--from-paths', 'src', '-y', cwd=tmp_path, env=env)
+    assert (result.returncode, result.stdout) == (0, SUCCESS + '\n'), result.stdout + result.stderr
+    check = rosdep('check', '--from-paths', 'src', '--ignore-src', cwd=tmp_path)
+    assert (check.returncode, check.stdout) == (0, 'All system dependencies have been satisfied\n')
+    add_package(tmp_path / 'src', 'plots', depend=['python3-matplotlib'])  # not pinned: an error
+    unpinned = rosdep('install', '-i', '--from-paths', 'src', '-y', cwd=tmp_path, env=env)
+    assert unpinned.returncode == 1
+    # Filtered: where the GUI build cannot load, probing cv2 also prints the fallback's notice.
+    assert [line for line in unpinned.stderr.splitlines() if line.startswith('plots: ')] == [
+        "plots: Cannot locate rosdep definition for [python3-matplotlib] (the Python module 'matplotlib' "
+        "is missing and requirements.txt pins no 'matplotlib')"]
+
+
 def test_without_ignore_src_the_workspaces_own_packages_must_resolve(tmp_path):
     add_package(tmp_path / 'src', 'a_pkg')
     add_package(tmp_path / 'src', 'b_pkg', depend=['a_pkg'])

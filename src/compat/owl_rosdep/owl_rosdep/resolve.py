@@ -32,7 +32,9 @@ PYTHON_KEYS: dict[str, tuple[str, str]] = {
     'python3-empy': ('em', 'empy'),
     'python3-lark': ('lark', 'lark-parser'),
     'python3-lark-parser': ('lark', 'lark-parser'),
+    # The GUI build (cv2.imshow windows); bootstrap.sh adds its headless twin apart.
     'python3-opencv': ('cv2', 'opencv-python'),
+    'python3-pkg-resources': ('pkg_resources', 'setuptools'),
     'python3-serial': ('serial', 'pyserial'),
     'python3-pygments': ('pygments', 'Pygments'),
     'python3-colcon-common-extensions': ('colcon_core', 'colcon-common-extensions'),

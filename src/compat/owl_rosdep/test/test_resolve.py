@@ -1,11 +1,16 @@
 """owl_rosdep's key resolution and manifest reading as plain functions."""
 
 import os
+from pathlib import Path
 
 import pytest
+from ament_index_python.packages import get_packages_with_prefixes
 from owl_rosdep.cli import make_plan
 from owl_rosdep.manifest import ManifestError, dependency_keys, packages_in_paths
 from owl_rosdep.resolve import Resolver, load_pins, load_wheel_table, wheel_name
+from packaging.utils import canonicalize_name
+
+REQUIREMENTS = Path(__file__).resolve().parents[4] / 'requirements.txt'
 
 
 def resolver(installed=(), modules=(), programs=(), pins=None, wheels=None):
@@ -60,6 +65,36 @@ def test_missing_python_key_needs_a_pin():
     error = r.resolve('python3-requests').error
     assert error.startswith('Cannot locate rosdep definition for [python3-requests]')
     assert "'requests'" in error
+
+
+# Keys a course package plausibly names, and the pinned distribution each one installs.
+COURSE_PYTHON_KEYS = {
+    'python3-opencv': 'opencv-python', 'python3-pygame': 'pygame', 'python3-numpy': 'numpy',
+    'python3-yaml': 'PyYAML', 'python3-pytest': 'pytest', 'python3-setuptools': 'setuptools',
+    'python3-pkg-resources': 'setuptools', 'python3-pil': 'pillow',
+}
+
+
+def test_course_python_keys_resolve_to_the_projects_pins_when_missing():
+    pins = load_pins(REQUIREMENTS)
+    r = resolver(pins=pins)
+    for key, distribution in COURSE_PYTHON_KEYS.items():
+        assert r.resolve(key).pip == f'{distribution}=={pins[canonicalize_name(distribution)]}', key
+    assert 'opencv-python-headless' not in pins  # installed apart by bootstrap.sh, never by rosdep
+    # A module requirements.txt does not pin stays an error, as any unknown key.
+    assert r.resolve('python3-matplotlib').error.startswith('Cannot locate rosdep definition for '
+                                                            '[python3-matplotlib]')
+
+
+def test_course_python_keys_are_satisfied_by_their_modules():
+    r = resolver(modules={'cv2', 'pygame', 'numpy', 'yaml', 'pytest', 'setuptools', 'pkg_resources', 'PIL'})
+    for key in COURSE_PYTHON_KEYS:
+        assert r.resolve(key).satisfied, key
+
+
+def test_cv_bridge_is_our_installed_package():
+    assert resolver(installed={'cv_bridge'}).resolve('cv_bridge').satisfied
+    assert 'cv_bridge' in get_packages_with_prefixes()  # built from src/compat/cv_bridge
 
 
 def test_missing_tool_is_reported_not_installed():
