@@ -41,8 +41,9 @@ unset _owl_libs
 _owl_prepend LD_LIBRARY_PATH "$VIRTUAL_ENV/lib"
 export _ROS_WHEELS_BOOTSTRAP_COMPLETE=1
 export RMW_IMPLEMENTATION="${RMW_IMPLEMENTATION:-rmw_fastrtps_cpp}"
-# Faster DDS discovery (see the file for why); a profile of your own takes precedence.
-export FASTDDS_DEFAULT_PROFILES_FILE="${FASTDDS_DEFAULT_PROFILES_FILE:-$OWL_ROOT/config/fastdds.xml}"
+# Faster DDS discovery (see the file for why); a profile of your own takes precedence. Jazzy's
+# Fast DDS 2.14 reads only this name: FASTDDS_DEFAULT_PROFILES_FILE is Fast DDS 3's (Kilted on).
+export FASTRTPS_DEFAULT_PROFILES_FILE="${FASTRTPS_DEFAULT_PROFILES_FILE:-$OWL_ROOT/config/fastdds.xml}"
 export ROS_DISTRO="${ROS_DISTRO:-jazzy}"
 export ROS_VERSION=2
 export ROS_PYTHON_VERSION=3
