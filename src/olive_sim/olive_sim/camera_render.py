@@ -83,8 +83,58 @@ def build_panorama() -> np.ndarray:
     return np.asarray(panorama)
 
 
+class CaptionWriter:
+    """Draws one line of white text on a black box into a packed RGBX frame, glyph by glyph.
+
+    Each character is rasterised once with the font and then copied with numpy: drawing the
+    caption through ImageDraw on every frame cost about a third of the time of a whole frame.
+    """
+
+    def __init__(self, font: ImageFont.ImageFont) -> None:
+        self._font = font
+        ascent, descent = font.getmetrics()
+        self.line_height = ascent + descent
+        self._glyphs: dict[str, tuple[np.ndarray, int]] = {}
+
+    def _glyph(self, character: str) -> tuple[np.ndarray, int]:
+        """(coverage as packed grey pixels line_height high, advance in px) of one character."""
+        if character not in self._glyphs:
+            advance = round(self._font.getlength(character))
+            _, _, right, _ = self._font.getbbox(character)
+            image = Image.new('L', (max(1, advance, right), self.line_height), 0)
+            ImageDraw.Draw(image).text((0, 0), character, fill=255, font=self._font)
+            coverage = np.asarray(image)
+            # The same byte in R, G, B and X: grey, whatever the byte order of uint32.
+            packed = np.repeat(coverage[..., None], 4, axis=2).view(np.uint32)[..., 0]
+            self._glyphs[character] = (np.ascontiguousarray(packed), advance)
+        return self._glyphs[character]
+
+    def draw(self, frame: np.ndarray, text: str, x: int, y: int, margin: tuple[int, int] = (3, 2)) -> None:
+        """Draw text with its top-left corner at (x, y) on a black box `margin` px larger, in place."""
+        glyphs = [self._glyph(character) for character in text]
+        width = sum(advance for _, advance in glyphs)
+        height, frame_width = frame.shape
+        mx, my = margin
+        frame[max(0, y - my):max(0, y + self.line_height + my),
+              max(0, x - mx):max(0, x + width + mx)] = 0
+        for coverage, advance in glyphs:
+            right = min(frame_width, x + coverage.shape[1])
+            bottom = min(height, y + self.line_height)
+            if x >= frame_width or y >= height:
+                break
+            target = frame[y:bottom, x:right]
+            # Neighbouring glyphs may overlap by a pixel: keep the brighter coverage.
+            np.maximum(target, coverage[:bottom - y, :right - x], out=target)
+            x += advance
+
+
 class CameraRenderer:
-    """Renders width x height views of the panorama for a pan and tilt (rad) and encodes JPEG."""
+    """Renders width x height views of the panorama for a pan and tilt (rad) and encodes JPEG.
+
+    Pixels are packed RGBX in one uint32 each, so a frame is a single np.take of precomputed
+    indices into a flat panorama (about 0.5 ms at 640x480, fancy indexing of RGB rows took 6 ms)
+    into a frame buffer that is reused.
+    """
 
     def __init__(self, width: int = 640, height: int = 480, horizontal_fov: float = math.radians(48.7),
                  panorama: np.ndarray | None = None) -> None:
@@ -97,16 +147,23 @@ class CameraRenderer:
         self.fx = self.fy = focal_length(width, horizontal_fov)
         self.cx, self.cy = (width - 1) / 2, (height - 1) / 2
         pano = build_panorama() if panorama is None else panorama
-        # Two copies side by side: a shifted column index never needs a modulo.
-        self._pixels = np.concatenate([pano, pano], axis=1).reshape(-1, 3)
+        # Two copies side by side: a column shifted by pan never needs a modulo.
+        packed = np.zeros((PANORAMA_HEIGHT, 2 * PANORAMA_WIDTH, 4), dtype=np.uint8)
+        packed[:, :PANORAMA_WIDTH, :3] = pano
+        packed[:, PANORAMA_WIDTH:, :3] = pano
+        self._pixels = packed.view(np.uint32).reshape(-1)
+        self._frame = np.empty((height, width), dtype=np.uint32)
+        self._index = np.empty((height, width), dtype=np.intp)
         self._tilt: float | None = None
-        self._base_index = np.empty(0)
         self._rays: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
-        self._font = _font(16)
+        self._caption = CaptionWriter(_font(16))
 
     def _rebuild(self, tilt: float) -> None:
+        # The image is mirror-symmetric about its centre column (cx is the middle): compute the
+        # right half (with the middle column of an odd width) and mirror it into the left half.
+        half = self.width // 2
         if self._rays is None:
-            u = (np.arange(self.width, dtype=np.float32) - self.cx) / self.fx
+            u = (np.arange(half, self.width, dtype=np.float32) - self.cx) / self.fx
             v = (np.arange(self.height, dtype=np.float32) - self.cy) / self.fy
             right, down = np.meshgrid(u, v)
             # Body frame x forward, y left, z up; a rotation keeps each ray's length.
@@ -117,27 +174,32 @@ class CameraRenderer:
         z = c * up - s
         azimuth = np.arctan2(left, x)
         elevation = np.arcsin(np.clip(z * inverse_length, -1.0, 1.0))
-        columns = np.rint(azimuth * np.float32(PANORAMA_WIDTH / (2 * math.pi))).astype(np.int32)
-        columns %= PANORAMA_WIDTH
+        columns = np.rint(azimuth * np.float32(PANORAMA_WIDTH / (2 * math.pi))).astype(np.intp)
         rows = np.rint((np.float32(math.pi / 2) - elevation) * np.float32(PANORAMA_HEIGHT / math.pi))
-        rows = np.clip(rows, 0, PANORAMA_HEIGHT - 1).astype(np.int32)
-        self._base_index = rows * (2 * PANORAMA_WIDTH) + columns
+        rows = np.clip(rows, 0, PANORAMA_HEIGHT - 1).astype(np.intp) * (2 * PANORAMA_WIDTH)
+        # A mirrored ray has the opposite azimuth and the same elevation.
+        self._index[:, half:] = rows + columns % PANORAMA_WIDTH
+        self._index[:, :half] = (rows + (-columns) % PANORAMA_WIDTH)[:, ::-1][:, :half]
         self._tilt = tilt
 
-    def render(self, pan: float, tilt: float) -> np.ndarray:
-        """RGB array height x width x 3 of the view at pan, tilt."""
+    def _view(self, pan: float, tilt: float) -> np.ndarray:
+        """The packed RGBX frame of the view at pan, tilt (the renderer's buffer, overwritten next time)."""
         if self._tilt is None or abs(tilt - self._tilt) > TILT_STEP:
             self._rebuild(tilt)
         shift = round(pan * PANORAMA_WIDTH / (2 * math.pi)) % PANORAMA_WIDTH
-        return self._pixels[self._base_index + shift]
+        # Every index is in range by construction, so 'clip' only spares numpy's bounds check.
+        np.take(self._pixels[shift:], self._index, out=self._frame, mode='clip')
+        return self._frame
+
+    def render(self, pan: float, tilt: float) -> np.ndarray:
+        """RGB array height x width x 3 of the view at pan, tilt (a new array)."""
+        return self._view(pan, tilt).view(np.uint8).reshape(self.height, self.width, 4)[..., :3].copy()
 
     def jpeg(self, pan: float, tilt: float, caption: str, quality: int = 80) -> bytes:
         """The view with `caption` (frame counter and time) in the top-left corner, as JPEG."""
-        image = Image.fromarray(self.render(pan, tilt))
-        draw = ImageDraw.Draw(image)
-        box = draw.textbbox((6, 4), caption, font=self._font)
-        draw.rectangle([box[0] - 3, box[1] - 2, box[2] + 3, box[3] + 2], fill=(0, 0, 0))
-        draw.text((6, 4), caption, fill=(255, 255, 255), font=self._font)
+        frame = self._view(pan, tilt)
+        self._caption.draw(frame, caption, 6, 4)
+        image = Image.frombuffer('RGB', (self.width, self.height), frame, 'raw', 'RGBX', 0, 1)
         buffer = io.BytesIO()
         image.save(buffer, format='JPEG', quality=quality)
         return buffer.getvalue()
