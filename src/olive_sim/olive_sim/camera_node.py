@@ -56,8 +56,10 @@ class CameraModule(OliveModule):
         self.image_publisher = self.create_publisher(CompressedImage, self.topic('image/compressed'), qos)
         self.info_publisher = self.create_publisher(CameraInfo, self.topic('image/camera_info'), qos)
         self.camera_info = self._camera_info()
-        self.create_subscription(JointState, value('pan_joint_topic').value, self._on_pan, 10)
-        self.create_subscription(JointState, value('tilt_joint_topic').value, self._on_tilt, 10)
+        # Polled by the frame and IMU threads just before they use pan and tilt.
+        self.joints = [self.create_polled_subscription(JointState, value(topic).value, callback, 10)
+                       for topic, callback in (('pan_joint_topic', self._on_pan),
+                                               ('tilt_joint_topic', self._on_tilt))]
         self.add_post_set_parameters_callback(self._apply_parameters)
         self.output = ImuOutput(self, self.topic, f'{namespace}_body_link', self.orientation)
         self.frame_thread = self.create_periodic(value('fps').value, self.publish_frame, 'frames')
@@ -67,8 +69,13 @@ class CameraModule(OliveModule):
             if p.name == 'jpeg_quality':
                 self.jpeg_quality = p.value
 
+    def _poll_joints(self) -> None:
+        for joint in self.joints:
+            joint.poll()
+
     def orientation(self, t: float) -> Quaternion:
         """The camera's true orientation: yaw by pan, pitched down by tilt."""
+        self._poll_joints()
         return quat.from_euler(0.0, self.tilt, self.pan)
 
     def _joint_position(self, msg: JointState, which: str) -> float | None:
@@ -98,6 +105,7 @@ class CameraModule(OliveModule):
         return info
 
     def publish_frame(self) -> None:
+        self._poll_joints()
         self.frames += 1
         now = self.get_clock().now()
         seconds = now.nanoseconds / 1e9

@@ -18,8 +18,10 @@ import yaml
 from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
 from owl_common.run import spin_node
 from rcl_interfaces.msg import ParameterDescriptor
+from rclpy.callback_groups import CallbackGroup
 from rclpy.node import Node
 from rclpy.parameter import Parameter
+from rclpy.qos import QoSProfile
 from sensor_msgs.msg import Temperature
 from std_msgs.msg import Bool
 
@@ -121,6 +123,46 @@ class PeriodicThread:
             self._thread.join(2.0)
 
 
+class _PolledGroup(CallbackGroup):
+    """The executor never waits on its entities: their owner takes from them.
+
+    That includes the subscription's QoS event handlers (so no incompatible-QoS warning for it):
+    they share the reader's status condition, and while a message waits to be taken they woke the
+    executor over and over.
+    """
+
+    def can_execute(self, entity: Any) -> bool:
+        return False
+
+    def beginning_execution(self, entity: Any) -> bool:
+        return False
+
+    def ending_execution(self, entity: Any) -> None:
+        pass
+
+
+class PolledSubscription:
+    """A subscription whose messages are handed to `callback` only when poll() is called.
+
+    For inputs that matter only at the moment an output is made (the camera's view of the servo
+    joints): every executor wake-up costs the node's whole wait set, which at 100 Hz per servo was
+    the largest part of the camera's CPU after the rendering. poll() may be called from any thread.
+    """
+
+    def __init__(self, node: Node, msg_type: type, topic: str, callback: Callable[[Any], None],
+                 qos: QoSProfile | int) -> None:
+        self._subscription = node.create_subscription(msg_type, topic, callback, qos,
+                                                      callback_group=_PolledGroup())
+        self._lock = threading.Lock()
+
+    def poll(self) -> None:
+        """Pass every message received since the last poll to the callback, oldest first."""
+        subscription = self._subscription
+        with self._lock, subscription.handle:
+            while (taken := subscription.handle.take_message(subscription.msg_type, False)) is not None:
+                subscription.callback(taken[0])
+
+
 class OliveModule(Node):
     """Base class of the module nodes: the common topics and the `namespace` parameter."""
 
@@ -148,6 +190,11 @@ class OliveModule(Node):
 
     def topic(self, name: str) -> str:
         return self.prefix + name
+
+    def create_polled_subscription(self, msg_type: type, topic: str, callback: Callable[[Any], None],
+                                   qos: QoSProfile | int) -> PolledSubscription:
+        """A subscription the executor never wakes up for: see PolledSubscription."""
+        return PolledSubscription(self, msg_type, topic, callback, qos)
 
     def create_periodic(self, rate: float, callback: Callable[[], None], name: str) -> PeriodicThread:
         """Run callback at rate Hz on a thread of its own until the node is destroyed."""
