@@ -16,6 +16,7 @@ from typing import Any
 
 import yaml
 from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
+from owl_common.periodic import PeriodicThread
 from owl_common.run import spin_node
 from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.callback_groups import CallbackGroup
@@ -29,9 +30,6 @@ FIRMWARE_VERSION = 'olive_sim 0.1.0'
 NAMESPACE_PATTERN = re.compile(r'^[A-Za-z][A-Za-z0-9_]*$')
 STATUS_PERIOD = 1.0  # s: status, temperature and switch are published at 1 Hz
 WARN_EVERY = 2.0     # s between repeats of one kind of warning
-# s: PeriodicThread sleeps shorter delays with time.sleep, which costs a third less CPU per wake-up
-# than Event.wait; stop() then waits at most this long.
-SLEEP_LIMIT = 0.1
 
 
 def check_namespace(namespace: str) -> str:
@@ -85,49 +83,6 @@ def node_name(module_type: str, namespace: str) -> str:
 def describe(description: str, read_only: bool = False, **ranges: Any) -> ParameterDescriptor:
     """A parameter descriptor; ranges are FloatingPointRange/IntegerRange objects by keyword."""
     return ParameterDescriptor(description=description, read_only=read_only, **ranges)
-
-
-class PeriodicThread:
-    """Calls `callback` at a fixed rate on its own thread, on a schedule that does not drift.
-
-    High-rate outputs (100 Hz sensors, 30 fps images) run here rather than on executor timers:
-    each executor wake-up costs the whole wait set of the node (parameter services and all),
-    which would multiply the modules' CPU use.
-    """
-
-    def __init__(self, rate: float, callback: Callable[[], None], name: str,
-                 alive: Callable[[], bool]) -> None:
-        self.period = 1.0 / rate
-        self.callback = callback
-        self.alive = alive
-        self._stop = threading.Event()
-        self._thread = threading.Thread(target=self._run, name=name, daemon=True)
-        self._thread.start()
-
-    def _run(self) -> None:
-        due = time.monotonic()
-        while not self._stop.is_set():
-            due += self.period
-            delay = due - time.monotonic()
-            if delay < -self.period:
-                due = time.monotonic()  # fell more than a period behind: restart the schedule
-            elif 0 < delay <= SLEEP_LIMIT:
-                time.sleep(delay)
-                if self._stop.is_set():
-                    return
-            elif delay > 0 and self._stop.wait(delay):
-                return
-            try:
-                self.callback()
-            except Exception:
-                if self._stop.is_set() or not self.alive():
-                    return  # Ctrl-C shut ROS down, or the node is being destroyed, under the callback
-                raise
-
-    def stop(self) -> None:
-        self._stop.set()
-        if self._thread is not threading.current_thread():
-            self._thread.join(2.0)
 
 
 class _PolledGroup(CallbackGroup):
