@@ -8,6 +8,7 @@ import time
 from rcl_interfaces.msg import FloatingPointRange, IntegerRange
 from rclpy.parameter import Parameter
 from rclpy.qos import DurabilityPolicy, QoSProfile
+from rclpy.serialization import deserialize_message
 from sensor_msgs.msg import CameraInfo, CompressedImage, JointState
 
 from olive_sim import quaternion as quat
@@ -15,6 +16,7 @@ from olive_sim.camera_render import CameraRenderer
 from olive_sim.imu_output import ImuOutput, reliability
 from olive_sim.module_node import OliveModule, describe, run_module
 from olive_sim.quaternion import Quaternion
+from olive_sim.serialized import joint_state_position
 
 # Horizontal field of view of the vendor's shipped calibration (K of calibration/ost.yaml).
 DEFAULT_FOV_DEG = 48.66
@@ -56,8 +58,10 @@ class CameraModule(OliveModule):
         self.image_publisher = self.create_publisher(CompressedImage, self.topic('image/compressed'), qos)
         self.info_publisher = self.create_publisher(CameraInfo, self.topic('image/camera_info'), qos)
         self.camera_info = self._camera_info()
-        # Polled by the frame and IMU threads just before they use pan and tilt.
-        self.joints = [self.create_polled_subscription(JointState, value(topic).value, callback, 10)
+        # Polled by the frame and IMU threads just before they use pan and tilt, as bytes: only
+        # the position is read from them.
+        self.joints = [self.create_polled_subscription(JointState, value(topic).value, callback, 10,
+                                                       raw=True)
                        for topic, callback in (('pan_joint_topic', self._on_pan),
                                                ('tilt_joint_topic', self._on_tilt))]
         self.add_post_set_parameters_callback(self._apply_parameters)
@@ -78,19 +82,24 @@ class CameraModule(OliveModule):
         self._poll_joints()
         return quat.from_euler(0.0, self.tilt, self.pan)
 
-    def _joint_position(self, msg: JointState, which: str) -> float | None:
-        if not msg.position or not math.isfinite(msg.position[0]):
+    def _joint_position(self, data: bytes, which: str) -> float | None:
+        try:
+            position = joint_state_position(data)
+        except ValueError:  # an encoding we do not read directly
+            msg = deserialize_message(data, JointState)
+            position = msg.position[0] if msg.position else None
+        if position is None or not math.isfinite(position):
             self.warn(f'{which} joint', f'{which} joint state without a finite position ignored')
             return None
-        return msg.position[0]
+        return position
 
-    def _on_pan(self, msg: JointState) -> None:
-        position = self._joint_position(msg, 'pan')
+    def _on_pan(self, data: bytes) -> None:
+        position = self._joint_position(data, 'pan')
         if position is not None:
             self.pan = position
 
-    def _on_tilt(self, msg: JointState) -> None:
-        position = self._joint_position(msg, 'tilt')
+    def _on_tilt(self, data: bytes) -> None:
+        position = self._joint_position(data, 'tilt')
         if position is not None:
             self.tilt = position
 

@@ -109,19 +109,21 @@ class PolledSubscription:
     For inputs that matter only at the moment an output is made (the camera's view of the servo
     joints): every executor wake-up costs the node's whole wait set, which at 100 Hz per servo was
     the largest part of the camera's CPU after the rendering. poll() may be called from any thread.
+    With raw=True the callback gets the serialized bytes, as with rclpy's raw subscriptions.
     """
 
     def __init__(self, node: Node, msg_type: type, topic: str, callback: Callable[[Any], None],
-                 qos: QoSProfile | int) -> None:
+                 qos: QoSProfile | int, raw: bool = False) -> None:
         self._subscription = node.create_subscription(msg_type, topic, callback, qos,
-                                                      callback_group=_PolledGroup())
+                                                      callback_group=_PolledGroup(), raw=raw)
         self._lock = threading.Lock()
 
     def poll(self) -> None:
         """Pass every message received since the last poll to the callback, oldest first."""
         subscription = self._subscription
         with self._lock, subscription.handle:
-            while (taken := subscription.handle.take_message(subscription.msg_type, False)) is not None:
+            while (taken := subscription.handle.take_message(subscription.msg_type,
+                                                             subscription.raw)) is not None:
                 subscription.callback(taken[0])
 
 
@@ -160,9 +162,9 @@ class OliveModule(Node):
         return clock.now().nanoseconds if clock.ros_time_is_active else time.time_ns()
 
     def create_polled_subscription(self, msg_type: type, topic: str, callback: Callable[[Any], None],
-                                   qos: QoSProfile | int) -> PolledSubscription:
+                                   qos: QoSProfile | int, raw: bool = False) -> PolledSubscription:
         """A subscription the executor never wakes up for: see PolledSubscription."""
-        return PolledSubscription(self, msg_type, topic, callback, qos)
+        return PolledSubscription(self, msg_type, topic, callback, qos, raw)
 
     def create_periodic(self, rate: float, callback: Callable[[], None], name: str) -> PeriodicThread:
         """Run callback at rate Hz on a thread of its own until the node is destroyed."""

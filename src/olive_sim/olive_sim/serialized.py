@@ -47,3 +47,40 @@ class SerializedTemplate:
         for offset, value in zip(self._offsets, values, strict=True):
             pack(buffer, offset, value)
         return bytes(buffer)
+
+
+# Encapsulation identifiers (first two bytes, big-endian) of plain CDR, the classic XCDR1 layout
+# ROS 2's Fast DDS writes: 8-byte values are 8-aligned, offsets count from after the 4-byte header.
+_PLAIN_CDR = {b'\x00\x00': '>', b'\x00\x01': '<'}
+
+
+def joint_state_position(serialized: bytes) -> float | None:
+    """position[0] of a serialized sensor_msgs/JointState, None when it has no position.
+
+    Reading the one value the camera needs straight from the bytes spares building the whole
+    message (names, three arrays) 200 times a second. ValueError for encodings other than plain CDR
+    or for truncated data; the caller then deserializes the message as usual.
+    """
+    order = _PLAIN_CDR.get(serialized[:2])
+    if order is None:
+        raise ValueError(f'not plain CDR (encapsulation {serialized[:2].hex()})')
+    data = memoryview(serialized)[4:]
+    count = struct.Struct(order + 'I')
+
+    def read_count(offset: int) -> tuple[int, int]:
+        offset += -offset % 4
+        return count.unpack_from(data, offset)[0], offset + 4
+
+    try:
+        length, offset = read_count(8)              # header.frame_id, after the stamp
+        names, offset = read_count(offset + length)
+        for _ in range(names):
+            length, offset = read_count(offset)
+            offset += length
+        positions, offset = read_count(offset)
+        if positions == 0:
+            return None
+        offset += -offset % 8
+        return struct.unpack_from(order + 'd', data, offset)[0]
+    except struct.error as error:
+        raise ValueError(f'truncated JointState: {error}') from None

@@ -11,9 +11,13 @@ from olive_sim.camera_render import (
     PANORAMA_WIDTH,
     CameraRenderer,
     CaptionWriter,
+    SplicedJpeg,
     _font,
+    encode_jpeg,
     find_colour,
     focal_length,
+    join_jpeg,
+    split_jpeg,
 )
 from PIL import Image
 
@@ -125,3 +129,39 @@ def test_a_caption_wider_than_the_frame_is_cut_off():
 def test_small_frames_encode_with_their_caption():
     data = CameraRenderer(16, 16, panorama=coordinate_panorama()).jpeg(0.0, 0.0, '#1 12:00:00.000')
     assert Image.open(io.BytesIO(data)).size == (16, 16)
+
+
+@pytest.fixture(scope='module')
+def coordinates_renderer():
+    return CameraRenderer(100, 60, math.radians(60), panorama=coordinate_panorama())
+
+
+def test_split_and_join_give_back_the_jpeg():
+    frame = np.arange(64 * 48, dtype=np.uint32).reshape(48, 64) * 2654435761
+    data = encode_jpeg(frame, 80)
+    head, rows = split_jpeg(data)
+    assert len(rows) == 3  # 48 px of 16-px block rows
+    assert join_jpeg(head, rows) == data
+
+
+def test_a_frame_with_the_same_view_is_the_full_encoding_byte_for_byte(coordinates_renderer):
+    fresh = CameraRenderer(100, 60, math.radians(60), panorama=coordinate_panorama())
+    coordinates_renderer.jpeg(0.4, 0.2, '#1  12:00:00.000')
+    again = coordinates_renderer.jpeg(0.4, 0.2, '#2  12:00:00.033')  # only the caption is encoded
+    assert again == fresh.jpeg(0.4, 0.2, '#2  12:00:00.033')
+    # A new view, or a new quality, is encoded whole.
+    assert coordinates_renderer.jpeg(0.5, 0.2, '#3') == fresh.jpeg(0.5, 0.2, '#3')
+    assert coordinates_renderer.jpeg(0.5, 0.2, '#4', 30) == fresh.jpeg(0.5, 0.2, '#4', 30)
+
+
+def test_spliced_jpeg_replaces_only_the_top_rows():
+    encoder = SplicedJpeg(height=64, top=20)
+    assert encoder.top == 32
+    frame = np.zeros((64, 32), dtype=np.uint32)
+    rgb = frame.view(np.uint8).reshape(64, 32, 4)[..., :3]
+    rgb[:] = (30, 60, 90)
+    encoder.encode(frame, 80, rest_unchanged=False)
+    rgb[:32] = (220, 200, 10)
+    assert encoder.encode(frame, 80, rest_unchanged=True) == encode_jpeg(frame, 80)
+    decoded = np.asarray(Image.open(io.BytesIO(encode_jpeg(frame, 80))))
+    assert decoded[5, 5, 0] > 200 and decoded[60, 5, 0] < 50

@@ -3,7 +3,7 @@
 import struct
 
 import pytest
-from olive_sim.serialized import STAMP_MARKER, SerializedTemplate, markers
+from olive_sim.serialized import STAMP_MARKER, SerializedTemplate, joint_state_position, markers
 from rclpy.serialization import deserialize_message, serialize_message
 from sensor_msgs.msg import Imu, JointState
 
@@ -64,3 +64,25 @@ def test_fill_needs_one_value_per_field():
     template = SerializedTemplate(struct.pack('=iId', *STAMP_MARKER, 1.5), [1.5])
     with pytest.raises(ValueError):
         template.fill(0, (1.0, 2.0))
+
+
+@pytest.mark.parametrize('names, positions, frame_id', [
+    (['pan_joint'], [0.75], 'pan_rotor_link'),
+    (['a', 'bb', 'ccc'], [-1.5, 2.0, 3.0], ''),
+    ([], [1e-300], 'x' * 7),
+    (['tilt_joint'], [], 'f'),
+])
+def test_joint_state_position_reads_the_first_position_from_the_bytes(names, positions, frame_id):
+    msg = JointState(name=names, position=positions, velocity=[0.5] * len(positions))
+    msg.header.frame_id = frame_id
+    msg.header.stamp.sec = 3
+    expected = positions[0] if positions else None
+    assert joint_state_position(serialize_message(msg)) == expected
+
+
+def test_joint_state_position_refuses_other_encodings_and_truncated_data():
+    data = serialize_message(JointState(name=['pan_joint'], position=[0.75]))
+    with pytest.raises(ValueError, match='not plain CDR'):
+        joint_state_position(b'\x00\x07' + data[2:])
+    with pytest.raises(ValueError, match='truncated'):
+        joint_state_position(data[:data.index(struct.pack('=d', 0.75)) + 4])  # into the position
