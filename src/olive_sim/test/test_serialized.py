@@ -26,8 +26,9 @@ def joint_state(stamp, position, velocity, effort):
 def test_a_filled_joint_state_serializes_like_the_message():
     values = markers(3)
     template = SerializedTemplate(serialize_message(joint_state(STAMP_MARKER, *values)), values)
-    filled = template.fill(1_700_000_000_250_000_000, (0.5, -1.25, 0.03))
-    assert filled == serialize_message(joint_state((1_700_000_000, 250_000_000), 0.5, -1.25, 0.03))
+    filled = deserialize_message(template.fill(1_700_000_000_250_000_000, (0.5, -1.25, 0.03)), JointState)
+    # Compared as messages: the rmw serializer pads a JointState with a few uninitialised bytes.
+    assert filled == joint_state((1_700_000_000, 250_000_000), 0.5, -1.25, 0.03)
     # The template is reused: a second fill replaces every value.
     again = deserialize_message(template.fill(5, (1.0, 2.0, 3.0)), JointState)
     assert (again.header.stamp.sec, again.header.stamp.nanosec) == (0, 5)
