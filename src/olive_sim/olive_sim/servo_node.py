@@ -122,8 +122,7 @@ class ServoModule(OliveModule):
                       'skipping ahead')
             self._wall_start += behind - MAX_CATCH_UP
             elapsed = time.monotonic() - self._wall_start
-        for _ in range(int(elapsed * self.physics_rate) - self.sim.steps):
-            self.sim.step()
+        self.sim.advance(max(0, int(elapsed * self.physics_rate) - self.sim.steps))
 
     # -- parameters -------------------------------------------------------------------------
 
