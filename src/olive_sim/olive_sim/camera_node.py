@@ -8,6 +8,7 @@ import time
 from rcl_interfaces.msg import FloatingPointRange, IntegerRange
 from rclpy.parameter import Parameter
 from rclpy.qos import DurabilityPolicy, QoSProfile
+from rclpy.serialization import deserialize_message, serialize_message
 from sensor_msgs.msg import CameraInfo, CompressedImage, JointState
 
 from olive_sim import quaternion as quat
@@ -15,6 +16,7 @@ from olive_sim.camera_render import CameraRenderer
 from olive_sim.imu_output import ImuOutput, reliability
 from olive_sim.module_node import OliveModule, describe, run_module
 from olive_sim.quaternion import Quaternion
+from olive_sim.serialized import STAMP_MARKER, SerializedTemplate, joint_state_position
 
 # Horizontal field of view of the vendor's shipped calibration (K of calibration/ost.yaml).
 DEFAULT_FOV_DEG = 48.66
@@ -55,9 +57,14 @@ class CameraModule(OliveModule):
                          reliability=reliability(value('image_reliability').value, 'image_reliability'))
         self.image_publisher = self.create_publisher(CompressedImage, self.topic('image/compressed'), qos)
         self.info_publisher = self.create_publisher(CameraInfo, self.topic('image/camera_info'), qos)
-        self.camera_info = self._camera_info()
-        self.create_subscription(JointState, value('pan_joint_topic').value, self._on_pan, 10)
-        self.create_subscription(JointState, value('tilt_joint_topic').value, self._on_tilt, 10)
+        # Only its stamp changes: published as serialized bytes with the stamp patched in.
+        self.camera_info = SerializedTemplate(serialize_message(self._camera_info()), [])
+        # Polled by the frame and IMU threads just before they use pan and tilt, as bytes: only
+        # the position is read from them.
+        self.joints = [self.create_polled_subscription(JointState, value(topic).value, callback, 10,
+                                                       raw=True)
+                       for topic, callback in (('pan_joint_topic', self._on_pan),
+                                               ('tilt_joint_topic', self._on_tilt))]
         self.add_post_set_parameters_callback(self._apply_parameters)
         self.output = ImuOutput(self, self.topic, f'{namespace}_body_link', self.orientation)
         self.frame_thread = self.create_periodic(value('fps').value, self.publish_frame, 'frames')
@@ -67,23 +74,33 @@ class CameraModule(OliveModule):
             if p.name == 'jpeg_quality':
                 self.jpeg_quality = p.value
 
+    def _poll_joints(self) -> None:
+        for joint in self.joints:
+            joint.poll()
+
     def orientation(self, t: float) -> Quaternion:
         """The camera's true orientation: yaw by pan, pitched down by tilt."""
+        self._poll_joints()
         return quat.from_euler(0.0, self.tilt, self.pan)
 
-    def _joint_position(self, msg: JointState, which: str) -> float | None:
-        if not msg.position or not math.isfinite(msg.position[0]):
+    def _joint_position(self, data: bytes, which: str) -> float | None:
+        try:
+            position = joint_state_position(data)
+        except ValueError:  # an encoding we do not read directly
+            msg = deserialize_message(data, JointState)
+            position = msg.position[0] if msg.position else None
+        if position is None or not math.isfinite(position):
             self.warn(f'{which} joint', f'{which} joint state without a finite position ignored')
             return None
-        return msg.position[0]
+        return position
 
-    def _on_pan(self, msg: JointState) -> None:
-        position = self._joint_position(msg, 'pan')
+    def _on_pan(self, data: bytes) -> None:
+        position = self._joint_position(data, 'pan')
         if position is not None:
             self.pan = position
 
-    def _on_tilt(self, msg: JointState) -> None:
-        position = self._joint_position(msg, 'tilt')
+    def _on_tilt(self, data: bytes) -> None:
+        position = self._joint_position(data, 'tilt')
         if position is not None:
             self.tilt = position
 
@@ -95,21 +112,22 @@ class CameraModule(OliveModule):
         info.r = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]
         info.p = [r.fx, 0.0, r.cx, 0.0, 0.0, r.fy, r.cy, 0.0, 0.0, 0.0, 1.0, 0.0]
         info.header.frame_id = self.frame_id
+        info.header.stamp.sec, info.header.stamp.nanosec = STAMP_MARKER
         return info
 
     def publish_frame(self) -> None:
+        self._poll_joints()
         self.frames += 1
-        now = self.get_clock().now()
-        seconds = now.nanoseconds / 1e9
+        now = self.now_ns()
+        seconds = now / 1e9
         clock = time.strftime('%H:%M:%S', time.gmtime(seconds))
         caption = f'#{self.frames}  {clock}.{int(seconds % 1 * 1000):03d}'
         msg = CompressedImage(format='jpeg')
-        msg.header.stamp = now.to_msg()
+        msg.header.stamp.sec, msg.header.stamp.nanosec = divmod(now, 1_000_000_000)
         msg.header.frame_id = self.frame_id
         msg.data = self.renderer.jpeg(self.pan, self.tilt, caption, self.jpeg_quality)
         self.image_publisher.publish(msg)
-        self.camera_info.header.stamp = msg.header.stamp
-        self.info_publisher.publish(self.camera_info)
+        self.info_publisher.publish(self.camera_info.fill(now, ()))
 
     def temperature(self) -> float:
         return 42.0

@@ -8,11 +8,13 @@ from collections.abc import Callable
 
 from rcl_interfaces.msg import FloatingPointRange, IntegerRange
 from rclpy.qos import QoSProfile, ReliabilityPolicy
+from rclpy.serialization import serialize_message
 from sensor_msgs.msg import Imu, MagneticField
 
 from olive_sim.imu_model import ImuNoise, ImuSensor
 from olive_sim.module_node import OliveModule, describe
 from olive_sim.quaternion import Quaternion
+from olive_sim.serialized import STAMP_MARKER, SerializedTemplate, markers
 
 NOISE_DESCRIPTIONS = {
     'gyro_noise': 'Gyro white noise, standard deviation per sample [rad/s].',
@@ -59,33 +61,40 @@ class ImuOutput:
         self.imu_publisher = node.create_publisher(Imu, topic('imu'), qos)
         self.mag_publisher = node.create_publisher(MagneticField, topic('magnetometer'), qos)
         self.lock = threading.Lock()  # the sensor is sampled on the output thread, reset by services
-        self._imu = Imu()
-        self._imu.header.frame_id = self.frame_id
-        self._imu.orientation_covariance = _diagonal(self.noise.orientation_noise ** 2)
-        self._imu.angular_velocity_covariance = _diagonal(self.noise.gyro_noise ** 2)
-        self._imu.linear_acceleration_covariance = _diagonal(self.noise.accel_noise ** 2)
-        self._mag = MagneticField()
-        self._mag.header.frame_id = self.frame_id
-        self._mag.magnetic_field_covariance = _diagonal(self.noise.mag_noise ** 2)
+        self._imu, self._mag = self._templates()
         self._epoch = time.monotonic()
         self.thread = node.create_periodic(value('imu_rate').value, self.publish, 'imu')
 
+    def _templates(self) -> tuple[SerializedTemplate, SerializedTemplate]:
+        """Serialized imu and magnetometer messages to fill: orientation, angular velocity and
+        linear acceleration (10 values), and the magnetic field (3 values)."""
+        sec, nanosec = STAMP_MARKER
+        values = markers(10)
+        imu = Imu()
+        imu.header.stamp.sec, imu.header.stamp.nanosec = sec, nanosec
+        imu.header.frame_id = self.frame_id
+        o, av, la = imu.orientation, imu.angular_velocity, imu.linear_acceleration
+        o.x, o.y, o.z, o.w, av.x, av.y, av.z, la.x, la.y, la.z = values
+        imu.orientation_covariance = _diagonal(self.noise.orientation_noise ** 2)
+        imu.angular_velocity_covariance = _diagonal(self.noise.gyro_noise ** 2)
+        imu.linear_acceleration_covariance = _diagonal(self.noise.accel_noise ** 2)
+        mag = MagneticField()
+        mag.header.stamp.sec, mag.header.stamp.nanosec = sec, nanosec
+        mag.header.frame_id = self.frame_id
+        mf = mag.magnetic_field
+        mf.x, mf.y, mf.z = values[:3]
+        mag.magnetic_field_covariance = _diagonal(self.noise.mag_noise ** 2)
+        return (SerializedTemplate(serialize_message(imu), values),
+                SerializedTemplate(serialize_message(mag), values[:3]))
+
     def publish(self) -> None:
-        stamp = self.node.get_clock().now().to_msg()
+        stamp = self.node.now_ns()
         t = time.monotonic() - self._epoch
         with self.lock:
             reading = self.sensor.sample(t, self.true_orientation(t))
-        imu, mag = self._imu, self._mag  # reused: building messages costs more than filling them
-        imu.header.stamp = stamp
-        o, av, la = imu.orientation, imu.angular_velocity, imu.linear_acceleration
-        o.x, o.y, o.z, o.w = reading.orientation
-        av.x, av.y, av.z = reading.angular_velocity
-        la.x, la.y, la.z = reading.linear_acceleration
-        self.imu_publisher.publish(imu)
-        mag.header.stamp = stamp
-        mf = mag.magnetic_field
-        mf.x, mf.y, mf.z = reading.magnetic_field
-        self.mag_publisher.publish(mag)
+        self.imu_publisher.publish(self._imu.fill(stamp, (
+            *reading.orientation, *reading.angular_velocity, *reading.linear_acceleration)))
+        self.mag_publisher.publish(self._mag.fill(stamp, reading.magnetic_field))
 
 
 def _diagonal(variance: float) -> list[float]:

@@ -16,10 +16,13 @@ from typing import Any
 
 import yaml
 from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
+from owl_common.periodic import PeriodicThread
 from owl_common.run import spin_node
 from rcl_interfaces.msg import ParameterDescriptor
+from rclpy.callback_groups import CallbackGroup
 from rclpy.node import Node
 from rclpy.parameter import Parameter
+from rclpy.qos import QoSProfile
 from sensor_msgs.msg import Temperature
 from std_msgs.msg import Bool
 
@@ -82,43 +85,46 @@ def describe(description: str, read_only: bool = False, **ranges: Any) -> Parame
     return ParameterDescriptor(description=description, read_only=read_only, **ranges)
 
 
-class PeriodicThread:
-    """Calls `callback` at a fixed rate on its own thread, on a schedule that does not drift.
+class _PolledGroup(CallbackGroup):
+    """The executor never waits on its entities: their owner takes from them.
 
-    High-rate outputs (100 Hz sensors, 30 fps images) run here rather than on executor timers:
-    each executor wake-up costs the whole wait set of the node (parameter services and all),
-    which would multiply the modules' CPU use.
+    That includes the subscription's QoS event handlers (so no incompatible-QoS warning for it):
+    they share the reader's status condition, and while a message waits to be taken they woke the
+    executor over and over.
     """
 
-    def __init__(self, rate: float, callback: Callable[[], None], name: str,
-                 alive: Callable[[], bool]) -> None:
-        self.period = 1.0 / rate
-        self.callback = callback
-        self.alive = alive
-        self._stop = threading.Event()
-        self._thread = threading.Thread(target=self._run, name=name, daemon=True)
-        self._thread.start()
+    def can_execute(self, entity: Any) -> bool:
+        return False
 
-    def _run(self) -> None:
-        due = time.monotonic()
-        while not self._stop.is_set():
-            due += self.period
-            delay = due - time.monotonic()
-            if delay < -self.period:
-                due = time.monotonic()  # fell more than a period behind: restart the schedule
-            elif delay > 0 and self._stop.wait(delay):
-                return
-            try:
-                self.callback()
-            except Exception:
-                if self._stop.is_set() or not self.alive():
-                    return  # Ctrl-C shut ROS down, or the node is being destroyed, under the callback
-                raise
+    def beginning_execution(self, entity: Any) -> bool:
+        return False
 
-    def stop(self) -> None:
-        self._stop.set()
-        if self._thread is not threading.current_thread():
-            self._thread.join(2.0)
+    def ending_execution(self, entity: Any) -> None:
+        pass
+
+
+class PolledSubscription:
+    """A subscription whose messages are handed to `callback` only when poll() is called.
+
+    For inputs that matter only at the moment an output is made (the camera's view of the servo
+    joints): every executor wake-up costs the node's whole wait set, which at 100 Hz per servo was
+    the largest part of the camera's CPU after the rendering. poll() may be called from any thread.
+    With raw=True the callback gets the serialized bytes, as with rclpy's raw subscriptions.
+    """
+
+    def __init__(self, node: Node, msg_type: type, topic: str, callback: Callable[[Any], None],
+                 qos: QoSProfile | int, raw: bool = False) -> None:
+        self._subscription = node.create_subscription(msg_type, topic, callback, qos,
+                                                      callback_group=_PolledGroup(), raw=raw)
+        self._lock = threading.Lock()
+
+    def poll(self) -> None:
+        """Pass every message received since the last poll to the callback, oldest first."""
+        subscription = self._subscription
+        with self._lock, subscription.handle:
+            while (taken := subscription.handle.take_message(subscription.msg_type,
+                                                             subscription.raw)) is not None:
+                subscription.callback(taken[0])
 
 
 class OliveModule(Node):
@@ -148,6 +154,17 @@ class OliveModule(Node):
 
     def topic(self, name: str) -> str:
         return self.prefix + name
+
+    def now_ns(self) -> int:
+        """The node's ROS time in ns, for stamps. Clock.now() costs as much as a publication, so
+        the system clock (which ROS time is without sim time) is read directly when it is the same."""
+        clock = self.get_clock()
+        return clock.now().nanoseconds if clock.ros_time_is_active else time.time_ns()
+
+    def create_polled_subscription(self, msg_type: type, topic: str, callback: Callable[[Any], None],
+                                   qos: QoSProfile | int, raw: bool = False) -> PolledSubscription:
+        """A subscription the executor never wakes up for: see PolledSubscription."""
+        return PolledSubscription(self, msg_type, topic, callback, qos, raw)
 
     def create_periodic(self, rate: float, callback: Callable[[], None], name: str) -> PeriodicThread:
         """Run callback at rate Hz on a thread of its own until the node is destroyed."""

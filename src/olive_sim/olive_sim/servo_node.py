@@ -14,11 +14,13 @@ from dataclasses import fields
 from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
 from rcl_interfaces.msg import FloatingPointRange, IntegerRange, SetParametersResult
 from rclpy.parameter import Parameter
+from rclpy.serialization import serialize_message
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float32
 from std_srvs.srv import Trigger
 
 from olive_sim.module_node import OliveModule, describe, run_module
+from olive_sim.serialized import STAMP_MARKER, SerializedTemplate, markers
 from olive_sim.servo_model import CONTROL_MODES, PidGains, ServoParams, ServoSim
 
 MAX_CATCH_UP = 1.0  # s of physics run at once after a stall; beyond that the model skips time
@@ -84,8 +86,7 @@ class ServoModule(OliveModule):
         self._wall_start = time.monotonic()
         # The model is stepped on the joint thread and commanded from executor callbacks.
         self.lock = threading.RLock()
-        self.joint_msg = JointState(name=[f'{namespace}_joint'])
-        self.joint_msg.header.frame_id = f'{namespace}_rotor_link'
+        self.joint_template = self._joint_template(namespace)
 
         self.add_on_set_parameters_callback(self._check_parameters)
         self.add_post_set_parameters_callback(self._apply_parameters)
@@ -100,6 +101,16 @@ class ServoModule(OliveModule):
                                                  self._publish_joint, 'joint')
         self.diagnostics_timer = self.create_timer(1.0, self._publish_diagnostics)
 
+    @staticmethod
+    def _joint_template(namespace: str) -> SerializedTemplate:
+        """The serialized joint message to fill with position, velocity and effort."""
+        values = markers(3)
+        msg = JointState(name=[f'{namespace}_joint'], position=values[:1], velocity=values[1:2],
+                         effort=values[2:])
+        msg.header.stamp.sec, msg.header.stamp.nanosec = STAMP_MARKER
+        msg.header.frame_id = f'{namespace}_rotor_link'
+        return SerializedTemplate(serialize_message(msg), values)
+
     # -- physics pacing ---------------------------------------------------------------------
 
     def _advance_to_now(self) -> None:
@@ -111,8 +122,7 @@ class ServoModule(OliveModule):
                       'skipping ahead')
             self._wall_start += behind - MAX_CATCH_UP
             elapsed = time.monotonic() - self._wall_start
-        for _ in range(int(elapsed * self.physics_rate) - self.sim.steps):
-            self.sim.step()
+        self.sim.advance(max(0, int(elapsed * self.physics_rate) - self.sim.steps))
 
     # -- parameters -------------------------------------------------------------------------
 
@@ -219,14 +229,10 @@ class ServoModule(OliveModule):
     # -- outputs ----------------------------------------------------------------------------
 
     def _publish_joint(self) -> None:
-        msg = self.joint_msg  # reused: building messages costs more than filling them
         with self.lock:
             self._advance_to_now()
-            msg.position = [self.sim.measured_position()]
-            msg.velocity = [self.sim.state.velocity]
-            msg.effort = [self.sim.state.torque]
-        msg.header.stamp = self.get_clock().now().to_msg()
-        self.joint_publisher.publish(msg)
+            values = (self.sim.measured_position(), self.sim.state.velocity, self.sim.state.torque)
+        self.joint_publisher.publish(self.joint_template.fill(self.now_ns(), values))
 
     def _publish_diagnostics(self) -> None:
         with self.lock:

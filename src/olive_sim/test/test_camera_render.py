@@ -5,7 +5,20 @@ import math
 
 import numpy as np
 import pytest
-from olive_sim.camera_render import LANDMARKS, CameraRenderer, find_colour, focal_length
+from olive_sim.camera_render import (
+    LANDMARKS,
+    PANORAMA_HEIGHT,
+    PANORAMA_WIDTH,
+    CameraRenderer,
+    CaptionWriter,
+    SplicedJpeg,
+    _font,
+    encode_jpeg,
+    find_colour,
+    focal_length,
+    join_jpeg,
+    split_jpeg,
+)
 from PIL import Image
 
 RED = LANDMARKS[0][1]  # the tower straight ahead at pan 0
@@ -56,3 +69,99 @@ def test_focal_length_and_bad_sizes():
         CameraRenderer(8, 8, panorama=np.zeros((1800, 3600, 3), np.uint8))
     with pytest.raises(ValueError, match='field of view'):
         CameraRenderer(640, 480, math.radians(179), panorama=np.zeros((1800, 3600, 3), np.uint8))
+
+
+def coordinate_panorama() -> np.ndarray:
+    """A panorama whose pixels encode their own (row, column): row * width + column as 24-bit RGB."""
+    rows, columns = np.mgrid[0:PANORAMA_HEIGHT, 0:PANORAMA_WIDTH]
+    code = (rows * PANORAMA_WIDTH + columns).astype(np.uint32)
+    return np.stack([code >> 16, (code >> 8) & 255, code & 255], axis=-1).astype(np.uint8)
+
+
+def direct_lookup(width, height, fov, pan, tilt):
+    """Panorama (row, column) of every pixel, straight from each pixel's ray (no mirroring)."""
+    f = focal_length(width, fov)
+    u = (np.arange(width, dtype=np.float32) - (width - 1) / 2) / f
+    v = (np.arange(height, dtype=np.float32) - (height - 1) / 2) / f
+    right, down = np.meshgrid(u, v)
+    left, up = -right, -down
+    c, s = np.float32(math.cos(tilt)), np.float32(math.sin(tilt))
+    azimuth = np.arctan2(left, c + s * up)
+    inverse_length = 1.0 / np.sqrt(1.0 + right * right + down * down)
+    elevation = np.arcsin(np.clip((c * up - s) * inverse_length, -1, 1))
+    columns = np.rint(azimuth * np.float32(PANORAMA_WIDTH / (2 * math.pi))).astype(np.int64)
+    columns = (columns + round(pan * PANORAMA_WIDTH / (2 * math.pi))) % PANORAMA_WIDTH
+    rows = np.rint((np.float32(math.pi / 2) - elevation) * np.float32(PANORAMA_HEIGHT / math.pi))
+    return np.clip(rows, 0, PANORAMA_HEIGHT - 1).astype(np.int64), columns
+
+
+@pytest.mark.parametrize('width, height, fov_deg', [(640, 480, 48.66), (17, 23, 90.0), (100, 60, 150.0)])
+def test_every_pixel_samples_the_panorama_where_its_ray_points(width, height, fov_deg):
+    # The renderer computes one half of the view and mirrors it: the result must be exact.
+    fov = math.radians(fov_deg)
+    renderer = CameraRenderer(width, height, fov, panorama=coordinate_panorama())
+    for pan, tilt in ((0.0, 0.0), (0.7, 0.3), (-2.5, -1.2), (3.5, 1.5)):
+        rgb = renderer.render(pan, tilt).astype(np.int64)
+        code = (rgb[..., 0] << 16) | (rgb[..., 1] << 8) | rgb[..., 2]
+        rows, columns = direct_lookup(width, height, fov, pan, tilt)
+        assert np.array_equal(code // PANORAMA_WIDTH, rows)
+        assert np.array_equal(code % PANORAMA_WIDTH, columns)
+
+
+def test_caption_is_white_on_a_black_box_and_leaves_the_rest():
+    writer = CaptionWriter(_font(16))
+    frame = np.full((40, 120), 0x00808080, dtype=np.uint32)
+    writer.draw(frame, '#12', 6, 4)
+    rgb = frame.view(np.uint8).reshape(40, 120, 4)[..., :3]
+    box = rgb[2:4 + writer.line_height + 2, 3:40]
+    assert box.max() > 200 and box.min() == 0
+    assert (rgb[..., 0] == rgb[..., 1]).all() and (rgb[..., 1] == rgb[..., 2]).all()  # grey only
+    assert (rgb[:, 60:] == 128).all() and (rgb[4 + writer.line_height + 2:] == 128).all()
+
+
+def test_a_caption_wider_than_the_frame_is_cut_off():
+    writer = CaptionWriter(_font(16))
+    frame = np.zeros((16, 16), dtype=np.uint32)
+    writer.draw(frame, '#123456789  12:00:00.000', 6, 4)
+    assert frame.view(np.uint8).max() > 200
+
+
+def test_small_frames_encode_with_their_caption():
+    data = CameraRenderer(16, 16, panorama=coordinate_panorama()).jpeg(0.0, 0.0, '#1 12:00:00.000')
+    assert Image.open(io.BytesIO(data)).size == (16, 16)
+
+
+@pytest.fixture(scope='module')
+def coordinates_renderer():
+    return CameraRenderer(100, 60, math.radians(60), panorama=coordinate_panorama())
+
+
+def test_split_and_join_give_back_the_jpeg():
+    frame = np.arange(64 * 48, dtype=np.uint32).reshape(48, 64) * 2654435761
+    data = encode_jpeg(frame, 80)
+    head, rows = split_jpeg(data)
+    assert len(rows) == 3  # 48 px of 16-px block rows
+    assert join_jpeg(head, rows) == data
+
+
+def test_a_frame_with_the_same_view_is_the_full_encoding_byte_for_byte(coordinates_renderer):
+    fresh = CameraRenderer(100, 60, math.radians(60), panorama=coordinate_panorama())
+    coordinates_renderer.jpeg(0.4, 0.2, '#1  12:00:00.000')
+    again = coordinates_renderer.jpeg(0.4, 0.2, '#2  12:00:00.033')  # only the caption is encoded
+    assert again == fresh.jpeg(0.4, 0.2, '#2  12:00:00.033')
+    # A new view, or a new quality, is encoded whole.
+    assert coordinates_renderer.jpeg(0.5, 0.2, '#3') == fresh.jpeg(0.5, 0.2, '#3')
+    assert coordinates_renderer.jpeg(0.5, 0.2, '#4', 30) == fresh.jpeg(0.5, 0.2, '#4', 30)
+
+
+def test_spliced_jpeg_replaces_only_the_top_rows():
+    encoder = SplicedJpeg(height=64, top=20)
+    assert encoder.top == 32
+    frame = np.zeros((64, 32), dtype=np.uint32)
+    rgb = frame.view(np.uint8).reshape(64, 32, 4)[..., :3]
+    rgb[:] = (30, 60, 90)
+    encoder.encode(frame, 80, rest_unchanged=False)
+    rgb[:32] = (220, 200, 10)
+    assert encoder.encode(frame, 80, rest_unchanged=True) == encode_jpeg(frame, 80)
+    decoded = np.asarray(Image.open(io.BytesIO(encode_jpeg(frame, 80))))
+    assert decoded[5, 5, 0] > 200 and decoded[60, 5, 0] < 50

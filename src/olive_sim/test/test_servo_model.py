@@ -188,3 +188,21 @@ def test_rates_and_modes_are_checked():
         ServoSim(pid_rate=5000.0)
     with pytest.raises(ValueError, match="unknown control mode 'torque'"):
         ServoSim().set_mode('torque')
+
+
+@pytest.mark.parametrize('mode', ['position', 'velocity', 'pwm'])
+def test_a_batch_of_steps_is_exactly_the_single_steps(mode):
+    def servo():
+        sim = ServoSim(ServoParams(load_mass=0.12), gains=PidGains(5.0, 10.0, 0.3))
+        sim.set_mode(mode)
+        sim.enable_torque(True)
+        sim.goal_position, sim.goal_velocity, sim.pwm = 1.2, 2.0, 0.6
+        return sim
+
+    single, batched = servo(), servo()
+    for _ in range(1500):
+        single.step()
+    for count in (7, 13, 0, 480, 1000):  # batches that start and end between controller ticks
+        batched.advance(min(count, 1500 - batched.steps))
+    assert batched.steps == single.steps == 1500 and batched.time == single.time
+    assert batched.state == single.state and batched.effort == single.effort

@@ -1,22 +1,29 @@
 """turtlesim_node: the node `turtlesim`, a 500 x 500 px pond of turtles driven over ROS.
 
-All ROS callbacks run on one executor thread between 16 ms timer ticks, so, as upstream, they never
-overlap a physics step. Per-tick logic lives in turtle.py, drawing in canvas.py.
+The 16 ms tick runs on a thread of its own and ROS callbacks on the executor's thread, each
+under one lock, so, as upstream, a callback never overlaps a physics step. A tick on an executor
+timer cost a wake-up of the executor's whole wait set (every turtle's services, action server and
+QoS event handlers), three quarters of the node's CPU with 20 turtles. Per-tick logic lives in
+turtle.py, drawing in canvas.py.
 """
 
 from __future__ import annotations
 
 import argparse
+import functools
 import math
 import os
 import random
 import sys
+import threading
 import time
+from collections.abc import Callable
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import rclpy
 from geometry_msgs.msg import Twist
+from owl_common.periodic import PeriodicThread
 from owl_common.run import spin_node
 from PIL import Image
 from rcl_interfaces.msg import IntegerRange, ParameterDescriptor, ParameterEvent
@@ -40,7 +47,7 @@ from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelativ
 from turtlesim_py import world
 from turtlesim_py.canvas import DEFAULT_BACKGROUND, SHELL_COLORS, Canvas, SpriteView, encode_png
 from turtlesim_py.rclcpp_parameters import declare_parameter_events_qos
-from turtlesim_py.turtle import RotationGoal, Turtle
+from turtlesim_py.turtle import RotationGoal, TickResult, Turtle
 
 if TYPE_CHECKING:
     from turtlesim_py.window import CanvasWindow
@@ -50,6 +57,8 @@ TOPIC_QOS = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=7)
 PARAMETER_EVENTS_QOS = QoSProfile(depth=100, reliability=ReliabilityPolicy.BEST_EFFORT)
 IMAGE_PERIOD = 0.1  # s between CompressedImage messages, when they are enabled
 WINDOW_PERIOD = 0.03  # s between window repaints: every other tick, plenty for the eye
+
+Callback = TypeVar('Callback', bound=Callable[..., Any])
 
 
 def background_descriptor(channel: str) -> ParameterDescriptor:
@@ -71,10 +80,11 @@ def non_finite(**values: float) -> str | None:
 class GoalOfHandle(RotationGoal):
     """A rotation goal bound to its rclpy goal handle; `done` resolves with the result."""
 
-    def __init__(self, handle: ServerGoalHandle) -> None:
+    def __init__(self, handle: ServerGoalHandle, wake: Callable[[], None]) -> None:
         super().__init__(handle.request.theta)
         self.handle = handle
         self.done = Future()
+        self._wake = wake
 
     def cancel_requested(self) -> bool:
         return self.handle.is_cancel_requested
@@ -86,6 +96,7 @@ class GoalOfHandle(RotationGoal):
         {'succeeded': self.handle.succeed, 'canceled': self.handle.canceled,
          'aborted': self.handle.abort}[status]()
         self.done.set_result(RotateAbsolute.Result(delta=delta))
+        self._wake()  # the executor resumes the goal's execute callback only when it wakes up
 
 
 class TurtleEndpoints:
@@ -96,24 +107,26 @@ class TurtleEndpoints:
         self._node = node
         self._entities: list[Publisher | Subscription | Service | ActionServer] = []
         self._goals: dict[bytes, GoalOfHandle] = {}
+        self._pose, self._color = PoseMsg(), Color()
         name = turtle.name
+        locked = node.between_ticks
         try:
             self.pose_pub = node.create_publisher(PoseMsg, f'{name}/pose', TOPIC_QOS)
             self._entities.append(self.pose_pub)
             self.color_pub = node.create_publisher(Color, f'{name}/color_sensor', TOPIC_QOS)
             self._entities.append(self.color_pub)
             self._entities += [
-                node.create_subscription(Twist, f'{name}/cmd_vel', self._on_cmd_vel, TOPIC_QOS),
-                node.create_service(SetPen, f'{name}/set_pen', self._on_set_pen),
+                node.create_subscription(Twist, f'{name}/cmd_vel', locked(self._on_cmd_vel), TOPIC_QOS),
+                node.create_service(SetPen, f'{name}/set_pen', locked(self._on_set_pen)),
                 node.create_service(
-                    TeleportAbsolute, f'{name}/teleport_absolute', self._on_teleport_absolute),
+                    TeleportAbsolute, f'{name}/teleport_absolute', locked(self._on_teleport_absolute)),
                 node.create_service(
-                    TeleportRelative, f'{name}/teleport_relative', self._on_teleport_relative),
+                    TeleportRelative, f'{name}/teleport_relative', locked(self._on_teleport_relative)),
                 ActionServer(
                     node, RotateAbsolute, f'{name}/rotate_absolute',
                     execute_callback=self._execute_goal,
                     goal_callback=self._on_goal_request,
-                    handle_accepted_callback=self._on_goal_accepted,
+                    handle_accepted_callback=locked(self._on_goal_accepted),
                     cancel_callback=lambda _handle: CancelResponse.ACCEPT),
             ]
         except BaseException:
@@ -133,7 +146,12 @@ class TurtleEndpoints:
                 self._node.destroy_service(entity)
         self._entities.clear()
 
-    def publish(self, pose: PoseMsg, color: Color) -> None:
+    def publish(self, result: TickResult) -> None:
+        pose, color = self._pose, self._color  # reused: building messages costs more than filling them
+        p = result.pose
+        pose.x, pose.y, pose.theta = p.x, p.y, p.theta
+        pose.linear_velocity, pose.angular_velocity = p.linear_velocity, p.angular_velocity
+        color.r, color.g, color.b = result.color
         self.pose_pub.publish(pose)
         self.color_pub.publish(color)
 
@@ -174,7 +192,7 @@ class TurtleEndpoints:
         return GoalResponse.ACCEPT
 
     def _on_goal_accepted(self, handle: ServerGoalHandle) -> None:
-        goal = GoalOfHandle(handle)
+        goal = GoalOfHandle(handle, self._node.wake_executor)
         self._goals[bytes(handle.goal_id.uuid)] = goal
         handle.execute()  # EXECUTING now, so the next tick may finish it
         self.turtle.start_rotation(goal)
@@ -189,6 +207,8 @@ class TurtlesimNode(Node):
                  window: bool = False) -> None:
         # Set first: rclpy destroys a half-built node (bad --ros-args parameter) via destroy_node().
         self.window: CanvasWindow | None = None
+        self._ticks: PeriodicThread | None = None
+        self._tick_lock = threading.RLock()  # held by the tick and by every ROS callback
         super().__init__('turtlesim')
         for channel, default in zip(('red', 'green', 'blue'), DEFAULT_BACKGROUND, strict=True):
             name = f'background_{channel[0]}'
@@ -203,23 +223,42 @@ class TurtlesimNode(Node):
         self._stale: set[str] = set()  # frame consumers ('window', 'image') owed a new frame
         self._last_frame = {'window': -math.inf, 'image': -math.inf}
 
-        self.create_subscription(ParameterEvent, '/parameter_events', self._on_parameter_event,
+        locked = self.between_ticks
+        self.create_subscription(ParameterEvent, '/parameter_events', locked(self._on_parameter_event),
                                  PARAMETER_EVENTS_QOS)
-        self.create_service(Empty, 'clear', self._on_clear)
-        self.create_service(Empty, 'reset', self._on_reset)
-        self.create_service(Spawn, 'spawn', self._on_spawn)
-        self.create_service(Kill, 'kill', self._on_kill)
+        self.create_service(Empty, 'clear', locked(self._on_clear))
+        self.create_service(Empty, 'reset', locked(self._on_reset))
+        self.create_service(Spawn, 'spawn', locked(self._on_spawn))
+        self.create_service(Kill, 'kill', locked(self._on_kill))
         # Hidden (leading underscore), so `ros2 service list` looks exactly like upstream's.
-        self.create_service(Trigger, '~/_save_canvas', self._on_save_canvas)
+        self.create_service(Trigger, '~/_save_canvas', locked(self._on_save_canvas))
         self._image_pub = None
         if publish_image:
             self._image_pub = self.create_publisher(CompressedImage, '~/canvas/compressed', 1)
 
         self.get_logger().info(f'Starting turtlesim with node name {self.get_fully_qualified_name()}')
         self.spawn_turtle('', world.CENTER, world.CENTER, 0.0)
-        self.create_timer(world.TICK_DT, self._tick)
-        if window and os.environ.get('DISPLAY'):
-            self._open_window()
+        # Tk must be used from one thread only: the tick's, which opens, pumps and closes it.
+        self._window_wanted = window and bool(os.environ.get('DISPLAY'))
+        if self._window_wanted:
+            # Closing the window shuts ROS down from the executor's thread, not from the tick's.
+            self._window_closed = self.create_guard_condition(self._on_window_closed)
+        self._ticks = PeriodicThread(1.0 / world.TICK_DT, self._tick, 'turtlesim.tick', self.context.ok,
+                                     finish=self._close_window)
+
+    def between_ticks(self, callback: Callback) -> Callback:
+        """callback, made to run under the tick lock (never during a tick)."""
+        @functools.wraps(callback)  # keeps the signature rclpy inspects
+        def locked(*args: Any) -> Any:
+            with self._tick_lock:
+                return callback(*args)
+        return locked  # type: ignore[return-value]
+
+    def wake_executor(self) -> None:
+        """Make the executor look at its tasks again (from any thread)."""
+        executor = self.executor
+        if executor is not None:
+            executor.wake()
 
     def _open_window(self) -> None:
         try:  # tkinter only when there is a display to use
@@ -230,7 +269,7 @@ class TurtlesimNode(Node):
             self.get_logger().warning(f'No window ({error}); running headless')
             return
         try:
-            self.window = CanvasWindow(on_close=self._on_window_closed)
+            self.window = CanvasWindow(on_close=self._window_closed.trigger)
         except tkinter.TclError as error:
             self.get_logger().warning(f'No window ({error}); running headless')
             return
@@ -240,9 +279,14 @@ class TurtlesimNode(Node):
         # Closing the window ends the process, as upstream's does.
         rclpy.try_shutdown(context=self.context)
 
-    def destroy_node(self) -> None:
+    def _close_window(self) -> None:
         if self.window is not None:
             self.window.close()
+            self.window = None
+
+    def destroy_node(self) -> None:
+        if self._ticks is not None:
+            self._ticks.stop()  # closes the window on the tick thread
         super().destroy_node()
 
     def now(self) -> float:
@@ -339,6 +383,13 @@ class TurtlesimNode(Node):
     # --- the 16 ms tick ------------------------------------------------------------------
 
     def _tick(self) -> None:
+        with self._tick_lock:
+            self._step()
+
+    def _step(self) -> None:
+        if self._window_wanted:
+            self._window_wanted = False
+            self._open_window()
         now = self.now()
         if self.window is not None:
             self.window.pump()  # the window's events, between ticks like every ROS callback
@@ -351,11 +402,7 @@ class TurtlesimNode(Node):
         debug = self.get_logger().is_enabled_for(LoggingSeverity.DEBUG)
         for endpoints in list(self.turtles.values()):
             result = endpoints.turtle.update(world.TICK_DT, now, self.canvas)
-            pose = result.pose
-            endpoints.publish(
-                PoseMsg(x=pose.x, y=pose.y, theta=pose.theta, linear_velocity=pose.linear_velocity,
-                        angular_velocity=pose.angular_velocity),
-                Color(r=result.color[0], g=result.color[1], b=result.color[2]))
+            endpoints.publish(result)
             if result.modified:
                 self._mark_changed()
             if debug:

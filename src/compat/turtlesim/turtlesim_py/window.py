@@ -1,7 +1,8 @@
 """An optional Tk window showing the canvas, titled TurtleSim like upstream's Qt frame.
 
-It has no thread or event loop of its own: the node pumps Tk from its 16 ms tick, much as
-upstream runs ROS callbacks from the Qt timer. So every Tk call happens on the node's thread.
+It has no thread or event loop of its own: the node opens it, pumps Tk and closes it from its
+16 ms tick, much as upstream runs ROS callbacks from the Qt timer. So every Tk call happens on
+the tick's thread.
 """
 
 from __future__ import annotations

@@ -1,0 +1,64 @@
+"""A callback at a fixed rate on a thread of its own, for a node's high-rate work."""
+
+from __future__ import annotations
+
+import threading
+import time
+from collections.abc import Callable
+
+# s: shorter delays are slept with time.sleep, which costs a third less CPU per wake-up than
+# Event.wait; a stop request then waits at most this long.
+SLEEP_LIMIT = 0.1
+
+
+class PeriodicThread:
+    """Calls `callback` at a fixed rate on its own thread, on a schedule that does not drift.
+
+    High-rate work (100 Hz sensors, 30 fps images, turtlesim's 62.5 Hz tick) runs here rather
+    than on executor timers: each executor wake-up costs the whole wait set of the node (parameter
+    services, every QoS event handler and all), which multiplied the nodes' CPU use. `finish`, if
+    given, runs on the thread after the last call, for what must be closed where it was used.
+    """
+
+    def __init__(self, rate: float, callback: Callable[[], None], name: str,
+                 alive: Callable[[], bool], finish: Callable[[], None] | None = None) -> None:
+        self.period = 1.0 / rate
+        self.callback = callback
+        self.alive = alive
+        self.finish = finish
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, name=name, daemon=True)
+        self._thread.start()
+
+    def _run(self) -> None:
+        try:
+            self._loop()
+        finally:
+            if self.finish is not None:
+                self.finish()
+
+    def _loop(self) -> None:
+        due = time.monotonic()
+        while not self._stop.is_set():
+            due += self.period
+            delay = due - time.monotonic()
+            if delay < -self.period:
+                due = time.monotonic()  # fell more than a period behind: restart the schedule
+            elif 0 < delay <= SLEEP_LIMIT:
+                time.sleep(delay)
+                if self._stop.is_set():
+                    return
+            elif delay > 0 and self._stop.wait(delay):
+                return
+            try:
+                self.callback()
+            except Exception:
+                if self._stop.is_set() or not self.alive():
+                    return  # Ctrl-C shut ROS down, or the node is being destroyed, under the callback
+                raise
+
+    def stop(self) -> None:
+        """Stop calling; waits (up to 2 s) for a call under way and `finish` to end."""
+        self._stop.set()
+        if self._thread is not threading.current_thread():
+            self._thread.join(2.0)

@@ -1,0 +1,39 @@
+import threading
+import time
+
+import pytest
+from owl_common.periodic import PeriodicThread
+
+
+def test_calls_at_its_rate_until_stopped_then_finishes_on_its_own_thread():
+    calls, finished_on = [], []
+    periodic = PeriodicThread(100.0, lambda: calls.append(threading.current_thread()), 'test',
+                              alive=lambda: True,
+                              finish=lambda: finished_on.append(threading.current_thread()))
+    time.sleep(0.3)
+    periodic.stop()
+    count = len(calls)
+    time.sleep(0.05)
+    assert len(calls) == count  # no call after stop()
+    assert count >= 1
+    assert set(calls) == set(finished_on) and finished_on[0] is not threading.current_thread()
+
+
+def test_a_failing_callback_ends_quietly_once_its_context_is_gone(capsys):
+    def fail():
+        raise RuntimeError('context is not valid')
+
+    finished = threading.Event()
+    periodic = PeriodicThread(100.0, fail, 'test', alive=lambda: False, finish=finished.set)
+    assert finished.wait(2.0)
+    periodic.stop()
+    assert 'Traceback' not in capsys.readouterr().err
+
+
+@pytest.mark.parametrize('rate', [0.1, 50.0])
+def test_stop_does_not_wait_for_the_next_call(rate):
+    periodic = PeriodicThread(rate, lambda: None, 'test', alive=lambda: True)
+    time.sleep(0.05)
+    started = time.monotonic()
+    periodic.stop()
+    assert time.monotonic() - started < 5.0  # the 0.1 Hz thread's next call is 10 s away
