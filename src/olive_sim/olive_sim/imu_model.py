@@ -24,12 +24,20 @@ MOTION_SOURCES = ('scripted', 'command', 'file')
 
 
 class ScriptedMotion:
-    """Someone holding the IMU, slowly tilting it and turning it left and right."""
+    """Someone holding the IMU, tilting it forward and back and turning it left and right.
+
+    Large enough for the course's IMU projects: pitch and yaw sweep most of the kit's tilt
+    (-1.3..0.9 rad) and pan (+-1.57 rad) ranges. A turtle driven at a speed proportional to pitch
+    (periodic every 10 s) and a turn rate proportional to yaw (every 12 s, zero mean) has a heading
+    made of multiples of 1/12 Hz, none of which cancels pitch's 1/10 Hz: its velocity has no
+    constant part, so its path closes every 60 s whatever the two factors and never drifts into a
+    wall. The whole motion repeats every minute.
+    """
 
     def orientation(self, t: float) -> Quaternion:
-        roll = 0.35 * math.sin(2 * math.pi * t / 9.0)
-        pitch = 0.30 * math.sin(2 * math.pi * t / 6.5 + 0.7)
-        yaw = 0.90 * math.sin(2 * math.pi * t / 14.0)
+        roll = 0.30 * math.sin(2 * math.pi * t / 15.0)
+        pitch = 0.90 * math.cos(2 * math.pi * t / 10.0)
+        yaw = 1.40 * math.sin(2 * math.pi * t / 12.0)
         return quat.from_euler(roll, pitch, yaw)
 
 

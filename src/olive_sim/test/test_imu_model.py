@@ -53,6 +53,34 @@ def test_integrated_gyro_matches_the_orientation_change():
     assert quat.angle_between(integrated, readings[-1].orientation) < 0.03
 
 
+def test_scripted_motion_sweeps_the_kit_ranges_and_repeats_every_minute():
+    motion = ScriptedMotion()
+    angles = [quat.to_euler(motion.orientation(k / 10)) for k in range(600)]
+    pitches, yaws = [a[1] for a in angles], [a[2] for a in angles]
+    assert min(pitches) < -0.85 and max(pitches) > 0.85  # of the tilt servo's -1.3..0.9 rad
+    assert min(yaws) < -1.35 and max(yaws) > 1.35        # of the pan servo's +-1.57 rad
+    for t in (0.0, 3.3, 17.0):
+        assert quat.angle_between(motion.orientation(t), motion.orientation(t + 60.0)) < 1e-9
+
+
+@pytest.mark.parametrize(('speed', 'turn'), [(1.0, 1.0), (1.5, 1.5), (3.0, 0.4), (0.5, 2.5)])
+@pytest.mark.parametrize('start', [0.0, 7.0, 41.0])
+def test_a_turtle_driven_by_pitch_and_yaw_comes_back_after_a_minute(speed, turn, start):
+    """The scripted motion's promise to the course's imu_turtle: speed = f * pitch and turn rate =
+    g * yaw give a closed path for any f and g, from any moment the turtle starts."""
+    motion, dt = ScriptedMotion(), 0.005
+    x = y = heading = 0.0
+    farthest = 0.0
+    for k in range(round(60.0 / dt)):
+        _, pitch, yaw = quat.to_euler(motion.orientation(start + (k + 0.5) * dt))
+        heading += turn * yaw * dt
+        x += speed * pitch * math.cos(heading) * dt
+        y += speed * pitch * math.sin(heading) * dt
+        farthest = max(farthest, math.hypot(x, y))
+    assert farthest > 1.0 * speed  # it really drives around
+    assert math.hypot(x, y) < 0.01 * farthest
+
+
 def test_magnetometer_heading_follows_yaw():
     sensor = ImuSensor(ImuNoise(mag_noise=0.0))
     headings = []
