@@ -107,7 +107,7 @@ def test_help_at_every_level(graph):
     assert topic.returncode == 0
     assert '\n  bw    Display bandwidth used by topic\n  echo  Output messages from a topic\n' in topic.stdout
     assert topic.stdout.endswith('\n\n  Call `ros2 topic <command> -h` for more detailed usage.\n')
-    verbs = {'action': ['find', 'info', 'list', 'send_goal', 'type'], 'daemon': ['start', 'status', 'stop'],
+    verbs = {'action': ['info', 'list', 'send_goal', 'type'], 'daemon': ['start', 'status', 'stop'],
              'interface': ['list', 'package', 'packages', 'proto', 'show'], 'node': ['info', 'list'],
              'param': ['delete', 'describe', 'dump', 'get', 'list', 'load', 'set'],
              'service': ['call', 'find', 'list', 'type'],
