@@ -5,13 +5,12 @@ import time
 
 import rclpy
 from geometry_msgs.msg import Quaternion, Twist
-from owl_common.run import STARTUP_ERRORS, begin_cleanup
+from owl_common.run import STARTUP_ERRORS, begin_cleanup, init_with_stop_request, spin_until_stopped
 from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor
 from rclpy.exceptions import InvalidTopicNameException
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import qos_profile_sensor_data
-from rclpy.signals import SignalHandlerOptions
 from sensor_msgs.msg import Imu
 
 from olive_imu.drive import turtle_velocity
@@ -88,13 +87,14 @@ class ImuTurtle(Node):
 
 
 def main(args: list[str] | None = None) -> None:
-    # No rclpy signal handler: at Ctrl-C it shuts ROS down from a thread of its own while this one
-    # may still be using it; without it, Ctrl-C is a plain KeyboardInterrupt raised here.
-    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+    # rclpy.init with Ctrl-C and SIGTERM as a stop request, which spin_until_stopped (rclpy.spin)
+    # raises as KeyboardInterrupt: rclpy's own handler shuts ROS down from another thread while
+    # this one may still be using it (owl_common.run says more).
+    stop = init_with_stop_request(args)
     imu_turtle = None
     try:
         imu_turtle = ImuTurtle()
-        rclpy.spin(imu_turtle)
+        spin_until_stopped(imu_turtle, stop)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass  # Ctrl-C is how the course stops a node
     except STARTUP_ERRORS as error:

@@ -7,6 +7,7 @@ from geometry_msgs.msg import Quaternion
 from olive_imu.drive import turtle_velocity
 from olive_imu.euler import quaternion_to_euler
 from olive_imu.imu_turtle import PUBLISH_PERIOD
+from olive_sim.imu_model import ScriptedMotion
 
 # turtlesim's window: 11.09 m square, the turtle starting in the middle.
 WINDOW = 11.088889
@@ -31,8 +32,6 @@ def test_level_and_facing_ahead_stands_still():
 def test_the_simulated_imu_drives_the_turtle_around_inside_the_window(start):
     """Item 4 of issue 11: olive_sim's scripted IMU, started any time before imu_turtle, drives
     the turtle around for a minute without reaching a wall."""
-    from olive_sim.imu_model import ScriptedMotion
-
     motion, step = ScriptedMotion(), 0.016
     x = y = START
     theta = 0.0

@@ -71,6 +71,25 @@ def init_with_stop_request(args: list[str] | None = None) -> StopRequest:
     return stop
 
 
+def spin_until_stopped(node: Node, stop: StopRequest) -> None:
+    """rclpy.spin(node) for a process started with init_with_stop_request.
+
+    Returns when ROS shuts down; raises KeyboardInterrupt at a stop request (Ctrl-C, SIGTERM), from
+    here and never from inside rclpy, so a node's own clean-up (after `except KeyboardInterrupt`,
+    as in the course) still has a working ROS.
+    """
+    executor = rclpy.get_global_executor()
+    executor.add_node(node)
+    stop.polling = True
+    try:
+        while rclpy.ok() and not stop.requested:
+            executor.spin_once(timeout_sec=SIGNAL_POLL)
+    finally:
+        executor.remove_node(node)
+    if stop.requested:
+        raise KeyboardInterrupt
+
+
 def spin_node(make_node: Callable[[], Node], args: list[str] | None = None) -> None:
     """Initialise rclpy, spin the node make_node() builds, and clean up on every exit path.
 
@@ -80,11 +99,7 @@ def spin_node(make_node: Callable[[], Node], args: list[str] | None = None) -> N
     node = None
     try:
         node = make_node()
-        executor = rclpy.get_global_executor()
-        executor.add_node(node)
-        stop.polling = True
-        while rclpy.ok() and not stop.requested:
-            executor.spin_once(timeout_sec=SIGNAL_POLL)
+        spin_until_stopped(node, stop)
     except STARTUP_ERRORS as error:
         if node is not None:
             raise

@@ -1,0 +1,148 @@
+"""Section 4.4 project "Control Olive Servos with IMU": the pan and tilt servos point where the IMU points."""
+
+import sys
+import time
+
+import rclpy
+from geometry_msgs.msg import Quaternion
+from olive_imu.euler import orientation_problem, quaternion_to_euler
+from owl_common.run import STARTUP_ERRORS, begin_cleanup, init_with_stop_request, spin_until_stopped
+from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor, SetParametersResult
+from rclpy.exceptions import InvalidTopicNameException
+from rclpy.executors import ExternalShutdownException
+from rclpy.node import Node
+from rclpy.parameter import Parameter
+from rclpy.qos import qos_profile_sensor_data
+from sensor_msgs.msg import Imu
+from std_msgs.msg import Float32
+
+from olive_servo.goals import BOUND_LIMIT, PAN_BOUNDS, TILT_BOUNDS, bounds_problem, head_goals
+from olive_servo.torque import ServoTorque, TorqueError
+
+DEFAULT_IMU_TOPIC = '/olive/imu/x1684267976913/imu'  # the course's IMU, also olive_sim's
+SERVOS = ('pan', 'tilt')
+PUBLISH_PERIOD = 0.01  # s, as the course's keyboard_servos
+STALE_AFTER = 0.5      # s without a usable IMU message: stop sending goals (the servos hold)
+WARN_EVERY = 2.0       # s between two warnings about bad IMU messages
+WAITING_EVERY = 5.0    # s between two "waiting for" lines
+
+
+def bound_descriptor(description: str) -> ParameterDescriptor:
+    return ParameterDescriptor(
+        description=description,
+        floating_point_range=[FloatingPointRange(from_value=-BOUND_LIMIT, to_value=BOUND_LIMIT)])
+
+
+class ImuControlRobot(Node):
+
+    def __init__(self) -> None:
+        super().__init__('imu_control_robot')
+        self.declare_parameter('imu_topic', DEFAULT_IMU_TOPIC, ParameterDescriptor(
+            description='sensor_msgs/msg/Imu topic of the IMU.', read_only=True))
+        for servo, (low, high) in (('pan', PAN_BOUNDS), ('tilt', TILT_BOUNDS)):
+            self.declare_parameter(f'{servo}_min', low, bound_descriptor(f'Smallest {servo} goal, rad.'))
+            self.declare_parameter(f'{servo}_max', high, bound_descriptor(f'Largest {servo} goal, rad.'))
+            problem = bounds_problem(servo, *self.bounds(servo))
+            if problem:
+                raise ValueError(problem)
+        self.add_on_set_parameters_callback(self.check_bounds)
+        self.imu_topic = self.get_parameter('imu_topic').value
+        self.orientation = Quaternion()
+        self.last_imu_time = None  # time.monotonic() of the last usable IMU message
+        self.steering = False
+        self.torque = ServoTorque(self, SERVOS)
+        self.publishers_ = {servo: self.create_publisher(Float32, f'/olive/servo/{servo}/goal/position', 10)
+                            for servo in SERVOS}
+        # Best effort matches an IMU publishing either best effort or reliable (QoS: section 4.5).
+        try:
+            self.subscription = self.create_subscription(
+                Imu, self.imu_topic, self.imu_callback, qos_profile_sensor_data)
+        except InvalidTopicNameException:
+            raise ValueError(f"imu_topic '{self.imu_topic}' is not a valid topic name") from None
+        self.timer = None  # created once the torque is on: the servos ignore goals before
+
+    def bounds(self, servo: str, new: dict[str, float] | None = None) -> tuple[float, float]:
+        """(min, max) of a servo's goals; values in new take precedence over the current ones."""
+        new = new or {}
+        low, high = f'{servo}_min', f'{servo}_max'
+        return new.get(low, self.get_parameter(low).value), new.get(high, self.get_parameter(high).value)
+
+    def check_bounds(self, parameters: list[Parameter]) -> SetParametersResult:
+        # The descriptors already refuse other types and values beyond +-pi; this guards each pair.
+        new = {p.name: p.value for p in parameters}
+        problems = [bounds_problem(servo, *self.bounds(servo, new)) for servo in SERVOS]
+        reason = '; '.join(p for p in problems if p)
+        return SetParametersResult(successful=not reason, reason=reason)
+
+    def enable_torque(self) -> None:
+        self.torque.enable()
+        self.timer = self.create_timer(PUBLISH_PERIOD, self.publish_goals)
+
+    def disable_torque(self) -> None:
+        if self.timer is not None:
+            self.timer.cancel()  # no goal may follow the torque requests
+        self.torque.disable()
+
+    def imu_callback(self, msg: Imu) -> None:
+        problem = orientation_problem(msg.orientation, msg.orientation_covariance)
+        if problem:
+            self.get_logger().warning(f'IMU message ignored: {problem}', throttle_duration_sec=WARN_EVERY)
+            return
+        self.orientation = msg.orientation
+        self.last_imu_time = time.monotonic()
+
+    def publish_goals(self) -> None:
+        if self.last_imu_time is None or time.monotonic() - self.last_imu_time > STALE_AFTER:
+            self.wait_for_imu()
+            return
+        if not self.steering:
+            self.steering = True
+            self.get_logger().info(f'IMU data on {self.imu_topic}: steering the pan and tilt servos')
+        _roll, pitch, yaw = quaternion_to_euler(self.orientation)
+        pan, tilt = head_goals(pitch, yaw, self.bounds('pan'), self.bounds('tilt'))
+        for servo, goal in (('pan', pan), ('tilt', tilt)):
+            msg = Float32()
+            msg.data = goal
+            self.publishers_[servo].publish(msg)
+
+    def wait_for_imu(self) -> None:
+        if self.steering:
+            self.steering = False
+            self.get_logger().warning(
+                f'no usable IMU message on {self.imu_topic} for {STALE_AFTER} s: the servos hold')
+        self.get_logger().info(
+            f'waiting for IMU messages on {self.imu_topic} '
+            f'({self.count_publishers(self.imu_topic)} publisher(s) so far)',
+            throttle_duration_sec=WAITING_EVERY)
+
+
+def main(args: list[str] | None = None) -> None:
+    # rclpy.init with Ctrl-C and SIGTERM as a stop request, which spin_until_stopped (rclpy.spin)
+    # raises as KeyboardInterrupt: rclpy's own handler would shut ROS down first, from another
+    # thread, and the torque could not be switched off (owl_common.run says more).
+    stop = init_with_stop_request(args)
+    imu_control_robot = None
+    try:
+        imu_control_robot = ImuControlRobot()
+        imu_control_robot.enable_torque()
+        spin_until_stopped(imu_control_robot, stop)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass  # Ctrl-C is how the course stops a node
+    except TorqueError as error:
+        imu_control_robot.get_logger().error(str(error))
+        sys.exit(1)
+    except STARTUP_ERRORS as error:
+        if imu_control_robot is not None:
+            raise
+        print(f'imu_control_robot: error: {error}', file=sys.stderr)  # a bad --ros-args parameter
+        sys.exit(2)
+    finally:
+        begin_cleanup()  # from here a second Ctrl-C cannot interrupt the clean-up
+        if imu_control_robot is not None:
+            imu_control_robot.disable_torque()
+            imu_control_robot.destroy_node()
+        rclpy.try_shutdown()
+
+
+if __name__ == '__main__':
+    main()

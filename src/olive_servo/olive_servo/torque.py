@@ -1,0 +1,68 @@
+"""The servos' torque switch: their setTorqueEnable and setTorqueDisable Trigger services."""
+
+import time
+from collections.abc import Sequence
+
+import rclpy
+from rclpy.client import Client
+from rclpy.node import Node
+from std_srvs.srv import Trigger
+
+ANSWER_TIMEOUT = 5.0    # s for a servo to answer a torque request once its service is there
+DISABLE_TIMEOUT = 2.0   # s at shutdown: the clean-up must end well within owl_common's 5 s limit
+WAITING_EVERY = 5.0     # s between two "waiting for service" lines
+
+
+class TorqueError(RuntimeError):
+    """A servo refused to enable its torque or did not answer."""
+
+
+class ServoTorque:
+    """Enables the torque of some servos before their first goal and disables it at the end.
+
+    The servo ignores goals while its torque is off (a safety feature, section 4.4).
+    """
+
+    def __init__(self, node: Node, servos: Sequence[str]) -> None:
+        self.node = node
+        self.enable_clients = {
+            servo: node.create_client(Trigger, f'/olive/servo/{servo}/setTorqueEnable') for servo in servos}
+        self.disable_clients = {
+            servo: node.create_client(Trigger, f'/olive/servo/{servo}/setTorqueDisable') for servo in servos}
+        self.enabled: list[str] = []
+
+    def enable(self) -> None:
+        """Wait for the services, then enable every servo's torque; TorqueError if one fails."""
+        for client in self.enable_clients.values():
+            while not client.wait_for_service(timeout_sec=1.0):
+                self.node.get_logger().info(
+                    f'waiting for service {client.srv_name}', throttle_duration_sec=WAITING_EVERY)
+        for servo, response in self._call(self.enable_clients, ANSWER_TIMEOUT).items():
+            service = self.enable_clients[servo].srv_name
+            if response is None:
+                raise TorqueError(f'{service} did not answer within {ANSWER_TIMEOUT} s')
+            if not response.success:
+                raise TorqueError(f'{service} refused: {response.message}')
+            self.enabled.append(servo)
+        self.node.get_logger().info(f"torque enabled: {', '.join(self.enabled)}")
+
+    def disable(self) -> None:
+        """Disable the torque this node enabled; warn about a servo that does not answer."""
+        clients = {servo: self.disable_clients[servo] for servo in self.enabled}
+        for servo, response in self._call(clients, DISABLE_TIMEOUT).items():
+            if response is not None and response.success:
+                self.node.get_logger().info(f'torque disabled: {servo}')
+            else:
+                reason = response.message if response is not None else f'no answer within {DISABLE_TIMEOUT} s'
+                self.node.get_logger().warning(
+                    f'{clients[servo].srv_name} failed ({reason}): the torque may still be on')
+        self.enabled.clear()
+
+    def _call(self, clients: dict[str, Client], timeout: float) -> dict[str, Trigger.Response | None]:
+        """Call every client at once; each one's response, or None if it did not come in time."""
+        futures = {servo: client.call_async(Trigger.Request()) for servo, client in clients.items()}
+        deadline = time.monotonic() + timeout
+        # Short waits: Ctrl-C reaches this thread only between them (rclpy's handler is off).
+        while not all(f.done() for f in futures.values()) and time.monotonic() < deadline:
+            rclpy.spin_once(self.node, timeout_sec=0.1)
+        return {servo: future.result() if future.done() else None for servo, future in futures.items()}

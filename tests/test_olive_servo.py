@@ -1,0 +1,258 @@
+"""olive_servo over real DDS against olive_sim's servos: control_servo's sine, the appendix's
+pid_testing, imu_control_robot; torque on before any goal and off after Ctrl-C, signs, bounds,
+bad input."""
+
+import math
+import time
+
+import pytest
+from diagnostic_msgs.msg import DiagnosticStatus
+from geometry_msgs.msg import Quaternion
+from olive_sim import quaternion as quat
+from olive_sim.kit import OWL_KIT
+from ros_harness import wait_for_messages, wait_until
+from sensor_msgs.msg import Imu, JointState
+from std_msgs.msg import Float32
+
+IMU_NODE = 'olive_imu_x1684267976913_dcm_srv'
+# The kit's servos as owl_kit.launch.py starts them (bounds, the camera's load on tilt).
+SERVO_PARAMETERS = {m.namespace: m.parameters for m in OWL_KIT if m.module_type == 'servo'}
+BOUNDS = {name: (p['min_position'], p['max_position']) for name, p in SERVO_PARAMETERS.items()}
+TORQUE_OFF_WARNING = 'ignored, torque is disabled'
+CLAMP_WARNING = 'clamped'
+
+
+def start_servo(ros, name):
+    args = [arg for key, value in SERVO_PARAMETERS[name].items() for arg in ('-p', f'{key}:={value}')]
+    return ros.run('olive_sim', 'servo_sim', '--ros-args', *args, label=f'servo_sim {name}')
+
+
+def collect(ros, name, topic):
+    msg_type = {'goal/position': Float32, 'joint': JointState, 'joint/diagnostics': DiagnosticStatus}[topic]
+    return ros.probe.collect(msg_type, f'/olive/servo/{name}/{topic}')
+
+
+def torque_enabled(diagnostics):
+    return next(v.value for v in diagnostics[-1].values if v.key == 'torque_enabled') == 'true'
+
+
+def joint_near(joints, value, tolerance=0.05):
+    return bool(joints) and abs(joints[-1].position[0] - value) < tolerance
+
+
+def assert_clean_servo(servo):
+    """The servo never saw a goal before its torque was on, nor one outside its bounds."""
+    assert 'torque enabled' in servo.output
+    assert TORQUE_OFF_WARNING not in servo.output, servo.output
+    assert CLAMP_WARNING not in servo.output, servo.output
+
+
+def test_control_servo_waits_for_the_servo_enables_its_torque_before_any_goal_and_disables_it_at_ctrl_c(ros):
+    # The node first, the servo later: a goal sent before the torque is on would reach the servo.
+    control_servo = ros.run('olive_servo', 'control_servo')
+    control_servo.wait_for(r'waiting for service /olive/servo/pan/setTorqueEnable', timeout=30)
+    goals = collect(ros, 'pan', 'goal/position')
+    joints = collect(ros, 'pan', 'joint')
+    diagnostics = collect(ros, 'pan', 'joint/diagnostics')
+    servo = start_servo(ros, 'pan')
+    control_servo.wait_for(r'torque enabled: pan', timeout=30)
+    wait_for_messages(goals, 150, timeout=30, what='goals')
+    # The course's sine: the input grows by 0.01 rad per goal, amplitude 1 rad; it starts at 0 and
+    # goes positive, which turns the pan servo to the left (counter-clockwise seen from above).
+    values = [g.data for g in goals[:150]]
+    assert values[0] == 0.0
+    assert values == pytest.approx([math.sin(0.01 * k) for k in range(150)], abs=1e-6)
+    wait_until(lambda: joints and joints[-1].position[0] > 0.5, 20, 'the pan joint turning left past 0.5 rad')
+    wait_until(lambda: diagnostics and torque_enabled(diagnostics), 10, 'torque_enabled true')
+    assert all(abs(g.data) <= 1.0 for g in goals)
+    control_servo.stop_cleanly(timeout=10)
+    assert 'torque disabled: pan' in control_servo.output and 'Traceback' not in control_servo.output
+    servo.wait_for(r'\]: torque disabled$', timeout=10)
+    count = len(diagnostics)
+    wait_until(lambda: len(diagnostics) > count and not torque_enabled(diagnostics), 10,
+               'torque_enabled false after Ctrl-C')
+    assert_clean_servo(servo)
+
+
+def goal_rate(goals, seconds=2.0):
+    count = len(goals)
+    time.sleep(seconds)
+    return (len(goals) - count) / seconds
+
+
+def test_control_servo_frequency_and_amplitude_change_at_runtime_and_bad_values_are_refused(ros):
+    servo = start_servo(ros, 'pan')
+    control_servo = ros.run('olive_servo', 'control_servo', '--ros-args', '-p', 'amplitude:=0.5')
+    control_servo.wait_for(r'torque enabled: pan', timeout=30)
+    goals = collect(ros, 'pan', 'goal/position')
+    wait_for_messages(goals, 100, timeout=20, what='goals')
+    assert goal_rate(goals) > 60  # 100 asked for; the machine may be busy
+    assert max(abs(g.data) for g in goals) <= 0.5
+    probe = ros.probe
+    assert all(r.successful for r in probe.set_parameters('/control_servo', frequency=10.0, amplitude=1.5))
+    time.sleep(0.5)
+    assert 5 <= goal_rate(goals) <= 13
+    for name, value, reason in (('frequency', 0.5, 'out of range'), ('frequency', 1000.0, 'out of range'),
+                                ('amplitude', 1.6, 'out of range'), ('amplitude', -0.1, 'out of range'),
+                                ('frequency', 'fast', 'type'), ('frequency', 100, 'type')):
+        [result] = probe.set_parameters('/control_servo', **{name: value})
+        assert not result.successful and reason in result.reason, (name, value, result.reason)
+    assert probe.get_parameters('/control_servo', 'frequency', 'amplitude') == [10.0, 1.5]
+    control_servo.stop_cleanly(timeout=10)
+    assert_clean_servo(servo)
+
+
+@pytest.mark.parametrize(('executable', 'args', 'message'), [
+    ('control_servo', ['-p', 'frequency:=0.0'], 'out of range'),
+    ('control_servo', ['-p', 'amplitude:=big'], "'amplitude' to 'big' of type 'STRING', expecting type"),
+    ('imu_control_robot', ['-p', 'pan_min:=1.0', '-p', 'pan_max:=0.5'],
+     'pan_min (1.0) must be less than pan_max (0.5)'),
+    ('imu_control_robot', ['-p', 'tilt_max:=4.0'], 'out of range'),
+    ('imu_control_robot', ['-p', 'imu_topic:=my imu'], "imu_topic 'my imu' is not a valid topic name"),
+])
+def test_bad_startup_parameters_end_with_one_line_and_code_2(ros, executable, args, message):
+    node = ros.run('olive_servo', executable, '--ros-args', *args)
+    assert node.wait(30) == 2
+    assert len(node.lines) == 1 and node.lines[0].startswith(f'{executable}: error: '), node.output
+    assert message in node.output
+
+
+def test_pid_testing_alternates_between_1_57_and_0_rad_every_3_s_with_the_torque_on(ros):
+    servo = start_servo(ros, 'pan')
+    goals = collect(ros, 'pan', 'goal/position')
+    joints = collect(ros, 'pan', 'joint')
+    pid_testing = ros.run('olive_servo', 'pid_testing')
+    servo.wait_for(r'\]: torque enabled$', timeout=30)
+    wait_for_messages(goals, 1, timeout=20, what='the first goal')
+    first = time.monotonic()
+    assert goals[0].data == pytest.approx(1.57)
+    wait_until(lambda: joint_near(joints, 1.57), 10, 'the pan joint at 1.57 rad')
+    wait_for_messages(goals, 2, timeout=10, what='the second goal')
+    assert 2.0 < time.monotonic() - first < 4.5
+    assert goals[1].data == 0.0
+    wait_until(lambda: joint_near(joints, 0.0), 10, 'the pan joint back at 0 rad')
+    stopped = time.monotonic()
+    pid_testing.stop_cleanly(timeout=10)
+    assert time.monotonic() - stopped < 2.0  # Ctrl-C does not wait for the 3 s timer
+    assert 'Traceback' not in pid_testing.output
+    servo.wait_for(r'\]: torque disabled$', timeout=10)
+    assert_clean_servo(servo)
+
+
+def start_head(ros, *robot_args):
+    """imu_sim (commanded), imu_control_robot, then both servos: no goal may precede the torque."""
+    ros.run('olive_sim', 'imu_sim', '--ros-args', '-p', 'motion:=command')
+    robot = ros.run('olive_servo', 'imu_control_robot', *robot_args)
+    robot.wait_for(r'waiting for service /olive/servo/pan/setTorqueEnable', timeout=30)
+    servos = {name: start_servo(ros, name) for name in ('pan', 'tilt')}
+    robot.wait_for(r'torque enabled: pan, tilt', timeout=30)
+    return robot, servos
+
+
+def commander(ros):
+    publisher = ros.probe.node.create_publisher(Quaternion, f'/{IMU_NODE}/true_orientation', 10)
+    wait_until(lambda: publisher.get_subscription_count() > 0, 20, 'true_orientation subscriber')
+
+    def turn(roll, pitch, yaw):
+        x, y, z, w = quat.from_euler(roll, pitch, yaw)
+        publisher.publish(Quaternion(x=x, y=y, z=z, w=w))
+    return turn
+
+
+def test_imu_control_robot_points_the_head_where_the_imu_points_within_the_bounds(ros):
+    goals = {name: collect(ros, name, 'goal/position') for name in ('pan', 'tilt')}
+    joints = {name: collect(ros, name, 'joint') for name in ('pan', 'tilt')}
+    robot, servos = start_head(ros)
+    turn = commander(ros)
+
+    def goals_near(pan, tilt, tolerance=0.02):
+        return (goals['pan'] and goals['tilt'] and abs(goals['pan'][-1].data - pan) < tolerance
+                and abs(goals['tilt'][-1].data - tilt) < tolerance)
+
+    def head_near(pan, tilt):
+        return joint_near(joints['pan'], pan) and joint_near(joints['tilt'], tilt)
+
+    # Turned left and nose down: pan turns left (positive), the camera looks down (positive tilt).
+    turn(0.3, 0.4, 0.6)
+    wait_until(lambda: goals_near(0.6, 0.4), 20, 'goals pan 0.6, tilt 0.4')
+    wait_until(lambda: head_near(0.6, 0.4), 15, 'the head there')
+    turn(0.0, -0.5, -0.6)
+    wait_until(lambda: goals_near(-0.6, -0.5), 20, 'goals pan -0.6, tilt -0.5')
+    wait_until(lambda: head_near(-0.6, -0.5), 15, 'the head there')
+    # Beyond the bounds the goals stop at them.
+    turn(0.0, 1.4, 2.5)
+    wait_until(lambda: goals_near(BOUNDS['pan'][1], BOUNDS['tilt'][1], 1e-6), 20, 'goals at the upper bounds')
+    turn(0.0, -1.45, -2.5)
+    wait_until(lambda: goals_near(BOUNDS['pan'][0], BOUNDS['tilt'][0], 1e-6), 20, 'goals at the lower bounds')
+    for name, (low, high) in BOUNDS.items():
+        assert all(low - 1e-6 <= g.data <= high + 1e-6 for g in goals[name]), name
+    robot.stop_cleanly(timeout=10)
+    assert 'Traceback' not in robot.output
+    for name, servo in servos.items():
+        servo.wait_for(r'\]: torque disabled$', timeout=10)
+        assert_clean_servo(servo)
+        assert f'torque disabled: {name}' in robot.output
+
+
+def test_imu_control_robot_bounds_change_at_runtime_and_bad_ones_are_refused(ros):
+    goals = collect(ros, 'tilt', 'goal/position')
+    robot, servos = start_head(ros)
+    turn = commander(ros)
+    probe = ros.probe
+    assert all(r.successful for r in probe.set_parameters('/imu_control_robot', tilt_max=0.5))
+    turn(0.0, 0.8, 0.0)
+    wait_until(lambda: goals and goals[-1].data == pytest.approx(0.5), 20, 'tilt goal held at 0.5')
+    for values, reason in (({'tilt_min': 0.6}, 'tilt_min (0.6) must be less than tilt_max (0.5)'),
+                           ({'pan_max': -1.6}, 'pan_min (-1.5708) must be less than pan_max (-1.6)'),
+                           ({'pan_max': 3.5}, 'out of range'), ({'tilt_min': 'low'}, 'type'),
+                           ({'imu_topic': '/elsewhere'}, 'read-only')):
+        [result] = probe.set_parameters('/imu_control_robot', **values)
+        assert not result.successful and reason in result.reason, (values, result.reason)
+    assert probe.get_parameters('/imu_control_robot', 'pan_min', 'pan_max', 'tilt_min', 'tilt_max') == [
+        -1.5708, 1.5708, -1.3, 0.5]
+    robot.stop_cleanly(timeout=10)
+    for servo in servos.values():
+        assert_clean_servo(servo)
+
+
+def test_imu_control_robot_names_the_topic_it_waits_for_and_ignores_unusable_orientations(ros):
+    goals = collect(ros, 'pan', 'goal/position')
+    servos = {name: start_servo(ros, name) for name in ('pan', 'tilt')}
+    robot = ros.run('olive_servo', 'imu_control_robot', '--ros-args', '-p', 'imu_topic:=/test_imu')
+    robot.wait_for(r'waiting for IMU messages on /test_imu \(0 publisher\(s\) so far\)', timeout=30)
+    imu = ros.probe.node.create_publisher(Imu, '/test_imu', 10)
+    wait_until(lambda: imu.get_subscription_count() > 0, 20, 'imu_control_robot subscribing')
+    bad = Imu()
+    bad.orientation = Quaternion(x=0.0, y=0.0, z=0.0, w=0.0)
+    for _ in range(50):
+        imu.publish(bad)
+        time.sleep(0.01)
+    robot.wait_for(r'IMU message ignored: the orientation quaternion is zero, not a rotation')
+    assert len([line for line in robot.lines if 'IMU message ignored' in line]) == 1
+    assert goals == []
+    good = Imu()
+    x, y, z, w = quat.from_euler(0.0, 0.0, 0.3)
+    good.orientation = Quaternion(x=x, y=y, z=z, w=w)
+    imu.publish(good)
+    wait_until(lambda: goals and goals[-1].data == pytest.approx(0.3), 10, 'pan goal 0.3')
+    robot.wait_for(r'no usable IMU message on /test_imu for 0.5 s: the servos hold', timeout=10)
+    robot.stop_cleanly(timeout=10)
+    for servo in servos.values():
+        assert_clean_servo(servo)
+
+
+def test_the_scripted_imu_sweeps_both_servos_through_most_of_their_range(ros):
+    """Issue 11 item 4: olive_sim's default IMU motion moves the whole head."""
+    joints = {name: collect(ros, name, 'joint') for name in ('pan', 'tilt')}
+    servos = {name: start_servo(ros, name) for name in ('pan', 'tilt')}
+    ros.run('olive_sim', 'imu_sim')
+    robot = ros.run('olive_servo', 'imu_control_robot')
+    robot.wait_for(r'IMU data on .*: steering the pan and tilt servos', timeout=30)
+    start = {name: len(messages) for name, messages in joints.items()}
+    time.sleep(13.0)  # a period of the yaw (12 s) and more than one of the pitch (10 s)
+    for name, (low, high) in BOUNDS.items():
+        positions = [m.position[0] for m in joints[name][start[name]:]]
+        assert (max(positions) - min(positions)) / (high - low) > 0.75, (name, min(positions), max(positions))
+    robot.stop_cleanly(timeout=10)
+    for servo in servos.values():
+        assert 'torque enabled' in servo.output and TORQUE_OFF_WARNING not in servo.output
