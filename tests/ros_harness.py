@@ -164,11 +164,16 @@ def wait_for_messages(received: list[Any], count: int, timeout: float = 15.0, wh
 
 def endpoints(probe: Probe, topic: str, kind: str = 'publishers', count: int = 1,
               timeout: float = 15.0) -> list[Any]:
-    """The graph's TopicEndpointInfo list of a topic's publishers or subscriptions, once it has count."""
+    """The graph's TopicEndpointInfo list of a topic's publishers or subscriptions, once it has count
+    whose node is known (an endpoint can be discovered before its participant's node names)."""
     lookup = (probe.node.get_publishers_info_by_topic if kind == 'publishers'
               else probe.node.get_subscriptions_info_by_topic)
-    wait_until(lambda: len(lookup(topic)) >= count, timeout, f'{count} {kind} of {topic}')
-    return lookup(topic)
+
+    def known() -> list[Any]:
+        return [info for info in lookup(topic) if info.node_name != '_NODE_NAME_UNKNOWN_']
+
+    wait_until(lambda: len(known()) >= count, timeout, f'{count} {kind} of {topic}')
+    return known()
 
 
 def list_parameter_names(probe: Probe, node: str, timeout: float = 10.0) -> list[str]:
