@@ -123,6 +123,9 @@ def pub_rate(sandbox: RosSandbox, seconds: float) -> None:
     while time.monotonic() < deadline:
         executor.spin_once(timeout_sec=0.05)
     publisher.stop()
+    # Before the context goes: Jazzy's Executor.__del__ otherwise destroys its guard condition
+    # after the context did, and prints an "Exception ignored" traceback.
+    executor.shutdown()
     node.destroy_node()
     rclpy.try_shutdown(context=context)
     window = [t for t in arrivals if t >= arrivals[0] + 1.0] if arrivals else []
