@@ -97,12 +97,12 @@ def camera_delivered_rate(seconds: float) -> float:
         sandbox.run('olive_sim', 'camera_sim', '--ros-args', '-p', 'fps:=240.0')
         context = Context()
         rclpy.init(context=context, domain_id=sandbox.domain_id)
+        executor = SingleThreadedExecutor(context=context)
         try:
             node = Node('bench_camera_viewer', context=context)
             stamps: list[float] = []
             node.create_subscription(CompressedImage, '/olive/camera/eye/image/compressed',
                                      lambda m: stamps.append(time.monotonic()), qos_profile_sensor_data)
-            executor = SingleThreadedExecutor(context=context)
             executor.add_node(node)
             deadline = time.monotonic() + 30
             while not stamps and time.monotonic() < deadline:
@@ -114,6 +114,7 @@ def camera_delivered_rate(seconds: float) -> float:
             window = stamps[first:]
             return (len(window) - 1) / (window[-1] - window[0]) if len(window) > 1 else 0.0
         finally:
+            executor.shutdown()  # before its context (Jazzy's Executor.__del__ would print a traceback)
             rclpy.try_shutdown(context=context)
 
 

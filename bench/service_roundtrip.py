@@ -64,15 +64,16 @@ def main() -> int:
         sandbox.command([sys.executable, __file__, '--echo-server'], label='echo')
         context = Context()
         rclpy.init(context=context, domain_id=sandbox.domain_id)
+        executor = SingleThreadedExecutor(context=context)
         try:
             node = Node('bench_client', context=context)
-            executor = SingleThreadedExecutor(context=context)
             executor.add_node(node)
             results = {
                 'temp_server': measure(node, executor, 'temp_conversion', args.calls),
                 'echo (rclpy baseline)': measure(node, executor, 'echo', args.calls),
             }
         finally:
+            executor.shutdown()  # before its context (Jazzy's Executor.__del__ would print a traceback)
             rclpy.try_shutdown(context=context)
     print(f'{args.calls} sequential TempConv calls per server (ms)')
     print(f'{"server":<24}{"p50":>8}{"p99":>8}{"mean":>8}')

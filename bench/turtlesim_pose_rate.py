@@ -74,6 +74,7 @@ class Observer:
         self.executor.add_node(self.node)
 
     def close(self) -> None:
+        self.executor.shutdown()  # before its context (Jazzy's Executor.__del__ would print a traceback)
         rclpy.try_shutdown(context=self.context)
 
     def spin_for(self, seconds: float) -> None:
