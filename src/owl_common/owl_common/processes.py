@@ -192,16 +192,20 @@ class RosSandbox:
         self.processes: list[RosProcess] = []
 
     def run(self, package: str, executable: str, *args: str, label: str | None = None,
-            env: dict[str, str] | None = None) -> RosProcess:
+            env: dict[str, str | None] | None = None) -> RosProcess:
         """Start an installed executable of a package, like `ros2 run package executable args`."""
         path = installed_executable(package, executable)
         return self.command([str(path), *args], label=label or executable, env=env)
 
     def command(self, argv: Iterable[str], label: str | None = None,
-                env: dict[str, str] | None = None, cwd: str | None = None) -> RosProcess:
-        """Start any command inside the sandbox's domain."""
+                env: dict[str, str | None] | None = None, cwd: str | None = None) -> RosProcess:
+        """Start any command inside the sandbox's domain; env entries set to None are removed."""
         process_env = dict(self.env)
-        process_env.update(env or {})
+        for name, value in (env or {}).items():
+            if value is None:
+                process_env.pop(name, None)
+            else:
+                process_env[name] = value
         process = RosProcess(list(argv), process_env, label=label, echo=self.echo, cwd=cwd)
         self.processes.append(process)
         return process
