@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import sys
 import time
 from dataclasses import dataclass, field
@@ -102,15 +103,16 @@ def start_robot(sandbox: RosSandbox) -> dict[str, RosProcess]:
 
 
 def run_demo(seconds: float, report_every: float) -> int:
-    with RosSandbox() as sandbox:
+    # env.sh's network mode: private (LOCALHOST) unless the user opened it with OWL_NETWORK=open.
+    with RosSandbox(discovery_range=os.environ.get('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')) as sandbox:
         print(f'== Owl Kit Lab demo: the simulated Owl Kit and the course\'s chapter 4 projects, '
               f'ROS 2 domain {sandbox.domain_id}, {seconds:.0f} s', flush=True)
         print('   kit: IMU, servos pan and tilt, camera eye (ros2 launch olive_sim owl_kit.launch.py)\n'
               '   imu_control_robot: the head points where the IMU points\n'
               '   display_camera: the camera\'s picture\n'
               '   imu_turtle: the IMU drives turtlesim\'s turtle (pitch = speed, yaw = turning)', flush=True)
-        print(f'== watch it from another shell: source env.sh && export ROS_DOMAIN_ID={sandbox.domain_id} '
-              'ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST, then `rqt` (Plugins > Visualization > Image View, '
+        print(f'== watch it from another shell: source env.sh && export ROS_DOMAIN_ID={sandbox.domain_id}, '
+              'then `rqt` (Plugins > Visualization > Image View, '
               f'topic {CAMERA_TOPIC}) or `ros2 topic echo /turtle1/pose`', flush=True)
         probe = Probe(sandbox.domain_id, 'owl_demo')
         try:

@@ -52,12 +52,14 @@ class DomainLease:
             self._handle = None
 
 
-def isolated_env(domain_id: int, base: dict[str, str] | None = None) -> dict[str, str]:
-    """The environment for processes that must only see each other."""
+def isolated_env(domain_id: int, base: dict[str, str] | None = None,
+                 discovery_range: str = 'LOCALHOST') -> dict[str, str]:
+    """The environment for processes that must only see each other (on other machines too, with
+    discovery_range SUBNET)."""
     env = dict(os.environ if base is None else base)
     env.update({
         'ROS_DOMAIN_ID': str(domain_id),
-        'ROS_AUTOMATIC_DISCOVERY_RANGE': 'LOCALHOST',
+        'ROS_AUTOMATIC_DISCOVERY_RANGE': discovery_range,
         'PYTHONUNBUFFERED': '1',
         'RCUTILS_LOGGING_BUFFERED_STREAM': '1',
         'RCUTILS_COLORIZED_OUTPUT': '0',
@@ -184,10 +186,10 @@ class RosProcess:
 class RosSandbox:
     """A set of processes sharing one private ROS domain; close() stops them all."""
 
-    def __init__(self, echo: bool = False) -> None:
+    def __init__(self, echo: bool = False, discovery_range: str = 'LOCALHOST') -> None:
         self._lease = DomainLease()
         self.domain_id = self._lease.domain_id
-        self.env = isolated_env(self.domain_id)
+        self.env = isolated_env(self.domain_id, discovery_range=discovery_range)
         self.echo = echo
         self.processes: list[RosProcess] = []
 
