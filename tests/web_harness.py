@@ -137,6 +137,12 @@ class PageSocket:
     def subscribe(self, subscription_id: int | str, channel: str, **params: Any) -> None:
         self.send({'type': 'subscribe', 'id': subscription_id, 'channel': channel, **params})
 
+    def __enter__(self) -> PageSocket:
+        return self
+
+    def __exit__(self, *exception: object) -> None:
+        self.close()
+
     def close(self) -> None:
         try:
             self._run(self._websocket.close(), 5)

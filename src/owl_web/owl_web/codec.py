@@ -76,8 +76,9 @@ def boolean(value: Any, what: str) -> bool:
 
 def decode_client_message(text: str) -> dict[str, Any]:
     """A page's WebSocket message: a JSON object with a string "type" and, if given, a valid "id"."""
-    if len(text.encode()) > MAX_CLIENT_MESSAGE:
-        raise ApiError(413, f'message of {len(text.encode())} bytes is over the limit of {MAX_CLIENT_MESSAGE}')
+    size = len(text.encode())
+    if size > MAX_CLIENT_MESSAGE:
+        raise ApiError(413, f'message of {size} bytes is over the limit of {MAX_CLIENT_MESSAGE}')
     message = parse_json_object(text, 'the message')
     kind = message.get('type')
     if not isinstance(kind, str) or not kind:

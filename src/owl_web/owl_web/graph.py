@@ -82,10 +82,12 @@ def read_endpoints(queries: GraphQueries, leave_out: str) -> Endpoints:
         if full_name == leave_out:
             continue
         try:
-            endpoints[full_name] = ([(t, list(types)) for t, types in queries.publishers_by_node(name, namespace)],
-                                    [(t, list(types)) for t, types in queries.subscribers_by_node(name, namespace)])
+            published = queries.publishers_by_node(name, namespace)
+            subscribed = queries.subscribers_by_node(name, namespace)
         except RuntimeError:  # the node left between the two questions
             continue
+        endpoints[full_name] = ([(topic, list(types)) for topic, types in published],
+                                [(topic, list(types)) for topic, types in subscribed])
     return endpoints
 
 

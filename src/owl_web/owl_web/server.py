@@ -209,6 +209,7 @@ class WebServer:
         self._loop: asyncio.AbstractEventLoop | None = None
         self._runner: web.AppRunner | None = None
         self._thread: threading.Thread | None = None
+        self._stopping = threading.Lock()
 
     @property
     def url(self) -> str:
@@ -219,7 +220,8 @@ class WebServer:
         """A line saying the pages' libraries are not installed, or None when they are."""
         if self.web is None:
             return "OWL_ROOT is not set ('source env.sh'): the pages' libraries cannot be found"
-        missing = [p for p in self.libraries if not (self.web / 'node_modules' / p / 'package.json').is_file()]
+        installed = self.web / 'node_modules'
+        missing = [p for p in self.libraries if not (installed / p / 'package.json').is_file()]
         if not self.libraries or missing:
             return (f"the pages' libraries ({', '.join(missing) or 'web/package.json'}) are not installed: "
                     "run 'make setup'")
@@ -265,27 +267,29 @@ class WebServer:
             raise failure[0]
 
     def stop(self) -> None:
-        """Close every page's WebSocket (going away) and stop serving."""
-        if self._loop is None or self._thread is None:
-            self._socket.close()
-            return
-        loop = self._loop
-        try:
-            asyncio.run_coroutine_threadsafe(self._shutdown(), loop).result(STOP_TIMEOUT)
-        except Exception as error:  # a stop must finish; say why it was not clean
-            self.log(f'stopping the web server: {codec.one_line(error)}')
-        loop.call_soon_threadsafe(loop.stop)
-        self._thread.join(STOP_TIMEOUT)
-        self._loop = self._thread = None
+        """Close every page's WebSocket (going away) and stop serving; a second call does nothing."""
+        with self._stopping:
+            loop, thread = self._loop, self._thread
+            self._loop = self._thread = None
+        if loop is not None and thread is not None:
+            try:
+                asyncio.run_coroutine_threadsafe(self._shutdown(), loop).result(STOP_TIMEOUT)
+            except Exception as error:  # a stop must finish; say why it was not clean
+                self.log(f'stopping the web server: {codec.one_line(error)}')
+            try:
+                loop.call_soon_threadsafe(loop.stop)
+            except RuntimeError:  # already stopped
+                pass
+            thread.join(STOP_TIMEOUT)
         self._socket.close()
 
     async def _start_site(self) -> None:
         app = web.Application(client_max_size=codec.MAX_BODY)
         app.router.add_get('/ws', self._websocket)
         app.router.add_route('*', '/{path:.*}', self._http)
-        self._runner = web.AppRunner(app, handle_signals=False, access_log=None)
+        self._runner = web.AppRunner(app, handle_signals=False, access_log=None, shutdown_timeout=0.5)
         await self._runner.setup()
-        await web.SockSite(self._runner, self._socket, shutdown_timeout=0.5).start()
+        await web.SockSite(self._runner, self._socket).start()
 
     async def _shutdown(self) -> None:
         for connection in list(self._connections):

@@ -5,7 +5,6 @@ import os
 import sys
 import threading
 import webbrowser
-
 from pathlib import Path
 
 from owl_common.run import spin_node

@@ -11,7 +11,7 @@ import time
 from dataclasses import dataclass, field
 from typing import Any
 
-from owl_web.codec import ApiError, check_keys, message_fields
+from owl_web.codec import ApiError, boolean, check_keys, message_fields
 from owl_web.graph import GraphChannel
 from owl_web.server import Request, Subscription, WebServer
 from rclpy.exceptions import InvalidServiceNameException, InvalidTopicNameException
@@ -180,7 +180,7 @@ class RqtWebNode(Node):
         check_keys(body, PUBLISHER_KEYS, required=('topic',))
         topic = api_input.name(body['topic'], 'topic')
         rate = api_input.rate(body.get('rate', 1.0))
-        enabled = api_input.boolean(body.get('enabled', False), 'enabled')
+        enabled = boolean(body.get('enabled', False), 'enabled')
         values = api_input.fields(body.get('fields'), 'fields')
         given_type = api_input.optional_text(body.get('type'), 'type')
         topics = self.topic_types()
@@ -210,7 +210,7 @@ class RqtWebNode(Node):
         check_keys(body, ('rate', 'fields', 'enabled'))
         entry = self._message_publisher(publisher_id)
         rate = api_input.rate(body['rate']) if 'rate' in body else entry.rate
-        enabled = api_input.boolean(body['enabled'], 'enabled') if 'enabled' in body else entry.enabled
+        enabled = boolean(body['enabled'], 'enabled') if 'enabled' in body else entry.enabled
         stamps: list[Any] = []
         if 'fields' in body:
             values = api_input.fields(body['fields'], 'fields')
