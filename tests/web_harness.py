@@ -1,6 +1,6 @@
 """The system tests' view of our browser pages: Debian's Chromium driven by Playwright (the `browser`
-and `page` fixtures of conftest.py), and PageSocket, a page's WebSocket from Python for what a
-browser never sends (malformed JSON, oversized messages).
+and `page` fixtures of conftest.py), PageSocket, a page's WebSocket from Python for what a browser
+never sends (malformed JSON, oversized messages), and Rqt, a running `rqt` with its JSON API.
 
 Playwright never downloads a browser here: it launches /usr/bin/chromium (`apt-get install
 chromium`; scripts/test_prereqs.sh installs it when `make test` runs as root).
@@ -10,12 +10,16 @@ from __future__ import annotations
 
 import asyncio
 import json
+import socket
 import threading
+import urllib.error
+import urllib.request
 from pathlib import Path
 from typing import Any
 
 import aiohttp
 from owl_web.codec import unpack_frame
+from ros_harness import wait_until
 
 CHROMIUM = Path('/usr/bin/chromium')
 # Root needs --no-sandbox; the rest keeps Chromium from reaching out to the network or updating.
@@ -24,6 +28,7 @@ CHROMIUM_ARGS = ['--no-sandbox', '--disable-gpu', '--disable-background-networki
                  '--disable-sync', '--metrics-recording-only']
 VIEWPORT = {'width': 1280, 'height': 800}
 SCREENSHOTS = Path(__file__).resolve().parents[1] / 'docs' / 'screenshots'
+RQT_URL_LINE = r'^rqt: open (http://127\.0\.0\.1:\d+/)(#[a-z-]+)? in a browser \(Ctrl-C to quit\)$'
 
 
 def chromium_missing() -> str | None:
@@ -62,7 +67,7 @@ class BrowserPage:
         self.page = page
         self.console_errors: list[str] = []
         page.on('console', lambda message: message.type == 'error' and self.console_errors.append(
-            f'{message.text} ({message.location.get("url", "")})'))
+            message.text + (f" ({message.location['url']})" if message.location.get('url') else '')))
         page.on('pageerror', lambda error: self.console_errors.append(f'uncaught: {error}'))
 
     def __getattr__(self, name: str) -> Any:
@@ -150,3 +155,58 @@ class PageSocket:
         finally:
             self._loop.call_soon_threadsafe(self._loop.stop)
             self._thread.join(5)
+
+
+def free_port() -> int:
+    with socket.socket() as probe:
+        probe.bind(('127.0.0.1', 0))
+        return probe.getsockname()[1]
+
+
+def http(method: str, url: str, body: Any = None) -> tuple[int, dict[str, str], bytes]:
+    """(status, headers, body) of one request; a dict body goes as JSON, bytes as they are."""
+    data = body if isinstance(body, bytes) or body is None else json.dumps(body).encode()
+    request = urllib.request.Request(url, data=data, method=method)
+    if data is not None:
+        request.add_header('Content-Type', 'application/json')
+    try:
+        with urllib.request.urlopen(request, timeout=30) as response:
+            return response.status, dict(response.headers), response.read()
+    except urllib.error.HTTPError as error:
+        return error.code, dict(error.headers), error.read()
+
+
+class Rqt:
+    """A running `rqt --no-browser` and its JSON API."""
+
+    def __init__(self, ros: Any, *argv: str) -> None:
+        self.process = ros.command(argv or ['rqt', '--port', str(free_port()), '--no-browser'])
+        self.base, self.fragment = self.process.wait_for(RQT_URL_LINE, timeout=30)[0].groups()
+
+    def call(self, method: str, path: str, body: Any = None) -> tuple[int, Any]:
+        status, _, data = http(method, self.base + path.lstrip('/'), body)
+        return status, json.loads(data)
+
+    def ok(self, method: str, path: str, body: Any = None, status: int = 200) -> Any:
+        got, data = self.call(method, path, body)
+        assert got == status, data
+        return data
+
+    def refused(self, status: int, method: str, path: str, body: Any = None) -> str:
+        """The error line of a refused request; the server must still answer afterwards."""
+        got, data = self.call(method, path, body)
+        assert got == status, data
+        assert list(data) == ['error'] and '\n' not in data['error'] and data['error'], data
+        assert self.call('GET', '/api/topics')[0] == 200
+        return data['error']
+
+    def wait_for(self, condition: Any, what: str, timeout: float = 20.0) -> None:
+        wait_until(condition, timeout, what)
+
+    def socket(self) -> PageSocket:
+        """The page's WebSocket, as the page opens it."""
+        return PageSocket(self.base)
+
+    def stop_cleanly(self) -> None:
+        assert self.process.stop() == 0, self.process.output
+        assert 'Traceback' not in self.process.output

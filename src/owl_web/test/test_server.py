@@ -254,7 +254,10 @@ def test_a_huge_message_closes_only_its_connection(web):
     server, log, _ = web
     huge = '{"type": "subscribe", "pad": "' + 'x' * (codec.MAX_BODY + 10) + '"}'
     received, close_code = run(exchange(server, huge, receive=1))
-    assert received == [] and close_code == aiohttp.WSCloseCode.MESSAGE_TOO_BIG
+    # "message too big"; or, when the kernel resets the connection (the rest of the message is never
+    # read) before the client reads the close frame, an abnormal closure
+    assert received == [] and close_code in (aiohttp.WSCloseCode.MESSAGE_TOO_BIG,
+                                             aiohttp.WSCloseCode.ABNORMAL_CLOSURE)
     assert len(log) == 1 and log[0].startswith('closed a WebSocket connection: ') and '\n' not in log[0]
     received, _ = run(exchange(server, {'type': 'subscribe', 'id': 1, 'channel': 'frames'}, receive=1))
     assert received  # the server serves the next page
