@@ -22,6 +22,7 @@ one line ({"error": ...} or an "error" message) and the server keeps serving.
 import asyncio
 import ipaddress
 import json
+import logging
 import os
 import re
 import socket
@@ -62,6 +63,33 @@ def library_packages(web: Path | None) -> list[str]:
         return sorted(json.loads((web / 'package.json').read_text())['dependencies'])
     except (TypeError, OSError, ValueError, KeyError):
         return []
+
+
+class OneLineLog(logging.Handler):
+    """aiohttp's own log records (a malformed HTTP request, say) as one line each, never a traceback."""
+
+    def __init__(self, log: Callable[[str], None]) -> None:
+        super().__init__(logging.WARNING)
+        self.log = log
+
+    def emit(self, record: logging.LogRecord) -> None:
+        line = record.getMessage().strip().splitlines()[0] if record.getMessage().strip() else record.name
+        error = record.exc_info[1] if record.exc_info else None
+        if error is not None:
+            # aiohttp's HTTP errors carry their reason in .message, over several lines
+            reason = str(getattr(error, 'message', '') or '').strip() or codec.one_line(error)
+            line += f': {reason.splitlines()[0].rstrip(":")}'
+        self.log(line)
+
+
+def one_line_logger(name: str, log: Callable[[str], None]) -> logging.Logger:
+    """The logger a server hands aiohttp: its records go to log, one line each."""
+    logger = logging.getLogger(f'owl_web.server.{name}')
+    logger.propagate = False
+    for handler in list(logger.handlers):
+        logger.removeHandler(handler)
+    logger.addHandler(OneLineLog(log))
+    return logger
 
 
 @dataclass
@@ -284,10 +312,16 @@ class WebServer:
         self._socket.close()
 
     async def _start_site(self) -> None:
-        app = web.Application(client_max_size=codec.MAX_BODY)
+        logger = one_line_logger(self.name, self.log)
+        asyncio.get_running_loop().set_exception_handler(
+            lambda loop, context: self.log(f"{context.get('message', 'event loop error')}"
+                                           + (f": {codec.one_line(context['exception'])}"
+                                              if context.get('exception') else '')))
+        app = web.Application(client_max_size=codec.MAX_BODY, logger=logger)
         app.router.add_get('/ws', self._websocket)
         app.router.add_route('*', '/{path:.*}', self._http)
-        self._runner = web.AppRunner(app, handle_signals=False, access_log=None, shutdown_timeout=0.5)
+        self._runner = web.AppRunner(app, handle_signals=False, access_log=None, shutdown_timeout=0.5,
+                                     logger=logger)
         await self._runner.setup()
         await web.SockSite(self._runner, self._socket).start()
 

@@ -282,3 +282,20 @@ def wait_for(condition, what, timeout=10.0):
     while not condition():
         assert time.monotonic() < deadline, f'timed out waiting for {what}'
         time.sleep(0.02)
+
+
+def test_malformed_http_gets_400_and_at_most_a_line(web, capfd):
+    server, log, _ = web
+    host, port = server.url.removeprefix('http://').rstrip('/').split(':')
+    for raw in (b'GARBAGE\r\n\r\n', b'GET / HTTP/1.1\r\nContent-Length: abc\r\n\r\n',
+                b'\x16\x03\x01\x00\xa5\x01\x00\x00',  # a TLS hello on the plain port
+                b'GET /ws HTTP/1.1\r\nHost: x\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n\r\n',
+                b'POST /api/echo/x HTTP/1.1\r\nHost: x\r\nTransfer-Encoding: chunked\r\n\r\nzz\r\n'):
+        with socket.create_connection((host, int(port)), timeout=10) as connection:
+            connection.sendall(raw)
+            assert connection.recv(100).split(b'\r\n')[0].endswith(b' 400 Bad Request'), raw
+    assert log == ['Error handling request from 127.0.0.1: Invalid character in Content-Length',
+                   'Error handling request from 127.0.0.1: Invalid character in chunk size']
+    captured = capfd.readouterr()
+    assert 'Traceback' not in captured.out + captured.err
+    assert fetch(server, 'GET', '/')[0] == 200  # still serving
