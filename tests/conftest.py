@@ -22,9 +22,10 @@ def ros():
         harness.close()
 
 
-@pytest.fixture(scope='session')
+@pytest.fixture(scope='module')
 def browser():
-    """Headless Chromium (Debian's, through Playwright), started once for the whole run."""
+    """Headless Chromium (Debian's, through Playwright), started once per test module: while it runs,
+    Playwright's event loop is the main thread's, where no other test could run one (asyncio.run)."""
     missing = chromium_missing()
     if missing:
         pytest.skip(missing)

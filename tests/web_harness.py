@@ -39,7 +39,7 @@ def chromium_missing() -> str | None:
 
 
 class Browser:
-    """One headless Chromium for a whole test session."""
+    """One headless Chromium (conftest.py starts one per test module)."""
 
     def __init__(self) -> None:
         from playwright.sync_api import sync_playwright

@@ -6,6 +6,7 @@ import json
 import socket
 import threading
 import time
+from concurrent.futures import ThreadPoolExecutor
 
 import aiohttp
 import pytest
@@ -65,7 +66,10 @@ def web(tmp_path, monkeypatch):
 
 
 def run(coroutine):
-    return asyncio.run(asyncio.wait_for(coroutine, 30))
+    """The coroutine's result, from an event loop in a thread of its own (the main thread may have
+    one running already: a browser test's Playwright in the same session)."""
+    with ThreadPoolExecutor(1) as thread:
+        return thread.submit(asyncio.run, asyncio.wait_for(coroutine, 30)).result()
 
 
 def fetch(server, method, path, body=None):
