@@ -33,6 +33,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
+from urllib.parse import urlsplit
 
 from aiohttp import WSCloseCode, WSMsgType, web
 from ros2cli.names import did_you_mean
@@ -63,6 +64,31 @@ def library_packages(web: Path | None) -> list[str]:
         return sorted(json.loads((web / 'package.json').read_text())['dependencies'])
     except (TypeError, OSError, ValueError, KeyError):
         return []
+
+
+def is_loopback_name(hostname: str) -> bool:
+    if hostname == 'localhost':
+        return True
+    try:
+        return ipaddress.ip_address(hostname).is_loopback
+    except ValueError:
+        return False
+
+
+def foreign_request(host: str, origin: str | None) -> str | None:
+    """Why a request does not come from this machine's own pages, or None.
+
+    Listening on 127.0.0.1 keeps other machines out, not other web sites open in the student's
+    browser: the Host check stops DNS rebinding (a site's name re-pointed at 127.0.0.1), the Origin
+    check another site's page sending requests or opening the WebSocket (which could drive the robot).
+    Clients that are not browsers send no Origin.
+    """
+    hostname = urlsplit(f'//{host}').hostname or ''
+    if not is_loopback_name(hostname):
+        return f"refused: Host '{host}' is not a loopback address"
+    if origin is not None and not is_loopback_name(urlsplit(origin).hostname or ''):
+        return f'refused: a page of {origin} may not use this server'
+    return None
 
 
 class OneLineLog(logging.Handler):
@@ -317,7 +343,8 @@ class WebServer:
             lambda loop, context: self.log(f"{context.get('message', 'event loop error')}"
                                            + (f": {codec.one_line(context['exception'])}"
                                               if context.get('exception') else '')))
-        app = web.Application(client_max_size=codec.MAX_BODY, logger=logger)
+        app = web.Application(client_max_size=codec.MAX_BODY, logger=logger,
+                              middlewares=[self._own_pages_only])
         app.router.add_get('/ws', self._websocket)
         app.router.add_route('*', '/{path:.*}', self._http)
         self._runner = web.AppRunner(app, handle_signals=False, access_log=None, shutdown_timeout=0.5,
@@ -355,6 +382,13 @@ class WebServer:
         return await future
 
     # ---- HTTP ------------------------------------------------------------------------------
+
+    @web.middleware
+    async def _own_pages_only(self, request: web.Request, handler: Callable[..., Any]) -> web.StreamResponse:
+        refusal = foreign_request(request.headers.get('Host', ''), request.headers.get('Origin'))
+        if refusal is not None:
+            return json_response(403, {'error': refusal})
+        return await handler(request)
 
     async def _http(self, request: web.Request) -> web.StreamResponse:
         try:

@@ -12,7 +12,7 @@ import aiohttp
 import pytest
 from owl_web import codec
 from owl_web.codec import ApiError
-from owl_web.server import WebServer
+from owl_web.server import WebServer, foreign_request
 
 
 @pytest.fixture
@@ -293,8 +293,8 @@ def test_malformed_http_gets_400_and_at_most_a_line(web, capfd):
     host, port = server.url.removeprefix('http://').rstrip('/').split(':')
     for raw in (b'GARBAGE\r\n\r\n', b'GET / HTTP/1.1\r\nContent-Length: abc\r\n\r\n',
                 b'\x16\x03\x01\x00\xa5\x01\x00\x00',  # a TLS hello on the plain port
-                b'GET /ws HTTP/1.1\r\nHost: x\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n\r\n',
-                b'POST /api/echo/x HTTP/1.1\r\nHost: x\r\nTransfer-Encoding: chunked\r\n\r\nzz\r\n'):
+                b'GET /ws HTTP/1.1\r\nHost: 127.0.0.1\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n\r\n',
+                b'POST /api/echo/x HTTP/1.1\r\nHost: 127.0.0.1\r\nTransfer-Encoding: chunked\r\n\r\nzz\r\n'):
         with socket.create_connection((host, int(port)), timeout=10) as connection:
             connection.sendall(raw)
             assert connection.recv(100).split(b'\r\n')[0].endswith(b' 400 Bad Request'), raw
@@ -303,3 +303,38 @@ def test_malformed_http_gets_400_and_at_most_a_line(web, capfd):
     captured = capfd.readouterr()
     assert 'Traceback' not in captured.out + captured.err
     assert fetch(server, 'GET', '/')[0] == 200  # still serving
+
+
+def test_only_this_machines_pages_may_use_the_server(web):
+    server, _, _ = web
+    assert foreign_request('127.0.0.1:8090', None) is None
+    assert foreign_request('localhost:9000', 'http://localhost:9000') is None  # e.g. through ssh -L
+    assert foreign_request('127.42.0.8:80', 'http://127.42.0.8') is None
+    assert foreign_request('[::1]:8090', 'http://[::1]:8090') is None
+    assert foreign_request('evil.example:8090', None) == \
+        "refused: Host 'evil.example:8090' is not a loopback address"
+    assert foreign_request('127.0.0.1:8090', 'https://evil.example') == \
+        'refused: a page of https://evil.example may not use this server'
+    assert foreign_request('127.0.0.1:8090', 'null') == 'refused: a page of null may not use this server'
+    # over the wire: another site's page can neither post nor open the WebSocket; the server's own can
+    host, port = server.url.removeprefix('http://').rstrip('/').split(':')
+    for headers in ({'Origin': 'https://evil.example'}, {'Host': 'rebound.example'}):
+        connection = http.client.HTTPConnection(host, int(port), timeout=10)
+        connection.request('POST', '/api/echo/imu', body=b'{}', headers=headers)
+        response = connection.getresponse()
+        assert response.status == 403 and json.loads(response.read())['error'].startswith('refused: ')
+        connection.close()
+
+    async def open_socket(origin):
+        async with aiohttp.ClientSession() as session:
+            try:
+                async with session.ws_connect(server.url + 'ws', origin=origin):
+                    return 'open'
+            except aiohttp.WSServerHandshakeError as error:
+                return error.status
+    assert run(open_socket('https://evil.example')) == 403
+    assert run(open_socket(server.url.rstrip('/'))) == 'open'
+    connection = http.client.HTTPConnection(host, int(port), timeout=10)
+    connection.request('POST', '/api/echo/imu', body=b'{}', headers={'Origin': server.url.rstrip('/')})
+    assert connection.getresponse().status == 201
+    connection.close()
