@@ -77,6 +77,9 @@ def test_rqt_page_loads_and_draws_the_graph_as_it_changes(ros, page):
     page.click('button[data-tab="node-graph"]')
     page.wait_for_selector(drawn('/turtlesim'), timeout=10_000)
     assert page.evaluate('window.loadedOnce') is True
+    # Everything came from rqt itself: the page, its libraries (elkjs), the API. No CDN.
+    assert rqt.base + 'lib/elkjs/lib/elk.bundled.js' in page.requested
+    assert all(url.startswith((rqt.base, 'data:')) for url in page.requested), page.requested
 
 
 def test_rqt_image_view_shows_the_camera_at_its_rate(ros, page):

@@ -66,6 +66,8 @@ class BrowserPage:
     def __init__(self, page: Any) -> None:
         self.page = page
         self.console_errors: list[str] = []
+        self.requested: list[str] = []  # every URL the page loaded or fetched
+        page.on('request', lambda request: self.requested.append(request.url))
         page.on('console', lambda message: message.type == 'error' and self.console_errors.append(
             message.text + (f" ({message.location['url']})" if message.location.get('url') else '')))
         page.on('pageerror', lambda error: self.console_errors.append(f'uncaught: {error}'))
