@@ -23,4 +23,4 @@ bench: setup  # every benchmark in turn; each prints its numbers and ratio to it
 	@$(ENV) for script in $(BENCHMARKS); do echo "== $$script"; python "$$script"; done
 
 clean:
-	rm -rf build install log .venv .pytest_cache
+	rm -rf build install log .venv .pytest_cache web/node_modules

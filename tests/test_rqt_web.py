@@ -1,76 +1,25 @@
 """`rqt` (package rqt_web) over real DDS: the page, Node Graph, Message Publisher, Service Caller and
-Image View through the HTTP API the page uses, bad input, port handling and Ctrl-C."""
+Image View through the HTTP API and the WebSocket the page uses, bad input, port handling and Ctrl-C.
+(test_rqt_browser.py drives the page itself in Chromium.)"""
 
 import io
-import json
+import re
 import socket
 import time
-import urllib.error
-import urllib.request
 from typing import Any
 
 import numpy as np
+import pytest
 from geometry_msgs.msg import Twist
 from PIL import Image as PilImage
-from ros_harness import wait_for_messages, wait_until
+from ros_harness import wait_for_messages
 from sensor_msgs.msg import Image
 from std_srvs.srv import Trigger
 from turtlesim.msg import Pose
+from web_harness import Rqt, SocketClosed, http
 
-URL_LINE = r'^rqt: open (http://127\.0\.0\.1:\d+/)(#[a-z-]+)? in a browser \(Ctrl-C to quit\)$'
 PLUGINS = ('Node Graph', 'Message Publisher', 'Service Caller', 'Image View')
 CAMERA_TOPIC = '/olive/camera/eye/image/compressed'
-
-
-def free_port() -> int:
-    with socket.socket() as probe:
-        probe.bind(('127.0.0.1', 0))
-        return probe.getsockname()[1]
-
-
-def http(method: str, url: str, body: Any = None) -> tuple[int, dict[str, str], bytes]:
-    """(status, headers, body) of one request; a dict body goes as JSON, bytes as they are."""
-    data = body if isinstance(body, bytes) or body is None else json.dumps(body).encode()
-    request = urllib.request.Request(url, data=data, method=method)
-    if data is not None:
-        request.add_header('Content-Type', 'application/json')
-    try:
-        with urllib.request.urlopen(request, timeout=30) as response:
-            return response.status, dict(response.headers), response.read()
-    except urllib.error.HTTPError as error:
-        return error.code, dict(error.headers), error.read()
-
-
-class Rqt:
-    """A running `rqt --no-browser` and its JSON API."""
-
-    def __init__(self, ros: Any, *argv: str) -> None:
-        self.process = ros.command(argv or ['rqt', '--port', str(free_port()), '--no-browser'])
-        self.base, self.fragment = self.process.wait_for(URL_LINE, timeout=30)[0].groups()
-
-    def call(self, method: str, path: str, body: Any = None) -> tuple[int, Any]:
-        status, _, data = http(method, self.base + path.lstrip('/'), body)
-        return status, json.loads(data)
-
-    def ok(self, method: str, path: str, body: Any = None, status: int = 200) -> Any:
-        got, data = self.call(method, path, body)
-        assert got == status, data
-        return data
-
-    def refused(self, status: int, method: str, path: str, body: Any = None) -> str:
-        """The error line of a refused request; the server must still answer afterwards."""
-        got, data = self.call(method, path, body)
-        assert got == status, data
-        assert list(data) == ['error'] and '\n' not in data['error'] and data['error'], data
-        assert self.call('GET', '/api/topics')[0] == 200
-        return data['error']
-
-    def wait_for(self, condition: Any, what: str, timeout: float = 20.0) -> None:
-        wait_until(condition, timeout, what)
-
-    def stop_cleanly(self) -> None:
-        assert self.process.stop() == 0, self.process.output
-        assert 'Traceback' not in self.process.output
 
 
 def start_turtlesim_and_rqt(ros: Any) -> Rqt:
@@ -84,34 +33,77 @@ def topic_names(rqt: Rqt) -> set[str]:
     return {topic['name'] for topic in rqt.ok('GET', '/api/topics')}
 
 
+def edges_of(update: dict[str, Any]) -> set[tuple[str, str]]:
+    return {(edge['from'], edge['to']) for edge in update['data']['edges']}
+
+
 def test_page_node_graph_and_ctrl_c(ros):
     rqt = start_turtlesim_and_rqt(ros)
     status, headers, page = http('GET', rqt.base)
     assert status == 200 and headers['Content-Type'].startswith('text/html')
     assert all(name in page.decode() for name in PLUGINS)
-    for asset in ('static/app.js', 'static/style.css'):
-        assert http('GET', rqt.base + asset)[0] == 200
+    # the page's files, owl_web's socket and elkjs from web/node_modules: nothing from elsewhere
+    for asset in ('static/app.js', 'static/style.css', 'owl/socket.js', 'lib/elkjs/lib/elk.bundled.js'):
+        assert http('GET', rqt.base + asset)[0] == 200, asset
+    loaded = re.findall(r'(?:src|href)="([^"]*)"', page.decode())
+    assert '/lib/elkjs/lib/elk.bundled.js' in loaded
+    assert all(url.startswith(('/', 'data:')) and not url.startswith('//') for url in loaded), loaded
     assert http('GET', rqt.base + 'static/../setup.py')[0] == 404
+    assert http('GET', rqt.base + 'lib/elkjs/package.json')[0] == 404
     assert rqt.refused(404, 'GET', '/api/grph').startswith("no API path '/api/grph'; known: ")
-    assert rqt.refused(405, 'DELETE', '/api/graph') == 'DELETE is not allowed on /api/graph'
+    assert rqt.refused(405, 'DELETE', '/api/topics') == 'DELETE is not allowed on /api/topics'
 
-    ros.probe.node.create_publisher(Twist, '/turtle1/cmd_vel', 10)
-    expected = {('/owl_test_probe', '/turtle1/cmd_vel'), ('/turtle1/cmd_vel', '/turtlesim'),
-                ('/turtlesim', '/turtle1/pose')}
+    # The graph is pushed: once at subscribing, then at every change, without asking again.
+    with rqt.socket() as socket:
+        socket.subscribe('all', 'graph', hide_debug=True, hide_leaf_topics=False)
+        socket.subscribe('leafless', 'graph', hide_leaf_topics=True)
+        socket.subscribe('debug', 'graph', hide_debug=False)
+        first = socket.receive_matching(lambda m: m['id'] == 'all' and ('/turtlesim', '/turtle1/pose') in
+                                        edges_of(m), 'the graph with turtlesim')
+        assert first['data']['nodes'] == ['/turtlesim']  # not rqt's own node
+        ros.probe.node.create_publisher(Twist, '/turtle1/cmd_vel', 10)
+        expected = {('/owl_test_probe', '/turtle1/cmd_vel'), ('/turtle1/cmd_vel', '/turtlesim'),
+                    ('/turtlesim', '/turtle1/pose')}
+        graph = socket.receive_matching(lambda m: m['id'] == 'all' and expected <= edges_of(m),
+                                        'the probe publishing /turtle1/cmd_vel pushed')['data']
+        assert set(graph['nodes']) == {'/turtlesim', '/owl_test_probe'}
+        assert '/rosout' not in {t['name'] for t in graph['topics']}
+        assert {'name': '/turtle1/pose', 'types': ['turtlesim/msg/Pose']} in graph['topics']
+        def topics(message: dict[str, Any]) -> list[str]:
+            return [topic['name'] for topic in message['data']['topics']]
+        socket.receive_matching(lambda m: m['id'] == 'leafless' and topics(m) == ['/turtle1/cmd_vel'],
+                                'the graph without leaf topics')
+        socket.receive_matching(lambda m: m['id'] == 'debug' and ('/turtlesim', '/rosout') in edges_of(m),
+                                'the graph with /rosout')
 
-    def edges() -> set[tuple[str, str]]:
-        return {(edge['from'], edge['to']) for edge in rqt.ok('GET', '/api/graph')['edges']}
-    rqt.wait_for(lambda: expected <= edges(), 'the probe publishing /turtle1/cmd_vel in the graph')
-    graph = rqt.ok('GET', '/api/graph')
-    assert set(graph['nodes']) == {'/turtlesim', '/owl_test_probe'}  # not rqt's own node
-    assert {box['id'] for box in graph['boxes']} == {*graph['nodes'], *(t['name'] for t in graph['topics'])}
-    assert '/rosout' not in {t['name'] for t in graph['topics']}
-    layer = {box['id']: box['layer'] for box in graph['boxes']}
-    assert layer['/owl_test_probe'] < layer['/turtle1/cmd_vel'] < layer['/turtlesim'] < layer['/turtle1/pose']
-    everything = rqt.ok('GET', '/api/graph?hide_debug=0')
-    assert {'from': '/turtlesim', 'to': '/rosout'} in everything['edges']
-    leafless = rqt.ok('GET', '/api/graph?hide_leaf_topics=1')
-    assert [t['name'] for t in leafless['topics']] == ['/turtle1/cmd_vel']
+        # bad subscriptions: one line each, the connection and the server live on
+        bad = [({'type': 'subscribe', 'id': 'x', 'channel': 'grahp'},
+                'unknown channel "grahp" (did you mean \'graph\'?); known: graph, image'),
+               ({'type': 'subscribe', 'id': 'y', 'channel': 'graph', 'hide_debugs': False},
+                "unknown key 'hide_debugs' (did you mean 'hide_debug'?); "
+                'expected: hide_debug, hide_leaf_topics'),
+               ('{"type": "subscribe", "id": ',
+                'malformed JSON in the message: Expecting value (line 1, column 29)')]
+        for message, error in bad:
+            socket.send(message)
+            assert socket.receive_matching(lambda m: m['type'] == 'error', error)['error'] == error
+        socket.send({'type': 'subscribe', 'id': 'big', 'channel': 'graph', 'pad': 'x' * 100_000})
+        assert socket.receive_matching(lambda m: m['type'] == 'error', 'the size error')['error'] == \
+            'message of 100065 bytes is over the limit of 65536'
+        socket.send({'type': 'unsubscribe', 'id': 'all'})
+    with rqt.socket() as socket:  # a message too big to read at all ends its connection, only that one
+        socket.send('x' * (2 << 20))
+        with pytest.raises(SocketClosed) as closed:
+            socket.receive_matching(lambda m: False, 'the connection to close')
+        # The server closes with the protocol's "message too big" (1009); with the rest of the message
+        # still unread, the kernel may reset the connection before the client reads that (1006).
+        assert closed.value.code in (1009, 1006)
+    with rqt.socket() as socket:
+        socket.subscribe('again', 'graph')
+        socket.receive_matching(lambda m: m['id'] == 'again' and m['type'] == 'update', 'the graph again')
+    assert rqt.refused(413, 'POST', '/api/publishers', b'{"topic": "' + b'x' * (2 << 20) + b'"}') == \
+        'request body of 2097165 bytes is over the limit of 1048576'
+    assert rqt.call('GET', '/api/topics')[0] == 200
     rqt.stop_cleanly()
 
 
@@ -239,44 +231,51 @@ def test_image_view_shows_the_camera_and_raw_images(ros):
     rqt = Rqt(ros)
     rqt.wait_for(lambda: CAMERA_TOPIC in {t['name'] for t in rqt.ok('GET', '/api/image_topics')},
                  'the camera topic', timeout=30)
-    status, headers, jpeg = http('GET', rqt.base + f'api/image?topic={CAMERA_TOPIC}')
-    assert status == 200 and headers['Content-Type'] == 'image/jpeg', jpeg[:200]
-    assert PilImage.open(io.BytesIO(jpeg)).size == (640, 480)
-    frame = int(headers['X-Frame'])
-    status, headers, _ = http('GET', rqt.base + f'api/image?topic={CAMERA_TOPIC}&after={frame}')
-    assert status == 200 and int(headers['X-Frame']) > frame
+    with rqt.socket() as socket:
+        socket.subscribe('camera', 'image', topic=CAMERA_TOPIC)
+        frame = socket.receive_matching(lambda m: 'payload' in m, 'a camera frame')
+        assert frame['id'] == 'camera' and frame['data']['content_type'] == 'image/jpeg', frame['data']
+        assert PilImage.open(io.BytesIO(frame['payload'])).size == (640, 480)
+        later = socket.receive_matching(lambda m: 'payload' in m, 'the next camera frame')
+        assert later['data']['frame'] > frame['data']['frame']  # pushed as they come, no asking
+        socket.send({'type': 'unsubscribe', 'id': 'camera'})
 
-    pixels = np.zeros((6, 8, 3), dtype=np.uint8)
-    pixels[:, :, 0] = np.arange(8) * 30
-    pixels[:, :, 1] = np.arange(6)[:, None] * 40
-    sources = (('/rqt_test/rgb', 'rgb8', pixels), ('/rqt_test/bgr', 'bgr8', pixels[..., ::-1]),
-               ('/rqt_test/mono', 'mono8', pixels[..., 0]), ('/rqt_test/yuv', 'yuv422', pixels[..., :2]))
-    for topic, encoding, data in sources:
-        publisher = ros.probe.node.create_publisher(Image, topic, 10)
-        message = raw_image(encoding, np.ascontiguousarray(data))
-        ros.probe.node.create_timer(0.1, lambda p=publisher, m=message: p.publish(m))
-    rqt.wait_for(lambda: {'/rqt_test/rgb', '/rqt_test/bgr', '/rqt_test/mono'} <=
-                 {t['name'] for t in rqt.ok('GET', '/api/image_topics')}, 'the raw image topics')
-    for topic, expected in (('/rqt_test/rgb', pixels), ('/rqt_test/bgr', pixels),
-                            ('/rqt_test/mono', pixels[..., 0])):
-        status, headers, png = http('GET', rqt.base + f'api/image?topic={topic}')
-        assert status == 200 and headers['Content-Type'] == 'image/png', png[:200]
-        assert np.array_equal(np.asarray(PilImage.open(io.BytesIO(png))), expected)
+        pixels = np.zeros((6, 8, 3), dtype=np.uint8)
+        pixels[:, :, 0] = np.arange(8) * 30
+        pixels[:, :, 1] = np.arange(6)[:, None] * 40
+        sources = (('/rqt_test/rgb', 'rgb8', pixels), ('/rqt_test/bgr', 'bgr8', pixels[..., ::-1]),
+                   ('/rqt_test/mono', 'mono8', pixels[..., 0]), ('/rqt_test/yuv', 'yuv422', pixels[..., :2]))
+        for topic, encoding, data in sources:
+            publisher = ros.probe.node.create_publisher(Image, topic, 10)
+            message = raw_image(encoding, np.ascontiguousarray(data))
+            ros.probe.node.create_timer(0.1, lambda p=publisher, m=message: p.publish(m))
+        rqt.wait_for(lambda: {'/rqt_test/rgb', '/rqt_test/bgr', '/rqt_test/mono', '/rqt_test/yuv'} <=
+                     {t['name'] for t in rqt.ok('GET', '/api/image_topics')}, 'the raw image topics')
+        for topic, expected in (('/rqt_test/rgb', pixels), ('/rqt_test/bgr', pixels),
+                                ('/rqt_test/mono', pixels[..., 0])):
+            socket.subscribe(topic, 'image', topic=topic)
+            frame = socket.receive_matching(lambda m, t=topic: m['id'] == t, f'a frame of {topic}')
+            assert frame['data']['content_type'] == 'image/png', frame
+            assert np.array_equal(np.asarray(PilImage.open(io.BytesIO(frame['payload']))), expected)
 
-    assert rqt.refused(404, 'GET', '/api/image?topic=/olive/camera/eye/image/compresed') == \
-        f"unknown topic '/olive/camera/eye/image/compresed' (did you mean '{CAMERA_TOPIC}'?)"
-    assert rqt.refused(400, 'GET', '/api/image?topic=/olive/camera/eye/temperature') == \
-        "topic '/olive/camera/eye/temperature' has type sensor_msgs/msg/Temperature; Image View shows " \
-        'sensor_msgs/msg/Image and sensor_msgs/msg/CompressedImage'
-    assert rqt.refused(502, 'GET', '/api/image?topic=/rqt_test/yuv').startswith(
-        "cannot show the image on '/rqt_test/yuv': unsupported image encoding 'yuv422'")
-    assert rqt.refused(400, 'GET', f'/api/image?topic={CAMERA_TOPIC}&after=x') == \
-        "'after' must be a frame number, got 'x'"
-    ros.probe.node.create_publisher(Image, '/rqt_test/silent', 10)
-    rqt.wait_for(lambda: '/rqt_test/silent' in {t['name'] for t in rqt.ok('GET', '/api/image_topics')},
-                 'the silent image topic')
-    assert rqt.refused(504, 'GET', '/api/image?topic=/rqt_test/silent') == \
-        "no image on '/rqt_test/silent' within 5 s"
+        def error_of(subscription_id: str, **params: Any) -> str:
+            socket.subscribe(subscription_id, 'image', **params)
+            return socket.receive_matching(lambda m: m['id'] == subscription_id and m['type'] == 'error',
+                                           f'the error of {subscription_id}')['error']
+        assert error_of('typo', topic='/olive/camera/eye/image/compresed') == \
+            f"unknown topic '/olive/camera/eye/image/compresed' (did you mean '{CAMERA_TOPIC}'?)"
+        assert error_of('temperature', topic='/olive/camera/eye/temperature') == \
+            "topic '/olive/camera/eye/temperature' has type sensor_msgs/msg/Temperature; Image View shows " \
+            'sensor_msgs/msg/Image and sensor_msgs/msg/CompressedImage'
+        assert error_of('yuv', topic='/rqt_test/yuv').startswith(
+            "cannot show the image on '/rqt_test/yuv': unsupported image encoding 'yuv422'")
+        assert error_of('no topic') == "missing key 'topic'"
+        assert error_of('number', topic=5) == 'topic must be a non-empty string, got 5'
+        assert error_of('extra', topic=CAMERA_TOPIC, rate=5) == "unknown key 'rate'; expected: topic"
+        ros.probe.node.create_publisher(Image, '/rqt_test/silent', 10)
+        rqt.wait_for(lambda: '/rqt_test/silent' in {t['name'] for t in rqt.ok('GET', '/api/image_topics')},
+                     'the silent image topic')
+        assert error_of('silent', topic='/rqt_test/silent') == "no image on '/rqt_test/silent' within 5 s"
     rqt.stop_cleanly()
 
 

@@ -1,49 +1,15 @@
-"""Checks of what the page (or any HTTP client) sends, each failing with one clear line (node-free)."""
+"""Checks of what the page (or any HTTP or WebSocket client) sends, each failing with one clear line
+(node-free). The generic ones (JSON objects, keys, booleans) are owl_web.codec's."""
 
 import json
 import math
 from typing import Any
 
+from owl_web.codec import ApiError
 from ros2cli.names import did_you_mean, expand_topic_name
 
 MAX_RATE = 1000.0  # Hz
 MAX_TIMEOUT = 300.0  # s
-
-
-class ApiError(Exception):
-    """A request the API refuses: HTTP status and a one-line message for the page."""
-
-    def __init__(self, status: int, message: str) -> None:
-        super().__init__(message)
-        self.status = status
-        self.message = message
-
-
-def parse_json_object(body: bytes) -> dict[str, Any]:
-    """The request body as a JSON object (an empty body is {})."""
-    if not body.strip():
-        return {}
-    try:
-        value = json.loads(body)
-    except UnicodeDecodeError:
-        raise ApiError(400, 'malformed JSON in the request body: not UTF-8 text') from None
-    except json.JSONDecodeError as error:
-        raise ApiError(400, f'malformed JSON in the request body: {error.msg} '
-                            f'(line {error.lineno}, column {error.colno})') from None
-    if not isinstance(value, dict):
-        raise ApiError(400, f'the request body must be a JSON object, got {type(value).__name__}')
-    return value
-
-
-def check_keys(body: dict[str, Any], allowed: tuple[str, ...], required: tuple[str, ...] = ()) -> None:
-    """Unknown keys (with the closest allowed one) and missing required keys are errors."""
-    for key in body:
-        if key not in allowed:
-            raise ApiError(400, f"unknown key '{key}'{did_you_mean(key, allowed)}; "
-                                f"expected: {', '.join(allowed)}")
-    for key in required:
-        if key not in body:
-            raise ApiError(400, f"missing key '{key}'")
 
 
 def positive_number(value: Any, what: str, maximum: float, unit: str) -> float:
@@ -66,12 +32,6 @@ def rate(value: Any) -> float:
 
 def timeout(value: Any) -> float:
     return positive_number(value, 'timeout', MAX_TIMEOUT, 's')
-
-
-def boolean(value: Any, what: str) -> bool:
-    if not isinstance(value, bool):
-        raise ApiError(400, f'{what} must be true or false, got {json.dumps(value)}')
-    return value
 
 
 def name(value: Any, what: str) -> str:
@@ -117,3 +77,10 @@ def identifier(text: str) -> int:
     if not text.isdigit():
         raise ApiError(404, f"no publisher '{text}'")
     return int(text)
+
+
+def query_text(query: dict[str, str], key: str) -> str:
+    """A required query parameter (?type=...)."""
+    if not query.get(key):
+        raise ApiError(400, f"missing query parameter '{key}'")
+    return query[key]

@@ -1,8 +1,8 @@
 """The forms of Message Publisher and Service Caller: a message type's fields with defaults (node-free)."""
 
-import math
 from typing import Any
 
+from owl_web.codec import json_safe
 from ros2cli.message_yaml import fields_of, is_message, message_to_plain
 from rosidl_parser.definition import AbstractNestedType, NamespacedType
 
@@ -27,19 +27,3 @@ def field_template(message: Any) -> list[dict[str, Any]]:
                 entry['sequence'] = True
         template.append(entry)
     return template
-
-
-def json_safe(value: Any) -> Any:
-    """Plain data JSON can carry: NaN and infinities become the strings 'nan', 'inf', '-inf'."""
-    if isinstance(value, float) and not math.isfinite(value):
-        return str(value)
-    if isinstance(value, dict):
-        return {key: json_safe(item) for key, item in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [json_safe(item) for item in value]
-    return value
-
-
-def message_fields(message: Any) -> dict[str, Any]:
-    """A message's values as JSON-safe nested dicts/lists in declaration order."""
-    return json_safe(message_to_plain(message))

@@ -5,14 +5,16 @@ import os
 import sys
 import threading
 import webbrowser
+from pathlib import Path
 
 from owl_common.run import spin_node
+from owl_web.server import WebServer
 from rclpy.utilities import remove_ros_args
 
-from rqt_web.http_api import ApiServer
 from rqt_web.node import RqtWebNode
 
 DEFAULT_PORT = 8090
+STATIC_DIR = Path(__file__).parent / 'static'
 # upstream plugin name -> the page's tab (rqt -s rqt_graph opens the Node Graph)
 PLUGINS = {'rqt_graph': 'node-graph', 'rqt_publisher': 'message-publisher',
            'rqt_service_caller': 'service-caller', 'rqt_image_view': 'image-view'}
@@ -54,11 +56,14 @@ def main(argv: list[str] | None = None) -> None:
     argv = sys.argv if argv is None else argv
     args = parse_arguments(remove_ros_args(argv)[1:])
     try:
-        server = ApiServer(args.port)
+        server = WebServer('rqt', STATIC_DIR, args.port)
     except OSError as error:
         print(f'rqt: cannot serve on 127.0.0.1:{args.port}: {error.strerror or error} '
               '(is another rqt running? choose a port with --port N)', file=sys.stderr)
         sys.exit(1)
+    missing = server.missing_libraries()
+    if missing:
+        print(f'rqt: {missing}', file=sys.stderr)
     url = server.url + (f'#{PLUGINS[args.standalone]}' if args.standalone else '')
 
     def start() -> RqtWebNode:
@@ -71,7 +76,7 @@ def main(argv: list[str] | None = None) -> None:
     try:
         spin_node(start, argv)
     finally:
-        server.server_close()
+        server.stop()
 
 
 if __name__ == '__main__':

@@ -1,6 +1,7 @@
-"""The rqt node: answers the page's requests from the ROS graph, publishes, calls, subscribes.
+"""The rqt node: answers the page's requests from the ROS graph, publishes, calls, subscribes,
+and pushes the graph and image frames to the page over its WebSocket (owl_web).
 
-Its methods are called from the HTTP server's threads while rclpy spins the node in the main
+Its methods are called from the web server's threads while rclpy spins the node in the main
 thread; they take plain data (parsed JSON) and return plain data, raising ApiError for bad input.
 """
 
@@ -10,27 +11,27 @@ import time
 from dataclasses import dataclass, field
 from typing import Any
 
+from owl_web.codec import ApiError, boolean, check_keys, message_fields
+from owl_web.graph import GraphChannel
+from owl_web.server import Request, Subscription, WebServer
 from rclpy.exceptions import InvalidServiceNameException, InvalidTopicNameException
 from rclpy.node import Node
 from rclpy.qos import qos_profile_sensor_data
 from ros2cli.interfaces import InvalidType, canonical_type, import_type, interface_index, type_name_of
 from ros2cli.message_yaml import FieldError, fill_message
-from ros2cli.names import full_node_name, is_hidden_name
+from ros2cli.names import is_hidden_name
 from ros2cli.node.graph import GraphQueries
 
 from rqt_web import api_input
-from rqt_web.api_input import ApiError
-from rqt_web.graph_model import build_model, layout
 from rqt_web.images import ImageError, compressed_for_browser, raw_to_png
-from rqt_web.interface_template import field_template, message_fields
+from rqt_web.interface_template import field_template
 
 IMAGE_TYPES = ('sensor_msgs/msg/Image', 'sensor_msgs/msg/CompressedImage')
 PUBLISHER_KEYS = ('topic', 'type', 'rate', 'fields', 'enabled')
 CALL_KEYS = ('service', 'type', 'request', 'timeout')
+IMAGE_KEYS = ('topic',)
 DEFAULT_CALL_TIMEOUT = 10.0  # s
-FIRST_FRAME_TIMEOUT = 5.0  # s
-NEXT_FRAME_TIMEOUT = 2.0  # s
-FEED_IDLE_TIME = 10.0  # s without a request before an image subscription is dropped
+FIRST_FRAME_TIMEOUT = 5.0  # s before the page hears that no frame came yet
 
 
 @dataclass
@@ -57,22 +58,16 @@ class MessagePublisher:
 
 @dataclass
 class ImageFeed:
-    """The latest frame of an image topic, for Image View."""
+    """One image topic's subscription and the pages watching it (Image View)."""
 
     topic: str
     type_name: str
     subscription: Any = None
-    latest: Any = None
-    sequence: int = 0
-    last_request: float = field(default_factory=time.monotonic)
-    converted: tuple[int, str, bytes] | None = None  # (sequence, content type, bytes)
-    changed: threading.Condition = field(default_factory=threading.Condition)
-
-    def receive(self, message: Any) -> None:
-        with self.changed:
-            self.latest = message
-            self.sequence += 1
-            self.changed.notify_all()
+    watchers: set[Subscription] = field(default_factory=set)
+    frames: int = 0
+    started: float = field(default_factory=time.monotonic)
+    latest: tuple[dict[str, Any], bytes] | None = None  # (frame header, image bytes)
+    error: str | None = None  # what the watchers were last told instead of a frame
 
 
 def _message_type(type_name: str, kind: str) -> Any:
@@ -92,7 +87,7 @@ def _filled(message: Any, values: Any, stamps: list[Any] | None = None) -> Any:
 class RqtWebNode(Node):
     """The backend of the page: one node for all four plugins."""
 
-    def __init__(self, server: Any) -> None:
+    def __init__(self, server: WebServer) -> None:
         super().__init__(f'rqt_gui_py_node_{os.getpid()}')
         self._graph_queries = GraphQueries(self)
         self._state_lock = threading.Lock()
@@ -100,16 +95,41 @@ class RqtWebNode(Node):
         self._next_publisher_id = 1
         self._service_clients: dict[tuple[str, Any], Any] = {}
         self._image_feeds: dict[str, ImageFeed] = {}
-        self._feed_reaper = self.create_timer(FEED_IDLE_TIME / 2, self._drop_idle_feeds)
+        self._silence_check = self.create_timer(1.0, self._report_silent_feeds)
         self._server = server
-        server.backend = self
-        self._server_thread = threading.Thread(target=server.serve_forever, kwargs={'poll_interval': 0.2},
-                                               name='rqt_web http', daemon=True)
-        self._server_thread.start()
+        self._add_routes(server)
+        GraphChannel(self, server)
+        server.channel('image', self.watch_images, self.stop_watching_images)
+        server.start()
+
+    def _add_routes(self, server: WebServer) -> None:
+        def names(entries: dict[str, list[str]]) -> list[dict[str, Any]]:
+            return [{'name': name, 'types': types} for name, types in sorted(entries.items())]
+
+        def change_publisher(request: Request) -> dict[str, Any]:
+            return self.update_message_publisher(api_input.identifier(request.params['id']), request.json())
+
+        def remove_publisher(request: Request) -> dict[str, Any]:
+            publisher_id = api_input.identifier(request.params['id'])
+            self.remove_message_publisher(publisher_id)
+            return {'deleted': publisher_id}
+
+        server.route('GET', '/api/topics', lambda request: names(self.topic_types()))
+        server.route('GET', '/api/image_topics', lambda request: names(self.image_topic_types()))
+        server.route('GET', '/api/services', lambda request: names(self.service_types()))
+        server.route('GET', '/api/interface',
+                     lambda request: self.interface(api_input.query_text(request.query, 'type')))
+        server.route('GET', '/api/interfaces',
+                     lambda request: self.interface_names(api_input.query_text(request.query, 'kind')))
+        server.route('GET', '/api/publishers', lambda request: self.message_publishers())
+        server.route('POST', '/api/publishers',
+                     lambda request: (201, self.add_message_publisher(request.json())))
+        server.route('PATCH', '/api/publishers/{id}', change_publisher)
+        server.route('DELETE', '/api/publishers/{id}', remove_publisher)
+        server.route('POST', '/api/call', lambda request: self.call_service(request.json()))
 
     def destroy_node(self) -> None:
-        self._server.shutdown()
-        self._server.server_close()
+        self._server.stop()
         super().destroy_node()
 
     # ---- graph -------------------------------------------------------------------------------
@@ -121,21 +141,6 @@ class RqtWebNode(Node):
     def service_types(self) -> dict[str, list[str]]:
         return {name: types for name, types in self._graph_queries.service_names_and_types()
                 if not is_hidden_name(name)}
-
-    def graph(self, hide_debug: bool, hide_leaf_topics: bool) -> dict[str, Any]:
-        """Node Graph of every node but this one."""
-        own_name = self.get_fully_qualified_name()
-        endpoints = {}
-        for name, namespace in self._graph_queries.node_names_and_namespaces():
-            full_name = full_node_name(namespace, name)
-            if full_name == own_name:
-                continue
-            try:
-                endpoints[full_name] = (self._graph_queries.publishers_by_node(name, namespace),
-                                        self._graph_queries.subscribers_by_node(name, namespace))
-            except RuntimeError:  # the node left between the two questions
-                continue
-        return layout(build_model(endpoints, hide_debug, hide_leaf_topics))
 
     @staticmethod
     def interface_names(kind: str) -> list[str]:
@@ -172,10 +177,10 @@ class RqtWebNode(Node):
             return [entry.as_dict() for entry in self._message_publishers.values()]
 
     def add_message_publisher(self, body: dict[str, Any]) -> dict[str, Any]:
-        api_input.check_keys(body, PUBLISHER_KEYS, required=('topic',))
+        check_keys(body, PUBLISHER_KEYS, required=('topic',))
         topic = api_input.name(body['topic'], 'topic')
         rate = api_input.rate(body.get('rate', 1.0))
-        enabled = api_input.boolean(body.get('enabled', False), 'enabled')
+        enabled = boolean(body.get('enabled', False), 'enabled')
         values = api_input.fields(body.get('fields'), 'fields')
         given_type = api_input.optional_text(body.get('type'), 'type')
         topics = self.topic_types()
@@ -202,10 +207,10 @@ class RqtWebNode(Node):
 
     def update_message_publisher(self, publisher_id: int, body: dict[str, Any]) -> dict[str, Any]:
         """Change rate, fields (replacing the previous values) or enabled."""
-        api_input.check_keys(body, ('rate', 'fields', 'enabled'))
+        check_keys(body, ('rate', 'fields', 'enabled'))
         entry = self._message_publisher(publisher_id)
         rate = api_input.rate(body['rate']) if 'rate' in body else entry.rate
-        enabled = api_input.boolean(body['enabled'], 'enabled') if 'enabled' in body else entry.enabled
+        enabled = boolean(body['enabled'], 'enabled') if 'enabled' in body else entry.enabled
         stamps: list[Any] = []
         if 'fields' in body:
             values = api_input.fields(body['fields'], 'fields')
@@ -258,7 +263,7 @@ class RqtWebNode(Node):
     # ---- Service Caller ------------------------------------------------------------------------
 
     def call_service(self, body: dict[str, Any]) -> dict[str, Any]:
-        api_input.check_keys(body, CALL_KEYS, required=('service',))
+        check_keys(body, CALL_KEYS, required=('service',))
         service = api_input.name(body['service'], 'service')
         timeout = api_input.timeout(body.get('timeout', DEFAULT_CALL_TIMEOUT))
         values = api_input.fields(body.get('request'), 'request')
@@ -303,32 +308,28 @@ class RqtWebNode(Node):
         return {name: types for name, types in self.topic_types().items()
                 if any(t in IMAGE_TYPES for t in types)}
 
-    def latest_image(self, topic: str, after: int) -> tuple[int, str, bytes]:
-        """(frame number, content type, bytes) of the newest frame; with after, of a newer one
-        if it comes within a moment. Subscribes on the first request for a topic."""
-        feed = self._image_feed(topic)
-        with feed.changed:
-            feed.last_request = time.monotonic()
-            wait = FIRST_FRAME_TIMEOUT if feed.sequence == 0 else NEXT_FRAME_TIMEOUT
-            feed.changed.wait_for(lambda: feed.sequence > max(after, 0), wait)
-            if feed.sequence == 0:
-                raise ApiError(504, f"no image on '{topic}' within {FIRST_FRAME_TIMEOUT:g} s")
-            sequence, message, converted = feed.sequence, feed.latest, feed.converted
-        if converted is not None and converted[0] == sequence:
-            return converted
-        try:
-            if feed.type_name == 'sensor_msgs/msg/CompressedImage':
-                content_type, data = compressed_for_browser(message.format, bytes(message.data))
-            else:
-                content_type, data = 'image/png', raw_to_png(
-                    message.width, message.height, message.encoding, message.step,
-                    bool(message.is_bigendian), bytes(message.data))
-        except ImageError as error:
-            raise ApiError(502, f"cannot show the image on '{topic}': {error}") from None
-        feed.converted = (sequence, content_type, data)
-        return feed.converted
+    def watch_images(self, watcher: Subscription) -> None:
+        """Push every frame of an image topic to a page ({"channel": "image", "topic": ...})."""
+        check_keys(watcher.params, IMAGE_KEYS, required=IMAGE_KEYS)
+        feed = self._image_feed(watcher.params['topic'])
+        with self._state_lock:
+            feed.watchers.add(watcher)
+            latest, error = feed.latest, feed.error
+        if latest is not None:
+            watcher.send_binary(*latest)
+        elif error is not None:
+            watcher.error(error)
 
-    def _image_feed(self, wanted: str) -> ImageFeed:
+    def stop_watching_images(self, watcher: Subscription) -> None:
+        """The page unsubscribed or left; the last one out drops the topic's subscription."""
+        with self._state_lock:
+            for topic, feed in list(self._image_feeds.items()):
+                feed.watchers.discard(watcher)
+                if not feed.watchers:
+                    self.destroy_subscription(feed.subscription)
+                    del self._image_feeds[topic]
+
+    def _image_feed(self, wanted: Any) -> ImageFeed:
         topic = api_input.name(wanted, 'topic')
         with self._state_lock:
             if topic in self._image_feeds:
@@ -343,14 +344,46 @@ class RqtWebNode(Node):
                 feed = ImageFeed(topic, image_type)
                 # Best effort matches reliable and best-effort publishers (the camera is best effort).
                 feed.subscription = self.create_subscription(
-                    import_type(image_type, 'msg'), topic, feed.receive, qos_profile_sensor_data)
+                    import_type(image_type, 'msg'), topic, lambda message: self._show_frame(feed, message),
+                    qos_profile_sensor_data)
                 self._image_feeds[topic] = feed
             return self._image_feeds[topic]
 
-    def _drop_idle_feeds(self) -> None:
+    def _show_frame(self, feed: ImageFeed, message: Any) -> None:
+        """A frame arrived: push it to the watchers as the browser shows it (JPEG/PNG bytes)."""
+        with self._state_lock:
+            watchers = list(feed.watchers)
+            feed.frames += 1
+        try:
+            if feed.type_name == 'sensor_msgs/msg/CompressedImage':
+                content_type, data = compressed_for_browser(message.format, bytes(message.data))
+            else:
+                content_type, data = 'image/png', raw_to_png(
+                    message.width, message.height, message.encoding, message.step,
+                    bool(message.is_bigendian), bytes(message.data))
+        except ImageError as error:
+            self._tell_watchers(feed, f"cannot show the image on '{feed.topic}': {error}")
+            return
+        header = {'topic': feed.topic, 'frame': feed.frames, 'content_type': content_type}
+        with self._state_lock:
+            feed.latest, feed.error = (header, data), None
+        for watcher in watchers:
+            watcher.send_binary(header, data)
+
+    def _tell_watchers(self, feed: ImageFeed, error: str) -> None:
+        """An error line instead of frames, once (not at every frame)."""
+        with self._state_lock:
+            if error == feed.error:
+                return
+            feed.error = error
+            watchers = list(feed.watchers)
+        for watcher in watchers:
+            watcher.error(error)
+
+    def _report_silent_feeds(self) -> None:
         now = time.monotonic()
         with self._state_lock:
-            for topic, feed in list(self._image_feeds.items()):
-                if now - feed.last_request > FEED_IDLE_TIME:
-                    self.destroy_subscription(feed.subscription)
-                    del self._image_feeds[topic]
+            silent = [feed for feed in self._image_feeds.values()
+                      if feed.frames == 0 and feed.error is None and now - feed.started > FIRST_FRAME_TIMEOUT]
+        for feed in silent:
+            self._tell_watchers(feed, f"no image on '{feed.topic}' within {FIRST_FRAME_TIMEOUT:g} s")

@@ -1,8 +1,17 @@
-'use strict';
-// The page of rqt_web: four plugins over the JSON API of the rqt node (see the package README).
+// The page of rqt_web: four plugins over the JSON API of the rqt node (see the package README);
+// the graph and image frames come pushed over the page's WebSocket (owl_web's OwlSocket), and the
+// graph is laid out here with elkjs (loaded by index.html as the global ELK).
+import { OwlSocket } from '/owl/socket.js';
 
 const $ = (id) => document.getElementById(id);
 const SVG = 'http://www.w3.org/2000/svg';
+
+const socket = new OwlSocket((connected, detail) => {
+  $('connection').textContent = connected ? '' : 'not connected';
+  $('connection').title = detail;
+  if (detail) showError('page-error', detail);
+  else if (connected) showError('page-error');
+});
 
 async function api(method, path, body) {
   const options = { method, headers: {} };
@@ -39,7 +48,8 @@ function fillDatalist(id, values) {
 
 // ---- tabs ----------------------------------------------------------------------------------
 
-const tabs = {};
+const tabs = {};  // name -> {enter, leave}: what a plugin does when its tab is shown or hidden
+let activeTab = null;
 
 function selectTab(name) {
   if (!document.getElementById(name)) name = 'node-graph';
@@ -50,7 +60,9 @@ function selectTab(name) {
     section.classList.toggle('active', section.id === name);
   }
   if (location.hash !== '#' + name) history.replaceState(null, '', '#' + name);
-  if (tabs[name]) tabs[name]();
+  if (activeTab && activeTab !== name && tabs[activeTab]?.leave) tabs[activeTab].leave();
+  activeTab = name;
+  if (tabs[name]?.enter) tabs[name].enter();
 }
 
 for (const button of document.querySelectorAll('#tabs button')) {
@@ -132,6 +144,22 @@ function formValues(container) {
 
 // ---- Node Graph -----------------------------------------------------------------------------
 
+const elk = new ELK();
+const BOX_PADDING = 24;  // px around a topic's label
+const ELLIPSE_PADDING = 44;  // px around a node's label: an ellipse is narrower at the label's ends
+const BOX_HEIGHT = 30;
+const LAYOUT = {
+  'elk.algorithm': 'layered',
+  'elk.direction': 'RIGHT',  // publishers left of their topics, subscribers right, as rqt_graph
+  'elk.edgeRouting': 'SPLINES',
+  'elk.spacing.nodeNode': '16',
+  'elk.layered.spacing.nodeNodeBetweenLayers': '48',
+  'elk.padding': '[top=16,left=16,bottom=16,right=16]',
+};
+const measure = document.createElement('canvas').getContext('2d');
+let graphSubscription = null;
+let graphDrawing = Promise.resolve();
+
 function svg(tag, attributes = {}, text) {
   const node = document.createElementNS(SVG, tag);
   for (const [key, value] of Object.entries(attributes)) node.setAttribute(key, value);
@@ -139,33 +167,55 @@ function svg(tag, attributes = {}, text) {
   return node;
 }
 
-function drawGraph(graph) {
+// Label widths come from the font the page draws with, measured here (no guessed metrics).
+function boxWidth(label, padding) {
+  measure.font = getComputedStyle($('graph-svg')).getPropertyValue('--label-font').trim();
+  return Math.ceil(measure.measureText(label).width) + padding;
+}
+
+// A section of an ELK edge as an SVG path: its points are cubic Bezier control points with
+// spline routing (1 + 3n of them), else the corners of a polyline.
+function edgePath(section) {
+  const points = [section.startPoint, ...(section.bendPoints || []), section.endPoint];
+  const xy = (point) => `${point.x} ${point.y}`;
+  if ((points.length - 1) % 3 === 0) {
+    let d = `M ${xy(points[0])}`;
+    for (let i = 1; i < points.length; i += 3) d += ` C ${xy(points[i])}, ${xy(points[i + 1])}, ${xy(points[i + 2])}`;
+    return d;
+  }
+  return `M ${points.map(xy).join(' L ')}`;
+}
+
+async function drawGraph(graph) {
+  const topics = Object.fromEntries(graph.topics.map((topic) => [topic.name, topic.types]));
+  const boxes = [...graph.nodes, ...graph.topics.map((topic) => topic.name)];
+  const laid = await elk.layout({
+    id: 'root',
+    layoutOptions: LAYOUT,
+    children: boxes.map((id) => ({
+      id, width: boxWidth(id, id in topics ? BOX_PADDING : ELLIPSE_PADDING), height: BOX_HEIGHT })),
+    edges: graph.edges.map((edge, index) => ({ id: `e${index}`, sources: [edge.from], targets: [edge.to] })),
+  });
   const canvas = $('graph-svg');
-  canvas.setAttribute('width', Math.max(graph.width, 200));
-  canvas.setAttribute('height', Math.max(graph.height, 100));
+  canvas.setAttribute('width', Math.max(laid.width, 200));
+  canvas.setAttribute('height', Math.max(laid.height, 100));
   const marker = svg('marker', { id: 'arrow', viewBox: '0 0 10 10', refX: '10', refY: '5',
     markerWidth: '8', markerHeight: '8', orient: 'auto-start-reverse' });
   marker.append(svg('path', { d: 'M 0 0 L 10 5 L 0 10 z', fill: '#333' }));
   const defs = svg('defs');
   defs.append(marker);
   const items = [defs];
-  const boxes = Object.fromEntries(graph.boxes.map((box) => [box.id, box]));
-  for (const edge of graph.edges) {
-    const a = boxes[edge.from];
-    const b = boxes[edge.to];
-    const x1 = a.x + a.width;
-    const y1 = a.y + a.height / 2;
-    const x2 = b.x;
-    const y2 = b.y + b.height / 2;
-    const bend = Math.max(40, Math.abs(x2 - x1) / 2);
-    items.push(svg('path', { class: 'edge',
-      d: `M ${x1} ${y1} C ${x1 + bend} ${y1}, ${x2 - bend} ${y2}, ${x2} ${y2}` }));
+  for (const edge of laid.edges) {
+    for (const section of edge.sections || []) {
+      items.push(svg('path', { class: 'edge', d: edgePath(section),
+        'data-from': edge.sources[0], 'data-to': edge.targets[0] }));
+    }
   }
-  for (const box of graph.boxes) {
-    const group = svg('g');
-    const title = box.kind === 'topic' ? `${box.id} [${box.types.join(', ')}]` : box.id;
-    group.append(svg('title', {}, title));
-    if (box.kind === 'node') {
+  for (const box of laid.children) {
+    const kind = box.id in topics ? 'topic' : 'node';
+    const group = svg('g', { 'data-id': box.id, 'data-kind': kind });
+    group.append(svg('title', {}, kind === 'topic' ? `${box.id} [${topics[box.id].join(', ')}]` : box.id));
+    if (kind === 'node') {
       group.append(svg('ellipse', { class: 'node', cx: box.x + box.width / 2, cy: box.y + box.height / 2,
         rx: box.width / 2, ry: box.height / 2 }));
     } else {
@@ -175,26 +225,28 @@ function drawGraph(graph) {
     items.push(group);
   }
   canvas.replaceChildren(...items);
+  const count = (n, what) => `${n} ${what}${n === 1 ? '' : 's'}`;
+  $('graph-status').textContent = `${count(graph.nodes.length, 'node')}, ${count(graph.topics.length, 'topic')}`;
 }
 
-async function refreshGraph() {
-  try {
-    const hideDebug = $('graph-hide-debug').checked ? 1 : 0;
-    const hideLeaf = $('graph-hide-leaf').checked ? 1 : 0;
-    drawGraph(await api('GET', `/api/graph?hide_debug=${hideDebug}&hide_leaf_topics=${hideLeaf}`));
-    showError('graph-error');
-  } catch (error) {
-    showError('graph-error', error);
-  }
+function watchGraph() {
+  if (graphSubscription !== null) socket.unsubscribe(graphSubscription);
+  const options = { hide_debug: $('graph-hide-debug').checked, hide_leaf_topics: $('graph-hide-leaf').checked };
+  graphSubscription = socket.subscribe('graph', options, (graph) => {
+    // One layout at a time, in the order the updates came.
+    graphDrawing = graphDrawing.then(() => drawGraph(graph)).then(() => showError('graph-error'),
+      (error) => showError('graph-error', error));
+  }, (error) => showError('graph-error', error));
 }
 
-$('graph-refresh').addEventListener('click', refreshGraph);
-$('graph-hide-debug').addEventListener('change', refreshGraph);
-$('graph-hide-leaf').addEventListener('change', refreshGraph);
-setInterval(() => {
-  if ($('graph-auto').checked && $('node-graph').classList.contains('active')) refreshGraph();
-}, 2000);
-tabs['node-graph'] = refreshGraph;
+function stopWatchingGraph() {
+  if (graphSubscription !== null) socket.unsubscribe(graphSubscription);
+  graphSubscription = null;
+}
+
+$('graph-hide-debug').addEventListener('change', watchGraph);
+$('graph-hide-leaf').addEventListener('change', watchGraph);
+tabs['node-graph'] = { enter: watchGraph, leave: stopWatchingGraph };
 
 // ---- Message Publisher ----------------------------------------------------------------------
 
@@ -305,7 +357,7 @@ async function loadPublishers() {
 }
 
 $('pub-refresh').addEventListener('click', refreshTopics);
-tabs['message-publisher'] = loadPublishers;
+tabs['message-publisher'] = { enter: loadPublishers };
 
 // ---- Service Caller -------------------------------------------------------------------------
 
@@ -347,11 +399,15 @@ $('srv-call').addEventListener('click', async () => {
     showError('srv-error', error);
   }
 });
-tabs['service-caller'] = refreshServices;
+tabs['service-caller'] = { enter: refreshServices };
 
 // ---- Image View -----------------------------------------------------------------------------
 
-let imageLoop = 0;  // a new number stops the previous loop
+const FPS_WINDOW = 2000;  // ms of frames the shown rate counts
+let imageSubscription = null;
+let nextFrame = null;  // the newest frame not drawn yet; older ones are skipped, never queued
+let drawingFrame = false;
+let shownTimes = [];
 
 async function refreshImageTopics() {
   try {
@@ -367,51 +423,69 @@ async function refreshImageTopics() {
   }
 }
 
-async function showImages(topic, loop) {
-  let frame = 0;
-  let shown = 0;
-  const started = performance.now();
-  while (loop === imageLoop && topic) {
-    if (!$('image-view').classList.contains('active')) {
-      await new Promise((resolve) => setTimeout(resolve, 300));
+async function drawFrames() {
+  drawingFrame = true;
+  const canvas = $('img-canvas');
+  while (nextFrame) {
+    const [header, payload] = nextFrame;
+    nextFrame = null;
+    try {
+      const bitmap = await createImageBitmap(new Blob([payload], { type: header.content_type }));
+      if (canvas.width !== bitmap.width || canvas.height !== bitmap.height) {
+        canvas.width = bitmap.width;
+        canvas.height = bitmap.height;
+        $('img-size').textContent = `${bitmap.width}x${bitmap.height}`;
+      }
+      canvas.getContext('2d').drawImage(bitmap, 0, 0);
+      bitmap.close();
+    } catch (error) {
+      showError('img-error', `frame ${header.frame} of ${header.topic} cannot be shown: ${error.message}`);
       continue;
     }
-    try {
-      const response = await fetch(`/api/image?topic=${encodeURIComponent(topic)}&after=${frame}`);
-      if (!response.ok) {
-        const data = await response.json().catch(() => ({}));
-        throw new Error(data.error || `HTTP ${response.status}`);
-      }
-      frame = Number(response.headers.get('X-Frame')) || frame;
-      const url = URL.createObjectURL(await response.blob());
-      const image = $('img-frame');
-      const previous = image.src;
-      image.src = url;
-      if (previous.startsWith('blob:')) URL.revokeObjectURL(previous);
-      shown += 1;
-      const fps = shown / ((performance.now() - started) / 1000);
-      $('img-status').textContent = `frame ${frame}  ${fps.toFixed(1)} fps shown`;
-      showError('img-error');
-    } catch (error) {
-      if (loop !== imageLoop) return;
-      showError('img-error', error);
-      await new Promise((resolve) => setTimeout(resolve, 1000));
-    }
+    const now = performance.now();
+    shownTimes.push(now);
+    while (shownTimes[0] < now - FPS_WINDOW) shownTimes.shift();
+    canvas.dataset.frame = header.frame;
+    canvas.dataset.shown = Number(canvas.dataset.shown || 0) + 1;
+    const fps = shownTimes.length > 1 ? (shownTimes.length - 1) / ((now - shownTimes[0]) / 1000) : 0;
+    $('img-status').textContent = `frame ${header.frame}, ${fps.toFixed(1)} fps shown`;
+    showError('img-error');
   }
+  drawingFrame = false;
+}
+
+function watchImages() {
+  stopWatchingImages();
+  const topic = $('img-topic').value;
+  if (!topic) return;
+  imageSubscription = socket.subscribe('image', { topic }, (header, payload) => {
+    nextFrame = [header, payload];
+    if (!drawingFrame) drawFrames();
+  }, (error) => showError('img-error', error));
+}
+
+function stopWatchingImages() {
+  if (imageSubscription !== null) socket.unsubscribe(imageSubscription);
+  imageSubscription = null;
+  nextFrame = null;
+  shownTimes = [];
 }
 
 $('img-topic').addEventListener('change', () => {
-  imageLoop += 1;
-  $('img-frame').removeAttribute('src');
+  const canvas = $('img-canvas');
+  canvas.getContext('2d').clearRect(0, 0, canvas.width, canvas.height);
+  delete canvas.dataset.frame;
+  canvas.dataset.shown = 0;
   $('img-status').textContent = '';
   $('img-size').textContent = '';
-  showImages($('img-topic').value, imageLoop);
-});
-$('img-frame').addEventListener('load', () => {
-  const image = $('img-frame');
-  $('img-size').textContent = `${image.naturalWidth}x${image.naturalHeight}`;
+  showError('img-error');
+  watchImages();
 });
 $('img-refresh').addEventListener('click', refreshImageTopics);
-tabs['image-view'] = refreshImageTopics;
+tabs['image-view'] = {
+  enter: async () => { await refreshImageTopics(); watchImages(); },
+  leave: stopWatchingImages,
+};
 
+window.addEventListener('hashchange', () => selectTab(location.hash.slice(1)));
 selectTab(location.hash.slice(1));

@@ -1,6 +1,8 @@
-"""Node Graph's model and layout, from plain graph data."""
+"""The graph model our pages draw (rqt's Node Graph), from plain graph data."""
 
-from rqt_web.graph_model import BOX_HEIGHT, build_model, layout
+import pytest
+from owl_web.codec import ApiError
+from owl_web.graph import build_model, graph_options
 
 TWIST = ['geometry_msgs/msg/Twist']
 POSE = ['turtlesim/msg/Pose']
@@ -39,18 +41,7 @@ def test_hidden_topics_are_debug_topics():
     assert list(build_model(graph, hide_debug=False).topics) == ['/fibonacci/_action/status']
 
 
-def test_layers_follow_the_data_flow():
-    drawn = layout(build_model(COURSE_GRAPH))
-    layer = {box['id']: box['layer'] for box in drawn['boxes']}
-    assert layer == {'/teleop_turtle': 0, '/turtle1/cmd_vel': 1, '/turtlesim': 2, '/turtle1/pose': 3}
-    x = {box['id']: box['x'] for box in drawn['boxes']}
-    assert x['/teleop_turtle'] < x['/turtle1/cmd_vel'] < x['/turtlesim'] < x['/turtle1/pose']
-    assert drawn['edges'][0] == {'from': '/teleop_turtle', 'to': '/turtle1/cmd_vel'}
-    assert all(box['x'] + box['width'] <= drawn['width'] and box['y'] + BOX_HEIGHT <= drawn['height']
-               for box in drawn['boxes'])
-
-
-def test_cycles_are_laid_out_and_boxes_do_not_overlap():
+def test_cycles_and_lonely_nodes_are_kept():
     # talker <-> echo over two topics, plus a node publishing and subscribing the same topic
     graph = {
         '/a': ([('/ping', ['std_msgs/msg/String'])], [('/pong', ['std_msgs/msg/String'])]),
@@ -58,12 +49,26 @@ def test_cycles_are_laid_out_and_boxes_do_not_overlap():
         '/loop': ([('/self', ['std_msgs/msg/Int32'])], [('/self', ['std_msgs/msg/Int32'])]),
         '/idle': ([], []),
     }
-    drawn = layout(build_model(graph))
-    assert {box['id'] for box in drawn['boxes']} == {'/a', '/b', '/loop', '/idle', '/ping', '/pong', '/self'}
-    spots = [(box['layer'], box['y']) for box in drawn['boxes']]
-    assert len(spots) == len(set(spots))
+    model = build_model(graph)
+    assert model.nodes == ['/a', '/b', '/idle', '/loop']
+    assert sorted(model.edges) == [('/a', '/ping'), ('/b', '/pong'), ('/loop', '/self'), ('/ping', '/b'),
+                                   ('/pong', '/a'), ('/self', '/loop')]
 
 
-def test_empty_graph():
-    assert layout(build_model({})) == {'nodes': [], 'topics': [], 'edges': [], 'boxes': [],
-                                       'width': 0, 'height': 0}
+def test_as_json_is_what_the_page_gets():
+    assert build_model({}).as_json() == {'nodes': [], 'topics': [], 'edges': []}
+    assert build_model(COURSE_GRAPH).as_json() == {
+        'nodes': ['/teleop_turtle', '/turtlesim'],
+        'topics': [{'name': '/turtle1/cmd_vel', 'types': TWIST}, {'name': '/turtle1/pose', 'types': POSE}],
+        'edges': [{'from': '/teleop_turtle', 'to': '/turtle1/cmd_vel'},
+                  {'from': '/turtle1/cmd_vel', 'to': '/turtlesim'},
+                  {'from': '/turtlesim', 'to': '/turtle1/pose'}]}
+
+
+def test_options_of_a_subscription():
+    assert graph_options({}) == (True, False)  # rqt_graph's defaults
+    assert graph_options({'hide_debug': False, 'hide_leaf_topics': True}) == (False, True)
+    with pytest.raises(ApiError, match="unknown key 'hide_leafs' \\(did you mean 'hide_leaf_topics'\\?\\)"):
+        graph_options({'hide_leafs': True})
+    with pytest.raises(ApiError, match='hide_debug must be true or false, got "no"'):
+        graph_options({'hide_debug': 'no'})

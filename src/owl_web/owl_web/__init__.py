@@ -1,0 +1,1 @@
+"""The server layer of Owl Kit Lab's browser pages (see README.md)."""

@@ -1,0 +1,87 @@
+// The browser's half of our pages' message codec (owl_web/codec.py is the server's half).
+// One WebSocket per page to the server's /ws. A subscription names a channel and its parameters;
+// the server answers with updates ({"type": "update", "id", "data"}) or one-line errors
+// ({"type": "error", "id", "error"}). A binary message is a frame: a 4-byte big-endian header
+// length, a JSON header (an update) and a payload such as an image. The socket reconnects by
+// itself and subscribes again to what was subscribed.
+
+const RETRY_FIRST = 500;  // ms before the first reconnection, doubling up to RETRY_MOST
+const RETRY_MOST = 5000;
+const text = new TextDecoder();
+
+export function unpackFrame(buffer) {
+  const length = new DataView(buffer).getUint32(0);
+  const header = JSON.parse(text.decode(new Uint8Array(buffer, 4, length)));
+  return [header, new Uint8Array(buffer, 4 + length)];
+}
+
+export class OwlSocket {
+  // onStatus(connected, detail) hears about the connection, e.g. to show it on the page.
+  constructor(onStatus = () => {}, path = '/ws') {
+    this.url = `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}${path}`;
+    this.onStatus = onStatus;
+    this.subscriptions = new Map();  // id -> {channel, params, onUpdate, onError}
+    this.nextId = 1;
+    this.retry = RETRY_FIRST;
+    this.connect();
+  }
+
+  connect() {
+    const socket = new WebSocket(this.url);
+    socket.binaryType = 'arraybuffer';
+    socket.onopen = () => {
+      this.retry = RETRY_FIRST;
+      this.onStatus(true, '');
+      for (const [id, entry] of this.subscriptions) this.sendSubscribe(id, entry);
+    };
+    socket.onmessage = (event) => this.receive(event.data);
+    socket.onclose = (event) => {
+      if (this.socket !== socket) return;
+      const reason = event.reason || (event.code === 1009 ? 'message too big' : `code ${event.code}`);
+      this.onStatus(false, `connection closed (${reason}); reconnecting`);
+      setTimeout(() => this.connect(), this.retry);
+      this.retry = Math.min(this.retry * 2, RETRY_MOST);
+    };
+    this.socket = socket;
+  }
+
+  // Returns the subscription's id; unsubscribe(id) ends it. onUpdate(data, payload) gets each update
+  // (payload: the bytes of a binary frame, else undefined), onError(line) each error line.
+  subscribe(channel, params, onUpdate, onError) {
+    const id = this.nextId++;
+    const entry = { channel, params, onUpdate, onError };
+    this.subscriptions.set(id, entry);
+    if (this.socket.readyState === WebSocket.OPEN) this.sendSubscribe(id, entry);
+    return id;
+  }
+
+  unsubscribe(id) {
+    if (!this.subscriptions.delete(id)) return;
+    this.send({ type: 'unsubscribe', id });
+  }
+
+  sendSubscribe(id, entry) {
+    this.send({ ...entry.params, type: 'subscribe', id, channel: entry.channel });
+  }
+
+  send(message) {
+    if (this.socket.readyState === WebSocket.OPEN) this.socket.send(JSON.stringify(message));
+  }
+
+  receive(data) {
+    let message;
+    let payload;
+    if (typeof data === 'string') {
+      message = JSON.parse(data);
+    } else {
+      [message, payload] = unpackFrame(data);
+    }
+    const entry = this.subscriptions.get(message.id);
+    if (message.type === 'update' && entry) {
+      entry.onUpdate(message.data, payload);
+    } else if (message.type === 'error') {
+      if (entry && entry.onError) entry.onError(message.error);
+      else this.onStatus(true, message.error);
+    }
+  }
+}

@@ -1,0 +1,111 @@
+"""rqt's page in a real browser (Debian's Chromium through Playwright, see web_harness.py): every tab
+loads with no console error, the graph is pushed and laid out live, the camera shows at its rate.
+The screenshots in docs/screenshots/ are made here."""
+
+import statistics
+import time
+from typing import Any
+
+from std_msgs.msg import String
+from web_harness import Rqt
+
+CAMERA_TOPIC = '/olive/camera/eye/image/compressed'
+PUSH_SAMPLES = 5
+MIN_FPS = 25.0  # the camera publishes 30 frames/s
+FPS_WINDOW = 4.0  # s
+
+
+def box(page: Any, name: str) -> dict[str, float]:
+    """Where the graph drew a node or topic (its bounding box in the SVG)."""
+    return page.evaluate('(name) => { const b = document.querySelector(`#graph-svg g[data-id="${name}"]`)'
+                         '.getBBox(); return {x: b.x, y: b.y, width: b.width, height: b.height}; }', name)
+
+
+def drawn(name: str) -> str:
+    return f'#graph-svg g[data-id="{name}"]'
+
+
+def test_rqt_page_loads_and_draws_the_graph_as_it_changes(ros, page):
+    ros.run('turtlesim', 'turtlesim_node')
+    rqt = Rqt(ros)
+    page.goto(rqt.base)
+    page.wait_for_selector(drawn('/turtle1/pose'), timeout=20_000)
+    page.evaluate('window.loadedOnce = true')  # gone if the page ever reloads
+    turtlesim, pose = box(page, '/turtlesim'), box(page, '/turtle1/pose')
+    assert turtlesim['x'] + turtlesim['width'] <= pose['x']  # elkjs: publisher left of its topic
+    assert page.locator('#graph-svg path.edge[data-from="/turtlesim"][data-to="/turtle1/pose"]').count() == 1
+
+    # A node started after the page loaded appears without a reload: pushed, not polled.
+    started = time.monotonic()
+    ros.run('random_number_ps', 'random_number_publisher')
+    page.wait_for_selector(drawn('/random_number_publisher'), timeout=20_000)
+    page.wait_for_selector(drawn('/random_numbers'), timeout=10_000)
+    print(f'random_number_publisher drawn {time.monotonic() - started:.2f} s after its process started')
+    assert page.evaluate('window.loadedOnce') is True
+    assert page.locator(drawn('/rosout')).count() == 0
+    page.uncheck('#graph-hide-debug')
+    page.wait_for_selector(drawn('/rosout'), timeout=10_000)
+    page.check('#graph-hide-debug')
+    page.wait_for_selector(drawn('/rosout'), state='detached', timeout=10_000)
+    page.screenshot_to('rqt_graph')
+
+    # Push latency: from a publisher created in this process to its topic drawn on the page.
+    page.evaluate('''() => { window.firstDrawn = {};
+        new MutationObserver(() => { for (const g of document.querySelectorAll('#graph-svg g[data-id]')) {
+            if (!(g.dataset.id in window.firstDrawn)) window.firstDrawn[g.dataset.id] = Date.now(); } })
+        .observe(document.getElementById('graph-svg'), {childList: true}); }''')
+    probe = ros.probe.node  # the probe's own start (a DDS participant) is not part of what is measured
+    latencies = []
+    for sample in range(PUSH_SAMPLES):
+        topic = f'/push_latency_{sample}'
+        created = time.time()
+        probe.create_publisher(String, topic, 10)
+        page.wait_for_selector(drawn(topic), timeout=10_000)
+        latencies.append(page.evaluate('(topic) => window.firstDrawn[topic]', topic) / 1000 - created)
+    median, most = statistics.median(latencies) * 1000, max(latencies) * 1000
+    print(f'graph push latency over {PUSH_SAMPLES} changes: median {median:.0f} ms, max {most:.0f} ms '
+          f"({', '.join(f'{latency * 1000:.0f}' for latency in latencies)} ms)")
+    assert max(latencies) < 3.0
+
+    # The other tabs load their lists with no console error either.
+    page.click('button[data-tab="message-publisher"]')
+    page.wait_for_selector('#pub-topics option[value="/turtle1/cmd_vel"]', state='attached', timeout=10_000)
+    page.click('button[data-tab="service-caller"]')
+    page.wait_for_selector('#srv-names option[value="/spawn"]', state='attached', timeout=10_000)
+    page.click('button[data-tab="image-view"]')
+    page.wait_for_function('document.querySelectorAll("#img-topic option").length === 1')
+    page.click('button[data-tab="node-graph"]')
+    page.wait_for_selector(drawn('/turtlesim'), timeout=10_000)
+    assert page.evaluate('window.loadedOnce') is True
+    # Everything came from rqt itself: the page, its libraries (elkjs), the API. No CDN.
+    assert rqt.base + 'lib/elkjs/lib/elk.bundled.js' in page.requested
+    assert all(url.startswith((rqt.base, 'data:')) for url in page.requested), page.requested
+
+
+def test_rqt_image_view_shows_the_camera_at_its_rate(ros, page):
+    ros.run('olive_sim', 'camera_sim')
+    rqt = Rqt(ros)
+    rqt.wait_for(lambda: CAMERA_TOPIC in {t['name'] for t in rqt.ok('GET', '/api/image_topics')},
+                 'the camera topic', timeout=30)
+    page.goto(rqt.base + '#image-view')
+    page.wait_for_selector(f'#img-topic option[value="{CAMERA_TOPIC}"]', state='attached', timeout=10_000)
+    page.select_option('#img-topic', CAMERA_TOPIC)
+    page.wait_for_function('Number(document.getElementById("img-canvas").dataset.shown) >= 10',
+                           timeout=20_000)
+    assert page.evaluate('[document.getElementById("img-canvas").width, '
+                         'document.getElementById("img-canvas").height]') == [640, 480]
+
+    def counts() -> tuple[float, int, int]:
+        shown, frame = page.evaluate('[Number(document.getElementById("img-canvas").dataset.shown), '
+                                     'Number(document.getElementById("img-canvas").dataset.frame)]')
+        return time.monotonic(), shown, frame
+    start = counts()
+    time.sleep(FPS_WINDOW)
+    end = counts()
+    shown_fps = (end[1] - start[1]) / (end[0] - start[0])
+    received_fps = (end[2] - start[2]) / (end[0] - start[0])
+    print(f'image view: {shown_fps:.1f} frames/s drawn in the page, '
+          f'{received_fps:.1f} frames/s received by rqt')
+    assert shown_fps >= MIN_FPS
+    assert 'fps shown' in page.inner_text('#img-status')
+    page.screenshot_to('rqt_image_view')

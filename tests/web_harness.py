@@ -1,0 +1,214 @@
+"""The system tests' view of our browser pages: Debian's Chromium driven by Playwright (the `browser`
+and `page` fixtures of conftest.py), PageSocket, a page's WebSocket from Python for what a browser
+never sends (malformed JSON, oversized messages), and Rqt, a running `rqt` with its JSON API.
+
+Playwright never downloads a browser here: it launches /usr/bin/chromium (`apt-get install
+chromium`; scripts/test_prereqs.sh installs it when `make test` runs as root).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import socket
+import threading
+import urllib.error
+import urllib.request
+from pathlib import Path
+from typing import Any
+
+import aiohttp
+from owl_web.codec import unpack_frame
+from ros_harness import wait_until
+
+CHROMIUM = Path('/usr/bin/chromium')
+# Root needs --no-sandbox; the rest keeps Chromium from reaching out to the network or updating.
+CHROMIUM_ARGS = ['--no-sandbox', '--disable-gpu', '--disable-background-networking',
+                 '--disable-component-update', '--no-first-run', '--disable-default-apps',
+                 '--disable-sync', '--metrics-recording-only']
+VIEWPORT = {'width': 1280, 'height': 800}
+SCREENSHOTS = Path(__file__).resolve().parents[1] / 'docs' / 'screenshots'
+RQT_URL_LINE = r'^rqt: open (http://127\.0\.0\.1:\d+/)(#[a-z-]+)? in a browser \(Ctrl-C to quit\)$'
+
+
+def chromium_missing() -> str | None:
+    """Why the browser tests cannot run here, in one line, or None."""
+    if not CHROMIUM.exists():
+        return f"{CHROMIUM} not found (the browser tests skip): 'sudo apt-get install chromium'"
+    return None
+
+
+class Browser:
+    """One headless Chromium (conftest.py starts one per test module)."""
+
+    def __init__(self) -> None:
+        from playwright.sync_api import sync_playwright
+        self._playwright = sync_playwright().start()
+        try:
+            self.chromium = self._playwright.chromium.launch(
+                executable_path=str(CHROMIUM), args=CHROMIUM_ARGS, headless=True)
+        except BaseException:
+            self._playwright.stop()
+            raise
+
+    def new_page(self) -> BrowserPage:
+        return BrowserPage(self.chromium.new_page(viewport=VIEWPORT))
+
+    def close(self) -> None:
+        self.chromium.close()
+        self._playwright.stop()
+
+
+class BrowserPage:
+    """A Playwright page (its methods are this object's) that keeps every console error and
+    uncaught exception; conftest.py fails the test that leaves any."""
+
+    def __init__(self, page: Any) -> None:
+        self.page = page
+        self.console_errors: list[str] = []
+        self.requested: list[str] = []  # every URL the page loaded or fetched
+        page.on('request', lambda request: self.requested.append(request.url))
+        page.on('console', lambda message: message.type == 'error' and self.console_errors.append(
+            message.text + (f" ({message.location['url']})" if message.location.get('url') else '')))
+        page.on('pageerror', lambda error: self.console_errors.append(f'uncaught: {error}'))
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self.page, name)
+
+    def screenshot_to(self, name: str) -> Path:
+        """A screenshot for the documentation: docs/screenshots/<name>.png."""
+        SCREENSHOTS.mkdir(parents=True, exist_ok=True)
+        path = SCREENSHOTS / f'{name}.png'
+        self.page.screenshot(path=str(path))
+        return path
+
+
+class SocketClosed(Exception):
+    """The server closed the WebSocket; .code is the close code."""
+
+    def __init__(self, code: int | None) -> None:
+        super().__init__(f'WebSocket closed with code {code}')
+        self.code = code
+
+
+class PageSocket:
+    """A page's WebSocket (/ws of an owl_web server) from a test, through aiohttp's client on an
+    event loop of its own thread."""
+
+    def __init__(self, base_url: str) -> None:
+        self._loop = asyncio.new_event_loop()
+        self._thread = threading.Thread(target=self._loop.run_forever, name='page socket', daemon=True)
+        self._thread.start()
+        self._session, self._websocket = self._run(self._connect(base_url.rstrip('/') + '/ws'))
+
+    def _run(self, coroutine: Any, timeout: float = 15.0) -> Any:
+        return asyncio.run_coroutine_threadsafe(coroutine, self._loop).result(timeout)
+
+    @staticmethod
+    async def _connect(url: str) -> tuple[aiohttp.ClientSession, aiohttp.ClientWebSocketResponse]:
+        session = aiohttp.ClientSession()
+        return session, await session.ws_connect(url, max_msg_size=16 << 20)
+
+    def send(self, message: dict[str, Any] | str | bytes) -> None:
+        """A dict goes as JSON text, a str as it is (malformed JSON too), bytes as a binary message."""
+        if isinstance(message, bytes):
+            self._run(self._websocket.send_bytes(message))
+        else:
+            self._run(self._websocket.send_str(message if isinstance(message, str) else json.dumps(message)))
+
+    def receive(self, timeout: float = 10.0) -> dict[str, Any]:
+        """The next message; a binary frame's payload is under the key 'payload' of its header."""
+        message = self._run(self._websocket.receive(timeout), timeout + 5)
+        if message.type == aiohttp.WSMsgType.TEXT:
+            return json.loads(message.data)
+        if message.type == aiohttp.WSMsgType.BINARY:
+            header, payload = unpack_frame(message.data)
+            return {**header, 'payload': payload}
+        raise SocketClosed(self._websocket.close_code)
+
+    def receive_matching(self, wanted: Any, what: str, timeout: float = 15.0) -> dict[str, Any]:
+        """The first message for which wanted(message) is true, skipping others."""
+        loop_time = self._loop.time
+        deadline = loop_time() + timeout
+        while True:
+            left = deadline - loop_time()
+            if left <= 0:
+                raise AssertionError(f'timed out after {timeout} s waiting for {what}')
+            try:
+                message = self.receive(left)
+            except (asyncio.TimeoutError, TimeoutError):
+                continue
+            if wanted(message):
+                return message
+
+    def subscribe(self, subscription_id: int | str, channel: str, **params: Any) -> None:
+        self.send({'type': 'subscribe', 'id': subscription_id, 'channel': channel, **params})
+
+    def __enter__(self) -> PageSocket:
+        return self
+
+    def __exit__(self, *exception: object) -> None:
+        self.close()
+
+    def close(self) -> None:
+        try:
+            self._run(self._websocket.close(), 5)
+            self._run(self._session.close(), 5)
+        finally:
+            self._loop.call_soon_threadsafe(self._loop.stop)
+            self._thread.join(5)
+
+
+def free_port() -> int:
+    with socket.socket() as probe:
+        probe.bind(('127.0.0.1', 0))
+        return probe.getsockname()[1]
+
+
+def http(method: str, url: str, body: Any = None) -> tuple[int, dict[str, str], bytes]:
+    """(status, headers, body) of one request; a dict body goes as JSON, bytes as they are."""
+    data = body if isinstance(body, bytes) or body is None else json.dumps(body).encode()
+    request = urllib.request.Request(url, data=data, method=method)
+    if data is not None:
+        request.add_header('Content-Type', 'application/json')
+    try:
+        with urllib.request.urlopen(request, timeout=30) as response:
+            return response.status, dict(response.headers), response.read()
+    except urllib.error.HTTPError as error:
+        return error.code, dict(error.headers), error.read()
+
+
+class Rqt:
+    """A running `rqt --no-browser` and its JSON API."""
+
+    def __init__(self, ros: Any, *argv: str) -> None:
+        self.process = ros.command(argv or ['rqt', '--port', str(free_port()), '--no-browser'])
+        self.base, self.fragment = self.process.wait_for(RQT_URL_LINE, timeout=30)[0].groups()
+
+    def call(self, method: str, path: str, body: Any = None) -> tuple[int, Any]:
+        status, _, data = http(method, self.base + path.lstrip('/'), body)
+        return status, json.loads(data)
+
+    def ok(self, method: str, path: str, body: Any = None, status: int = 200) -> Any:
+        got, data = self.call(method, path, body)
+        assert got == status, data
+        return data
+
+    def refused(self, status: int, method: str, path: str, body: Any = None) -> str:
+        """The error line of a refused request; the server must still answer afterwards."""
+        got, data = self.call(method, path, body)
+        assert got == status, data
+        assert list(data) == ['error'] and '\n' not in data['error'] and data['error'], data
+        assert self.call('GET', '/api/topics')[0] == 200
+        return data['error']
+
+    def wait_for(self, condition: Any, what: str, timeout: float = 20.0) -> None:
+        wait_until(condition, timeout, what)
+
+    def socket(self) -> PageSocket:
+        """The page's WebSocket, as the page opens it."""
+        return PageSocket(self.base)
+
+    def stop_cleanly(self) -> None:
+        assert self.process.stop() == 0, self.process.output
+        assert 'Traceback' not in self.process.output
