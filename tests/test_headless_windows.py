@@ -13,12 +13,10 @@ from pathlib import Path
 
 import cv2
 import numpy as np
+from desktop import NO_DISPLAY, REAL_WINDOWS
 from ros_harness import wait_until
 
 STUDENT_SCRIPTS = Path(__file__).parent / 'student_scripts'
-# No display, no seam, nothing forced: what a server or a container gives a program.
-HEADLESS = {'DISPLAY': '', 'WAYLAND_DISPLAY': '', 'OWL_HEADLESS': '', 'OWL_WINDOWS_DIR': '',
-            'OWL_WINDOWS_FPS': ''}
 CV2_NOTICE = ("cv2_viewer: no display (DISPLAY is not set), so the window 'camera' is not shown; the "
               'program runs on without it. To see the camera, run rqt and open Plugins > Visualization > '
               'Image View')
@@ -55,7 +53,7 @@ def close_to(pixel, colour, tolerance=30):
 
 
 def test_cv2_viewer_without_a_display_says_so_in_one_line_runs_on_and_stops_at_ctrl_c(ros):
-    viewer = student(ros, 'cv2_viewer.py', HEADLESS)
+    viewer = student(ros, 'cv2_viewer.py', NO_DISPLAY)
     viewer.wait_for('no display', timeout=30)
     time.sleep(2.0)
     assert viewer.running(), viewer.output
@@ -66,7 +64,7 @@ def test_cv2_viewer_without_a_display_says_so_in_one_line_runs_on_and_stops_at_c
 
 
 def test_cv2_viewer_seam_gets_the_latest_frames_and_sends_keys(ros, tmp_path):
-    viewer = student(ros, 'cv2_viewer.py', {**HEADLESS, 'OWL_WINDOWS_DIR': str(tmp_path)})
+    viewer = student(ros, 'cv2_viewer.py', {**NO_DISPLAY, 'OWL_WINDOWS_DIR': str(tmp_path)})
     folder = tmp_path / f'cv2_viewer-{viewer.pid}'
     frame_file = folder / 'cv2-camera.jpg'
     wait_until(frame_file.exists, 30, 'the first frame in the seam')
@@ -90,7 +88,7 @@ def test_cv2_viewer_seam_gets_the_latest_frames_and_sends_keys(ros, tmp_path):
 
 
 def test_bad_settings_are_said_in_one_line_each_and_ignored(ros, tmp_path):
-    viewer = student(ros, 'cv2_viewer.py', {**HEADLESS, 'OWL_HEADLESS': 'maybe', 'OWL_WINDOWS_FPS': 'fast',
+    viewer = student(ros, 'cv2_viewer.py', {**NO_DISPLAY, 'OWL_HEADLESS': 'maybe', 'OWL_WINDOWS_FPS': 'fast',
                                             'OWL_WINDOWS_DIR': str(tmp_path)})
     viewer.wait_for('no display', timeout=30)
     viewer.stop_cleanly(timeout=10)
@@ -103,7 +101,7 @@ def test_bad_settings_are_said_in_one_line_each_and_ignored(ros, tmp_path):
 
 
 def test_pygame_keys_without_a_display_says_so_in_one_line_runs_on_and_stops_at_ctrl_c(ros):
-    keys = student(ros, 'pygame_keys.py', HEADLESS)
+    keys = student(ros, 'pygame_keys.py', NO_DISPLAY)
     keys.wait_for('no display', timeout=30)
     time.sleep(2.0)
     assert keys.running(), keys.output
@@ -115,7 +113,7 @@ def test_pygame_keys_without_a_display_says_so_in_one_line_runs_on_and_stops_at_
 
 
 def test_pygame_keys_seam_sends_key_events_and_held_keys_and_gets_the_window(ros, tmp_path):
-    keys = student(ros, 'pygame_keys.py', {**HEADLESS, 'OWL_WINDOWS_DIR': str(tmp_path)})
+    keys = student(ros, 'pygame_keys.py', {**NO_DISPLAY, 'OWL_WINDOWS_DIR': str(tmp_path)})
     folder = tmp_path / f'pygame_keys-{keys.pid}'
     window = folder / 'pygame.png'
     wait_until(window.exists, 30, 'the window in the seam')
@@ -137,10 +135,26 @@ def test_pygame_keys_seam_sends_key_events_and_held_keys_and_gets_the_window(ros
     assert not folder.exists()
 
 
-def test_cv2_viewer_with_a_display_opens_a_real_window_that_gets_keys(ros, xvfb, tmp_path):
-    viewer = student(ros, 'cv2_viewer.py', {**xvfb.env(), 'OWL_WINDOWS_DIR': str(tmp_path)})
-    window = xvfb.wait_for_window('camera', timeout=30)
-    xvfb.key(window, 'Left', 'a')
+def test_a_students_display_camera_without_a_display_runs_on_the_camera_and_stops_at_ctrl_c(ros, tmp_path):
+    ros.run('olive_sim', 'camera_sim')
+    camera = student(ros, 'student_display_camera.py', {**NO_DISPLAY, 'OWL_WINDOWS_DIR': str(tmp_path)})
+    folder = tmp_path / f'student_display_camera-{camera.pid}'
+    frame_file = folder / f"cv2-{'Olive%20Camera'}.jpg"
+    wait_until(frame_file.exists, 60, "the camera's first image in the seam")
+    assert read_image(frame_file).shape == (480, 640, 3)
+    time.sleep(2.0)
+    camera.stop_cleanly(timeout=10)
+    assert camera.lines == [
+        "student_display_camera: no display (DISPLAY is not set), so the window 'Olive Camera' is not shown; "
+        'the program runs on without it. To see the camera, run rqt and open Plugins > Visualization > '
+        f'Image View (its frames go to {folder})']
+
+
+def test_cv2_viewer_with_a_display_opens_a_real_window_that_gets_keys(ros, x_display, tmp_path):
+    viewer = student(ros, 'cv2_viewer.py',
+                     {**x_display.env(), **REAL_WINDOWS, 'OWL_WINDOWS_DIR': str(tmp_path)})
+    window = x_display.wait_for_window('^camera$', timeout=30)
+    x_display.type(window, 'Left', 'a')
     viewer.wait_for(r'^key 97$', timeout=10)
     viewer.stop_cleanly(timeout=10)
     # No notice, nothing from Qt (its font warnings are silenced): the keys and the summary.
@@ -148,12 +162,12 @@ def test_cv2_viewer_with_a_display_opens_a_real_window_that_gets_keys(ros, xvfb,
     assert list(tmp_path.iterdir()) == []  # nothing patched: no seam
 
 
-def test_pygame_keys_with_a_display_opens_a_real_window_that_gets_keys(ros, xvfb, tmp_path):
+def test_pygame_keys_with_a_display_opens_a_real_window_that_gets_keys(ros, x_display, tmp_path):
     # This machine may have no sound card; ALSA's complaints about it are not under test here.
-    keys = student(ros, 'pygame_keys.py', {**xvfb.env(), 'OWL_WINDOWS_DIR': str(tmp_path),
-                                           'SDL_AUDIODRIVER': 'dummy'})
-    window = xvfb.wait_for_window('keys', timeout=30)
-    xvfb.key(window, 'Left')
+    keys = student(ros, 'pygame_keys.py', {**x_display.env(), **REAL_WINDOWS,
+                                           'OWL_WINDOWS_DIR': str(tmp_path), 'SDL_AUDIODRIVER': 'dummy'})
+    window = x_display.wait_for_window('^keys$', timeout=30)
+    x_display.type(window, 'Left')
     keys.wait_for(r'^up left$', timeout=10)
     keys.stop_cleanly(timeout=10)
     assert 'no display' not in keys.output
