@@ -20,8 +20,10 @@ It has two jobs; neither changes a line of the program that imports the library.
    - cv2: imshow, namedWindow, waitKey, waitKeyEx, pollKey, destroyWindow, destroyAllWindows and
      the other window functions work without a window. The first window prints one line on stderr
      (what happened, where to see the camera instead). waitKey(delay) waits delay ms and returns
-     -1, as the real one does when no key is pressed; waitKey(0) waits for a key, which only the
-     seam below can send, so it says once that Ctrl-C stops it.
+     -1, as the real one does when no key is pressed; waitKey(0) waits for a key as the real one
+     does: without the seam below nothing can send one, so it says once that Ctrl-C ends the wait.
+     Where cv2 fell back to its headless build (whose window functions raise "not implemented")
+     its windows are headless too, silently: the fallback notice has said that.
    - pygame: SDL's video and audio drivers are 'dummy' (set before SDL starts, unless the program
      chose drivers itself), so no window and no ALSA/XDG lines; the first pygame.display.set_mode
      prints one line (its window gets no keys, how to drive the servos instead).

@@ -173,3 +173,15 @@ def test_pygame_keys_with_a_display_opens_a_real_window_that_gets_keys(ros, x_di
     assert 'no display' not in keys.output
     assert [line for line in own_lines(keys) if line.startswith(('down', 'up'))] == ['down left', 'up left']
     assert list(tmp_path.iterdir()) == []
+
+
+def test_owl_headless_1_makes_windows_headless_on_a_display_too(ros, x_display, tmp_path):
+    forced = {**x_display.env(), 'WAYLAND_DISPLAY': None, 'OWL_HEADLESS': '1'}
+    viewer = student(ros, 'cv2_viewer.py', {**forced, 'OWL_WINDOWS_DIR': str(tmp_path)})
+    keys = student(ros, 'pygame_keys.py', forced)
+    viewer.wait_for(r"^cv2_viewer: no display \(OWL_HEADLESS=1\), so the window 'camera' is not", timeout=30)
+    keys.wait_for(r'^pygame_keys: no display \(OWL_HEADLESS=1\), so the pygame window is not', timeout=30)
+    wait_until((tmp_path / f'cv2_viewer-{viewer.pid}' / 'cv2-camera.jpg').exists, 10, 'the seam')
+    assert x_display.windows('^(camera|keys)$') == []
+    viewer.stop_cleanly(timeout=10)
+    keys.stop_cleanly(timeout=10)
