@@ -18,6 +18,12 @@ import pytest
 
 # A window in `xwininfo -root -tree`: its id and its title.
 WINDOW_LINE = re.compile(r'^\s*(0x[0-9a-f]+) "(.*)":', re.MULTILINE)
+# Environment entries (None removes one) for a process with no display at all, as on a server or
+# in a container, and none of the window hook's settings (scripts/owl_gui_hook.py) from the shell.
+NO_DISPLAY = {'DISPLAY': None, 'WAYLAND_DISPLAY': None, 'OWL_HEADLESS': None, 'OWL_WINDOWS_DIR': None,
+              'OWL_WINDOWS_FPS': None}
+# With VirtualDisplay.env(): real windows, also when the shell has a Wayland session or OWL_HEADLESS.
+REAL_WINDOWS = {'WAYLAND_DISPLAY': None, 'OWL_HEADLESS': None}
 MISSING = "{program} is not installed, so this window test is skipped ('sudo apt-get install {package}')"
 
 
@@ -39,11 +45,20 @@ class VirtualDisplay:
             pass_fds=(write_end,), stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
             stderr=subprocess.DEVNULL)
         os.close(write_end)
+        # Read up to the newline: Xvfb writes the number and the newline separately, and a pipe
+        # closed after the number alone kills it ("Cannot write display number to fd").
+        received = b''
+        deadline = time.monotonic() + timeout
         try:
-            ready, _, _ = select.select([read_end], [], [], timeout)
-            number = os.read(read_end, 64).decode().strip() if ready else ''
+            while not received.endswith(b'\n'):
+                ready, _, _ = select.select([read_end], [], [], max(0.0, deadline - time.monotonic()))
+                chunk = os.read(read_end, 64) if ready else b''
+                if not chunk:
+                    break
+                received += chunk
         finally:
             os.close(read_end)
+        number = received.decode().strip()
         if not number.isdigit():
             self.close()
             raise RuntimeError(f'Xvfb did not report its display within {timeout} s')
@@ -85,6 +100,12 @@ class VirtualDisplay:
         self.xdotool('keydown', '--window', window, key)
         time.sleep(seconds)
         self.xdotool('keyup', '--window', window, key)
+
+    def type(self, window: str, *keys: str) -> None:
+        """Type X keys (Left, a, Escape) into a window as a keyboard does (XTEST, not XSendEvent,
+        which Qt ignores): the window gets the focus first (Xvfb has no window manager)."""
+        self.xdotool('windowfocus', '--sync', window)
+        self.xdotool('key', '--delay', '50', *keys)
 
     def close(self) -> None:
         if self.process.poll() is None:
