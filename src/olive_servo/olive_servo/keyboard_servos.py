@@ -55,7 +55,10 @@ class KeyboardServos(Node):
         self.timer = None  # created once the torque is on: the servos ignore goals before
 
         # pygame reads the keyboard through a window of its own: keys count while it has the focus.
-        pygame.init()
+        # Only the display and fonts: pygame.init() would also open the sound card, which a machine
+        # without one answers with a dozen ALSA error lines.
+        pygame.display.init()
+        pygame.font.init()
         self.screen = pygame.display.set_mode(WINDOW_SIZE)
         pygame.display.set_caption('keyboard_servos')
         self.font = pygame.font.Font(None, 24)
