@@ -13,6 +13,7 @@ demo: setup
 	@$(ENV) python scripts/demo.py
 
 test: setup
+	@bash scripts/test_prereqs.sh
 	@$(ENV) python -m pytest
 
 lint: setup

@@ -12,6 +12,17 @@ else
 fi
 export OWL_ROOT
 
+# Network mode. private (the default): ROS 2 in this shell discovers only nodes on this machine, so in
+# a classroom nobody's robot answers anybody else's commands. open: discovery reaches the local
+# subnet, for real Olive modules (10.42.0.x over USB Ethernet) or a robot shared by a class.
+case "${OWL_NETWORK:-private}" in
+  private) _owl_range=LOCALHOST ;;
+  open) _owl_range=SUBNET ;;
+  *)
+    echo "env.sh: OWL_NETWORK must be 'private' or 'open', not '${OWL_NETWORK}'; nothing in this shell was changed" >&2
+    return 1 2>/dev/null || exit 1 ;;
+esac
+
 if [ ! -x "$OWL_ROOT/.venv/bin/python" ]; then
   echo "Owl Kit Lab is not set up yet: run 'make setup' in $OWL_ROOT first." >&2
   return 1 2>/dev/null || exit 1
@@ -44,6 +55,13 @@ export RMW_IMPLEMENTATION="${RMW_IMPLEMENTATION:-rmw_fastrtps_cpp}"
 # Faster DDS discovery (see the file for why); a profile of your own takes precedence. Jazzy's
 # Fast DDS 2.14 reads only this name: FASTDDS_DEFAULT_PROFILES_FILE is Fast DDS 3's (Kilted on).
 export FASTRTPS_DEFAULT_PROFILES_FILE="${FASTRTPS_DEFAULT_PROFILES_FILE:-$OWL_ROOT/config/fastdds.xml}"
+export ROS_AUTOMATIC_DISCOVERY_RANGE="$_owl_range"
+if [ "$_owl_range" = LOCALHOST ]; then
+  echo "Owl Kit Lab: network private: ROS 2 here sees only this machine's nodes (for real modules or a shared robot: export OWL_NETWORK=open; source env.sh)"
+else
+  echo "Owl Kit Lab: network open: ROS 2 here reaches the local subnet, ROS_DOMAIN_ID ${ROS_DOMAIN_ID:-0} (back to private: export OWL_NETWORK=private; source env.sh)"
+fi
+unset _owl_range
 export ROS_DISTRO="${ROS_DISTRO:-jazzy}"
 export ROS_VERSION=2
 export ROS_PYTHON_VERSION=3

@@ -94,7 +94,7 @@ fi
 # --- colcon build of src/, when anything in it changed. ---
 set +u  # colcon's setup scripts read unset variables
 # shellcheck disable=SC1091
-source "$ROOT/env.sh"
+source "$ROOT/env.sh" >/dev/null  # its network-mode line is for interactive shells
 set -u
 BUILD_STAMP="$ROOT/install/.owl-src.sha256"
 src_hash="$( (find src -type f -not -path '*/__pycache__/*' -printf '%p %T@\n' | sort; cat requirements.txt) | sha256sum | cut -d' ' -f1)"

@@ -1,47 +1,143 @@
-"""make demo: the course's first nodes talking over real ROS 2, live for about ten seconds.
+"""make demo: the course's robot (chapter 4) live on real ROS 2 for about 20 seconds.
 
-Starts the random number publisher and subscriber (section 3.5) and the temperature server
-(section 3.6), calls the temperature client a few times while they run, then stops everything
-with Ctrl-C's signal, as a user at a terminal would.
+Starts the simulated Owl Kit (IMU, pan and tilt servos, camera), the course's projects on it
+(imu_control_robot points the head where the IMU points, display_camera shows the camera,
+imu_turtle drives turtlesim's turtle with the IMU), prints a few readable lines of what happens,
+then stops everything with Ctrl-C's signal, as a user at a terminal would.
 """
 
 from __future__ import annotations
 
 import argparse
+import math
+import os
 import sys
 import time
+from dataclasses import dataclass, field
 
-from owl_common.processes import RosSandbox
+from geometry_msgs.msg import Quaternion
+from olive_imu.euler import orientation_problem, quaternion_to_euler
+from owl_common.probe import Probe
+from owl_common.processes import RosProcess, RosSandbox
+from rclpy.qos import qos_profile_sensor_data
+from sensor_msgs.msg import CompressedImage, Imu, JointState
+from std_msgs.msg import Float32
+from turtlesim.msg import Pose
 
-CLIENT_TEMPERATURES = ('0.0', '36.6', '100')
+IMU_TOPIC = '/olive/imu/x1684267976913/imu'
+CAMERA_TOPIC = '/olive/camera/eye/image/compressed'
+SERVOS = ('pan', 'tilt')
+STARTUP_TIMEOUT = 60.0  # s for every node to say it is working, on a loaded 2-core machine
 
 
-def run_demo(seconds: float) -> int:
-    with RosSandbox(echo=True) as sandbox:
-        print(f'== Owl Kit Lab demo: ROS 2 domain {sandbox.domain_id}, {seconds:.0f} s. Watch it from '
-              f'another shell with: source env.sh && ROS_DOMAIN_ID={sandbox.domain_id} '
-              'ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST <command>', flush=True)
-        nodes = [
-            sandbox.run('random_number_ps', 'random_number_publisher'),
-            sandbox.run('random_number_ps', 'random_number_subscriber'),
-            sandbox.run('olive_srvcli', 'temp_server'),
-        ]
-        start = time.monotonic()
-        clients = []
-        for index, celsius in enumerate(CLIENT_TEMPERATURES):
-            # Spread the client calls over the run so they interleave with the numbers.
-            pause = start + (index + 1) * seconds / (len(CLIENT_TEMPERATURES) + 1) - time.monotonic()
-            time.sleep(max(0.0, pause))
-            client = sandbox.run('olive_srvcli', 'temp_client', celsius)
-            client.wait(timeout=seconds)
-            clients.append(client)
-        time.sleep(max(0.0, start + seconds - time.monotonic()))
+@dataclass
+class RobotState:
+    """The latest of everything the demo reports, filled by the probe's subscriptions."""
+
+    orientation: Quaternion | None = None
+    goals: dict[str, float] = field(default_factory=dict)
+    positions: dict[str, float] = field(default_factory=dict)
+    frames: int = 0
+    pose: Pose | None = None
+
+
+def watch(probe: Probe) -> RobotState:
+    """Subscribe the probe to the IMU, both servos, the camera and the turtle."""
+    state = RobotState()
+
+    def on_imu(msg: Imu) -> None:
+        if orientation_problem(msg.orientation) is None:
+            state.orientation = msg.orientation
+
+    def on_frame(_msg: CompressedImage) -> None:
+        state.frames += 1
+
+    def on_pose(msg: Pose) -> None:
+        state.pose = msg
+
+    node = probe.node
+    node.create_subscription(Imu, IMU_TOPIC, on_imu, qos_profile_sensor_data)
+    node.create_subscription(CompressedImage, CAMERA_TOPIC, on_frame, qos_profile_sensor_data)
+    node.create_subscription(Pose, '/turtle1/pose', on_pose, 10)
+    for servo in SERVOS:
+        node.create_subscription(Float32, f'/olive/servo/{servo}/goal/position',
+                                 lambda msg, s=servo: state.goals.__setitem__(s, msg.data), 10)
+        node.create_subscription(JointState, f'/olive/servo/{servo}/joint',
+                                 lambda msg, s=servo: state.positions.__setitem__(s, msg.position[0]), 10)
+    return state
+
+
+def degrees(radians: float) -> str:
+    return f'{math.degrees(radians):+4.0f}°'
+
+
+def report_line(elapsed: float, state: RobotState, fps: float) -> str:
+    """One line of what the robot does now."""
+    parts = [f'{elapsed:3.0f} s']
+    if state.orientation is not None:
+        roll, pitch, yaw = quaternion_to_euler(state.orientation)
+        parts.append(f'IMU roll {degrees(roll)} pitch {degrees(pitch)} yaw {degrees(yaw)}')
+    for servo in SERVOS:
+        goal, position = state.goals.get(servo), state.positions.get(servo)
+        goal_text = f'{goal:+.2f}' if goal is not None else '--'
+        position_text = f'{position:+.2f}' if position is not None else '--'
+        parts.append(f'{servo} goal {goal_text} at {position_text} rad')
+    parts.append(f'camera {fps:4.1f} fps')
+    if state.pose is not None:
+        parts.append(f'turtle ({state.pose.x:.1f}, {state.pose.y:.1f}) heading {degrees(state.pose.theta)}')
+    return ' | '.join(parts)
+
+
+def start_robot(sandbox: RosSandbox) -> dict[str, RosProcess]:
+    """The kit and the course's projects, each waited for until it says it works."""
+    processes = {
+        'kit': sandbox.command(['ros2', 'launch', 'olive_sim', 'owl_kit.launch.py'], label='kit'),
+        'imu_turtle': sandbox.command(['ros2', 'launch', 'olive_imu', 'imu_turtle.launch.py'],
+                                      label='imu_turtle'),
+        'imu_control_robot': sandbox.run('olive_servo', 'imu_control_robot'),
+        'display_camera': sandbox.run('olive_camera', 'display_camera'),
+    }
+    processes['imu_control_robot'].wait_for(r'steering the pan and tilt servos', STARTUP_TIMEOUT)
+    processes['imu_turtle'].wait_for(r'IMU data on', STARTUP_TIMEOUT)
+    return processes
+
+
+def run_demo(seconds: float, report_every: float) -> int:
+    # env.sh's network mode: private (LOCALHOST) unless the user opened it with OWL_NETWORK=open.
+    with RosSandbox(discovery_range=os.environ.get('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')) as sandbox:
+        print(f'== Owl Kit Lab demo: the simulated Owl Kit and the course\'s chapter 4 projects, '
+              f'ROS 2 domain {sandbox.domain_id}, {seconds:.0f} s', flush=True)
+        print('   kit: IMU, servos pan and tilt, camera eye (ros2 launch olive_sim owl_kit.launch.py)\n'
+              '   imu_control_robot: the head points where the IMU points\n'
+              '   display_camera: the camera\'s picture\n'
+              '   imu_turtle: the IMU drives turtlesim\'s turtle (pitch = speed, yaw = turning)', flush=True)
+        print(f'== watch it from another shell: source env.sh && export ROS_DOMAIN_ID={sandbox.domain_id}, '
+              'then `rqt` (Plugins > Visualization > Image View, '
+              f'topic {CAMERA_TOPIC}) or `ros2 topic echo /turtle1/pose`', flush=True)
+        probe = Probe(sandbox.domain_id, 'owl_demo')
+        try:
+            state = watch(probe)
+            processes = start_robot(sandbox)
+            for line in processes['display_camera'].lines[:3]:
+                print(f'   display_camera says: {line}', flush=True)
+            print('== running', flush=True)
+            start = last = time.monotonic()
+            frames_then = state.frames
+            while (now := time.monotonic()) - start < seconds:
+                time.sleep(min(report_every, start + seconds - now))
+                now = time.monotonic()
+                fps = (state.frames - frames_then) / max(now - last, 1e-6)
+                frames_then, last = state.frames, now
+                print('   ' + report_line(now - start, state, fps), flush=True)
+        finally:
+            probe.close()
         print('== stopping (SIGINT, as Ctrl-C would)', flush=True)
-        codes = {node.label: node.stop() for node in nodes}
+        codes = {label: process.stop() for label, process in reversed(processes.items())}
     failed = {label: code for label, code in codes.items() if code != 0}
-    failed.update({c.label: c.popen.returncode for c in clients if c.popen.returncode != 0})
     if failed:
-        print(f'== demo finished with errors: {failed}', file=sys.stderr)
+        print(f'== demo finished with errors (exit codes): {failed}', file=sys.stderr)
+        for label in failed:
+            print(f'-- last lines of {label}:\n{processes[label].tail(15)}', file=sys.stderr)
         return 1
     print('== demo finished: every node stopped cleanly', flush=True)
     return 0
@@ -49,13 +145,20 @@ def run_demo(seconds: float) -> int:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument('--seconds', type=float, default=10.0, help='how long to run (default 10)')
+    parser.add_argument('--seconds', type=float, default=20.0, help='how long to run (default 20)')
+    parser.add_argument('--report-every', type=float, default=4.0, metavar='SECONDS',
+                        help='seconds between two status lines (default 4)')
     args = parser.parse_args()
+    if not args.seconds > 0 or not args.report_every > 0:
+        parser.error('--seconds and --report-every must be positive numbers')
     try:
-        return run_demo(args.seconds)
+        return run_demo(args.seconds, args.report_every)
     except KeyboardInterrupt:
         print('== interrupted; every node was stopped', file=sys.stderr)
         return 130
+    except (AssertionError, FileNotFoundError) as error:  # a node did not come up, or is not built
+        print(f'== demo failed to start: {error}', file=sys.stderr)
+        return 1
 
 
 if __name__ == '__main__':

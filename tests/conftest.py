@@ -85,3 +85,14 @@ def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> Genera
         terminalreporter.write_line(
             f'rerun: {nodeid} {rerun.outcome}{again} on its second run; first failure: {rerun.first_failure}')
     return result
+
+
+@pytest.fixture(scope='session')
+def x_display():
+    """One virtual X display (tests/desktop.py) for every window test of the run."""
+    from desktop import VirtualDisplay
+    display = VirtualDisplay()
+    try:
+        yield display
+    finally:
+        display.close()

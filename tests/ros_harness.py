@@ -8,58 +8,29 @@ node in the same private domain, spun by a background thread.
 from __future__ import annotations
 
 import sys
-import threading
 import time
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-import rclpy
+import owl_common.probe
 from owl_common.processes import RosSandbox
 from rcl_interfaces.msg import Parameter, ParameterType, ParameterValue, SetParametersResult
 from rcl_interfaces.srv import GetParameters, SetParameters
-from rclpy.context import Context
-from rclpy.executors import SingleThreadedExecutor
-from rclpy.node import Node
-from rclpy.qos import QoSProfile
 
 # Seconds before a parameter request is sent again (see Probe.call).
 PARAMETER_RESEND = 2.0
 
 
-class Probe:
-    """An rclpy node of the test itself, in the sandbox's domain."""
+class Probe(owl_common.probe.Probe):
+    """The test's own rclpy node in the sandbox's domain, with waits and calls that fail a test."""
 
     def __init__(self, domain_id: int, name: str = 'owl_test_probe'):
-        self.context = Context()
-        rclpy.init(context=self.context, domain_id=domain_id)
-        self.node = Node(name, context=self.context)
-        self.executor = SingleThreadedExecutor(context=self.context)
-        self.executor.add_node(self.node)
-        self._thread = threading.Thread(target=self._spin, daemon=True)
-        self._thread.start()
-
-    def _spin(self) -> None:
-        try:
-            self.executor.spin()
-        except Exception:  # the context shut down under it: the test is over
-            pass
-
-    def close(self) -> None:
-        self.executor.shutdown(timeout_sec=1.0)
-        self.node.destroy_node()
-        rclpy.try_shutdown(context=self.context)
-        self._thread.join(2.0)
+        super().__init__(domain_id, name)
 
     def wait_for_node(self, name: str, timeout: float = 10.0) -> None:
         """Wait until a node of that name (no namespace) is in the graph."""
         wait_until(lambda: name in self.node.get_node_names(), timeout, f'node {name}')
-
-    def collect(self, msg_type: Any, topic: str, qos: QoSProfile | int = 10) -> list[Any]:
-        """Subscribe now; the returned list fills with every message received from then on."""
-        received: list[Any] = []
-        self.node.create_subscription(msg_type, topic, received.append, qos)
-        return received
 
     def call(self, srv_type: Any, service: str, request: Any, timeout: float = 10.0,
              resend_every: float | None = None) -> Any:

@@ -52,12 +52,14 @@ class DomainLease:
             self._handle = None
 
 
-def isolated_env(domain_id: int, base: dict[str, str] | None = None) -> dict[str, str]:
-    """The environment for processes that must only see each other."""
+def isolated_env(domain_id: int, base: dict[str, str] | None = None,
+                 discovery_range: str = 'LOCALHOST') -> dict[str, str]:
+    """The environment for processes that must only see each other (on other machines too, with
+    discovery_range SUBNET)."""
     env = dict(os.environ if base is None else base)
     env.update({
         'ROS_DOMAIN_ID': str(domain_id),
-        'ROS_AUTOMATIC_DISCOVERY_RANGE': 'LOCALHOST',
+        'ROS_AUTOMATIC_DISCOVERY_RANGE': discovery_range,
         'PYTHONUNBUFFERED': '1',
         'RCUTILS_LOGGING_BUFFERED_STREAM': '1',
         'RCUTILS_COLORIZED_OUTPUT': '0',
@@ -184,24 +186,28 @@ class RosProcess:
 class RosSandbox:
     """A set of processes sharing one private ROS domain; close() stops them all."""
 
-    def __init__(self, echo: bool = False) -> None:
+    def __init__(self, echo: bool = False, discovery_range: str = 'LOCALHOST') -> None:
         self._lease = DomainLease()
         self.domain_id = self._lease.domain_id
-        self.env = isolated_env(self.domain_id)
+        self.env = isolated_env(self.domain_id, discovery_range=discovery_range)
         self.echo = echo
         self.processes: list[RosProcess] = []
 
     def run(self, package: str, executable: str, *args: str, label: str | None = None,
-            env: dict[str, str] | None = None) -> RosProcess:
+            env: dict[str, str | None] | None = None) -> RosProcess:
         """Start an installed executable of a package, like `ros2 run package executable args`."""
         path = installed_executable(package, executable)
         return self.command([str(path), *args], label=label or executable, env=env)
 
     def command(self, argv: Iterable[str], label: str | None = None,
-                env: dict[str, str] | None = None, cwd: str | None = None) -> RosProcess:
-        """Start any command inside the sandbox's domain."""
+                env: dict[str, str | None] | None = None, cwd: str | None = None) -> RosProcess:
+        """Start any command inside the sandbox's domain; env entries set to None are removed."""
         process_env = dict(self.env)
-        process_env.update(env or {})
+        for name, value in (env or {}).items():
+            if value is None:
+                process_env.pop(name, None)
+            else:
+                process_env[name] = value
         process = RosProcess(list(argv), process_env, label=label, echo=self.echo, cwd=cwd)
         self.processes.append(process)
         return process

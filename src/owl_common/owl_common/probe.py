@@ -1,0 +1,46 @@
+"""A node of the calling process in another ROS domain, spun on a background thread.
+
+The system tests watch and drive their processes through it, and so does `make demo`.
+"""
+
+from __future__ import annotations
+
+import threading
+from typing import Any
+
+import rclpy
+from rclpy.context import Context
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.node import Node
+from rclpy.qos import QoSProfile
+
+
+class Probe:
+    """An rclpy node in the given domain; callbacks run on the probe's own thread."""
+
+    def __init__(self, domain_id: int, name: str = 'owl_probe') -> None:
+        self.context = Context()
+        rclpy.init(context=self.context, domain_id=domain_id)
+        self.node = Node(name, context=self.context)
+        self.executor = SingleThreadedExecutor(context=self.context)
+        self.executor.add_node(self.node)
+        self._thread = threading.Thread(target=self._spin, daemon=True)
+        self._thread.start()
+
+    def _spin(self) -> None:
+        try:
+            self.executor.spin()
+        except Exception:  # the context shut down under it: the probe is closing
+            pass
+
+    def close(self) -> None:
+        self.executor.shutdown(timeout_sec=1.0)
+        self.node.destroy_node()
+        rclpy.try_shutdown(context=self.context)
+        self._thread.join(2.0)
+
+    def collect(self, msg_type: Any, topic: str, qos: QoSProfile | int = 10) -> list[Any]:
+        """Subscribe now; the returned list fills with every message received from then on."""
+        received: list[Any] = []
+        self.node.create_subscription(msg_type, topic, received.append, qos)
+        return received

@@ -1,0 +1,95 @@
+"""A virtual X display for the window tests: Xvfb, and xdotool to find windows and press keys.
+
+The `x_display` fixture (conftest.py) starts one Xvfb for the whole session; a test that needs a
+real window runs its process with DISPLAY set to it. Without Xvfb or xdotool the tests skip with
+one line (scripts/test_prereqs.sh installs them when run as root).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import select
+import shutil
+import subprocess
+import time
+
+import pytest
+
+# A window in `xwininfo -root -tree`: its id and its title.
+WINDOW_LINE = re.compile(r'^\s*(0x[0-9a-f]+) "(.*)":', re.MULTILINE)
+MISSING = "{program} is not installed, so this window test is skipped ('sudo apt-get install {package}')"
+
+
+def require(program: str, package: str) -> None:
+    if shutil.which(program) is None:
+        pytest.skip(MISSING.format(program=program, package=package))
+
+
+class VirtualDisplay:
+    """An Xvfb server on a display number it picks itself (-displayfd), stopped by close()."""
+
+    def __init__(self, timeout: float = 10.0) -> None:
+        require('Xvfb', 'xvfb')
+        require('xdotool', 'xdotool')
+        require('xwininfo', 'x11-utils')
+        read_end, write_end = os.pipe()
+        self.process = subprocess.Popen(
+            ['Xvfb', '-displayfd', str(write_end), '-screen', '0', '1280x1024x24', '-nolisten', 'tcp'],
+            pass_fds=(write_end,), stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL)
+        os.close(write_end)
+        try:
+            ready, _, _ = select.select([read_end], [], [], timeout)
+            number = os.read(read_end, 64).decode().strip() if ready else ''
+        finally:
+            os.close(read_end)
+        if not number.isdigit():
+            self.close()
+            raise RuntimeError(f'Xvfb did not report its display within {timeout} s')
+        self.name = f':{number}'
+
+    def env(self) -> dict[str, str]:
+        """Environment entries that put a process on this display."""
+        return {'DISPLAY': self.name}
+
+    def xdotool(self, *args: str, timeout: float = 10.0) -> str:
+        result = subprocess.run(['xdotool', *args], capture_output=True, text=True, timeout=timeout,
+                                env=dict(os.environ, DISPLAY=self.name), check=False)
+        return result.stdout
+
+    def windows(self, name: str | None = None, pid: int | None = None) -> list[str]:
+        """Ids of the windows whose title matches the regex name, or that the process pid owns."""
+        if pid is not None:
+            return self.xdotool('search', '--pid', str(pid)).split()
+        # xdotool 3.2016's --name misses SDL's windows; xwininfo lists every title it has.
+        result = subprocess.run(['xwininfo', '-root', '-tree'], capture_output=True, text=True, timeout=10,
+                                env=dict(os.environ, DISPLAY=self.name), check=False)
+        pattern = re.compile(name or '.')
+        return [match.group(1) for match in WINDOW_LINE.finditer(result.stdout)
+                if pattern.search(match.group(2))]
+
+    def wait_for_window(self, name: str | None = None, pid: int | None = None,
+                        timeout: float = 20.0) -> str:
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            found = self.windows(name, pid)
+            if found:
+                return found[0]
+            time.sleep(0.2)
+        raise AssertionError(f'no window (name {name!r}, pid {pid}) on {self.name} within {timeout} s')
+
+    def press(self, window: str, key: str, seconds: float) -> None:
+        """Hold an X key (e.g. 'Left') in a window for the given time."""
+        self.xdotool('windowactivate', '--sync', window)
+        self.xdotool('keydown', '--window', window, key)
+        time.sleep(seconds)
+        self.xdotool('keyup', '--window', window, key)
+
+    def close(self) -> None:
+        if self.process.poll() is None:
+            self.process.terminate()
+            try:
+                self.process.wait(5)
+            except subprocess.TimeoutExpired:
+                self.process.kill()

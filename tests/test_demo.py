@@ -1,0 +1,40 @@
+"""`make demo`: the chapter 4 robot live over real DDS, reported in readable lines, stopped cleanly."""
+
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+DEMO = Path(__file__).parents[1] / 'scripts' / 'demo.py'
+STATUS = re.compile(
+    r'IMU roll +[+-]\d+° pitch +[+-]\d+° yaw +[+-]\d+° \| pan goal ([+-]\d\.\d\d) at ([+-]\d\.\d\d) rad \| '
+    r'tilt goal ([+-]\d\.\d\d) at ([+-]\d\.\d\d) rad \| camera +(\d+\.\d) fps \| turtle \(')
+
+
+def run_demo(*args: str, timeout: float = 150) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, str(DEMO), *args], capture_output=True, text=True,
+                          timeout=timeout, check=False)
+
+
+def test_demo_runs_the_robot_reports_it_and_stops_every_node_cleanly():
+    result = run_demo('--seconds', '10', '--report-every', '2.5')
+    assert result.returncode == 0, result.stdout + result.stderr
+    statuses = [STATUS.search(line) for line in result.stdout.splitlines()]
+    statuses = [s for s in statuses if s]
+    assert len(statuses) >= 3, result.stdout
+    # The head follows the IMU: the servos reach their goals, and the camera streams.
+    pan_goal, pan_at, tilt_goal, tilt_at, fps = map(float, statuses[-1].groups())
+    assert abs(pan_goal - pan_at) < 0.3 and abs(tilt_goal - tilt_at) < 0.3, statuses[-1].group(0)
+    assert fps > 10, statuses[-1].group(0)
+    assert 'display_camera says:' in result.stdout, result.stdout
+    assert 'every node stopped cleanly' in result.stdout
+    assert 'Traceback' not in result.stdout + result.stderr
+
+
+def test_demo_refuses_a_bad_duration_in_one_line():
+    for args in (['--seconds', '-3'], ['--seconds', 'soon'], ['--report-every', '0']):
+        result = run_demo(*args, timeout=30)
+        assert result.returncode == 2, args
+        assert 'Traceback' not in result.stderr
+        assert result.stderr.strip().splitlines()[-1].startswith('usage:') is False
+        assert 'error:' in result.stderr.strip().splitlines()[-1], result.stderr
