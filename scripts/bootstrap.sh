@@ -70,23 +70,30 @@ if [ "$(cat "$REQ_STAMP" 2>/dev/null)" != "$req_hash" ]; then
   echo "$req_hash" >"$REQ_STAMP"
 fi
 
-# --- OpenCV's headless build beside the GUI build, for machines without libGL/glib. ---
+# --- OpenCV's headless build beside the GUI build, and the venv's start-up hook for GUI libraries. ---
 # Falling back needs no root, so a clean clone on a minimal machine (CI, a container) still gets a
-# working `import cv2`; a desktop keeps cv2.imshow windows. See scripts/owl_cv2_fallback.py.
+# working `import cv2`; a desktop keeps cv2.imshow windows. The same hook gives cv2 and pygame
+# windows that need no display where there is none. See scripts/owl_gui_hook.py.
 CV_STAMP="$VENV/.owl-opencv-headless.sha256"
 cv_version="$(sed -n 's/^opencv-python==\([^ ;]*\).*/\1/p' requirements.txt)"
 [ -n "$cv_version" ] || die "requirements.txt pins no opencv-python."
-cv_hash="$( (echo "$cv_version"; cat scripts/owl_cv2_fallback.py) | sha256sum | cut -d' ' -f1)"
+cv_hash="$( (echo "$cv_version"; cat scripts/owl_gui_hook.py) | sha256sum | cut -d' ' -f1)"
 if [ "$(cat "$CV_STAMP" 2>/dev/null)" != "$cv_hash" ]; then
-  echo "setup: installing OpenCV's headless build $cv_version as a fallback ..."
-  rm -rf "$VENV/opencv-headless"
-  run_logged opencv-headless "$VENV/bin/uv" pip install --no-progress --python "$VENV/bin/python" \
-    --no-deps --target "$VENV/opencv-headless" "opencv-python-headless==$cv_version"
   site_packages="$(env _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/python" -c \
     'import sysconfig; print(sysconfig.get_path("purelib"))')"
-  cp scripts/owl_cv2_fallback.py "$site_packages/"
-  echo 'import owl_cv2_fallback; owl_cv2_fallback.install()' >"$site_packages/owl_cv2_fallback.pth"
-  cv_notice="$(env _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/python" -m owl_cv2_fallback)"
+  if [ ! -f "$VENV/opencv-headless/opencv_python_headless-$cv_version.dist-info/METADATA" ]; then
+    echo "setup: installing OpenCV's headless build $cv_version as a fallback ..."
+    rm -rf "$VENV/opencv-headless"
+    run_logged opencv-headless "$VENV/bin/uv" pip install --no-progress --python "$VENV/bin/python" \
+      --no-deps --target "$VENV/opencv-headless" "opencv-python-headless==$cv_version"
+  fi
+  rm -f "$site_packages/owl_cv2_fallback.py" "$site_packages/owl_cv2_fallback.pth"  # its old name
+  cp scripts/owl_gui_hook.py "$site_packages/"
+  # Every start of the venv's Python imports it: compiled once here, as PYTHONDONTWRITEBYTECODE
+  # would otherwise have each start compile it again (about 20 ms).
+  env _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/python" -m py_compile "$site_packages/owl_gui_hook.py"
+  echo 'import owl_gui_hook; owl_gui_hook.install()' >"$site_packages/owl_gui_hook.pth"
+  cv_notice="$(env _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/python" -m owl_gui_hook)"
   [ -z "$cv_notice" ] || echo "setup: $cv_notice"
   echo "$cv_hash" >"$CV_STAMP"
 fi

@@ -2,6 +2,8 @@
 
 A machine without libGL is simulated by an empty libGL.so.1 first on LD_LIBRARY_PATH: the GUI
 build's native module then fails to load exactly as it does where the library is missing.
+OWL_HEADLESS=0 stands for a display (the fallback says so in one line), OWL_HEADLESS=1 for none
+(silent: the first window says there is no display; tests/test_headless_windows.py).
 """
 
 import ctypes
@@ -23,8 +25,8 @@ REPORT = ('import sys, cv2, numpy; ok, _ = cv2.imencode(".png", numpy.zeros((2, 
 APT = "for windows: 'sudo apt install libgl1 libglib2.0-0'"
 
 
-def python(*args: str, broken_libgl: Path | None = None) -> subprocess.CompletedProcess:
-    env = dict(os.environ)
+def python(*args: str, broken_libgl: Path | None = None, display: bool = True) -> subprocess.CompletedProcess:
+    env = dict(os.environ, OWL_HEADLESS='0' if display else '1')
     if broken_libgl is not None:
         broken_libgl.mkdir()
         (broken_libgl / 'libGL.so.1').write_bytes(b'')
@@ -60,6 +62,14 @@ def test_without_libgl_cv2_is_the_headless_build_with_one_line_saying_so(tmp_pat
     assert line.endswith(APT)
 
 
+def test_without_libgl_and_without_a_display_the_fallback_is_silent(tmp_path):
+    result = python('-c', REPORT, broken_libgl=tmp_path / 'lib', display=False)
+    assert result.returncode == 0, result.stderr
+    version, headless, path, encoded, on_path = result.stdout.split()
+    assert (headless, on_path) == ('True', 'True')
+    assert result.stderr == ''
+
+
 @pytest.mark.skipif(not desktop_libraries_load(), reason='this machine lacks libGL or glib: it falls back')
 def test_with_the_libraries_cv2_is_the_gui_build_untouched():
     result = python('-c', REPORT)
@@ -71,9 +81,9 @@ def test_with_the_libraries_cv2_is_the_gui_build_untouched():
 
 
 def test_the_setup_check_prints_the_notice_only_when_falling_back(tmp_path):
-    falling_back = python('-m', 'owl_cv2_fallback', broken_libgl=tmp_path / 'lib')
+    falling_back = python('-m', 'owl_gui_hook', broken_libgl=tmp_path / 'lib')
     assert falling_back.returncode == 0
     [line] = falling_back.stdout.splitlines()
     assert line.startswith("OpenCV's GUI build cannot load here (") and line.endswith(APT)
     if desktop_libraries_load():
-        assert python('-m', 'owl_cv2_fallback').stdout == ''
+        assert python('-m', 'owl_gui_hook').stdout == ''

@@ -1,0 +1,838 @@
+"""The venv's start-up hook for the course's GUI libraries: which OpenCV build, and windows without a display.
+
+scripts/bootstrap.sh copies this module into the venv's site-packages with a .pth line that calls
+install() at every start of the venv's Python. install() only puts a finder on sys.meta_path that
+waits for the first `import cv2` or `import pygame`; nothing else is imported or done before that.
+It has two jobs; neither changes a line of the program that imports the library.
+
+1. Which OpenCV build. The venv's cv2 is opencv-python, the GUI build, so that cv2.imshow opens a
+   real window. Its native module needs the system's libGL and glib (libgl1, libglib2.0-0), which a
+   minimal Linux may lack; bootstrap.sh also installs the headless build of the same version into
+   <venv>/opencv-headless. At the first `import cv2` the GUI build's native module is loaded once:
+   if that fails, the headless folder goes first on sys.path. Where a display is available this
+   says so in one line on stderr (the fallback notice below); without one it is silent, as there
+   would be no window either way (the headless windows below say that). Deciding per process, not
+   at setup, means installing the libraries later turns the GUI build on without another setup.
+
+2. Headless windows. Without a display, opencv-python's Qt aborts the process at the first
+   cv2.imshow ("could not connect to display", exit code 134) and pygame opens an offscreen window
+   that receives no keys, amid ALSA and XDG noise. In a process without a display this hook makes:
+   - cv2: imshow, namedWindow, waitKey, waitKeyEx, pollKey, destroyWindow, destroyAllWindows and
+     the other window functions work without a window. The first window prints one line on stderr
+     (what happened, where to see the camera instead). waitKey(delay) waits delay ms and returns
+     -1, as the real one does when no key is pressed; waitKey(0) waits for a key, which only the
+     seam below can send, so it says once that Ctrl-C stops it.
+   - pygame: SDL's video and audio drivers are 'dummy' (set before SDL starts, unless the program
+     chose drivers itself), so no window and no ALSA/XDG lines; the first pygame.display.set_mode
+     prints one line (its window gets no keys, how to drive the servos instead).
+   Whether a display is available: cv2 needs DISPLAY (the wheel's Qt has only its X11 plugin,
+   which XWayland serves); pygame needs DISPLAY or WAYLAND_DISPLAY. OWL_HEADLESS=1 makes windows
+   headless anyway and OWL_HEADLESS=0 leaves them real (for tests). Where a display is available
+   nothing is patched; only QT_QPA_FONTDIR is pointed at /usr/share/fonts when unset, which stops
+   the wheel's Qt from printing "QFontDatabase: Cannot find font directory" ten times per window.
+
+The seam (for a browser view of these windows): OWL_WINDOWS_DIR
+---------------------------------------------------------------
+With OWL_WINDOWS_DIR=<dir> in the environment, headless windows also write what they show to
+files there and read key events from a file there. Nothing happens with a display.
+
+  <dir>/<program>-<pid>/    one folder per process, made at its first window; removed when the
+                            process exits normally. <program> is its script's name without .py
+                            (display_camera, keyboard_servos); <pid> tells whether it still runs.
+    cv2-<window>.jpg        the latest image given to cv2.imshow(<window>, ...), as the window
+                            would show it (8 bit; 16-bit images / 256, float images x 255), JPEG.
+                            <window> is the window's name percent-encoded
+                            (urllib.parse.quote(name, safe='')): 'camera' -> cv2-camera.jpg.
+                            destroyWindow/destroyAllWindows remove it.
+    pygame.png              the latest content of the pygame display, at each display.flip() or
+                            display.update(), PNG. pygame.display.quit()/pygame.quit() remove it.
+    keys                    empty when made; append key events to it, one per line:
+                                down <key>
+                                up <key>
+                            <key> is a pygame key name (pygame.key.name()): left, right, up, down,
+                            space, return, escape, backspace, tab, a .. z, 0 .. 9, left shift, f1 ...
+
+  Frames: each file is replaced atomically (written as .<name>.tmp beside it, then renamed), so a
+  reader never sees a partial image. At most OWL_WINDOWS_FPS (default 10) writes per second per
+  window; a frame held back by that limit is written at the program's next imshow, waitKey,
+  pollKey, display.flip/update or event call after the interval, so the file ends up showing the
+  last image shown.
+  Keys: read whenever the program looks for input, each reader in file order from the start:
+  - pygame: pygame.event.get/poll/wait/peek/pump and pygame.key.get_pressed/get_mods first turn
+    new lines into events: `down left` posts KEYDOWN (key=K_LEFT, mod, unicode, scancode),
+    `up left` posts KEYUP, and pygame.key.get_pressed()[K_LEFT] is True from the down to the up.
+    No key repeat is made: append another `down` for a repeat. A down and its up read in the same
+    call arrive as two events in one pygame.event.get(); hold a key for longer than the program's
+    input period to have it seen as held.
+  - cv2: waitKey/waitKeyEx/pollKey return the next `down` (`up` lines are ignored, as by
+    OpenCV) with the code the GUI build's window gives for that key: a character its code
+    (a -> 97, space -> 32), return 13, escape 27, backspace 8, tab 9, left/up/right/down
+    0xff51/0xff52/0xff53/0xff54 (waitKey returns the low byte: 81/82/83/84), f1 0xffbe ...
+    waitKey(delay) returns as soon as a key arrives.
+  A line that is not `down <key>`/`up <key>` with a known key is skipped with one line on stderr.
+"""
+
+import os
+import sys
+
+HEADLESS_DIR = os.path.join(sys.prefix, 'opencv-headless')
+APT_HINT = "'sudo apt install libgl1 libglib2.0-0'"
+FONT_DIR = '/usr/share/fonts'
+DEFAULT_FPS = 10.0
+RQT_HINT = 'To see the camera, run rqt and open Plugins > Visualization > Image View'
+SERVO_HINT = ('To move the servos without keys: stop it, call /olive/servo/pan/setTorqueEnable and '
+              'publish goals on /olive/servo/pan/goal/position (and tilt) with rqt or '
+              'ros2 service call / ros2 topic pub')
+
+
+# --- start-up: the finder ------------------------------------------------------------------------
+
+SEEN: set[str] = set()  # the libraries whose first import this process has seen
+
+
+class GuiImportHook:
+    """A sys.meta_path entry that acts on the first `import cv2` and the first `import pygame`."""
+
+    @classmethod
+    def find_spec(cls, fullname: str, path: object = None, target: object = None) -> object:
+        if path is not None or fullname not in ('cv2', 'pygame') or fullname in SEEN:
+            return None
+        SEEN.add(fullname)  # before anything else: cv2's own loader imports 'cv2' again
+        if len(SEEN) == 2:
+            sys.meta_path.remove(cls)
+        patch = prepare_cv2() if fullname == 'cv2' else prepare_pygame()
+        if patch is None:
+            return None  # the usual finders import it untouched
+        spec = find_spec_after(cls, fullname, target)
+        if spec is None or spec.loader is None:
+            return None
+        spec.loader = PatchingLoader(spec.loader, patch)
+        return spec
+
+
+def find_spec_after(finder: object, fullname: str, target: object) -> object:
+    """The spec the other finders on sys.meta_path give, as the import would find it without us."""
+    for other in list(sys.meta_path):
+        if other is finder or not hasattr(other, 'find_spec'):
+            continue
+        spec = other.find_spec(fullname, None, target)
+        if spec is not None:
+            return spec
+    return None
+
+
+class PatchingLoader:
+    """The module's own loader, then patch(module) once the module is complete."""
+
+    def __init__(self, loader: object, patch: object) -> None:
+        self.loader = loader
+        self.patch = patch
+
+    def create_module(self, spec: object) -> object:
+        return self.loader.create_module(spec)
+
+    def exec_module(self, module: object) -> None:
+        self.loader.exec_module(module)
+        # cv2's __init__ swaps modules around while loading; what `import` hands out is in sys.modules.
+        self.patch(sys.modules.get(module.__name__, module))
+
+    def __getattr__(self, name: str) -> object:
+        return getattr(self.loader, name)
+
+
+def install() -> None:
+    """Called by the .pth line at every start of the venv's Python; costs nothing until cv2 or pygame."""
+    if GuiImportHook not in sys.meta_path:
+        sys.meta_path.insert(0, GuiImportHook)
+
+
+# --- job 1: which OpenCV build --------------------------------------------------------------------
+
+def native_module(package_dir: str) -> str | None:
+    """The compiled cv2 module inside a cv2 package folder (cv2.abi3.so in the PyPI wheels)."""
+    try:
+        names = sorted(os.listdir(package_dir))
+    except OSError:
+        return None
+    for name in names:
+        if name.startswith('cv2.') and name.endswith('.so'):
+            return os.path.join(package_dir, name)
+    return None
+
+
+def gui_build_problem() -> str | None:
+    """Why the cv2 on sys.path cannot load here, in one line; None if it loads or there is none."""
+    import ctypes
+    from importlib.machinery import PathFinder
+
+    spec = PathFinder.find_spec('cv2')
+    if spec is None or not spec.submodule_search_locations:
+        return None
+    for folder in spec.submodule_search_locations:
+        library = native_module(folder)
+        if library is not None:
+            try:
+                # The same dlopen the import does next; a missing system library fails it here.
+                ctypes.CDLL(library)
+            except OSError as error:
+                return str(error).splitlines()[0]
+            return None
+    return None
+
+
+def notice(problem: str) -> str:
+    return (f"OpenCV's GUI build cannot load here ({problem}): cv2 is its headless build, "
+            f'whose cv2.imshow opens no window; for windows: {APT_HINT}')
+
+
+def prepare_cv2() -> object:
+    """Before cv2 is imported: choose the build; the patch to apply after the import, or None."""
+    reason = headless_reason('cv2', os.environ)
+    fell_back = False
+    if os.path.isdir(HEADLESS_DIR):
+        problem = gui_build_problem()
+        if problem is not None:
+            fell_back = True
+            sys.path.insert(0, HEADLESS_DIR)
+            if reason is None:  # without a display the window line says all there is to say
+                print(f'cv2: {notice(problem)}', file=sys.stderr)
+    if reason is None and not fell_back:
+        if not os.environ.get('QT_QPA_FONTDIR') and os.path.isdir(FONT_DIR):
+            os.environ['QT_QPA_FONTDIR'] = FONT_DIR
+        return None
+    # The headless build's window functions raise "not implemented": headless windows either way,
+    # silent when the fallback notice already said that imshow opens no window.
+    return lambda cv2: patch_cv2(cv2, reason if reason is not None else '')
+
+
+# --- job 2: headless windows, the pure parts ------------------------------------------------------
+
+def headless_reason(library: str, environ: dict[str, str]) -> str | None:
+    """Why this library's windows cannot be shown (for the notice), or None when they can."""
+    forced = environ.get('OWL_HEADLESS', '')
+    if forced == '1':
+        return 'OWL_HEADLESS=1'
+    if forced == '0':
+        return None
+    if library == 'cv2':
+        if environ.get('DISPLAY'):
+            return None
+        if environ.get('WAYLAND_DISPLAY'):
+            return "DISPLAY is not set, and OpenCV's windows need X11 (XWayland)"
+        return 'DISPLAY is not set'
+    if environ.get('DISPLAY') or environ.get('WAYLAND_DISPLAY'):
+        return None
+    return 'neither DISPLAY nor WAYLAND_DISPLAY is set'
+
+
+def setting_problems(environ: dict[str, str]) -> list[str]:
+    """One line per OWL_HEADLESS or OWL_WINDOWS_FPS value that is ignored."""
+    problems = []
+    forced = environ.get('OWL_HEADLESS', '')
+    if forced not in ('', '0', '1'):
+        problems.append(f'OWL_HEADLESS must be 1 (no windows) or 0 (real windows), not {forced!r}: ignored')
+    fps = environ.get('OWL_WINDOWS_FPS', '')
+    if fps and not (is_number(fps) and 0 < float(fps) < float('inf')):
+        problems.append(f'OWL_WINDOWS_FPS must be a number of frames per second above 0, not {fps!r}: '
+                        f'using {DEFAULT_FPS:g}')
+    return problems
+
+
+def is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+def windows_fps(environ: dict[str, str]) -> float:
+    """OWL_WINDOWS_FPS if it is a usable rate, else the default."""
+    text = environ.get('OWL_WINDOWS_FPS', '')
+    fps = float(text) if is_number(text) else DEFAULT_FPS
+    return fps if 0 < fps < float('inf') else DEFAULT_FPS
+
+
+def program_name(argv: list[str]) -> str:
+    """The running script's name as the user knows it: display_camera, my_viewer (not my_viewer.py)."""
+    name = os.path.basename(argv[0]) if argv and argv[0] not in ('', '-c', '-m') else ''
+    if name.endswith('.py'):
+        name = name[:-3]
+    return name or 'python'
+
+
+def cv2_notice(program: str, reason: str, window: str, windows_dir: str | None) -> str:
+    line = (f"{program}: no display ({reason}), so the window {window!r} is not shown; the program "
+            f'runs on without it. {RQT_HINT}')
+    if windows_dir:
+        line += f' (its frames go to {windows_dir})'
+    return line
+
+
+def pygame_notice(program: str, reason: str, windows_dir: str | None) -> str:
+    line = (f'{program}: no display ({reason}), so the pygame window is not shown and gets no key '
+            f'presses; the program runs on without them. {SERVO_HINT}')
+    if windows_dir:
+        line += f"; or append key events to {os.path.join(windows_dir, 'keys')} ('down left', 'up left')"
+    return line
+
+
+def window_file(kind: str, name: str) -> str:
+    """The seam's file name of a window: cv2-<percent-encoded name>.jpg or pygame.png."""
+    from urllib.parse import quote
+
+    if kind == 'pygame':
+        return 'pygame.png'
+    return f"cv2-{quote(name, safe='')}.jpg"
+
+
+def parse_key_event(line: str) -> tuple[bool, str]:
+    """'down left' -> (True, 'left'); 'up left shift' -> (False, 'left shift'); ValueError otherwise."""
+    action, _, key = line.strip().partition(' ')
+    key = key.strip()
+    if action not in ('down', 'up') or not key:
+        raise ValueError("expected 'down <key>' or 'up <key>'")
+    return action == 'down', key
+
+
+# What opencv-python's Qt window gives waitKeyEx for a key (measured under Xvfb): characters give
+# their code, these named keys their X11 keysym; waitKey returns the low byte.
+CV2_NAMED_KEYS = {
+    'space': 32, 'return': 13, 'escape': 27, 'backspace': 8, 'tab': 9, 'delete': 0xffff,
+    'left': 0xff51, 'up': 0xff52, 'right': 0xff53, 'down': 0xff54,
+    'home': 0xff50, 'page up': 0xff55, 'page down': 0xff56, 'end': 0xff57, 'insert': 0xff63,
+    'left shift': 0xffe1, 'right shift': 0xffe2, 'left ctrl': 0xffe3, 'right ctrl': 0xffe4,
+    'caps lock': 0xffe5, 'left alt': 0xffe9, 'right alt': 0xffea,
+    **{f'f{n}': 0xffbe + n - 1 for n in range(1, 13)},
+}
+
+
+def cv2_key_code(key: str) -> int | None:
+    """waitKeyEx's value for a pygame key name, None for a key we do not know."""
+    if len(key) == 1:
+        return ord(key)
+    return CV2_NAMED_KEYS.get(key)
+
+
+def displayable(image: object) -> object:
+    """The 8-bit image cv2.imshow would show for an array: 16-bit / 256, float x 255 (clipped)."""
+    import numpy
+
+    array = numpy.asarray(image)
+    if array.ndim == 3 and array.shape[2] == 1:
+        array = array[:, :, 0]
+    if array.ndim not in (2, 3) or (array.ndim == 3 and array.shape[2] not in (3, 4)):
+        raise ValueError(f'an image of shape {array.shape} cannot be shown')
+    if array.ndim == 3 and array.shape[2] == 4:
+        array = array[:, :, :3]  # the window shows no transparency
+    if array.dtype == numpy.uint8:
+        return array
+    if array.dtype == numpy.uint16:
+        return (array >> 8).astype(numpy.uint8)
+    if array.dtype.kind == 'f':
+        return numpy.clip(numpy.nan_to_num(array) * 255.0, 0, 255).astype(numpy.uint8)
+    if array.dtype.kind in 'iub':
+        return numpy.clip(array, 0, 255).astype(numpy.uint8)
+    raise ValueError(f'an image of type {array.dtype} cannot be shown')
+
+
+# --- job 2: the seam ------------------------------------------------------------------------------
+
+SETTINGS_CHECKED: list[bool] = []
+
+
+def say(line: str) -> None:
+    print(line, file=sys.stderr, flush=True)
+
+
+class WindowsFolder:
+    """<OWL_WINDOWS_DIR>/<program>-<pid>/: frame files written at a limited rate, the keys file."""
+
+    def __init__(self, root: str, program: str, fps: float) -> None:
+        from urllib.parse import quote
+
+        self.path = os.path.join(root, f"{quote(program, safe='')}-{os.getpid()}")
+        self.period = 1.0 / fps
+        self.last_write: dict[str, float] = {}
+        self.pending: dict[str, object] = {}  # file name -> function returning the encoded bytes
+        self.made = False
+        self.broken = False
+
+    def make(self) -> bool:
+        """The folder and an empty keys file, once; False (said once) if they cannot be made."""
+        if self.made or self.broken:
+            return self.made
+        import atexit
+
+        try:
+            os.makedirs(self.path, exist_ok=True)
+            with open(os.path.join(self.path, 'keys'), 'ab'):
+                pass
+        except OSError as error:
+            self.broken = True
+            say(f'owl_gui_hook: OWL_WINDOWS_DIR: cannot make {self.path} ({error.strerror}): '
+                'windows are not written there')
+            return False
+        self.made = True
+        atexit.register(self.remove)
+        return True
+
+    @property
+    def keys_path(self) -> str:
+        return os.path.join(self.path, 'keys')
+
+    def show(self, file_name: str, frame: object, encode: object, copy: object) -> None:
+        """Write encode(frame) now if the rate allows, else keep copy(frame) to write when it does
+        (the program may draw into its frame again before then)."""
+        import time
+
+        if not self.make():
+            return
+        if time.monotonic() - self.last_write.get(file_name, -1e9) >= self.period:
+            self.pending.pop(file_name, None)
+            self.write(file_name, lambda: encode(frame))
+        else:
+            kept = copy(frame)
+            self.pending[file_name] = lambda: encode(kept)
+
+    def flush_due(self) -> None:
+        import time
+
+        now = time.monotonic()
+        for file_name in [f for f in self.pending if now - self.last_write.get(f, -1e9) >= self.period]:
+            self.write(file_name, self.pending.pop(file_name))
+
+    def write(self, file_name: str, encode: object) -> None:
+        import time
+
+        self.last_write[file_name] = time.monotonic()
+        final = os.path.join(self.path, file_name)
+        temporary = os.path.join(self.path, f'.{file_name}.tmp')
+        try:
+            with open(temporary, 'wb') as file:
+                file.write(encode())
+            os.replace(temporary, final)
+        except OSError as error:
+            if not self.broken:
+                self.broken = True
+                say(f'owl_gui_hook: OWL_WINDOWS_DIR: cannot write {final} ({error.strerror})')
+
+    def discard(self, file_name: str) -> None:
+        self.pending.pop(file_name, None)
+        self.last_write.pop(file_name, None)
+        if self.made:
+            try:
+                os.remove(os.path.join(self.path, file_name))
+            except OSError:
+                pass
+
+    def remove(self) -> None:
+        import shutil
+
+        shutil.rmtree(self.path, ignore_errors=True)
+        self.made = False
+
+
+class KeyReader:
+    """New lines of a keys file as (down, key name) events; bad lines are said once and skipped."""
+
+    def __init__(self, path: str, known: object) -> None:
+        self.path = path
+        self.known = known  # key name -> True if this reader can deliver it
+        self.offset = 0
+        self.partial = b''
+        self.said: set[str] = set()
+
+    def events(self) -> list[tuple[bool, str]]:
+        try:
+            size = os.stat(self.path).st_size
+        except OSError:
+            return []
+        if size < self.offset:  # truncated by the writer: start over
+            self.offset, self.partial = 0, b''
+        if size == self.offset:
+            return []
+        try:
+            with open(self.path, 'rb') as file:
+                file.seek(self.offset)
+                data = file.read(size - self.offset)
+        except OSError:
+            return []
+        self.offset += len(data)
+        *lines, self.partial = (self.partial + data).split(b'\n')
+        events = []
+        for raw in lines:
+            line = raw.decode('utf-8', 'replace').strip()
+            if not line:
+                continue
+            try:
+                down, key = parse_key_event(line)
+                if not self.known(key):
+                    raise ValueError(f'unknown key {key!r}')
+            except ValueError as problem:
+                if line not in self.said:
+                    self.said.add(line)
+                    say(f'owl_gui_hook: key event {line!r} in {self.path} skipped: {problem}')
+                continue
+            events.append((down, key))
+        return events
+
+
+class Seam:
+    """What headless windows of one library share: the notice, the windows folder, the key reader."""
+
+    def __init__(self, reason: str, library: str) -> None:
+        self.reason = reason
+        self.program = program_name(sys.argv)
+        if not SETTINGS_CHECKED:
+            SETTINGS_CHECKED.append(True)  # once per process, for cv2 and pygame together
+            for problem in setting_problems(os.environ):
+                say(f'owl_gui_hook: {problem}')
+        root = os.environ.get('OWL_WINDOWS_DIR')
+        self.folder = WindowsFolder(root, self.program, windows_fps(os.environ)) if root else None
+        self.library = library
+        self.noticed = False
+        self.reader: KeyReader | None = None
+
+    def first_window(self, notice_line: object) -> None:
+        """At every window: the notice once (unless silent), the folder made."""
+        if self.folder is not None:
+            self.folder.make()
+        if not self.noticed:
+            self.noticed = True
+            if self.reason:
+                folder = self.folder.path if self.folder is not None and self.folder.made else None
+                say(notice_line(folder))
+
+    def key_events(self, known: object) -> list[tuple[bool, str]]:
+        if self.folder is None or not self.folder.made:
+            return []
+        if self.reader is None:
+            self.reader = KeyReader(self.folder.keys_path, known)
+        return self.reader.events()
+
+    def flush_due(self) -> None:
+        if self.folder is not None and self.folder.made:
+            self.folder.flush_due()
+
+
+# --- job 2: headless cv2 --------------------------------------------------------------------------
+
+def patch_cv2(cv2: object, reason: str) -> None:
+    """Replace cv2's window functions with ones that need no display (see the module's docstring)."""
+    HeadlessCv2(cv2, reason).install()
+
+
+class HeadlessCv2:
+    def __init__(self, cv2: object, reason: str) -> None:
+        self.cv2 = cv2
+        self.seam = Seam(reason, 'cv2')
+        self.windows: dict[str, dict[str, object]] = {}  # name -> flags, size, trackbars
+        self.keys: list[int] = []
+        self.said_wait_forever = False
+
+    def install(self) -> None:
+        names = ('imshow', 'namedWindow', 'waitKey', 'waitKeyEx', 'pollKey', 'destroyWindow',
+                 'destroyAllWindows', 'resizeWindow', 'moveWindow', 'setWindowTitle',
+                 'setWindowProperty', 'getWindowProperty', 'getWindowImageRect', 'setMouseCallback',
+                 'startWindowThread', 'createTrackbar', 'getTrackbarPos', 'setTrackbarPos',
+                 'setTrackbarMin', 'setTrackbarMax', 'selectROI', 'selectROIs', 'displayOverlay',
+                 'displayStatusBar', 'createButton', 'addText', 'setOpenGlContext', 'setOpenGlDrawCallback',
+                 'updateWindow', 'imshowEx')
+        for name in names:
+            if hasattr(self.cv2, name):
+                setattr(self.cv2, name, getattr(self, name, self.nothing))
+
+    # -- windows
+
+    def window(self, name: object, flags: int | None = None) -> dict[str, object]:
+        name = str(name)
+        if name not in self.windows:
+            self.windows[name] = {'flags': flags if flags is not None else 1, 'size': (0, 0),
+                                  'trackbars': {}}
+            self.seam.first_window(lambda folder: cv2_notice(self.seam.program, self.seam.reason,
+                                                             name, folder))
+        return self.windows[name]
+
+    def namedWindow(self, winname: str, flags: int = 1) -> None:
+        self.window(winname, flags)
+
+    def imshow(self, winname: str, mat: object) -> None:
+        import numpy
+
+        if isinstance(mat, self.cv2.UMat):
+            mat = mat.get()
+        if not isinstance(mat, numpy.ndarray):
+            raise self.cv2.error(f'OpenCV(headless window): Bad argument in function imshow: mat is '
+                                 f'not a numpy array but {type(mat).__name__}')
+        if mat.size == 0:
+            raise self.cv2.error("OpenCV(headless window): (-215:Assertion failed) size.width>0 && "
+                                 "size.height>0 in function 'imshow'")
+        try:
+            image = displayable(mat)
+        except ValueError as error:
+            raise self.cv2.error(f'OpenCV(headless window): {error} in function imshow') from None
+        window = self.window(winname)
+        window['size'] = (image.shape[1], image.shape[0])
+        if self.seam.folder is not None:
+            self.seam.folder.show(window_file('cv2', str(winname)), image, self.jpeg, lambda i: i.copy())
+
+    def jpeg(self, image: object) -> bytes:
+        ok, data = self.cv2.imencode('.jpg', image, [int(self.cv2.IMWRITE_JPEG_QUALITY), 90])
+        return data.tobytes() if ok else b''
+
+    def destroyWindow(self, winname: str) -> None:
+        if self.windows.pop(str(winname), None) is not None and self.seam.folder is not None:
+            self.seam.folder.discard(window_file('cv2', str(winname)))
+
+    def destroyAllWindows(self) -> None:
+        for name in list(self.windows):
+            self.destroyWindow(name)
+
+    def getWindowProperty(self, winname: str, prop_id: int) -> float:
+        window = self.windows.get(str(winname))
+        if prop_id == getattr(self.cv2, 'WND_PROP_VISIBLE', 4):
+            return 1.0 if window is not None else 0.0  # as if shown: a loop waiting for its close runs on
+        if window is None:
+            return -1.0
+        if prop_id == getattr(self.cv2, 'WND_PROP_AUTOSIZE', 1):
+            return 1.0 if window['flags'] == 1 else 0.0
+        return 0.0
+
+    def getWindowImageRect(self, winname: str) -> tuple[int, int, int, int]:
+        window = self.windows.get(str(winname))
+        return (0, 0, *window['size']) if window is not None else (-1, -1, -1, -1)
+
+    def startWindowThread(self) -> int:
+        return 0
+
+    def createTrackbar(self, trackbarName: str, windowName: str, value: int, count: int,
+                       onChange: object = None) -> None:
+        self.window(windowName)['trackbars'][str(trackbarName)] = int(value)
+
+    def getTrackbarPos(self, trackbarname: str, winname: str) -> int:
+        return self.window(winname)['trackbars'].get(str(trackbarname), 0)
+
+    def setTrackbarPos(self, trackbarname: str, winname: str, pos: int) -> None:
+        self.window(winname)['trackbars'][str(trackbarname)] = int(pos)
+
+    def selectROI(self, *args: object, **kwargs: object) -> tuple[int, int, int, int]:
+        return (0, 0, 0, 0)  # as when the selection is cancelled
+
+    def selectROIs(self, *args: object, **kwargs: object) -> tuple[()]:
+        return ()
+
+    def nothing(self, *args: object, **kwargs: object) -> None:
+        """resizeWindow, moveWindow, setWindowTitle, setMouseCallback ...: nothing to do without a window."""
+        return None
+
+    # -- keys
+
+    def take_key(self) -> int:
+        self.seam.flush_due()
+        for down, key in self.seam.key_events(lambda key: cv2_key_code(key) is not None):
+            if down:
+                self.keys.append(cv2_key_code(key))
+        return self.keys.pop(0) if self.keys else -1
+
+    def waitKeyEx(self, delay: int = 0) -> int:
+        import time
+
+        key = self.take_key()
+        if key != -1:
+            return key
+        delay = int(delay)
+        reading = self.seam.folder is not None and self.seam.folder.made
+        if delay <= 0 and not reading and not self.said_wait_forever:
+            self.said_wait_forever = True
+            say(f'{self.seam.program}: cv2.waitKey({delay}) waits for a key press, which no window '
+                'can receive here: Ctrl-C stops the program')
+        deadline = time.monotonic() + delay / 1000.0 if delay > 0 else None
+        while True:
+            remaining = None if deadline is None else deadline - time.monotonic()
+            if remaining is not None and remaining <= 0:
+                return -1
+            # Keys are polled every 10 ms; without a keys file nothing can come before the deadline.
+            step = 0.01 if reading else 3600.0
+            time.sleep(step if remaining is None else min(step, remaining))
+            key = self.take_key()
+            if key != -1:
+                return key
+
+    def waitKey(self, delay: int = 0) -> int:
+        key = self.waitKeyEx(delay)
+        return key & 0xff if key != -1 else -1
+
+    def pollKey(self) -> int:
+        return self.take_key()
+
+
+# --- job 2: headless pygame -----------------------------------------------------------------------
+
+def prepare_pygame() -> object:
+    """Before pygame is imported: SDL's dummy drivers without a display; the patch, or None."""
+    reason = headless_reason('pygame', os.environ)
+    if reason is None:
+        return None
+    # SDL reads these when it starts (pygame.init / display.init), after the import.
+    os.environ.setdefault('SDL_VIDEODRIVER', 'dummy')
+    os.environ.setdefault('SDL_AUDIODRIVER', 'dummy')
+    return lambda pygame: HeadlessPygame(pygame, reason).install()
+
+
+class HeadlessPygame:
+    def __init__(self, pygame: object, reason: str) -> None:
+        self.pygame = pygame
+        self.seam = Seam(reason, 'pygame')
+        self.held: set[int] = set()
+        self.real: dict[str, object] = {}
+
+    def install(self) -> None:
+        pygame = self.pygame
+        for module, names in ((pygame.display, ('set_mode', 'flip', 'update', 'quit')),
+                              (pygame.event, ('get', 'poll', 'wait', 'peek', 'pump')),
+                              (pygame.key, ('get_pressed', 'get_mods'))):
+            for name in names:
+                self.real[f'{module.__name__}.{name}'] = getattr(module, name)
+        real = self.real
+        display, event, key = pygame.display, pygame.event, pygame.key
+
+        def set_mode(*args: object, **kwargs: object) -> object:
+            surface = real['pygame.display.set_mode'](*args, **kwargs)
+            self.seam.first_window(lambda folder: pygame_notice(self.seam.program, self.seam.reason, folder))
+            self.capture()
+            return surface
+
+        def flip() -> None:
+            real['pygame.display.flip']()
+            self.capture()
+
+        def update(*args: object, **kwargs: object) -> None:
+            real['pygame.display.update'](*args, **kwargs)
+            self.capture()
+
+        def display_quit() -> None:
+            if self.seam.folder is not None:
+                self.seam.folder.discard(window_file('pygame', ''))
+            real['pygame.display.quit']()
+
+        real_quit = pygame.quit
+
+        def pygame_quit() -> None:
+            if self.seam.folder is not None:
+                self.seam.folder.discard(window_file('pygame', ''))
+            real_quit()
+
+        def reading(name: str) -> object:
+            function = real[f'pygame.event.{name}']
+
+            def read_keys_first(*args: object, **kwargs: object) -> object:
+                self.inject()
+                return function(*args, **kwargs)
+
+            read_keys_first.__doc__ = function.__doc__
+            return read_keys_first
+
+        def wait(timeout: int = 0) -> object:
+            import time
+
+            # SDL's own wait would block in C, where no key from the seam could reach it.
+            deadline = time.monotonic() + timeout / 1000.0 if timeout > 0 else None
+            while True:
+                self.inject()
+                found = real['pygame.event.poll']()
+                if found.type != pygame.NOEVENT:
+                    return found
+                if deadline is not None and time.monotonic() >= deadline:
+                    return found
+                time.sleep(0.01)
+
+        def get_pressed() -> object:
+            self.inject()
+            pressed = PressedKeys(real['pygame.key.get_pressed']())
+            pressed.held = frozenset(self.held)
+            return pressed
+
+        def get_mods() -> int:
+            self.inject()
+            return real['pygame.key.get_mods']() | self.mods()
+
+        class PressedKeys(key.ScancodeWrapper):
+            """get_pressed()'s tuple, with the keys held through the seam pressed too."""
+
+            held: frozenset = frozenset()
+
+            def __getitem__(self, index: object) -> object:
+                if isinstance(index, int) and index in self.held:
+                    return True
+                return super().__getitem__(index)
+
+        display.set_mode, display.flip, display.update, display.quit = set_mode, flip, update, display_quit
+        pygame.quit = pygame_quit
+        for name in ('get', 'poll', 'peek', 'pump'):
+            setattr(event, name, reading(name))
+        event.wait = wait
+        key.get_pressed, key.get_mods = get_pressed, get_mods
+
+    def capture(self) -> None:
+        folder = self.seam.folder
+        surface = self.pygame.display.get_surface()
+        if folder is None or surface is None or not self.seam.noticed:
+            return
+        folder.show(window_file('pygame', ''), surface, self.png, lambda s: s.copy())
+
+    def png(self, surface: object) -> bytes:
+        import io
+
+        data = io.BytesIO()
+        self.pygame.image.save(surface, data, 'png')
+        return data.getvalue()
+
+    def known(self, name: str) -> bool:
+        try:
+            self.pygame.key.key_code(name)
+        except ValueError:
+            return False
+        return True
+
+    def mods(self) -> int:
+        pygame = self.pygame
+        bits = {pygame.K_LSHIFT: pygame.KMOD_LSHIFT, pygame.K_RSHIFT: pygame.KMOD_RSHIFT,
+                pygame.K_LCTRL: pygame.KMOD_LCTRL, pygame.K_RCTRL: pygame.KMOD_RCTRL,
+                pygame.K_LALT: pygame.KMOD_LALT, pygame.K_RALT: pygame.KMOD_RALT}
+        mods = 0
+        for held in self.held:
+            mods |= bits.get(held, 0)
+        return mods
+
+    def inject(self) -> None:
+        """Post the seam's new key events as KEYDOWN/KEYUP and keep the held keys for get_pressed."""
+        self.seam.flush_due()
+        pygame = self.pygame
+        for down, name in self.seam.key_events(self.known):
+            code = pygame.key.key_code(name)
+            if down:
+                self.held.add(code)
+            else:
+                self.held.discard(code)
+            mods = self.mods()
+            text = name if len(name) == 1 else {'space': ' ', 'return': '\r', 'tab': '\t'}.get(name, '')
+            if mods & pygame.KMOD_SHIFT:
+                text = text.upper()
+            # SDL keycodes of keys without a character are their scancode with bit 30 set.
+            scancode = code & ~(1 << 30) if code & (1 << 30) else 0
+            attributes = {'key': code, 'mod': mods, 'scancode': scancode, 'window': None}
+            if down:
+                attributes['unicode'] = text
+            pygame.event.post(pygame.event.Event(pygame.KEYDOWN if down else pygame.KEYUP, attributes))
+
+
+def main() -> None:
+    """For bootstrap.sh: print the fallback notice if this machine falls back, nothing if it does not."""
+    problem = gui_build_problem()
+    if problem is not None:
+        print(notice(problem))
+
+
+if __name__ == '__main__':
+    main()
