@@ -26,6 +26,23 @@ def require(program: str, package: str) -> None:
         pytest.skip(MISSING.format(program=program, package=package))
 
 
+def read_line(fd: int, timeout: float) -> str:
+    """Text from fd up to its first newline (or EOF, or the timeout), stripped.
+
+    Xvfb writes its display number and the newline in two writes and exits ("Cannot write display
+    number to fd") when the second one finds the pipe closed: read until the newline.
+    """
+    text = b''
+    deadline = time.monotonic() + timeout
+    while not text.endswith(b'\n'):
+        ready, _, _ = select.select([fd], [], [], max(0.0, deadline - time.monotonic()))
+        chunk = os.read(fd, 64) if ready else b''
+        if not chunk:
+            break
+        text += chunk
+    return text.decode().strip()
+
+
 class VirtualDisplay:
     """An Xvfb server on a display number it picks itself (-displayfd), stopped by close()."""
 
@@ -40,8 +57,7 @@ class VirtualDisplay:
             stderr=subprocess.DEVNULL)
         os.close(write_end)
         try:
-            ready, _, _ = select.select([read_end], [], [], timeout)
-            number = os.read(read_end, 64).decode().strip() if ready else ''
+            number = read_line(read_end, timeout)
         finally:
             os.close(read_end)
         if not number.isdigit():
