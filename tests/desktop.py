@@ -7,6 +7,8 @@ one line (scripts/test_prereqs.sh installs them when run as root).
 
 from __future__ import annotations
 
+import ctypes
+import ctypes.util
 import os
 import re
 import select
@@ -102,6 +104,10 @@ class VirtualDisplay:
         time.sleep(seconds)
         self.xdotool('keyup', '--window', window, key)
 
+    def close_window(self, window: str) -> None:
+        """Ask a window to close as a window manager's close button does (WM_DELETE_WINDOW)."""
+        send_close_request(self.name, int(window, 0))
+
     def close(self) -> None:
         if self.process.poll() is None:
             self.process.terminate()
@@ -109,3 +115,50 @@ class VirtualDisplay:
                 self.process.wait(5)
             except subprocess.TimeoutExpired:
                 self.process.kill()
+
+
+class ClientMessage(ctypes.Structure):
+    """Xlib's XClientMessageEvent with 32-bit data (X11/Xlib.h)."""
+    _fields_ = [('type', ctypes.c_int), ('serial', ctypes.c_ulong), ('send_event', ctypes.c_int),
+                ('display', ctypes.c_void_p), ('window', ctypes.c_ulong), ('message_type', ctypes.c_ulong),
+                ('format', ctypes.c_int), ('data', ctypes.c_long * 5)]
+
+
+class XEvent(ctypes.Union):
+    _fields_ = [('client_message', ClientMessage), ('pad', ctypes.c_long * 24)]
+
+
+X_CLIENT_MESSAGE = 33  # ClientMessage in X11/X.h
+
+
+def send_close_request(display_name: str, window: int) -> None:
+    """Send a window the WM_PROTOCOLS/WM_DELETE_WINDOW message that a window manager sends when its
+    close button is clicked (xdotool 3.2016 can only destroy a window or kill its client)."""
+    library = ctypes.util.find_library('X11')
+    if library is None:
+        pytest.skip(MISSING.format(program='libX11', package='libx11-6'))
+    xlib = ctypes.CDLL(library)
+    xlib.XOpenDisplay.restype = ctypes.c_void_p
+    xlib.XOpenDisplay.argtypes = [ctypes.c_char_p]
+    xlib.XInternAtom.restype = ctypes.c_ulong
+    xlib.XInternAtom.argtypes = [ctypes.c_void_p, ctypes.c_char_p, ctypes.c_int]
+    xlib.XSendEvent.argtypes = [ctypes.c_void_p, ctypes.c_ulong, ctypes.c_int, ctypes.c_long,
+                                ctypes.POINTER(XEvent)]
+    xlib.XFlush.argtypes = xlib.XCloseDisplay.argtypes = [ctypes.c_void_p]
+    display = xlib.XOpenDisplay(display_name.encode())
+    if not display:
+        raise AssertionError(f'cannot open X display {display_name}')
+    try:
+        event = XEvent()
+        message = event.client_message
+        message.type = X_CLIENT_MESSAGE
+        message.window = window
+        message.message_type = xlib.XInternAtom(display, b'WM_PROTOCOLS', 0)
+        message.format = 32
+        message.data[0] = xlib.XInternAtom(display, b'WM_DELETE_WINDOW', 0)
+        message.data[1] = 0  # CurrentTime
+        if not xlib.XSendEvent(display, window, 0, 0, ctypes.byref(event)):
+            raise AssertionError(f'XSendEvent to window {window:#x} failed')
+        xlib.XFlush(display)
+    finally:
+        xlib.XCloseDisplay(display)

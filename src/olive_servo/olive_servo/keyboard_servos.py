@@ -62,7 +62,8 @@ class KeyboardServos(Node):
         self.screen = pygame.display.set_mode(WINDOW_SIZE)
         pygame.display.set_caption('keyboard_servos')
         self.font = pygame.font.Font(None, 24)
-        self.shown = None  # the goals the window shows, to redraw only when they change
+        self.shown = ''  # the status line the window shows, to redraw only when it changes
+        self.show('waiting for the servos to switch their torque on')
 
     def enable_torque(self) -> None:
         self.torque.enable()
@@ -98,16 +99,15 @@ class KeyboardServos(Node):
             msg = Float32()
             msg.data = goals[servo]
             self.publishers_[servo].publish(msg)
-        self.draw(goals)
+        self.show(f"goals: pan {goals['pan']:+.2f} rad, tilt {goals['tilt']:+.2f} rad")
 
-    def draw(self, goals: dict[str, float]) -> None:
-        shown = (round(goals['pan'], 2), round(goals['tilt'], 2))
-        if shown == self.shown:
+    def show(self, status: str) -> None:
+        """Draw the keys' help and a status line in the window, when the status changed."""
+        if status == self.shown:
             return
-        self.shown = shown
+        self.shown = status
         self.screen.fill((30, 30, 30))
-        lines = (*HELP, f'pan {shown[0]:+.2f} rad    tilt {shown[1]:+.2f} rad')
-        for row, text in enumerate(lines):
+        for row, text in enumerate((*HELP, status)):
             self.screen.blit(self.font.render(text, True, (230, 230, 230)), (12, 10 + 28 * row))
         pygame.display.flip()
 
