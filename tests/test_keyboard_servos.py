@@ -185,6 +185,13 @@ def test_closing_its_window_stops_it_as_ctrl_c_does(ros, x_display):
         assert_clean_servo(servo)
 
 
+def test_ctrl_c_while_it_waits_for_the_servos_exits_cleanly(ros):
+    node = ros.run('olive_servo', 'keyboard_servos', env=HEADLESS)
+    node.wait_for(r'waiting for service /olive/servo/pan/setTorqueEnable', timeout=30)
+    node.stop_cleanly(timeout=10)
+    assert 'Traceback' not in node.output and 'torque disabled' not in node.output
+
+
 @pytest.mark.parametrize(('args', 'message'), [
     (['-p', 'speed:=fast'], "'speed' to 'fast' of type 'STRING', expecting type 'DOUBLE'"),
     (['-p', 'speed:=2'], "'speed' to '2' of type 'INTEGER', expecting type 'DOUBLE'"),

@@ -84,8 +84,6 @@ class KeyboardServos(Node):
                 self.held.add(KEY_NAMES[event.key])
             elif event.type == pygame.KEYUP and event.key in KEY_NAMES:
                 self.held.discard(KEY_NAMES[event.key])
-            elif event.type == pygame.WINDOWFOCUSLOST:
-                self.held.clear()  # a key released in another window sends this one no KEYUP
             elif event.type == pygame.QUIT:
                 raise WindowClosed
 
