@@ -28,8 +28,10 @@ It has two jobs; neither changes a line of the program that imports the library.
    Whether a display is available: cv2 needs DISPLAY (the wheel's Qt has only its X11 plugin,
    which XWayland serves); pygame needs DISPLAY or WAYLAND_DISPLAY. OWL_HEADLESS=1 makes windows
    headless anyway and OWL_HEADLESS=0 leaves them real (for tests). Where a display is available
-   nothing is patched; only QT_QPA_FONTDIR is pointed at /usr/share/fonts when unset, which stops
-   the wheel's Qt from printing "QFontDatabase: Cannot find font directory" ten times per window.
+   nothing is patched; only QT_QPA_FONTDIR, which cv2's loader points at a font folder its wheel
+   does not ship, is pointed at /usr/share/fonts after the import (unless it named a folder),
+   which stops the wheel's Qt from printing "QFontDatabase: Cannot find font directory" ten times
+   per window.
 
 The seam (for a browser view of these windows): OWL_WINDOWS_DIR
 ---------------------------------------------------------------
@@ -197,12 +199,24 @@ def prepare_cv2() -> object:
             if reason is None:  # without a display the window line says all there is to say
                 print(f'cv2: {notice(problem)}', file=sys.stderr)
     if reason is None and not fell_back:
-        if not os.environ.get('QT_QPA_FONTDIR') and os.path.isdir(FONT_DIR):
-            os.environ['QT_QPA_FONTDIR'] = FONT_DIR
-        return None
+        return keep_font_dir(os.environ.get('QT_QPA_FONTDIR'))
     # The headless build's window functions raise "not implemented": headless windows either way,
     # silent when the fallback notice already said that imshow opens no window.
     return lambda cv2: patch_cv2(cv2, reason if reason is not None else '')
+
+
+def keep_font_dir(before: str | None) -> object:
+    """The patch for real windows: fonts for the wheel's Qt. cv2's loader points QT_QPA_FONTDIR at a
+    folder the wheel does not ship, and Qt then prints ten lines per window about missing fonts."""
+
+    def patch(cv2: object) -> None:
+        if before and os.path.isdir(before):
+            os.environ['QT_QPA_FONTDIR'] = before  # the user's choice, which the loader overwrote
+        elif not os.path.isdir(os.environ.get('QT_QPA_FONTDIR', '')) and os.path.isdir(FONT_DIR):
+            # (A missing folder may also come from a parent process's cv2 loader, through the environment.)
+            os.environ['QT_QPA_FONTDIR'] = FONT_DIR
+
+    return patch
 
 
 # --- job 2: headless windows, the pure parts ------------------------------------------------------

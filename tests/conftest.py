@@ -9,6 +9,7 @@ import pytest
 os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
 
 from ros_harness import RosHarness
+from x_display import VirtualDisplay, missing_tool
 
 
 @pytest.fixture
@@ -19,6 +20,19 @@ def ros():
         yield harness
     finally:
         harness.close()
+
+
+@pytest.fixture
+def xvfb():
+    """A virtual X display (Xvfb) of this test's own, for tests of real windows; skipped without Xvfb."""
+    tool = missing_tool()
+    if tool is not None:
+        pytest.skip(f'{tool} is not installed (scripts/test_prereqs.sh installs it): real windows not tested')
+    display = VirtualDisplay()
+    try:
+        yield display
+    finally:
+        display.close()
 
 
 @pytest.hookimpl(hookwrapper=True)

@@ -66,7 +66,8 @@ def test_without_libgl_and_without_a_display_the_fallback_is_silent(tmp_path):
     result = python('-c', REPORT, broken_libgl=tmp_path / 'lib', display=False)
     assert result.returncode == 0, result.stderr
     version, headless, path, encoded, on_path = result.stdout.split()
-    assert (headless, on_path) == ('True', 'True')
+    assert (version, headless, encoded, on_path) == (PINNED, 'True', 'True', 'True')
+    assert Path(path).is_relative_to(HEADLESS)
     assert result.stderr == ''
 
 

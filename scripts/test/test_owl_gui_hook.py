@@ -1,0 +1,258 @@
+"""Unit tests of scripts/owl_gui_hook.py's pure parts and of its headless cv2 on a stand-in module.
+
+The module is loaded from scripts/ (the copy in the venv is what processes run; tests/ runs those).
+Its headless pygame needs SDL in a process of its own: tests/test_headless_windows.py.
+"""
+
+import importlib.util
+import os
+import time
+import types
+from pathlib import Path
+
+import cv2
+import numpy
+import pytest
+
+SOURCE = Path(__file__).resolve().parents[1] / 'owl_gui_hook.py'
+spec = importlib.util.spec_from_file_location('owl_gui_hook_under_test', SOURCE)
+hook = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(hook)
+
+
+@pytest.mark.parametrize(('environ', 'cv2_reason', 'pygame_reason'), [
+    ({}, 'DISPLAY is not set', 'neither DISPLAY nor WAYLAND_DISPLAY is set'),
+    ({'DISPLAY': ''}, 'DISPLAY is not set', 'neither DISPLAY nor WAYLAND_DISPLAY is set'),
+    ({'DISPLAY': ':0'}, None, None),
+    ({'WAYLAND_DISPLAY': 'wayland-0'}, "DISPLAY is not set, and OpenCV's windows need X11 (XWayland)", None),
+    ({'DISPLAY': ':0', 'OWL_HEADLESS': '1'}, 'OWL_HEADLESS=1', 'OWL_HEADLESS=1'),
+    ({'OWL_HEADLESS': '0'}, None, None),
+    ({'DISPLAY': ':0', 'OWL_HEADLESS': 'yes'}, None, None),  # ignored (and said: setting_problems)
+])
+def test_headless_reason(environ, cv2_reason, pygame_reason):
+    assert hook.headless_reason('cv2', environ) == cv2_reason
+    assert hook.headless_reason('pygame', environ) == pygame_reason
+
+
+def test_ignored_settings_are_named_with_what_is_used_instead():
+    assert hook.setting_problems({}) == []
+    assert hook.setting_problems({'OWL_HEADLESS': '1', 'OWL_WINDOWS_FPS': '2.5'}) == []
+    [headless] = hook.setting_problems({'OWL_HEADLESS': 'yes'})
+    assert headless == "OWL_HEADLESS must be 1 (no windows) or 0 (real windows), not 'yes': ignored"
+    for fps in ('fast', '0', '-3', 'inf', 'nan'):
+        [problem] = hook.setting_problems({'OWL_WINDOWS_FPS': fps})
+        assert problem == (f'OWL_WINDOWS_FPS must be a number of frames per second above 0, not {fps!r}: '
+                           'using 10'), fps
+        assert hook.windows_fps({'OWL_WINDOWS_FPS': fps}) == 10.0
+    assert hook.windows_fps({'OWL_WINDOWS_FPS': '25'}) == 25.0
+
+
+@pytest.mark.parametrize(('argv', 'name'), [
+    (['/ws/install/olive_camera/lib/olive_camera/display_camera'], 'display_camera'),
+    (['my_viewer.py'], 'my_viewer'), (['-c'], 'python'), ([''], 'python'), ([], 'python'),
+])
+def test_program_name(argv, name):
+    assert hook.program_name(argv) == name
+
+
+def test_notices_say_what_happened_and_where_to_look_instead():
+    line = hook.cv2_notice('display_camera', 'DISPLAY is not set', 'camera', None)
+    assert line == ("display_camera: no display (DISPLAY is not set), so the window 'camera' is not shown; "
+                    'the program runs on without it. To see the camera, run rqt and open Plugins > '
+                    'Visualization > Image View')
+    assert hook.cv2_notice('v', 'r', 'camera', '/w/v-1').endswith(' (its frames go to /w/v-1)')
+    line = hook.pygame_notice('keyboard_servos', 'OWL_HEADLESS=1', '/w/keyboard_servos-7')
+    assert line.startswith('keyboard_servos: no display (OWL_HEADLESS=1), so the pygame window is not '
+                           'shown and gets no key presses; the program runs on without them.')
+    assert '/olive/servo/pan/goal/position' in line and 'setTorqueEnable' in line
+    assert line.endswith("append key events to /w/keyboard_servos-7/keys ('down left', 'up left')")
+    assert '\n' not in line
+
+
+def test_window_files():
+    assert hook.window_file('cv2', 'camera') == 'cv2-camera.jpg'
+    assert hook.window_file('cv2', 'Camera 1/2') == 'cv2-Camera%201%2F2.jpg'
+    assert hook.window_file('pygame', 'anything') == 'pygame.png'
+
+
+@pytest.mark.parametrize(('line', 'event'), [
+    ('down left', (True, 'left')), ('up left', (False, 'left')),
+    ('  down left shift \n', (True, 'left shift')), ('down a', (True, 'a')),
+])
+def test_parse_key_event(line, event):
+    assert hook.parse_key_event(line) == event
+
+
+@pytest.mark.parametrize('line', ['press left', 'down', 'down ', 'left', '', 'DOWN left'])
+def test_parse_key_event_refuses(line):
+    with pytest.raises(ValueError, match="expected 'down <key>' or 'up <key>'"):
+        hook.parse_key_event(line)
+
+
+def test_cv2_key_codes_are_the_gui_builds():
+    names = ('a', '1', 'space', 'return', 'escape', 'left', 'up', 'right', 'down', 'f1', 'f12', 'left shift')
+    codes = {name: hook.cv2_key_code(name) for name in names}
+    assert codes == {'a': 97, '1': 49, 'space': 32, 'return': 13, 'escape': 27, 'left': 0xff51, 'up': 0xff52,
+                     'right': 0xff53, 'down': 0xff54, 'f1': 0xffbe, 'f12': 0xffc9, 'left shift': 0xffe1}
+    assert [hook.cv2_key_code(n) & 0xff for n in ('left', 'up', 'right', 'down')] == [81, 82, 83, 84]
+    assert hook.cv2_key_code('keypad 5') is None
+
+
+def test_displayable_is_what_imshow_shows():
+    grey = numpy.full((2, 3), 7, numpy.uint8)
+    assert hook.displayable(grey) is grey
+    assert hook.displayable(numpy.full((2, 3), 0x1234, numpy.uint16)).tolist() == [[0x12] * 3] * 2
+    floats = numpy.array([[-0.5, 0.0, 0.5, 1.0, 2.0, numpy.nan]], numpy.float32)
+    assert hook.displayable(floats).tolist() == [[0, 0, 127, 255, 255, 0]]
+    assert hook.displayable(numpy.array([[300, -4]], numpy.int32)).tolist() == [[255, 0]]
+    bgra = numpy.zeros((2, 2, 4), numpy.uint8)
+    bgra[..., 3] = 255
+    assert hook.displayable(bgra).shape == (2, 2, 3)
+    assert hook.displayable(numpy.zeros((2, 2, 1), numpy.uint8)).shape == (2, 2)
+    for shape in ((4,), (2, 2, 2), (2, 2, 3, 1)):
+        with pytest.raises(ValueError, match='cannot be shown'):
+            hook.displayable(numpy.zeros(shape, numpy.uint8))
+
+
+def test_key_reader_reads_appended_lines_once_and_skips_bad_ones_with_one_line(tmp_path, capsys):
+    keys = tmp_path / 'keys'
+    reader = hook.KeyReader(str(keys), lambda key: key != 'bogus')
+    assert reader.events() == []  # no file yet
+    keys.write_text('down left\nup le')
+    assert reader.events() == [(True, 'left')]
+    with keys.open('a') as file:
+        file.write('ft\ndown bogus\nsideways\n\ndown bogus\n')
+    assert reader.events() == [(False, 'left')]
+    assert reader.events() == []
+    said = capsys.readouterr().err.splitlines()
+    assert said == [
+        f"owl_gui_hook: key event 'down bogus' in {keys} skipped: unknown key 'bogus'",
+        f"owl_gui_hook: key event 'sideways' in {keys} skipped: expected 'down <key>' or 'up <key>'",
+    ]
+    keys.write_text('down a\n')  # truncated and written again: read from its start
+    assert reader.events() == [(True, 'a')]
+
+
+def test_windows_folder_writes_at_a_limited_rate_atomically_and_keeps_the_last_frame(tmp_path):
+    written = []
+
+    def encode(frame):
+        written.append(frame)
+        return f'frame {frame}'.encode()
+
+    folder = hook.WindowsFolder(str(tmp_path), 'viewer', fps=20.0)
+    assert folder.path == str(tmp_path / f'viewer-{os.getpid()}')
+    for frame in range(5):  # within one period: the first now, the last later
+        folder.show('cv2-camera.jpg', frame, encode, lambda f: f)
+    path = Path(folder.path)
+    assert sorted(p.name for p in path.iterdir()) == ['cv2-camera.jpg', 'keys']
+    assert (path / 'cv2-camera.jpg').read_bytes() == b'frame 0' and (path / 'keys').read_bytes() == b''
+    folder.flush_due()
+    assert written == [0]
+    time.sleep(0.06)
+    folder.flush_due()
+    assert written == [0, 4]  # frames 1 to 3 were never encoded
+    assert (path / 'cv2-camera.jpg').read_bytes() == b'frame 4'
+    folder.discard('cv2-camera.jpg')
+    assert sorted(p.name for p in path.iterdir()) == ['keys']
+    folder.remove()
+    assert not path.exists()
+
+
+def test_windows_folder_that_cannot_be_made_is_said_once(tmp_path, capsys):
+    (tmp_path / 'file').write_text('')
+    folder = hook.WindowsFolder(str(tmp_path / 'file'), 'viewer', fps=10.0)
+    folder.show('cv2-camera.jpg', 0, lambda f: b'', lambda f: f)
+    folder.show('cv2-camera.jpg', 1, lambda f: b'', lambda f: f)
+    [line] = capsys.readouterr().err.splitlines()
+    assert line.startswith(f'owl_gui_hook: OWL_WINDOWS_DIR: cannot make {folder.path} (')
+    assert line.endswith('): windows are not written there')
+
+
+# --- headless cv2 on a stand-in module: what the patch does to cv2's functions -------------------
+
+@pytest.fixture
+def headless_cv2(tmp_path, monkeypatch):
+    """A module with cv2's window functions, patched as a process without a display gets them."""
+    monkeypatch.setenv('OWL_WINDOWS_DIR', str(tmp_path))
+    monkeypatch.setenv('OWL_WINDOWS_FPS', '1000')
+    monkeypatch.setattr(hook.sys, 'argv', ['viewer.py'])
+    window_functions = ('imshow', 'namedWindow', 'waitKey', 'waitKeyEx', 'pollKey', 'destroyWindow',
+                        'destroyAllWindows', 'resizeWindow', 'getWindowProperty', 'setMouseCallback',
+                        'createTrackbar', 'getTrackbarPos')
+    fake = types.SimpleNamespace(
+        error=cv2.error, UMat=cv2.UMat, imencode=cv2.imencode, IMWRITE_JPEG_QUALITY=cv2.IMWRITE_JPEG_QUALITY,
+        WND_PROP_VISIBLE=cv2.WND_PROP_VISIBLE, WND_PROP_AUTOSIZE=cv2.WND_PROP_AUTOSIZE,
+        **dict.fromkeys(window_functions))
+    hook.patch_cv2(fake, 'DISPLAY is not set')
+    fake.folder = tmp_path / f'viewer-{os.getpid()}'
+    return fake
+
+
+def test_headless_imshow_says_it_once_and_writes_the_frame(headless_cv2, capsys):
+    image = numpy.zeros((30, 40, 3), numpy.uint8)
+    image[:, :20] = (0, 0, 255)
+    headless_cv2.imshow('camera', image)
+    headless_cv2.imshow('camera', image)
+    headless_cv2.imshow('other', image)
+    [line] = capsys.readouterr().err.splitlines()
+    assert line.startswith("viewer: no display (DISPLAY is not set), so the window 'camera' is not shown")
+    written = cv2.imread(str(headless_cv2.folder / 'cv2-camera.jpg'))
+    assert written.shape == (30, 40, 3)
+    assert numpy.abs(written[:, 5].astype(int) - (0, 0, 255)).max() < 30
+    assert headless_cv2.getWindowProperty('camera', cv2.WND_PROP_VISIBLE) == 1.0
+    headless_cv2.resizeWindow('camera', 10, 10)  # accepted, nothing to do
+    headless_cv2.destroyWindow('camera')
+    assert headless_cv2.getWindowProperty('camera', cv2.WND_PROP_VISIBLE) == 0.0
+    assert not (headless_cv2.folder / 'cv2-camera.jpg').exists()
+    headless_cv2.destroyAllWindows()
+    assert sorted(p.name for p in headless_cv2.folder.iterdir()) == ['keys']
+
+
+@pytest.mark.parametrize(('image', 'message'), [
+    (None, 'not a numpy array'), (numpy.zeros((0, 4), numpy.uint8), 'size.width>0 && size.height>0'),
+    (numpy.zeros((4, 4, 2), numpy.uint8), 'cannot be shown'),
+])
+def test_headless_imshow_refuses_what_imshow_refuses(headless_cv2, image, message):
+    with pytest.raises(cv2.error, match=message):
+        headless_cv2.imshow('camera', image)
+
+
+def test_headless_wait_key_waits_its_delay_and_returns_injected_keys(headless_cv2):
+    headless_cv2.namedWindow('camera')
+    started = time.monotonic()
+    assert headless_cv2.waitKey(150) == -1
+    assert 0.14 < time.monotonic() - started < 1.0
+    assert headless_cv2.pollKey() == -1
+    with (headless_cv2.folder / 'keys').open('a') as keys:
+        keys.write('down left\nup left\ndown a\ndown escape\ndown right\n')
+    assert headless_cv2.waitKey(0) == 81          # the low byte, at once
+    assert headless_cv2.waitKeyEx(1000) == 97     # ups are ignored
+    assert headless_cv2.waitKey(1) == 27
+    assert headless_cv2.pollKey() == 0xff53       # the full code
+    started = time.monotonic()
+    assert headless_cv2.waitKey(50) == -1
+    with (headless_cv2.folder / 'keys').open('a') as keys:
+        keys.write('down space\n')
+    assert headless_cv2.waitKey(5000) == 32
+    assert time.monotonic() - started < 1.0
+
+
+def test_headless_wait_key_zero_without_a_keys_file_says_ctrl_c_stops_it(monkeypatch, capsys):
+    monkeypatch.delenv('OWL_WINDOWS_DIR', raising=False)
+    monkeypatch.setattr(hook.sys, 'argv', ['viewer.py'])
+    fake = types.SimpleNamespace(error=cv2.error, UMat=cv2.UMat, waitKey=None, imshow=None)
+    hook.patch_cv2(fake, 'DISPLAY is not set')
+    slept = []
+
+    def sleep(seconds):
+        slept.append(seconds)
+        if len(slept) == 3:
+            raise KeyboardInterrupt  # Ctrl-C during the wait
+
+    monkeypatch.setattr(time, 'sleep', sleep)
+    with pytest.raises(KeyboardInterrupt):
+        fake.waitKey(0)
+    [line] = capsys.readouterr().err.splitlines()
+    assert line == ('viewer: cv2.waitKey(0) waits for a key press, which no window can receive here: '
+                    'Ctrl-C stops the program')

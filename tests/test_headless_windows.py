@@ -1,0 +1,161 @@
+"""Windows without a display: a student's cv2 and pygame programs, run as real processes.
+
+Without a display each says so in one line, runs on, and stops cleanly at Ctrl-C; with
+OWL_WINDOWS_DIR its windows' latest images go to files and key events come from a file (the seam
+of scripts/owl_gui_hook.py). Under Xvfb the same programs open real windows and the hook stays out
+of the way. tests/student_scripts/ holds the programs, written as the course writes them.
+"""
+
+import re
+import sys
+import time
+from pathlib import Path
+
+import cv2
+import numpy as np
+from ros_harness import wait_until
+
+STUDENT_SCRIPTS = Path(__file__).parent / 'student_scripts'
+# No display, no seam, nothing forced: what a server or a container gives a program.
+HEADLESS = {'DISPLAY': '', 'WAYLAND_DISPLAY': '', 'OWL_HEADLESS': '', 'OWL_WINDOWS_DIR': '',
+            'OWL_WINDOWS_FPS': ''}
+CV2_NOTICE = ("cv2_viewer: no display (DISPLAY is not set), so the window 'camera' is not shown; the "
+              'program runs on without it. To see the camera, run rqt and open Plugins > Visualization > '
+              'Image View')
+PYGAME_NOTICE = ('pygame_keys: no display (neither DISPLAY nor WAYLAND_DISPLAY is set), so the pygame '
+                 'window is not shown and gets no key presses; the program runs on without them. To move '
+                 'the servos without keys: stop it, call /olive/servo/pan/setTorqueEnable and publish '
+                 'goals on /olive/servo/pan/goal/position (and tilt) with rqt or ros2 service call / '
+                 'ros2 topic pub')
+PYGAME_GREETING = re.compile(r'pygame \d+\.\d+\.\d+ \(SDL|Hello from the pygame community')
+RED = (0, 0, 255)  # BGR
+
+
+def student(ros, script, env):
+    return ros.command([sys.executable, str(STUDENT_SCRIPTS / script)], label=script, env=env)
+
+
+def own_lines(process):
+    """The process's output without pygame's greeting at import."""
+    return [line for line in process.lines if not PYGAME_GREETING.match(line)]
+
+
+def append(path, *lines):
+    with path.open('a') as file:
+        file.write(''.join(f'{line}\n' for line in lines))
+
+
+def read_image(path):
+    """The image in a seam file, or None while there is none (files are replaced atomically)."""
+    return cv2.imread(str(path)) if path.exists() else None
+
+
+def close_to(pixel, colour, tolerance=30):
+    return int(np.abs(pixel.astype(int) - colour).max()) < tolerance
+
+
+def test_cv2_viewer_without_a_display_says_so_in_one_line_runs_on_and_stops_at_ctrl_c(ros):
+    viewer = student(ros, 'cv2_viewer.py', HEADLESS)
+    viewer.wait_for('no display', timeout=30)
+    time.sleep(2.0)
+    assert viewer.running(), viewer.output
+    viewer.stop_cleanly(timeout=10)
+    notice, summary = viewer.lines
+    assert notice == CV2_NOTICE
+    assert int(re.fullmatch(r'shown (\d+) frames', summary)[1]) > 100  # waitKey(1) waited about 1 ms
+
+
+def test_cv2_viewer_seam_gets_the_latest_frames_and_sends_keys(ros, tmp_path):
+    viewer = student(ros, 'cv2_viewer.py', {**HEADLESS, 'OWL_WINDOWS_DIR': str(tmp_path)})
+    folder = tmp_path / f'cv2_viewer-{viewer.pid}'
+    frame_file = folder / 'cv2-camera.jpg'
+    wait_until(frame_file.exists, 30, 'the first frame in the seam')
+    assert viewer.lines == [f'{CV2_NOTICE} (its frames go to {folder})']
+    frame = read_image(frame_file)
+    assert frame.shape == (120, 160, 3) and close_to(frame[60, 40], RED)
+    greys = set()
+    wait_until(lambda: greys.add(int(read_image(frame_file)[60, 120, 0]) // 16) or len(greys) >= 3, 10,
+               'three different frames')  # the image changes with every frame: the file follows
+    append(folder / 'keys', 'down left', 'up left', 'down a', 'down escape', 'down nokey', 'sideways')
+    viewer.wait_for(r'^key 27$', timeout=10)
+    viewer.stop_cleanly(timeout=10)
+    keys = [line for line in viewer.lines if line.startswith('key ')]
+    assert keys == ['key 81', 'key 97', 'key 27']  # waitKey's low byte of the GUI build's codes
+    keys_file = folder / 'keys'
+    assert f"owl_gui_hook: key event 'down nokey' in {keys_file} skipped: unknown key 'nokey'" in viewer.lines
+    assert (f"owl_gui_hook: key event 'sideways' in {keys_file} skipped: expected 'down <key>' or "
+            "'up <key>'") in viewer.lines
+    assert 'Traceback' not in viewer.output
+    assert not folder.exists()  # the process's windows are gone with it
+
+
+def test_bad_settings_are_said_in_one_line_each_and_ignored(ros, tmp_path):
+    viewer = student(ros, 'cv2_viewer.py', {**HEADLESS, 'OWL_HEADLESS': 'maybe', 'OWL_WINDOWS_FPS': 'fast',
+                                            'OWL_WINDOWS_DIR': str(tmp_path)})
+    viewer.wait_for('no display', timeout=30)
+    viewer.stop_cleanly(timeout=10)
+    assert viewer.lines[:3] == [
+        "owl_gui_hook: OWL_HEADLESS must be 1 (no windows) or 0 (real windows), not 'maybe': ignored",
+        "owl_gui_hook: OWL_WINDOWS_FPS must be a number of frames per second above 0, not 'fast': using 10",
+        f'{CV2_NOTICE} (its frames go to {tmp_path / f"cv2_viewer-{viewer.pid}"})',
+    ]
+    assert len(viewer.lines) == 4
+
+
+def test_pygame_keys_without_a_display_says_so_in_one_line_runs_on_and_stops_at_ctrl_c(ros):
+    keys = student(ros, 'pygame_keys.py', HEADLESS)
+    keys.wait_for('no display', timeout=30)
+    time.sleep(2.0)
+    assert keys.running(), keys.output
+    keys.stop_cleanly(timeout=10)
+    notice, summary = own_lines(keys)
+    assert notice == PYGAME_NOTICE
+    assert int(re.fullmatch(r'ran (\d+) loops', summary)[1]) > 20
+    assert 'ALSA' not in keys.output and 'XDG' not in keys.output  # SDL on its dummy drivers
+
+
+def test_pygame_keys_seam_sends_key_events_and_held_keys_and_gets_the_window(ros, tmp_path):
+    keys = student(ros, 'pygame_keys.py', {**HEADLESS, 'OWL_WINDOWS_DIR': str(tmp_path)})
+    folder = tmp_path / f'pygame_keys-{keys.pid}'
+    window = folder / 'pygame.png'
+    wait_until(window.exists, 30, 'the window in the seam')
+    assert own_lines(keys) == [f"{PYGAME_NOTICE}; or append key events to {folder / 'keys'} ('down left', "
+                               "'up left')"]
+    assert read_image(window).shape == (80, 200, 3)  # black at first: set_mode's empty window
+    wait_until(lambda: close_to(read_image(window)[40, 100], (0, 0, 128), 5), 10, 'the window turning red')
+    append(folder / 'keys', 'down left')
+    keys.wait_for(r'^held: left$', timeout=10)
+    # What the program drew while the key was held (green) reaches the file.
+    wait_until(lambda: close_to(read_image(window)[40, 100], (0, 128, 0), 5), 10, 'the window turning green')
+    append(folder / 'keys', 'down up')
+    keys.wait_for(r'^held: left up$', timeout=10)
+    append(folder / 'keys', 'up left', 'up up')
+    keys.wait_for(r'^held: none$', timeout=10)
+    keys.stop_cleanly(timeout=10)
+    events = [line for line in own_lines(keys) if re.fullmatch(r'(down|up|held:) .*', line)]
+    assert events == ['down left', 'held: left', 'down up', 'held: left up', 'up left', 'up up', 'held: none']
+    assert not folder.exists()
+
+
+def test_cv2_viewer_with_a_display_opens_a_real_window_that_gets_keys(ros, xvfb, tmp_path):
+    viewer = student(ros, 'cv2_viewer.py', {**xvfb.env(), 'OWL_WINDOWS_DIR': str(tmp_path)})
+    window = xvfb.wait_for_window('camera', timeout=30)
+    xvfb.key(window, 'Left', 'a')
+    viewer.wait_for(r'^key 97$', timeout=10)
+    viewer.stop_cleanly(timeout=10)
+    # No notice, nothing from Qt (its font warnings are silenced): the keys and the summary.
+    assert viewer.lines[:2] == ['key 81', 'key 97'] and len(viewer.lines) == 3, viewer.output
+    assert list(tmp_path.iterdir()) == []  # nothing patched: no seam
+
+
+def test_pygame_keys_with_a_display_opens_a_real_window_that_gets_keys(ros, xvfb, tmp_path):
+    # This machine may have no sound card; ALSA's complaints about it are not under test here.
+    keys = student(ros, 'pygame_keys.py', {**xvfb.env(), 'OWL_WINDOWS_DIR': str(tmp_path),
+                                           'SDL_AUDIODRIVER': 'dummy'})
+    window = xvfb.wait_for_window('keys', timeout=30)
+    xvfb.key(window, 'Left')
+    keys.wait_for(r'^up left$', timeout=10)
+    keys.stop_cleanly(timeout=10)
+    assert 'no display' not in keys.output
+    assert [line for line in own_lines(keys) if line.startswith(('down', 'up'))] == ['down left', 'up left']
+    assert list(tmp_path.iterdir()) == []
