@@ -140,7 +140,7 @@ def drive_the_head(head: Head, keys) -> None:
 def stop_and_check_the_torque(node, servos, head: Head) -> None:
     """Ctrl-C: exit code 0, the torque of both servos off, and they never saw a goal too early."""
     node.stop_cleanly(timeout=10)
-    assert 'Traceback' not in node.output
+    assert 'Traceback' not in node.output, node.output
     for name, servo in servos.items():
         assert f'torque disabled: {name}' in node.output
         servo.wait_for(r'\]: torque disabled$', timeout=10)
@@ -178,7 +178,7 @@ def test_closing_its_window_stops_it_as_ctrl_c_does(ros, x_display):
     wait_for_messages(head.goals['pan'], 20, timeout=20, what='pan goals')
     x_display.close_window(window)
     assert node.wait(15) == 0, node.output
-    assert 'Traceback' not in node.output
+    assert 'Traceback' not in node.output, node.output
     for name, servo in servos.items():
         assert f'torque disabled: {name}' in node.output
         servo.wait_for(r'\]: torque disabled$', timeout=10)
@@ -189,7 +189,7 @@ def test_ctrl_c_while_it_waits_for_the_servos_exits_cleanly(ros):
     node = ros.run('olive_servo', 'keyboard_servos', env=HEADLESS)
     node.wait_for(r'waiting for service /olive/servo/pan/setTorqueEnable', timeout=30)
     node.stop_cleanly(timeout=10)
-    assert 'Traceback' not in node.output and 'torque disabled' not in node.output
+    assert 'Traceback' not in node.output and 'torque disabled' not in node.output, node.output
 
 
 @pytest.mark.parametrize(('args', 'message'), [
