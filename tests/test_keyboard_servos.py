@@ -3,6 +3,7 @@ under Xvfb, and key events through the headless seam (scripts/owl_gui_hook.py); 
 which servo which way, goals within the bounds, torque on before the first goal and off after
 Ctrl-C, the speed and bound parameters and their bad values."""
 
+import signal
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -190,6 +191,14 @@ def test_ctrl_c_while_it_waits_for_the_servos_exits_cleanly(ros):
     node.wait_for(r'waiting for service /olive/servo/pan/setTorqueEnable', timeout=30)
     node.stop_cleanly(timeout=10)
     assert 'Traceback' not in node.output and 'torque disabled' not in node.output, node.output
+
+
+def test_sigterm_while_it_waits_for_the_servos_ends_it(ros):
+    # SDL would turn SIGTERM into a window-close event that nothing reads while the node waits.
+    node = ros.run('olive_servo', 'keyboard_servos', env=HEADLESS)
+    node.wait_for(r'waiting for service /olive/servo/pan/setTorqueEnable', timeout=30)
+    node.send_signal(signal.SIGTERM)
+    assert node.wait(5) == -signal.SIGTERM
 
 
 @pytest.mark.parametrize(('args', 'message'), [

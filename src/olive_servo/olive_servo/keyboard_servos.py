@@ -11,6 +11,9 @@ import time
 # pygame greets with two lines on stdout when imported; this node's output stays its own (a bad
 # parameter is one line). A student's script may keep the greeting.
 os.environ.setdefault('PYGAME_HIDE_SUPPORT_PROMPT', '1')
+# SDL would take over SIGTERM and turn it into a window-close event, which nobody reads while the
+# node waits for the servos: `kill` would do nothing then. SIGTERM stays Python's, as in our other nodes.
+os.environ.setdefault('SDL_NO_SIGNAL_HANDLERS', '1')
 
 import pygame
 import rclpy
