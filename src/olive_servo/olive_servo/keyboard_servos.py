@@ -5,6 +5,7 @@ Left/Right turn the lower (pan) servo, Up/Down the upper (tilt) servo, while the
 """
 
 import os
+import signal
 import sys
 import time
 
@@ -118,26 +119,29 @@ class KeyboardServos(Node):
 
 
 def main(args: list[str] | None = None) -> None:
-    # No rclpy Ctrl-C handler: it would shut ROS down at Ctrl-C, before the except clause below
-    # could switch the torque off. Python's own handler raises KeyboardInterrupt instead.
+    # No rclpy Ctrl-C handler: it would shut ROS down at Ctrl-C, from another thread, before the
+    # except clause below could switch the torque off. Python's own raises KeyboardInterrupt here.
     rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+    keyboard_servos = None
     try:
         keyboard_servos = KeyboardServos()
-    except (ParameterException, ValueError) as error:
-        print(f'keyboard_servos: error: {error}', file=sys.stderr)  # a bad --ros-args parameter
-        rclpy.try_shutdown()
-        sys.exit(2)
-    try:
         keyboard_servos.enable_torque()
         rclpy.spin(keyboard_servos)
     except (KeyboardInterrupt, ExternalShutdownException, WindowClosed):
-        pass  # Ctrl-C is how the course stops a node
+        pass  # Ctrl-C is how the course stops a node; closing the window too
     except TorqueError as error:
         keyboard_servos.get_logger().error(str(error))
         sys.exit(1)
+    except (ParameterException, ValueError) as error:
+        if keyboard_servos is not None:
+            raise
+        print(f'keyboard_servos: error: {error}', file=sys.stderr)  # a bad --ros-args parameter
+        sys.exit(2)
     finally:
-        keyboard_servos.disable_torque()
-        keyboard_servos.destroy_node()
+        signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C must not stop the clean-up
+        if keyboard_servos is not None:
+            keyboard_servos.disable_torque()
+            keyboard_servos.destroy_node()
         rclpy.try_shutdown()
 
 
