@@ -7,6 +7,8 @@ one line (scripts/test_prereqs.sh installs them when run as root).
 
 from __future__ import annotations
 
+import ctypes
+import ctypes.util
 import os
 import re
 import select
@@ -32,6 +34,23 @@ def require(program: str, package: str) -> None:
         pytest.skip(MISSING.format(program=program, package=package))
 
 
+def read_line(fd: int, timeout: float) -> str:
+    """Text from fd up to its first newline (or EOF, or the timeout), stripped.
+
+    Xvfb writes its display number and the newline in two writes and exits ("Cannot write display
+    number to fd") when the second one finds the pipe closed: read until the newline.
+    """
+    text = b''
+    deadline = time.monotonic() + timeout
+    while not text.endswith(b'\n'):
+        ready, _, _ = select.select([fd], [], [], max(0.0, deadline - time.monotonic()))
+        chunk = os.read(fd, 64) if ready else b''
+        if not chunk:
+            break
+        text += chunk
+    return text.decode().strip()
+
+
 class VirtualDisplay:
     """An Xvfb server on a display number it picks itself (-displayfd), stopped by close()."""
 
@@ -45,20 +64,10 @@ class VirtualDisplay:
             pass_fds=(write_end,), stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
             stderr=subprocess.DEVNULL)
         os.close(write_end)
-        # Read up to the newline: Xvfb writes the number and the newline separately, and a pipe
-        # closed after the number alone kills it ("Cannot write display number to fd").
-        received = b''
-        deadline = time.monotonic() + timeout
         try:
-            while not received.endswith(b'\n'):
-                ready, _, _ = select.select([read_end], [], [], max(0.0, deadline - time.monotonic()))
-                chunk = os.read(read_end, 64) if ready else b''
-                if not chunk:
-                    break
-                received += chunk
+            number = read_line(read_end, timeout)
         finally:
             os.close(read_end)
-        number = received.decode().strip()
         if not number.isdigit():
             self.close()
             raise RuntimeError(f'Xvfb did not report its display within {timeout} s')
@@ -107,6 +116,10 @@ class VirtualDisplay:
         self.xdotool('windowfocus', '--sync', window)
         self.xdotool('key', '--delay', '50', *keys)
 
+    def close_window(self, window: str) -> None:
+        """Ask a window to close as a window manager's close button does (WM_DELETE_WINDOW)."""
+        send_close_request(self.name, int(window, 0))
+
     def close(self) -> None:
         if self.process.poll() is None:
             self.process.terminate()
@@ -114,3 +127,50 @@ class VirtualDisplay:
                 self.process.wait(5)
             except subprocess.TimeoutExpired:
                 self.process.kill()
+
+
+class ClientMessage(ctypes.Structure):
+    """Xlib's XClientMessageEvent with 32-bit data (X11/Xlib.h)."""
+    _fields_ = [('type', ctypes.c_int), ('serial', ctypes.c_ulong), ('send_event', ctypes.c_int),
+                ('display', ctypes.c_void_p), ('window', ctypes.c_ulong), ('message_type', ctypes.c_ulong),
+                ('format', ctypes.c_int), ('data', ctypes.c_long * 5)]
+
+
+class XEvent(ctypes.Union):
+    _fields_ = [('client_message', ClientMessage), ('pad', ctypes.c_long * 24)]
+
+
+X_CLIENT_MESSAGE = 33  # ClientMessage in X11/X.h
+
+
+def send_close_request(display_name: str, window: int) -> None:
+    """Send a window the WM_PROTOCOLS/WM_DELETE_WINDOW message that a window manager sends when its
+    close button is clicked (xdotool 3.2016 can only destroy a window or kill its client)."""
+    library = ctypes.util.find_library('X11')
+    if library is None:
+        pytest.skip(MISSING.format(program='libX11', package='libx11-6'))
+    xlib = ctypes.CDLL(library)
+    xlib.XOpenDisplay.restype = ctypes.c_void_p
+    xlib.XOpenDisplay.argtypes = [ctypes.c_char_p]
+    xlib.XInternAtom.restype = ctypes.c_ulong
+    xlib.XInternAtom.argtypes = [ctypes.c_void_p, ctypes.c_char_p, ctypes.c_int]
+    xlib.XSendEvent.argtypes = [ctypes.c_void_p, ctypes.c_ulong, ctypes.c_int, ctypes.c_long,
+                                ctypes.POINTER(XEvent)]
+    xlib.XFlush.argtypes = xlib.XCloseDisplay.argtypes = [ctypes.c_void_p]
+    display = xlib.XOpenDisplay(display_name.encode())
+    if not display:
+        raise AssertionError(f'cannot open X display {display_name}')
+    try:
+        event = XEvent()
+        message = event.client_message
+        message.type = X_CLIENT_MESSAGE
+        message.window = window
+        message.message_type = xlib.XInternAtom(display, b'WM_PROTOCOLS', 0)
+        message.format = 32
+        message.data[0] = xlib.XInternAtom(display, b'WM_DELETE_WINDOW', 0)
+        message.data[1] = 0  # CurrentTime
+        if not xlib.XSendEvent(display, window, 0, 0, ctypes.byref(event)):
+            raise AssertionError(f'XSendEvent to window {window:#x} failed')
+        xlib.XFlush(display)
+    finally:
+        xlib.XCloseDisplay(display)

@@ -6,45 +6,21 @@ import math
 import time
 
 import pytest
-from diagnostic_msgs.msg import DiagnosticStatus
 from geometry_msgs.msg import Quaternion
 from olive_sim import quaternion as quat
-from olive_sim.kit import OWL_KIT
 from ros_harness import wait_for_messages, wait_until
-from sensor_msgs.msg import Imu, JointState
-from std_msgs.msg import Float32
+from sensor_msgs.msg import Imu
+from servo_helpers import (
+    BOUNDS,
+    TORQUE_OFF_WARNING,
+    assert_clean_servo,
+    collect,
+    joint_near,
+    start_servo,
+    torque_enabled,
+)
 
 IMU_NODE = 'olive_imu_x1684267976913_dcm_srv'
-# The kit's servos as owl_kit.launch.py starts them (bounds, the camera's load on tilt).
-SERVO_PARAMETERS = {m.namespace: m.parameters for m in OWL_KIT if m.module_type == 'servo'}
-BOUNDS = {name: (p['min_position'], p['max_position']) for name, p in SERVO_PARAMETERS.items()}
-TORQUE_OFF_WARNING = 'ignored, torque is disabled'
-CLAMP_WARNING = 'clamped'
-
-
-def start_servo(ros, name):
-    args = [arg for key, value in SERVO_PARAMETERS[name].items() for arg in ('-p', f'{key}:={value}')]
-    return ros.run('olive_sim', 'servo_sim', '--ros-args', *args, label=f'servo_sim {name}')
-
-
-def collect(ros, name, topic):
-    msg_type = {'goal/position': Float32, 'joint': JointState, 'joint/diagnostics': DiagnosticStatus}[topic]
-    return ros.probe.collect(msg_type, f'/olive/servo/{name}/{topic}')
-
-
-def torque_enabled(diagnostics):
-    return next(v.value for v in diagnostics[-1].values if v.key == 'torque_enabled') == 'true'
-
-
-def joint_near(joints, value, tolerance=0.05):
-    return bool(joints) and abs(joints[-1].position[0] - value) < tolerance
-
-
-def assert_clean_servo(servo):
-    """The servo never saw a goal before its torque was on, nor one outside its bounds."""
-    assert 'torque enabled' in servo.output
-    assert TORQUE_OFF_WARNING not in servo.output, servo.output
-    assert CLAMP_WARNING not in servo.output, servo.output
 
 
 def test_control_servo_waits_for_the_servo_enables_its_torque_before_any_goal_and_disables_it_at_ctrl_c(ros):

@@ -14,13 +14,14 @@ setup(
     zip_safe=True,
     maintainer='Owl Kit Lab',
     maintainer_email='team@owlkitlab.invalid',
-    description='Section 4.4 of the Owl Kit course: sine goals, the PID test, the IMU steering the servos.',
+    description='Section 4.4 of the Owl Kit course: a sine, the PID test, keys and the IMU steer the servos.',
     license='Apache-2.0',
     tests_require=['pytest'],
     entry_points={
         'console_scripts': [
             'control_servo = olive_servo.control_servo:main',
             'pid_testing = olive_servo.pid_testing:main',
+            'keyboard_servos = olive_servo.keyboard_servos:main',
             'imu_control_robot = olive_servo.imu_control_robot:main',
         ],
     },

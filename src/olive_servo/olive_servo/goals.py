@@ -1,4 +1,5 @@
-"""Goal positions for the servos, kept free of ROS: the sine, the bounds, the IMU's head angles."""
+"""Goal positions for the servos, kept free of ROS: the sine, the bounds, the IMU's head angles, the
+arrow keys' goals."""
 
 import math
 
@@ -8,6 +9,7 @@ PAN_BOUNDS = (-1.5708, 1.5708)
 TILT_BOUNDS = (-1.3, 0.9)
 # The widest range any bound may take: one turn of the servo's output.
 BOUND_LIMIT = math.pi
+KIT_BOUNDS = {'pan': PAN_BOUNDS, 'tilt': TILT_BOUNDS}
 
 
 def clamp(value: float, low: float, high: float) -> float:
@@ -43,3 +45,49 @@ def head_goals(pitch: float, yaw: float, pan_bounds: tuple[float, float],
     nose down (positive pitch), tilts the camera down (positive tilt).
     """
     return clamp(yaw, *pan_bounds), clamp(pitch, *tilt_bounds)
+
+
+# Which servo each arrow key moves, and which way (REP 103: positive pan turns the head left,
+# counter-clockwise seen from above; positive tilt turns the camera down). Each arrow moves the
+# camera's view the way it points: Left looks left, Up looks up.
+ARROW_KEYS = {
+    'left': ('pan', +1),
+    'right': ('pan', -1),
+    'up': ('tilt', -1),
+    'down': ('tilt', +1),
+}
+# s: the longest time one step may cover, so a stalled timer (a busy machine, a dragged window)
+# cannot make the goal jump when it runs again.
+MAX_STEP_TIME = 0.1
+
+
+def key_directions(held: set[str]) -> dict[str, int]:
+    """-1, 0 or +1 for each servo, from the held arrow keys' names; opposite arrows cancel."""
+    directions = {'pan': 0, 'tilt': 0}
+    for key in held:
+        if key in ARROW_KEYS:
+            servo, sign = ARROW_KEYS[key]
+            directions[servo] += sign
+    return directions
+
+
+class KeyboardGoals:
+    """The pan and tilt goals that the held arrow keys move at `speed` rad/s, each within its bounds.
+
+    Both start at the head's centre (0 rad) or the bound nearest to it.
+    """
+
+    def __init__(self) -> None:
+        self.goals = {'pan': 0.0, 'tilt': 0.0}
+
+    def advance(self, held: set[str], speed: float, elapsed: float,
+                bounds: dict[str, tuple[float, float]]) -> dict[str, float]:
+        """Move the goals for `elapsed` s of the held keys; return the new goals.
+
+        A goal outside its bounds (bounds narrowed at runtime) is brought back within them even
+        when no key is held.
+        """
+        step = speed * min(max(elapsed, 0.0), MAX_STEP_TIME)
+        for servo, direction in key_directions(held).items():
+            self.goals[servo] = clamp(self.goals[servo] + direction * step, *bounds[servo])
+        return dict(self.goals)

@@ -7,16 +7,16 @@ import rclpy
 from geometry_msgs.msg import Quaternion
 from olive_imu.euler import orientation_problem, quaternion_to_euler
 from owl_common.run import STARTUP_ERRORS, begin_cleanup, init_with_stop_request, spin_until_stopped
-from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor, SetParametersResult
+from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.exceptions import InvalidTopicNameException
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
-from rclpy.parameter import Parameter
 from rclpy.qos import qos_profile_sensor_data
 from sensor_msgs.msg import Imu
 from std_msgs.msg import Float32
 
-from olive_servo.goals import BOUND_LIMIT, PAN_BOUNDS, TILT_BOUNDS, bounds_problem, head_goals
+from olive_servo.bound_parameters import BoundParameters
+from olive_servo.goals import head_goals
 from olive_servo.torque import ServoTorque, TorqueError
 
 DEFAULT_IMU_TOPIC = '/olive/imu/x1684267976913/imu'  # the course's IMU, also olive_sim's
@@ -27,25 +27,13 @@ WARN_EVERY = 2.0       # s between two warnings about bad IMU messages
 WAITING_EVERY = 5.0    # s between two "waiting for" lines
 
 
-def bound_descriptor(description: str) -> ParameterDescriptor:
-    return ParameterDescriptor(
-        description=description,
-        floating_point_range=[FloatingPointRange(from_value=-BOUND_LIMIT, to_value=BOUND_LIMIT)])
-
-
 class ImuControlRobot(Node):
 
     def __init__(self) -> None:
         super().__init__('imu_control_robot')
         self.declare_parameter('imu_topic', DEFAULT_IMU_TOPIC, ParameterDescriptor(
             description='sensor_msgs/msg/Imu topic of the IMU.', read_only=True))
-        for servo, (low, high) in (('pan', PAN_BOUNDS), ('tilt', TILT_BOUNDS)):
-            self.declare_parameter(f'{servo}_min', low, bound_descriptor(f'Smallest {servo} goal, rad.'))
-            self.declare_parameter(f'{servo}_max', high, bound_descriptor(f'Largest {servo} goal, rad.'))
-            problem = bounds_problem(servo, *self.bounds(servo))
-            if problem:
-                raise ValueError(problem)
-        self.add_on_set_parameters_callback(self.check_bounds)
+        self.bounds = BoundParameters(self, SERVOS)  # pan_min .. tilt_max, each pair checked
         self.imu_topic = self.get_parameter('imu_topic').value
         self.orientation = Quaternion()
         self.last_imu_time = None  # time.monotonic() of the last usable IMU message
@@ -60,19 +48,6 @@ class ImuControlRobot(Node):
         except InvalidTopicNameException:
             raise ValueError(f"imu_topic '{self.imu_topic}' is not a valid topic name") from None
         self.timer = None  # created once the torque is on: the servos ignore goals before
-
-    def bounds(self, servo: str, new: dict[str, float] | None = None) -> tuple[float, float]:
-        """(min, max) of a servo's goals; values in new take precedence over the current ones."""
-        new = new or {}
-        low, high = f'{servo}_min', f'{servo}_max'
-        return new.get(low, self.get_parameter(low).value), new.get(high, self.get_parameter(high).value)
-
-    def check_bounds(self, parameters: list[Parameter]) -> SetParametersResult:
-        # The descriptors already refuse other types and values beyond +-pi; this guards each pair.
-        new = {p.name: p.value for p in parameters}
-        problems = [bounds_problem(servo, *self.bounds(servo, new)) for servo in SERVOS]
-        reason = '; '.join(p for p in problems if p)
-        return SetParametersResult(successful=not reason, reason=reason)
 
     def enable_torque(self) -> None:
         self.torque.enable()
@@ -99,7 +74,7 @@ class ImuControlRobot(Node):
             self.steering = True
             self.get_logger().info(f'IMU data on {self.imu_topic}: steering the pan and tilt servos')
         _roll, pitch, yaw = quaternion_to_euler(self.orientation)
-        pan, tilt = head_goals(pitch, yaw, self.bounds('pan'), self.bounds('tilt'))
+        pan, tilt = head_goals(pitch, yaw, self.bounds.bounds('pan'), self.bounds.bounds('tilt'))
         for servo, goal in (('pan', pan), ('tilt', tilt)):
             msg = Float32()
             msg.data = goal
