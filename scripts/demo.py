@@ -99,7 +99,13 @@ def start_robot(sandbox: RosSandbox) -> dict[str, RosProcess]:
     }
     processes['imu_control_robot'].wait_for(r'steering the pan and tilt servos', STARTUP_TIMEOUT)
     processes['imu_turtle'].wait_for(r'IMU data on', STARTUP_TIMEOUT)
+    processes['display_camera'].wait_for(r'showing them in the window', STARTUP_TIMEOUT)
     return processes
+
+
+def display_camera_lines(process: RosProcess) -> list[str]:
+    """What display_camera said about its window: where it shows the camera, or that it cannot."""
+    return [line for line in process.lines if 'showing them in the window' in line or 'no display' in line]
 
 
 def run_demo(seconds: float, report_every: float) -> int:
@@ -118,7 +124,8 @@ def run_demo(seconds: float, report_every: float) -> int:
         try:
             state = watch(probe)
             processes = start_robot(sandbox)
-            for line in processes['display_camera'].lines[:3]:
+            time.sleep(0.5)  # the no-display line follows the first frame's
+            for line in display_camera_lines(processes['display_camera']):
                 print(f'   display_camera says: {line}', flush=True)
             print('== running', flush=True)
             start = last = time.monotonic()

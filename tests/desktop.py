@@ -104,11 +104,12 @@ class VirtualDisplay:
         raise AssertionError(f'no window (name {name!r}, pid {pid}) on {self.name} within {timeout} s')
 
     def press(self, window: str, key: str, seconds: float) -> None:
-        """Hold an X key (e.g. 'Left') in a window for the given time."""
-        self.xdotool('windowactivate', '--sync', window)
-        self.xdotool('keydown', '--window', window, key)
+        """Hold an X key (e.g. 'Left') in a window for the given time, as a keyboard does (XTEST to
+        the focused window; Xvfb has no window manager to give the focus, so it is set first)."""
+        self.xdotool('windowfocus', '--sync', window)
+        self.xdotool('keydown', key)
         time.sleep(seconds)
-        self.xdotool('keyup', '--window', window, key)
+        self.xdotool('keyup', key)
 
     def type(self, window: str, *keys: str) -> None:
         """Type X keys (Left, a, Escape) into a window as a keyboard does (XTEST, not XSendEvent,
