@@ -6,7 +6,7 @@ import subprocess
 import time
 
 import pytest
-from netns import ROOT, Lan
+from netns import ROOT, TestLan
 
 PUBLISHER = 'ros2 run random_number_ps random_number_publisher'
 LISTENER = 'ros2 topic echo /random_numbers std_msgs/msg/Int32'
@@ -15,7 +15,7 @@ QUIET_WINDOW = 8.0  # s a private laptop listens without hearing the other one: 
 
 @pytest.fixture
 def classroom():
-    lan = Lan()
+    lan = TestLan()
     try:
         lan.add_host('laptop_a', '10.42.0.101')
         lan.add_host('laptop_b', '10.42.0.102')
@@ -24,7 +24,7 @@ def classroom():
         lan.close()
 
 
-def publisher_and_listener(lan: Lan, mode: str):
+def publisher_and_listener(lan: TestLan, mode: str):
     """laptop_a publishes random numbers; laptop_b and laptop_a itself listen. Returns (when the
     publisher's process started, laptop_b's listener, laptop_a's own listener)."""
     env = {'OWL_NETWORK': mode}

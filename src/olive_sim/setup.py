@@ -25,6 +25,7 @@ setup(
             'imu_sim = olive_sim.imu_node:main',
             'servo_sim = olive_sim.servo_node:main',
             'camera_sim = olive_sim.camera_node:main',
+            'kit_hosts = olive_sim.kit_hosts:main',
         ],
     },
 )

@@ -27,6 +27,7 @@ class KitModule:
     module_type: str
     namespace: str
     executable: str
+    address: str  # the module's IP address in the course's set-up (sections 4.3.2 to 4.5)
     parameters: dict[str, Any] = field(default_factory=dict)
 
     @property
@@ -43,14 +44,17 @@ class KitModule:
 # The tilt servo carries the camera (about 80 g plus the L-bracket) 4 cm off its axis, and its
 # range is what the vendor's demos use for the head.
 OWL_KIT = (
-    KitModule('imu', IMU_NAMESPACE, 'imu_sim'),
-    KitModule('servo', 'pan', 'servo_sim', {'namespace': 'pan', 'min_position': -1.5708,
-                                             'max_position': 1.5708}),
-    KitModule('servo', 'tilt', 'servo_sim', {'namespace': 'tilt', 'load_mass': 0.12,
-                                              'load_offset': 0.04, 'min_position': -1.3,
-                                              'max_position': 0.9}),
-    KitModule('camera', 'eye', 'camera_sim', {'namespace': 'eye'}),
+    KitModule('imu', IMU_NAMESPACE, 'imu_sim', '10.42.0.20'),
+    KitModule('servo', 'pan', 'servo_sim', '10.42.0.8', {'namespace': 'pan', 'min_position': -1.5708,
+                                                         'max_position': 1.5708}),
+    KitModule('servo', 'tilt', 'servo_sim', '10.42.0.9', {'namespace': 'tilt', 'load_mass': 0.12,
+                                                          'load_offset': 0.04, 'min_position': -1.3,
+                                                          'max_position': 0.9}),
+    KitModule('camera', 'eye', 'camera_sim', '10.42.0.10', {'namespace': 'eye'}),
 )
+# The modules' subnet (a module's factory address is 10.42.0.7) and the student's PC on it.
+KIT_SUBNET = '10.42.0.0/24'
+STUDENT_ADDRESS = '10.42.0.1'
 
 
 def topic_table(modules: tuple[KitModule, ...] = OWL_KIT) -> str:
