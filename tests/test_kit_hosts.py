@@ -1,19 +1,24 @@
-"""The kit split across network hosts (`ros2 run olive_sim kit_hosts`): each module in its own network
-namespace at the course's address on one bridge, this machine joined to it; the student's
-imu_control_robot drives the servos over real DDS from this machine, and a module whose cable is
-pulled and plugged back is seen again within 5 s."""
+"""The kit split across network hosts (`ros2 run olive_sim kit_hosts`) and `owl network`.
+
+kit_hosts puts each module in a network namespace at the course's address on one bridge and joins
+"this machine" to it. Here "this machine" is itself a namespace (the student's PC), so no DDS
+traffic of the test leaves the namespaces it made. From the PC, over real DDS: imu_control_robot
+drives the servos; a module whose cable is pulled past its lease is seen again within 5 s; and
+`owl network` reports the good set-up and says what is wrong, with the fix, in broken ones.
+"""
 
 import re
 import subprocess
 import time
+from pathlib import Path
 
 import pytest
-from olive_sim.network_hosts import setup_problem
+from netns import TestLan
 from ros_harness import wait_until
 
-OPEN = {'OWL_NETWORK': 'open'}
+OPEN = {'OWL_NETWORK': 'open', 'ROS_DOMAIN_ID': '0'}
 RECONNECT_LIMIT = 5.0  # s: the issue's bound for a module coming back
-PULLED_FOR = 12.0
+PULLED_FOR = 12.0      # s: longer than the participants' 10 s lease (config/fastdds.xml)
 
 
 def positions(process) -> list[float]:
@@ -23,27 +28,28 @@ def positions(process) -> list[float]:
 
 
 @pytest.fixture
-def kit_hosts(ros):
-    problem = setup_problem()
-    if problem:
-        pytest.skip(f'{problem}, so this network test is skipped')
-    kit = ros.command(['ros2', 'run', 'olive_sim', 'kit_hosts', '--domain-id', str(ros.domain_id)],
-                      label='kit_hosts')
-    kit.wait_for(r'in your shells', timeout=60)
-    return kit
+def classroom():
+    """A student's PC and, not on the kit's bridge, a second machine (both namespaces); the PC runs
+    kit_hosts, which joins it to the kit's bridge at 10.42.0.1."""
+    lan = TestLan()
+    try:
+        lan.add_host('pc', None)
+        lan.add_host('other', None)
+        kit = lan.run('pc', 'ros2 run olive_sim kit_hosts', {}, label='kit_hosts')
+        kit.wait_for(r'in your shells', timeout=60)
+        lan.kit = kit
+        yield lan
+    finally:
+        lan.close()
 
 
-def in_open_shell(ros, command: str, label: str):
-    return ros.command(['bash', '-c', f'source env.sh && exec {command}'], label=label, env=OPEN)
-
-
-def test_imu_control_robot_on_this_machine_drives_the_servos_on_their_own_hosts(ros, kit_hosts):
+def test_the_modules_are_hosts_at_the_course_addresses_and_imu_control_robot_drives_them(classroom):
     for address in ('10.42.0.20', '10.42.0.8', '10.42.0.9', '10.42.0.10'):
-        assert address in kit_hosts.output
-    pan = in_open_shell(ros, 'ros2 topic echo /olive/servo/pan/joint --field position', 'pan echo')
-    tilt = in_open_shell(ros, 'ros2 topic echo /olive/servo/tilt/joint --field position', 'tilt echo')
+        assert address in classroom.kit.output
+    pan = classroom.run('pc', 'ros2 topic echo /olive/servo/pan/joint --field position', OPEN)
+    tilt = classroom.run('pc', 'ros2 topic echo /olive/servo/tilt/joint --field position', OPEN)
     started = time.monotonic()
-    robot = in_open_shell(ros, 'ros2 run olive_servo imu_control_robot', 'imu_control_robot')
+    robot = classroom.run('pc', 'ros2 run olive_servo imu_control_robot', OPEN, label='imu_control_robot')
     robot.wait_for(r'steering the pan and tilt servos', timeout=60)
     print(f'imu_control_robot steered {time.monotonic() - started:.2f} s after it started')
     wait_until(lambda: len(positions(pan)) > 50 and max(positions(pan)) - min(positions(pan)) > 0.3
@@ -52,24 +58,78 @@ def test_imu_control_robot_on_this_machine_drives_the_servos_on_their_own_hosts(
     assert 'torque disabled' in robot.output
 
 
-def test_a_module_whose_cable_is_pulled_is_seen_again_within_5_s(ros, kit_hosts):
-    pan_host = re.search(r'sudo ip netns exec (\S+-servo-pan) bash', kit_hosts.output).group(1)
-    pan = in_open_shell(ros, 'ros2 topic echo /olive/servo/pan/joint --field position', 'pan echo')
-    wait_until(lambda: len(positions(pan)) > 20, 60, 'pan joint states on this machine')
-    subprocess.run(['ip', '-n', pan_host, 'link', 'set', 'eth0', 'down'], check=True, timeout=10)
+def descendants(pid: int) -> list[int]:
+    """Every process below pid, from /proc."""
+    children: dict[int, list[int]] = {}
+    for stat in Path('/proc').glob('[0-9]*/stat'):
+        try:
+            fields = stat.read_text().rsplit(')', 1)[1].split()
+        except OSError:
+            continue
+        children.setdefault(int(fields[1]), []).append(int(stat.parent.name))
+    found, todo = [], [pid]
+    while todo:
+        below = children.get(todo.pop(), [])
+        found += below
+        todo += below
+    return found
+
+
+def set_module_link(kit, module_argument: str, state: str) -> None:
+    """Pull out (down) or plug in (up) a module host's cable. kit_hosts made its namespaces inside
+    the PC's own mount namespace, so they are entered through the module process's /proc entry."""
+    for pid in descendants(kit.pid):
+        try:
+            command = Path(f'/proc/{pid}/cmdline').read_bytes().split(b'\0')
+        except OSError:
+            continue
+        if module_argument.encode() in command and any(b'servo_sim' in part for part in command):
+            subprocess.run(['nsenter', f'--net=/proc/{pid}/ns/net', 'ip', 'link', 'set', 'eth0', state],
+                           check=True, timeout=10)
+            return
+    raise AssertionError(f'no module process with {module_argument} under kit_hosts')
+
+
+def test_a_module_whose_cable_is_pulled_is_seen_again_within_5_s(classroom):
+    pan = classroom.run('pc', 'ros2 topic echo /olive/servo/pan/joint --field position', OPEN)
+    wait_until(lambda: len(positions(pan)) > 20, 60, 'pan joint states on the PC')
+    set_module_link(classroom.kit, 'namespace:=pan', 'down')
     time.sleep(0.5)
     before = len(positions(pan))
-    # Longer than the participants' lease (10 s, config/fastdds.xml): this machine forgets the module,
-    # so coming back takes a new discovery, not just the next packet.
-    time.sleep(PULLED_FOR)
+    time.sleep(PULLED_FOR)  # the PC forgets the module: coming back takes a new discovery
     assert len(positions(pan)) - before < 5, 'joint states still arrive with the cable pulled'
     plugged = time.monotonic()
-    subprocess.run(['ip', '-n', pan_host, 'link', 'set', 'eth0', 'up'], check=True, timeout=10)
+    set_module_link(classroom.kit, 'namespace:=pan', 'up')
     count = len(positions(pan))
     wait_until(lambda: len(positions(pan)) > count + 5, RECONNECT_LIMIT, 'pan joint states again')
     print(f'pan joint states back {time.monotonic() - plugged:.2f} s after the cable was plugged in')
-    assert kit_hosts.running() and pan.running()
-    assert 'Traceback' not in kit_hosts.output + pan.output
+    assert classroom.kit.running() and pan.running()
+    assert 'Traceback' not in classroom.kit.output + pan.output
+
+
+def owl_network(classroom, host: str, env: dict) -> tuple[int, list[str]]:
+    check = classroom.run(host, 'owl network --discovery-time 3', env, label=f'owl network on {host}')
+    code = check.wait(60)
+    return code, [line for line in check.lines if line.startswith('owl network: ')]
+
+
+def test_owl_network_on_a_good_set_up_and_three_broken_ones(classroom):
+    code, lines = owl_network(classroom, 'pc', OPEN)
+    print('\n'.join(['good set-up:', *lines]))
+    assert code == 0 and all(': ok: ' in line for line in lines), lines
+    assert any('discovers 4 Olive module node(s)' in line for line in lines), lines
+
+    code, lines = owl_network(classroom, 'pc', {'ROS_DOMAIN_ID': '0'})  # OWL_NETWORK left at private
+    print('\n'.join(['private mode:', *lines]))
+    assert code == 1 and 'fix: export OWL_NETWORK=open; source env.sh' in lines[0]
+
+    code, lines = owl_network(classroom, 'pc', {**OPEN, 'ROS_DOMAIN_ID': '7'})
+    print('\n'.join(['another domain:', *lines]))
+    assert code == 1 and lines[-1].endswith('this shell is in domain 7; fix: export ROS_DOMAIN_ID=0'), lines
+
+    code, lines = owl_network(classroom, 'other', OPEN)
+    print('\n'.join(['not on the bridge:', *lines]))
+    assert code == 1 and "no network interface on the modules' subnet 10.42.0.0/24" in lines[1], lines
 
 
 @pytest.mark.parametrize('args, message', [
@@ -77,10 +137,30 @@ def test_a_module_whose_cable_is_pulled_is_seen_again_within_5_s(ros, kit_hosts)
     (['--student-address', '10.42.0.8'], '10.42.0.8 is already taken on 10.42.0.0/24'),
     (['--student-address', 'tenfortytwo'], "'tenfortytwo' is not an IPv4 address"),
 ])
-def test_a_wrong_address_is_one_line_and_makes_nothing(args, message):
+def test_kit_hosts_refuses_a_wrong_address_in_one_line_and_makes_nothing(args, message):
     namespaces_before = subprocess.run(['ip', 'netns', 'list'], capture_output=True, text=True).stdout
     result = subprocess.run(['ros2', 'run', 'olive_sim', 'kit_hosts', *args], capture_output=True, text=True,
                             timeout=60)
     assert result.returncode == 2
     assert result.stderr.strip() == f'kit_hosts: error: --student-address: {message}'
     assert subprocess.run(['ip', 'netns', 'list'], capture_output=True, text=True).stdout == namespaces_before
+
+
+@pytest.mark.parametrize('args, message', [
+    (['--timeout', 'soon'], "argument --timeout: 'soon' is not a number of seconds"),
+    (['--discovery-time', '-1'], 'argument --discovery-time: -1 is not between 0 and 60 seconds'),
+])
+def test_owl_network_refuses_bad_arguments_in_one_line(args, message):
+    result = subprocess.run(['owl', 'network', *args], capture_output=True, text=True, timeout=60)
+    assert result.returncode == 2 and 'Traceback' not in result.stderr
+    assert result.stderr.strip().splitlines()[-1] == f'owl network: error: {message}'
+
+
+@pytest.mark.parametrize('args, message', [
+    (['network', '--what'], 'owl: error: unrecognized arguments: --what'),
+    (['netwerk'], "owl: error: argument COMMAND: invalid choice: 'netwerk' (choose from 'network')"),
+])
+def test_owl_refuses_unknown_words_in_one_line(args, message):
+    result = subprocess.run(['owl', *args], capture_output=True, text=True, timeout=60)
+    assert result.returncode == 2 and 'Traceback' not in result.stderr
+    assert result.stderr.strip().splitlines()[-1] == message

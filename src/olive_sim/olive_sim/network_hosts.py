@@ -93,14 +93,17 @@ class Lan:
         ip(*on, 'link', 'set', local, 'up')
         return local
 
-    def add_host(self, name: str, address: str) -> str:
-        """A host with its loopback up and the address on its link to the bridge; its namespace."""
-        self._check_address(address)
+    def add_host(self, name: str, address: str | None) -> str:
+        """A host with its loopback up and the address on its link to the bridge (no link at all
+        with address None: a machine not on this LAN); returns its namespace."""
+        if address is not None:
+            self._check_address(address)
         namespace = f'{self.tag}-{name}'
         ip('netns', 'add', namespace)
         self.hosts[name] = namespace
         ip('-n', namespace, 'link', 'set', 'lo', 'up')
-        self._plug(name, address, namespace)
+        if address is not None:
+            self._plug(name, address, namespace)
         return namespace
 
     def join_this_machine(self, address: str) -> str:

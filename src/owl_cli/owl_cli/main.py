@@ -1,0 +1,70 @@
+"""owl: Owl Kit Lab's own command (next to the course's `ros2`)."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from concurrent.futures import ThreadPoolExecutor
+
+from owl_cli import network_check
+
+
+def positive_seconds(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a number of seconds") from None
+    if not 0 < value <= 60:
+        raise argparse.ArgumentTypeError(f'{text} is not between 0 and 60 seconds')
+    return value
+
+
+def network(args: argparse.Namespace) -> int:
+    domain_text = os.environ.get('ROS_DOMAIN_ID', '0') or '0'
+    if not domain_text.isdigit() or int(domain_text) > 232:
+        print(f"owl network: problem: ROS_DOMAIN_ID '{domain_text}' is not a domain (0..232); "
+              'fix: export ROS_DOMAIN_ID=0')
+        return 1
+    domain_id = int(domain_text)
+    interfaces = network_check.interfaces()
+    addresses = [*network_check.MODULE_ADDRESSES, network_check.FACTORY_ADDRESS]
+    answering = dict.fromkeys(addresses, False)
+    # Only on the modules' own link: through a default route a router's refusal would look like an
+    # answer, and the probes would go out to a network that is not the kit's.
+    if network_check.on_kit_subnet(interfaces):
+        with ThreadPoolExecutor(len(addresses)) as pool:
+            answering = dict(zip(addresses, pool.map(lambda a: network_check.answers(a, args.timeout),
+                                                     addresses), strict=True))
+    facts = network_check.NetworkFacts(
+        discovery_range=os.environ.get('ROS_AUTOMATIC_DISCOVERY_RANGE', 'SUBNET') or 'SUBNET',
+        domain_id=domain_id, interfaces=interfaces, answering=answering,
+        olive_nodes=network_check.olive_nodes(domain_id, args.discovery_time))
+    if not facts.olive_nodes and domain_id != 0 and any(answering.values()):
+        facts.olive_nodes_in_domain_0 = network_check.olive_nodes(0, args.discovery_time)
+    verdicts = network_check.verdict(facts)
+    for line in verdicts:
+        print(f'owl network: {line}')
+    return 0 if all(v.ok for v in verdicts) else 1
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog='owl', description=__doc__)
+    commands = parser.add_subparsers(dest='command', metavar='COMMAND', required=True)
+    check_network = commands.add_parser(
+        'network', help='check the way to the Olive modules: interfaces, addresses, ROS domain, discovery',
+        description=network_check.__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    check_network.add_argument('--timeout', type=positive_seconds, default=0.5, metavar='SECONDS',
+                               help='how long each module address may take to answer (default 0.5)')
+    check_network.add_argument('--discovery-time', type=positive_seconds, default=3.0, metavar='SECONDS',
+                               help='how long to listen for the modules\' ROS nodes (default 3)')
+    check_network.set_defaults(run=network)
+    args = parser.parse_args(argv)
+    try:
+        return args.run(args)
+    except KeyboardInterrupt:
+        return 130
+
+
+if __name__ == '__main__':
+    sys.exit(main())

@@ -1,0 +1,27 @@
+from setuptools import find_packages, setup
+
+package_name = 'owl_cli'
+
+# No setup.cfg moving scripts to lib/owl_cli: `owl` goes to the prefix's bin/, which the workspace's
+# setup scripts (sourced by env.sh) put on PATH.
+setup(
+    name=package_name,
+    version='0.1.0',
+    packages=find_packages(exclude=['test']),
+    data_files=[
+        ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
+        ('share/' + package_name, ['package.xml']),
+    ],
+    install_requires=['setuptools'],
+    zip_safe=True,
+    maintainer='Owl Kit Lab',
+    maintainer_email='team@owlkitlab.invalid',
+    description='The owl command: owl network checks the way to the Olive modules.',
+    license='Apache-2.0',
+    tests_require=['pytest'],
+    entry_points={
+        'console_scripts': [
+            'owl = owl_cli.main:main',
+        ],
+    },
+)
