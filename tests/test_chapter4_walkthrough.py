@@ -230,48 +230,8 @@ def main(args=None):
     rclpy.try_shutdown()
 '''
 
-DISPLAY_CAMERA = '''
-import cv2
-import rclpy
-from rclpy.executors import ExternalShutdownException
-from cv_bridge import CvBridge
-from rclpy.node import Node
-from rclpy.qos import QoSDurabilityPolicy, QoSProfile, QoSReliabilityPolicy
-from sensor_msgs.msg import CompressedImage
-
-
-class DisplayCamera(Node):
-
-    def __init__(self):
-        super().__init__('display_camera')
-        qos_profile = QoSProfile(
-            depth=10,
-            durability=QoSDurabilityPolicy.VOLATILE,
-            reliability=QoSReliabilityPolicy.BEST_EFFORT)
-        self.subscription = self.create_subscription(
-            CompressedImage, '/olive/camera/eye/image/compressed', self.image_callback, qos_profile)
-        self.bridge = CvBridge()
-        self.frames = 0
-
-    def image_callback(self, msg):
-        image = self.bridge.compressed_imgmsg_to_cv2(msg)
-        cv2.imshow('camera', image)
-        cv2.waitKey(1)
-        self.frames += 1
-        if self.frames % 30 == 0:
-            self.get_logger().info(f'{self.frames} frames shown')
-
-
-def main(args=None):
-    rclpy.init(args=args)
-    display_camera = DisplayCamera()
-    try:
-        rclpy.spin(display_camera)
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-    display_camera.destroy_node()
-    rclpy.try_shutdown()
-'''
+# Section 4.5's project, shared with tests/test_headless_windows.py.
+DISPLAY_CAMERA = (Path(__file__).parent / 'student_scripts' / 'student_display_camera.py').read_text()
 
 CAMERA_LAUNCH = '''
 from launch import LaunchDescription
@@ -453,7 +413,7 @@ def test_display_camera_with_a_display_opens_its_window(ros, workspace, x_displa
     start_kit(ros)
     node = student(ros, workspace, 'ros2 run olive_camera display_camera', 'student display_camera',
                    env=x_display.env())
-    x_display.wait_for_window(name='^camera$', timeout=40)
+    x_display.wait_for_window(name='^Olive Camera$', timeout=40)
     node.wait_for(r'30 frames shown', timeout=40)
     assert 'no display' not in node.output
     stop(node)

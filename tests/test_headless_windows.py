@@ -144,7 +144,7 @@ def test_a_students_display_camera_without_a_display_runs_on_the_camera_and_stop
     assert read_image(frame_file).shape == (480, 640, 3)
     time.sleep(2.0)
     camera.stop_cleanly(timeout=10)
-    assert camera.lines == [
+    assert [line for line in camera.lines if 'frames shown' not in line] == [
         "student_display_camera: no display (DISPLAY is not set), so the window 'Olive Camera' is not shown; "
         'the program runs on without it. To see the camera, run rqt and open Plugins > Visualization > '
         f'Image View (its frames go to {folder})']
