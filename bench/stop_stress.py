@@ -1,4 +1,4 @@
-"""How a node's main() behaves at Ctrl-C: the course's plain rclpy shape against owl_common.run's.
+"""How a node's main() answers Ctrl-C: the course's plain rclpy shape, in variants, and the installed nodes.
 
 One private ROS domain holds olive_sim's imu_sim (scripted motion, so imu_turtle's callbacks run
 all the time) and the pan servo_sim. Each kind of node below is started and stopped with SIGINT
@@ -11,14 +11,17 @@ Each stop is classified: clean (exit 0, no "Traceback" and no "Exception ignored
 and, for a servo node that got its torque on, "torque disabled" logged), traceback (exit 0 but one
 of those two words), torque left on, watchdog (owl_common.run's teardown watchdog fired: exit 1
 and a stack dump), alive (still running 8 s after the SIGINT: native stacks shown, then killed),
-interrupted before main() (a KeyboardInterrupt traceback from the imports, which any Python
-program prints, whatever its main() does), or exit N / SIGNAL (anything else). The first output
-of each kind that is not clean is printed.
+interrupted before main() (a KeyboardInterrupt traceback from the imports, or a SIGINT before
+Python has its handler, as any Python program, whatever its main() does), or exit N / SIGNAL
+(anything else). The first output of each kind that is not clean is printed.
 
-The kinds: `imu_turtle course` and `control_servo course` are the nodes' own classes run by a main()
-of the course's shape written here (plain rclpy.init / rclpy.spin / destroy_node / try_shutdown;
-control_servo's with SignalHandlerOptions.NO so its clean-up can still call the torque service);
-`imu_turtle`, `control_servo` are the installed executables, whatever main() they have.
+The kinds: `imu_turtle`, `control_servo` are the installed executables, whatever main() they
+have. The others are a node class of ours run by course_main() below, a main() of the course's shape
+(plain rclpy.init / rclpy.spin / destroy_node / try_shutdown) in variants: `... course` builds the
+node before the `try`, the others inside it; `ALL` keeps rclpy's own Ctrl-C handler (plain
+`rclpy.init(args=args)`), `NO` passes signal_handler_options=SignalHandlerOptions.NO; `polling`
+spins in 0.1 s spin_once calls. By default the installed nodes run, with `imu_turtle ALL` as the
+baseline: the same node with rclpy's own handler.
 --hogs busy-loop processes compete for the CPU during the whole run.
 """
 
@@ -96,6 +99,7 @@ def spin_polling(node: Node) -> None:
         rclpy.spin_once(node, timeout_sec=0.1)
 
 
+DEFAULT_KINDS = 'imu_turtle,control_servo,imu_turtle ALL'
 ALL, NO = SignalHandlerOptions.ALL, SignalHandlerOptions.NO
 CHILDREN: dict[str, Callable[[], None]] = {
     # run 1: the shape of common.md as it stands
@@ -154,8 +158,10 @@ def classify(kind: Kind, process: RosProcess) -> str:
     output = process.output
     if code == 1 and 'Timeout (' in output:
         return show(kind, 'watchdog', process, output)
-    if code != 0 and 'KeyboardInterrupt' in output and not MAIN_FRAME.search(output):
-        # Python's own KeyboardInterrupt during the imports: every Python program does that.
+    if code != 0 and (('KeyboardInterrupt' in output and not MAIN_FRAME.search(output))
+                      or (code == -signal.SIGINT and not output.strip())):
+        # Python's own KeyboardInterrupt during the imports, or SIGINT before Python installed its
+        # handler: every Python program does that.
         return show(kind, BEFORE_MAIN, process, output)
     if code != 0:
         name = signal.Signals(-code).name if code < 0 else f'exit {code}'
@@ -244,11 +250,11 @@ def report(kind: Kind) -> None:
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument('--stops', type=int, default=100,
+    parser.add_argument('--stops', type=int, default=50,
                         help='steady stops per kind (and as many start-up stops)')
     parser.add_argument('--hogs', type=int, default=2, help='busy-loop CPU hog processes during the run')
-    parser.add_argument('--kinds', default='all',
-                        help='comma-separated labels to run (default all): ' + ', '.join(
+    parser.add_argument('--kinds', default=DEFAULT_KINDS,
+                        help=f'comma-separated labels to run (default {DEFAULT_KINDS!r}), of: ' + ', '.join(
                             [*CHILDREN, 'imu_turtle', 'control_servo']))
     parser.add_argument('--no-startup', action='store_true', help='only steady stops')
     parser.add_argument('--start-timeout', type=float, default=30.0)
@@ -258,9 +264,11 @@ def main() -> int:
     kinds += [Kind('imu_turtle', installed_starter('olive_imu', 'imu_turtle'), IMU_READY, servo=False),
               Kind('control_servo', installed_starter('olive_servo', 'control_servo'), SERVO_READY,
                    servo=True)]
-    if args.kinds != 'all':
-        wanted = {label.strip() for label in args.kinds.split(',')}
-        kinds = [kind for kind in kinds if kind.label in wanted]
+    wanted = [label.strip() for label in args.kinds.split(',')]
+    unknown = set(wanted) - {kind.label for kind in kinds}
+    if unknown:
+        parser.error(f'unknown kinds: {", ".join(sorted(unknown))}')
+    kinds = [kind for kind in kinds if kind.label in wanted]
     print(f'{args.stops} steady{"" if args.no_startup else " + start-up"} stops per kind, '
           f'{args.hogs} CPU hogs, '
           f'{os.cpu_count()} cores; rclpy {version("ros-rclpy")}, '
