@@ -17,6 +17,7 @@ SHRUNK = {
     'olive_sim_cpu.py': ['--seconds', '1', '--warmup', '1'],
     'ros2cli_graph.py': ['--runs', '1', '--seconds', '2.5', '--messages', '200'],
     'service_roundtrip.py': ['--calls', '20'],
+    'stop_stress.py': ['--stops', '1', '--hogs', '0', '--kinds', 'temp_server ALL'],
     'teardown_hangs.py': ['--pairs', '2', '--hogs', '0'],
     'turtlesim_pose_rate.py': ['--seconds', '1'],
 }

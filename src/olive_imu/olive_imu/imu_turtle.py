@@ -1,16 +1,17 @@
 """Section 4.3.2: the Olive IMU drives the turtlesim turtle (pitch -> speed, yaw -> turn rate)."""
 
+import signal
 import sys
 import time
 
 import rclpy
 from geometry_msgs.msg import Quaternion, Twist
-from owl_common.run import STARTUP_ERRORS, begin_cleanup, init_with_stop_request, spin_until_stopped
 from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor
-from rclpy.exceptions import InvalidTopicNameException
+from rclpy.exceptions import InvalidTopicNameException, ParameterException
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import qos_profile_sensor_data
+from rclpy.signals import SignalHandlerOptions
 from sensor_msgs.msg import Imu
 
 from olive_imu.drive import turtle_velocity
@@ -87,23 +88,23 @@ class ImuTurtle(Node):
 
 
 def main(args: list[str] | None = None) -> None:
-    # rclpy.init with Ctrl-C and SIGTERM as a stop request, which spin_until_stopped (rclpy.spin)
-    # raises as KeyboardInterrupt: rclpy's own handler shuts ROS down from another thread while
-    # this one may still be using it (owl_common.run says more).
-    stop = init_with_stop_request(args)
+    # Ctrl-C raises KeyboardInterrupt in this thread (Python's own handler). rclpy's handler would
+    # shut ROS down from a thread of its own while this one may be taking a message: about 1 stop
+    # in 30 then ended in a traceback (see this package's README).
+    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
     imu_turtle = None
     try:
         imu_turtle = ImuTurtle()
-        spin_until_stopped(imu_turtle, stop)
+        rclpy.spin(imu_turtle)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass  # Ctrl-C is how the course stops a node
-    except STARTUP_ERRORS as error:
+    except (ParameterException, ValueError) as error:
         if imu_turtle is not None:
             raise
         print(f'imu_turtle: error: {error}', file=sys.stderr)  # a bad --ros-args parameter
         sys.exit(2)
     finally:
-        begin_cleanup()  # from here a second Ctrl-C cannot interrupt the clean-up
+        signal.signal(signal.SIGINT, signal.SIG_IGN)  # ros2 launch passes on a second Ctrl-C
         if imu_turtle is not None:
             imu_turtle.destroy_node()
         rclpy.try_shutdown()

@@ -1,13 +1,15 @@
 """Section 4.4 project "Control Servo": move the pan servo in a sine, torque on first, off at Ctrl-C."""
 
+import signal
 import sys
 
 import rclpy
-from owl_common.run import STARTUP_ERRORS, begin_cleanup, init_with_stop_request, spin_until_stopped
 from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor
+from rclpy.exceptions import ParameterException
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.parameter import Parameter
+from rclpy.signals import SignalHandlerOptions
 from std_msgs.msg import Float32
 
 from olive_servo.goals import PAN_BOUNDS, SineGoal
@@ -58,27 +60,26 @@ class ControlServo(Node):
 
 
 def main(args: list[str] | None = None) -> None:
-    # rclpy.init with Ctrl-C and SIGTERM as a stop request, which spin_until_stopped (rclpy.spin)
-    # raises as KeyboardInterrupt: rclpy's own handler would shut ROS down first, from another
-    # thread, and the torque could not be switched off (owl_common.run says more).
-    stop = init_with_stop_request(args)
+    # Ctrl-C raises KeyboardInterrupt in this thread (Python's own handler) and ROS keeps working
+    # until the torque is off: rclpy's handler would shut ROS down first, from another thread.
+    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
     control_servo = None
     try:
         control_servo = ControlServo()
         control_servo.enable_torque()
-        spin_until_stopped(control_servo, stop)
+        rclpy.spin(control_servo)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass  # Ctrl-C is how the course stops a node
     except TorqueError as error:
         control_servo.get_logger().error(str(error))
         sys.exit(1)
-    except STARTUP_ERRORS as error:
+    except (ParameterException, ValueError) as error:
         if control_servo is not None:
             raise
         print(f'control_servo: error: {error}', file=sys.stderr)  # a bad --ros-args parameter
         sys.exit(2)
     finally:
-        begin_cleanup()  # from here a second Ctrl-C cannot interrupt the clean-up
+        signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C must not stop the clean-up
         if control_servo is not None:
             control_servo.disable_torque()
             control_servo.destroy_node()

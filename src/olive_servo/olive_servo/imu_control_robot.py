@@ -1,17 +1,18 @@
 """Section 4.4 project "Control Olive Servos with IMU": the pan and tilt servos point where the IMU points."""
 
+import signal
 import sys
 import time
 
 import rclpy
 from geometry_msgs.msg import Quaternion
 from olive_imu.euler import orientation_problem, quaternion_to_euler
-from owl_common.run import STARTUP_ERRORS, begin_cleanup, init_with_stop_request, spin_until_stopped
 from rcl_interfaces.msg import ParameterDescriptor
-from rclpy.exceptions import InvalidTopicNameException
+from rclpy.exceptions import InvalidTopicNameException, ParameterException
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import qos_profile_sensor_data
+from rclpy.signals import SignalHandlerOptions
 from sensor_msgs.msg import Imu
 from std_msgs.msg import Float32
 
@@ -92,27 +93,26 @@ class ImuControlRobot(Node):
 
 
 def main(args: list[str] | None = None) -> None:
-    # rclpy.init with Ctrl-C and SIGTERM as a stop request, which spin_until_stopped (rclpy.spin)
-    # raises as KeyboardInterrupt: rclpy's own handler would shut ROS down first, from another
-    # thread, and the torque could not be switched off (owl_common.run says more).
-    stop = init_with_stop_request(args)
+    # Ctrl-C raises KeyboardInterrupt in this thread (Python's own handler) and ROS keeps working
+    # until the torque is off: rclpy's handler would shut ROS down first, from another thread.
+    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
     imu_control_robot = None
     try:
         imu_control_robot = ImuControlRobot()
         imu_control_robot.enable_torque()
-        spin_until_stopped(imu_control_robot, stop)
+        rclpy.spin(imu_control_robot)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass  # Ctrl-C is how the course stops a node
     except TorqueError as error:
         imu_control_robot.get_logger().error(str(error))
         sys.exit(1)
-    except STARTUP_ERRORS as error:
+    except (ParameterException, ValueError) as error:
         if imu_control_robot is not None:
             raise
         print(f'imu_control_robot: error: {error}', file=sys.stderr)  # a bad --ros-args parameter
         sys.exit(2)
     finally:
-        begin_cleanup()  # from here a second Ctrl-C cannot interrupt the clean-up
+        signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C must not stop the clean-up
         if imu_control_robot is not None:
             imu_control_robot.disable_torque()
             imu_control_robot.destroy_node()

@@ -3,10 +3,12 @@
 The course's listing with its fixes, each marked "Fix:" (see this package's README).
 """
 
+import signal
+
 import rclpy
-from owl_common.run import begin_cleanup, init_with_stop_request, spin_until_stopped
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
+from rclpy.signals import SignalHandlerOptions
 from std_msgs.msg import Float32
 from std_srvs.srv import Trigger
 
@@ -34,6 +36,9 @@ class PidTesting(Node):
         self.publisher = self.create_publisher(Float32, self.topic_gp, 10)
         self.timer = self.create_timer(3.0, self.publish_goal)
         self.state = True
+        # Fix: rclpy.spin sleeps until a callback is due, and Ctrl-C (with rclpy's handler off,
+        # see main) is only seen when it wakes: this timer wakes it every 0.1 s, not every 3 s.
+        self.wake_timer = self.create_timer(0.1, lambda: None)
 
     def enable_torque(self) -> None:
         self.future = self.service_enable_torque.call_async(self.request_enable_torque)
@@ -59,24 +64,22 @@ class PidTesting(Node):
 
 
 def main(args: list[str] | None = None) -> None:
-    # Fix: rclpy.init installs rclpy's Ctrl-C handler, which shuts ROS down before the except
-    # clause runs: the listing's disable_torque() cannot wait for its answer, and its
-    # rclpy.shutdown() then fails with a traceback. Here Ctrl-C is a stop request that
-    # spin_until_stopped (rclpy.spin) raises as KeyboardInterrupt, and ROS still works for the
-    # clean-up (owl_common.run says more).
-    stop = init_with_stop_request(args)
+    # Fix: the listing's rclpy.init() installs rclpy's Ctrl-C handler, which shuts ROS down before
+    # the except clause runs: disable_torque() could not get its answer, and rclpy.shutdown() then
+    # failed with a traceback. Without it, Ctrl-C raises KeyboardInterrupt and ROS still works.
+    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
     cntrl_publisher = None
 
     try:
         cntrl_publisher = PidTesting()
         cntrl_publisher.enable_torque()
-        spin_until_stopped(cntrl_publisher, stop)
+        rclpy.spin(cntrl_publisher)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:
         # Fix: the listing cleans up only after Ctrl-C, and not at all for a Ctrl-C while the
-        # node waits for the servo; here it also ignores a second Ctrl-C.
-        begin_cleanup()
+        # node waits for the servo; here a second Ctrl-C cannot interrupt the clean-up either.
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
         if cntrl_publisher is not None:
             cntrl_publisher.disable_torque()
             cntrl_publisher.destroy_node()

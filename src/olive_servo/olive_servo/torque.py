@@ -9,7 +9,7 @@ from rclpy.node import Node
 from std_srvs.srv import Trigger
 
 ANSWER_TIMEOUT = 5.0    # s for a servo to answer a torque request once its service is there
-DISABLE_TIMEOUT = 2.0   # s at shutdown: the clean-up must end well within owl_common's 5 s limit
+DISABLE_TIMEOUT = 2.0   # s at shutdown: well within the 5 s ros2 launch waits before it escalates to SIGTERM
 WAITING_EVERY = 5.0     # s between two "waiting for service" lines
 
 
@@ -62,7 +62,7 @@ class ServoTorque:
         """Call every client at once; each one's response, or None if it did not come in time."""
         futures = {servo: client.call_async(Trigger.Request()) for servo, client in clients.items()}
         deadline = time.monotonic() + timeout
-        # Short waits: Ctrl-C reaches this thread only between them (rclpy's handler is off).
+        # Short waits: with rclpy's Ctrl-C handler off, Ctrl-C is only seen when a wait returns.
         while not all(f.done() for f in futures.values()) and time.monotonic() < deadline:
             rclpy.spin_once(self.node, timeout_sec=0.1)
         return {servo: future.result() if future.done() else None for servo, future in futures.items()}

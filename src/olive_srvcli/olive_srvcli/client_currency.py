@@ -1,35 +1,50 @@
 """currency_client EUROS: ask currency_conversion for dollars, pounds and Swiss francs."""
 
+import sys
+
+import rclpy
 from olive_interfaces.srv import CurrencyConv
-from owl_common.client import OneShotClient, UsageError, number_argument, run_client
+from rclpy.executors import ExternalShutdownException
+from rclpy.node import Node
+
+from olive_srvcli.command_line import argument_or_exit, euros_argument
 
 
-class CurrencyClient(OneShotClient):
+class CurrencyClient(Node):
 
     def __init__(self):
-        super().__init__('currency_client', CurrencyConv, 'currency_conversion')
+        super().__init__('currency_client')
+        self.cli = self.create_client(CurrencyConv, 'currency_conversion')
+        while not self.cli.wait_for_service(timeout_sec=1.0):
+            self.get_logger().info('service not available, waiting again..')
+        self.req = CurrencyConv.Request()
 
-
-def request_from_argv(argv: list[str]) -> CurrencyConv.Request:
-    euros = number_argument(argv, 'an amount in euros')
-    if euros < 0:
-        raise UsageError(f'the amount must not be negative, got {euros}')
-    return CurrencyConv.Request(euros=euros)
-
-
-def report(node: CurrencyClient, request: CurrencyConv.Request,
-           response: CurrencyConv.Response) -> int:
-    if not response.success:
-        node.get_logger().error(f'The server refused: {response.message}')
-        return 1
-    node.get_logger().info(
-        f'{request.euros} Euros are {response.dollars} US dollars, {response.pounds} British '
-        f'pounds and {response.swiss_francs} Swiss francs')
-    return 0
+    def send_request(self, euros):
+        self.req.euros = euros
+        self.future = self.cli.call_async(self.req)
+        rclpy.spin_until_future_complete(self, self.future)
+        return self.future.result()
 
 
 def main(args=None):
-    run_client(CurrencyClient, request_from_argv, report, '<euros>', args)
+    euros = argument_or_exit(euros_argument, '<euros>', args)  # a bad one: one line, exit code 2
+    rclpy.init(args=args)
+    currency_client = None
+    try:
+        currency_client = CurrencyClient()  # waits for the server
+        response = currency_client.send_request(euros)
+        if not response.success:
+            currency_client.get_logger().error(f'The server refused: {response.message}')
+            sys.exit(1)
+        currency_client.get_logger().info(
+            f'{euros} Euros are {response.dollars} US dollars, {response.pounds} British pounds '
+            f'and {response.swiss_francs} Swiss francs')
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass  # Ctrl-C while it waits for the server
+    finally:
+        if currency_client is not None:
+            currency_client.destroy_node()
+        rclpy.try_shutdown()
 
 
 if __name__ == '__main__':

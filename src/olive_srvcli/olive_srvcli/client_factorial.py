@@ -1,33 +1,48 @@
 """factorial_client N: ask the factorial service for N!."""
 
+import sys
+
+import rclpy
 from olive_interfaces.srv import Factorial
-from owl_common.client import OneShotClient, UsageError, number_argument, run_client
+from rclpy.executors import ExternalShutdownException
+from rclpy.node import Node
+
+from olive_srvcli.command_line import argument_or_exit, integer_argument
 
 
-class FactorialClient(OneShotClient):
+class FactorialClient(Node):
 
     def __init__(self):
-        super().__init__('factorial_client', Factorial, 'factorial')
+        super().__init__('factorial_client')
+        self.cli = self.create_client(Factorial, 'factorial')
+        while not self.cli.wait_for_service(timeout_sec=1.0):
+            self.get_logger().info('service not available, waiting again..')
+        self.req = Factorial.Request()
 
-
-def request_from_argv(argv: list[str]) -> Factorial.Request:
-    # Range checks are the server's job: it answers success=false with the reason.
-    n = number_argument(argv, 'an integer', kind=int)
-    if not -2**63 <= n < 2**63:
-        raise UsageError(f'{n} does not fit the 64-bit integer of the request')
-    return Factorial.Request(n=n)
-
-
-def report(node: FactorialClient, request: Factorial.Request, response: Factorial.Response) -> int:
-    if not response.success:
-        node.get_logger().error(f'The server refused: {response.message}')
-        return 1
-    node.get_logger().info(f'The factorial of {request.n} is {response.factorial}')
-    return 0
+    def send_request(self, n):
+        self.req.n = n
+        self.future = self.cli.call_async(self.req)
+        rclpy.spin_until_future_complete(self, self.future)
+        return self.future.result()
 
 
 def main(args=None):
-    run_client(FactorialClient, request_from_argv, report, '<n>', args)
+    n = argument_or_exit(integer_argument, '<n>', args)  # a bad one: one line, exit code 2
+    rclpy.init(args=args)
+    factorial_client = None
+    try:
+        factorial_client = FactorialClient()  # waits for the server
+        response = factorial_client.send_request(n)
+        if not response.success:
+            factorial_client.get_logger().error(f'The server refused: {response.message}')
+            sys.exit(1)
+        factorial_client.get_logger().info(f'The factorial of {n} is {response.factorial}')
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass  # Ctrl-C while it waits for the server
+    finally:
+        if factorial_client is not None:
+            factorial_client.destroy_node()
+        rclpy.try_shutdown()
 
 
 if __name__ == '__main__':

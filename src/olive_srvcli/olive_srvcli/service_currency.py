@@ -3,9 +3,14 @@
 The exchange rates are parameters (units per euro), changeable at runtime.
 """
 
+import signal
+import sys
+
+import rclpy
 from olive_interfaces.srv import CurrencyConv
-from owl_common.run import spin_node
 from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor
+from rclpy.exceptions import ParameterException
+from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 
 from olive_srvcli.conversions import convert_euros
@@ -41,7 +46,23 @@ class CurrencyService(Node):
 
 
 def main(args=None):
-    spin_node(CurrencyService, args)
+    rclpy.init(args=args)
+    currency_service = None
+    try:
+        currency_service = CurrencyService()
+        rclpy.spin(currency_service)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass  # Ctrl-C is how the course stops a node
+    except (ParameterException, ValueError) as error:
+        if currency_service is not None:
+            raise
+        print(f'currency_server: error: {error}', file=sys.stderr)  # a bad --ros-args parameter
+        sys.exit(2)
+    finally:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C must not stop the clean-up
+        if currency_service is not None:
+            currency_service.destroy_node()
+        rclpy.try_shutdown()
 
 
 if __name__ == '__main__':

@@ -1,7 +1,10 @@
 """factorial_server: n! for 0 <= n <= 20 (service factorial); anything else answers success=false."""
 
+import signal
+
+import rclpy
 from olive_interfaces.srv import Factorial
-from owl_common.run import spin_node
+from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 
 from olive_srvcli.conversions import factorial
@@ -26,7 +29,18 @@ class FactorialService(Node):
 
 
 def main(args=None):
-    spin_node(FactorialService, args)
+    rclpy.init(args=args)
+    factorial_service = None
+    try:
+        factorial_service = FactorialService()
+        rclpy.spin(factorial_service)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass  # Ctrl-C is how the course stops a node
+    finally:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C must not stop the clean-up
+        if factorial_service is not None:
+            factorial_service.destroy_node()
+        rclpy.try_shutdown()
 
 
 if __name__ == '__main__':

@@ -1,7 +1,10 @@
 """temp_server: convert a Celsius temperature into Kelvin and Fahrenheit (service temp_conversion)."""
 
+import signal
+
+import rclpy
 from olive_interfaces.srv import TempConv
-from owl_common.run import spin_node
+from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 
 from olive_srvcli.conversions import celsius_to_fahrenheit, celsius_to_kelvin, check_celsius
@@ -27,7 +30,18 @@ class TempService(Node):
 
 
 def main(args=None):
-    spin_node(TempService, args)
+    rclpy.init(args=args)
+    temp_service = None
+    try:
+        temp_service = TempService()
+        rclpy.spin(temp_service)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass  # Ctrl-C is how the course stops a node
+    finally:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C must not stop the clean-up
+        if temp_service is not None:
+            temp_service.destroy_node()
+        rclpy.try_shutdown()
 
 
 if __name__ == '__main__':

@@ -1,1 +1,2 @@
-"""Small pieces every Owl Kit Lab node shares: running a node, calling a service once."""
+"""Helpers of the simulator, the compat tools, the tests, the demo and the benchmarks: running a node
+until Ctrl-C with a clean exit, periodic threads, starting processes in a private ROS domain."""

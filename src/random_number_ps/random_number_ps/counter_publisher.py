@@ -1,6 +1,9 @@
 """Section 3.5 exercise: publish 1, 2, 3, ... on random_numbers once a second."""
 
-from owl_common.run import spin_node
+import signal
+
+import rclpy
+from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from std_msgs.msg import Int32
 
@@ -20,7 +23,18 @@ class CounterPublisher(Node):
 
 
 def main(args=None):
-    spin_node(CounterPublisher, args)
+    rclpy.init(args=args)
+    counter_publisher = None
+    try:
+        counter_publisher = CounterPublisher()
+        rclpy.spin(counter_publisher)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass  # Ctrl-C is how the course stops a node
+    finally:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C must not stop the clean-up
+        if counter_publisher is not None:
+            counter_publisher.destroy_node()
+        rclpy.try_shutdown()
 
 
 if __name__ == '__main__':

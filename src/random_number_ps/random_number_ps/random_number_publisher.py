@@ -1,9 +1,13 @@
 """Publish a random integer between lower_limit and upper_limit on random_numbers once a second."""
 
 import random
+import signal
+import sys
 
-from owl_common.run import spin_node
+import rclpy
 from rcl_interfaces.msg import ParameterDescriptor, SetParametersResult
+from rclpy.exceptions import ParameterException
+from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from std_msgs.msg import Int32
@@ -48,7 +52,23 @@ class RandomNumberPublisher(Node):
 
 
 def main(args=None):
-    spin_node(RandomNumberPublisher, args)
+    rclpy.init(args=args)
+    random_number_publisher = None
+    try:
+        random_number_publisher = RandomNumberPublisher()
+        rclpy.spin(random_number_publisher)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass  # Ctrl-C is how the course stops a node
+    except (ParameterException, ValueError) as error:
+        if random_number_publisher is not None:
+            raise
+        print(f'random_number_publisher: error: {error}', file=sys.stderr)  # a bad --ros-args parameter
+        sys.exit(2)
+    finally:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C must not stop the clean-up
+        if random_number_publisher is not None:
+            random_number_publisher.destroy_node()
+        rclpy.try_shutdown()
 
 
 if __name__ == '__main__':

@@ -1,6 +1,9 @@
 """Log every number received on random_numbers."""
 
-from owl_common.run import spin_node
+import signal
+
+import rclpy
+from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from std_msgs.msg import Int32
 
@@ -17,7 +20,18 @@ class RandomNumberSubscriber(Node):
 
 
 def main(args=None):
-    spin_node(RandomNumberSubscriber, args)
+    rclpy.init(args=args)
+    random_number_subscriber = None
+    try:
+        random_number_subscriber = RandomNumberSubscriber()
+        rclpy.spin(random_number_subscriber)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass  # Ctrl-C is how the course stops a node
+    finally:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C must not stop the clean-up
+        if random_number_subscriber is not None:
+            random_number_subscriber.destroy_node()
+        rclpy.try_shutdown()
 
 
 if __name__ == '__main__':

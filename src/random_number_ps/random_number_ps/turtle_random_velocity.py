@@ -1,10 +1,14 @@
 """Section 3.5 exercise: drive a turtlesim turtle with random velocities."""
 
 import random
+import signal
+import sys
 
+import rclpy
 from geometry_msgs.msg import Twist
-from owl_common.run import spin_node
 from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor
+from rclpy.exceptions import ParameterException
+from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 
 
@@ -47,7 +51,23 @@ class TurtleRandomVelocity(Node):
 
 
 def main(args=None):
-    spin_node(TurtleRandomVelocity, args)
+    rclpy.init(args=args)
+    turtle_random_velocity = None
+    try:
+        turtle_random_velocity = TurtleRandomVelocity()
+        rclpy.spin(turtle_random_velocity)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass  # Ctrl-C is how the course stops a node
+    except (ParameterException, ValueError) as error:
+        if turtle_random_velocity is not None:
+            raise
+        print(f'turtle_random_velocity: error: {error}', file=sys.stderr)  # a bad --ros-args parameter
+        sys.exit(2)
+    finally:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C must not stop the clean-up
+        if turtle_random_velocity is not None:
+            turtle_random_velocity.destroy_node()
+        rclpy.try_shutdown()
 
 
 if __name__ == '__main__':

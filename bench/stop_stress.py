@@ -1,0 +1,307 @@
+"""How a node's main() answers Ctrl-C: the course's plain rclpy shape, in variants, and the installed nodes.
+
+One private ROS domain holds olive_sim's imu_sim (scripted motion, so imu_turtle's callbacks run
+all the time) and the pan servo_sim. Each kind of node below is started and stopped with SIGINT
+again and again, kinds interleaved so all see the same machine load:
+- steady stops: SIGINT a random 0..0.5 s after the node says it is working (imu_turtle drives,
+  control_servo has its torque on);
+- start-up stops: SIGINT a random time between the start and the node's usual time to get working
+  (the median so far), so it lands anywhere in imports, rclpy.init, construction or the first spins.
+Each stop is classified: clean (exit 0, no "Traceback" and no "Exception ignored" in the output
+and, for a servo node that got its torque on, "torque disabled" logged), traceback (exit 0 but one
+of those two words), torque left on, watchdog (owl_common.run's teardown watchdog fired: exit 1
+and a stack dump), alive (still running 8 s after the SIGINT: native stacks shown, then killed),
+interrupted before main() (a KeyboardInterrupt traceback from the imports, or a SIGINT before
+Python has its handler, as any Python program, whatever its main() does), or exit N / SIGNAL
+(anything else). The first output of each kind that is not clean is printed.
+
+The kinds: `imu_turtle`, `control_servo` are the installed executables, whatever main() they
+have. The others are a node class of ours run by course_main() below, a main() of the course's shape
+(plain rclpy.init / rclpy.spin / destroy_node / try_shutdown) in variants: `... course` builds the
+node before the `try`, the others inside it; `ALL` keeps rclpy's own Ctrl-C handler (plain
+`rclpy.init(args=args)`), `NO` passes signal_handler_options=SignalHandlerOptions.NO; `polling`
+spins in 0.1 s spin_once calls. By default the installed nodes run, with `imu_turtle ALL` as the
+baseline: the same node with rclpy's own handler.
+--hogs busy-loop processes compete for the CPU during the whole run.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import random
+import re
+import signal
+import statistics
+import sys
+import time
+from collections import Counter
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import rclpy
+from olive_imu.imu_turtle import ImuTurtle
+from olive_servo.control_servo import ControlServo
+from olive_servo.pid_testing import PidTesting
+from olive_srvcli.service_temperature import TempService
+from owl_common.processes import RosProcess, RosSandbox
+from rclpy.executors import ExternalShutdownException
+from rclpy.node import Node
+from rclpy.signals import SignalHandlerOptions
+from teardown_hangs import HOG, native_stacks, upper_bound, version
+
+KILL_AFTER = 8.0   # s after the SIGINT: still running by then is a hang
+POLL = 0.01        # s
+STEADY_DELAY = (0.0, 0.5)  # s after the node says it works
+FIRST_STARTUP_GUESS = 1.5  # s: the start-up window before any start was measured
+SHOWN_LINES = 40
+CHILD_READY = r'^spinning$'  # the children's line just before they spin
+IMU_READY = r'IMU data on .*: driving'
+SERVO_READY = r'torque enabled: pan'
+BAD_WORDS = ('Traceback', 'Exception ignored')
+BEFORE_MAIN = 'interrupted before main()'
+NOT_COUNTED = ('clean', BEFORE_MAIN)  # neither is the main()'s fault
+# A traceback frame of a node's main() (not of site.main, which runs before any of our code).
+MAIN_FRAME = re.compile(r', in course_\w+$|/olive_\w+/\w+\.py", line \d+, in main$', re.MULTILINE)
+SERVO_PARAMETERS = ['-p', 'min_position:=-1.5708', '-p', 'max_position:=1.5708']
+
+
+def course_main(make_node: Callable[[], Node], options: SignalHandlerOptions, construct_in_try: bool,
+                spin: Callable[[Node], None] = rclpy.spin, torque: bool = False) -> None:
+    """A node's main() in the course's shape, in the variants measured here.
+
+    construct_in_try False is the shape of common.md (the node is built before the try); True
+    builds it inside the try, so a Ctrl-C during construction is caught too. torque: enable the
+    torque before spinning and disable it in the clean-up, as the servo nodes do.
+    """
+    rclpy.init(signal_handler_options=options)
+    node = None if construct_in_try else make_node()
+    try:
+        if node is None:
+            node = make_node()
+        if torque:
+            node.enable_torque()
+        print('spinning', flush=True)
+        spin(node)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        if node is not None:
+            if torque:
+                node.disable_torque()
+            node.destroy_node()
+        rclpy.try_shutdown()
+
+
+def spin_polling(node: Node) -> None:
+    """rclpy.spin in short waits, so a Ctrl-C with rclpy's handler off is seen within 0.1 s."""
+    while rclpy.ok():
+        rclpy.spin_once(node, timeout_sec=0.1)
+
+
+DEFAULT_KINDS = 'imu_turtle,control_servo,imu_turtle ALL'
+ALL, NO = SignalHandlerOptions.ALL, SignalHandlerOptions.NO
+CHILDREN: dict[str, Callable[[], None]] = {
+    # run 1: the shape of common.md as it stands
+    'imu_turtle course': lambda: course_main(ImuTurtle, ALL, False),
+    'control_servo course': lambda: course_main(ControlServo, NO, False, torque=True),
+    # run 2: the node built inside the try; rclpy's handler off (NO) or on (ALL)
+    'imu_turtle NO': lambda: course_main(ImuTurtle, NO, True),
+    'imu_turtle ALL': lambda: course_main(ImuTurtle, ALL, True),
+    'control_servo NO': lambda: course_main(ControlServo, NO, True, torque=True),
+    'pid_testing NO': lambda: course_main(PidTesting, NO, True, torque=True),
+    'pid_testing NO polling': lambda: course_main(PidTesting, NO, True, spin_polling, torque=True),
+    'temp_server ALL': lambda: course_main(TempService, ALL, True),
+    'temp_server NO': lambda: course_main(TempService, NO, True),
+}
+
+
+@dataclass
+class Kind:
+    label: str
+    start: Callable[[RosSandbox], RosProcess]
+    ready: str
+    servo: bool
+    ready_times: list[float] = field(default_factory=list)
+    counts: dict[str, Counter[str]] = field(
+        default_factory=lambda: {'steady': Counter(), 'start-up': Counter()})
+    stop_times: list[float] = field(default_factory=list)
+    shown: set[str] = field(default_factory=set)
+
+    def startup_window(self) -> float:
+        return statistics.median(self.ready_times) if self.ready_times else FIRST_STARTUP_GUESS
+
+
+def child_starter(label: str) -> Callable[[RosSandbox], RosProcess]:
+    def start(sandbox: RosSandbox) -> RosProcess:
+        return sandbox.command([sys.executable, __file__, '--child', label], label=label)
+    return start
+
+
+def installed_starter(package: str, executable: str) -> Callable[[RosSandbox], RosProcess]:
+    def start(sandbox: RosSandbox) -> RosProcess:
+        return sandbox.run(package, executable)
+    return start
+
+
+def classify(kind: Kind, process: RosProcess) -> str:
+    sent = time.monotonic()
+    while process.running() and time.monotonic() - sent < KILL_AFTER:
+        time.sleep(POLL)
+    if process.running():
+        stacks = native_stacks(process.pid) if 'alive' not in kind.shown else ''
+        process.send_signal(signal.SIGKILL)
+        process.wait(10)
+        return show(kind, 'alive', process, f'{process.output}\n{stacks}')
+    kind.stop_times.append(time.monotonic() - sent)
+    code = process.wait(10)
+    output = process.output
+    if code == 1 and 'Timeout (' in output:
+        return show(kind, 'watchdog', process, output)
+    if code != 0 and (('KeyboardInterrupt' in output and not MAIN_FRAME.search(output))
+                      or (code == -signal.SIGINT and not output.strip())):
+        # Python's own KeyboardInterrupt during the imports, or SIGINT before Python installed its
+        # handler: every Python program does that.
+        return show(kind, BEFORE_MAIN, process, output)
+    if code != 0:
+        name = signal.Signals(-code).name if code < 0 else f'exit {code}'
+        return show(kind, name, process, output)
+    if any(word in output for word in BAD_WORDS):
+        return show(kind, 'traceback', process, output)
+    if kind.servo and 'torque enabled: pan' in output and 'torque disabled: pan' not in output:
+        return show(kind, 'torque left on', process, output)
+    return 'clean'
+
+
+def show(kind: Kind, what: str, process: RosProcess, text: str) -> str:
+    if what not in kind.shown:
+        kind.shown.add(what)
+        lines = text.splitlines()
+        if len(lines) > 2 * SHOWN_LINES:
+            lines = [*lines[:SHOWN_LINES], '...', *lines[-SHOWN_LINES:]]
+        print(f'--- {kind.label}: first {what} (pid {process.pid}), first and last lines:', *lines, '---',
+              sep='\n', flush=True)
+    return what
+
+
+def stop_once(kind: Kind, sandbox: RosSandbox, startup: bool, start_timeout: float) -> None:
+    started = time.monotonic()
+    process = kind.start(sandbox)
+    if startup:
+        time.sleep(random.uniform(0.0, kind.startup_window()))
+        was_ready = any(re.search(kind.ready, line) for line in list(process.lines))
+        phase = 'start-up'
+    else:
+        try:
+            process.wait_for(kind.ready, timeout=start_timeout)
+        except AssertionError as error:
+            kind.counts['steady']['start failure'] += 1
+            show(kind, 'start failure', process, str(error))
+            process.stop(3.0)
+            return
+        kind.ready_times.append(time.monotonic() - started)
+        time.sleep(random.uniform(*STEADY_DELAY))
+        was_ready = True
+        phase = 'steady'
+    process.send_signal(signal.SIGINT)
+    outcome = classify(kind, process)
+    kind.counts[phase][outcome] += 1
+    if startup:
+        kind.counts[phase]['(signal after ready)' if was_ready else '(signal before ready)'] += 1
+
+
+def start_simulators(sandbox: RosSandbox) -> list[RosProcess]:
+    return [sandbox.run('olive_sim', 'imu_sim'),
+            sandbox.run('olive_sim', 'servo_sim', '--ros-args', *SERVO_PARAMETERS, label='servo_sim pan')]
+
+
+def check_simulators(sandbox: RosSandbox, simulators: list[RosProcess]) -> list[RosProcess]:
+    """The simulators, restarted if one of them ended (which the run reports with its output)."""
+    if all(simulator.running() for simulator in simulators):
+        return simulators
+    for simulator in simulators:
+        if not simulator.running():
+            print(f'--- {simulator.label} ended with exit code {simulator.wait(10)}; its output:',
+                  simulator.tail(SHOWN_LINES), '---', sep='\n', flush=True)
+        simulator.stop(3.0)
+    return start_simulators(sandbox)
+
+
+def not_clean(kind: Kind) -> int:
+    return sum(n for counts in kind.counts.values() for name, n in counts.items()
+               if name not in NOT_COUNTED and not name.startswith('('))
+
+
+def report(kind: Kind) -> None:
+    for phase, counts in kind.counts.items():
+        total = sum(n for name, n in counts.items() if not name.startswith('(') and name != BEFORE_MAIN)
+        if not total:
+            continue
+        bad = total - counts['clean']
+        detail = ', '.join(f'{n} {name}' for name, n in sorted(counts.items()))
+        print(f'{kind.label} [{phase}]: {total} stops in main(), {bad} not clean ({100 * bad / total:.1f} %, '
+              f'95 % upper bound {100 * upper_bound(bad, total):.1f} %): {detail}')
+    if kind.stop_times:
+        ordered = sorted(kind.stop_times)
+        print(f'{kind.label}: SIGINT to exit p50 {ordered[len(ordered) // 2]:.2f} s, '
+              f'max {ordered[-1]:.2f} s; start to working p50 {kind.startup_window():.2f} s')
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument('--stops', type=int, default=50,
+                        help='steady stops per kind (and as many start-up stops)')
+    parser.add_argument('--hogs', type=int, default=2, help='busy-loop CPU hog processes during the run')
+    parser.add_argument('--kinds', default=DEFAULT_KINDS,
+                        help=f'comma-separated labels to run (default {DEFAULT_KINDS!r}), of: ' + ', '.join(
+                            [*CHILDREN, 'imu_turtle', 'control_servo']))
+    parser.add_argument('--no-startup', action='store_true', help='only steady stops')
+    parser.add_argument('--start-timeout', type=float, default=30.0)
+    args = parser.parse_args()
+
+    kinds = [Kind(label, child_starter(label), CHILD_READY, servo='servo' in label) for label in CHILDREN]
+    kinds += [Kind('imu_turtle', installed_starter('olive_imu', 'imu_turtle'), IMU_READY, servo=False),
+              Kind('control_servo', installed_starter('olive_servo', 'control_servo'), SERVO_READY,
+                   servo=True)]
+    wanted = [label.strip() for label in args.kinds.split(',')]
+    unknown = set(wanted) - {kind.label for kind in kinds}
+    if unknown:
+        parser.error(f'unknown kinds: {", ".join(sorted(unknown))}')
+    kinds = [kind for kind in kinds if kind.label in wanted]
+    print(f'{args.stops} steady{"" if args.no_startup else " + start-up"} stops per kind, '
+          f'{args.hogs} CPU hogs, '
+          f'{os.cpu_count()} cores; rclpy {version("ros-rclpy")}, '
+          f'Fast DDS {version("ros-fastdds", "ros-fastrtps")}', flush=True)
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(1))  # stop the simulators and hogs on the way out
+    started = time.monotonic()
+    hogs = [RosProcess([sys.executable, '-c', HOG], dict(os.environ), label='cpu hog')
+            for _ in range(args.hogs)]
+    try:
+        with RosSandbox() as sandbox:
+            simulators = start_simulators(sandbox)
+            every = max(1, args.stops // 10)
+            for index in range(args.stops):
+                for kind in kinds:
+                    for startup in (False, True)[:1 if args.no_startup else 2]:
+                        stop_once(kind, sandbox, startup, args.start_timeout)
+                        simulators = check_simulators(sandbox, simulators)
+                if (index + 1) % every == 0:
+                    print(f'{index + 1}/{args.stops} after {time.monotonic() - started:.0f} s: '
+                          + '; '.join(f'{kind.label} {not_clean(kind)} not clean' for kind in kinds),
+                          flush=True)
+    finally:
+        for hog in hogs:
+            hog.stop(1.0)
+    print()
+    for kind in kinds:
+        report(kind)
+    print(f'run time {time.monotonic() - started:.0f} s')
+    return 0
+
+
+if __name__ == '__main__':
+    if sys.argv[1:2] == ['--child']:  # a node: its traceback must show only its own main()'s frames
+        CHILDREN[sys.argv[2]]()
+    else:
+        sys.exit(main())
