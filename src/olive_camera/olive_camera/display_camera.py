@@ -16,6 +16,7 @@ from rclpy.exceptions import InvalidTopicNameException, ParameterException
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import QoSDurabilityPolicy, QoSProfile, QoSReliabilityPolicy
+from rclpy.signals import SignalHandlerOptions
 from sensor_msgs.msg import CompressedImage
 
 from olive_camera.frames import FrameWatch, describe
@@ -74,23 +75,28 @@ class DisplayCamera(Node):
 
 
 def main(args: list[str] | None = None) -> None:
-    rclpy.init(args=args)
+    # Ctrl-C raises KeyboardInterrupt here (Python's own handler): rclpy's handler shuts ROS down
+    # from another thread, which can fail a frame being taken (a traceback in ~3 % of stops under
+    # load: bench/stop_stress.py). CHECK_PERIOD's timer keeps rclpy.spin waking without frames.
+    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+    display_camera = None
     try:
         display_camera = DisplayCamera()
-    except (ParameterException, ValueError) as error:
-        print(f'display_camera: error: {error}', file=sys.stderr)  # a bad --ros-args parameter
-        rclpy.try_shutdown()
-        sys.exit(2)
-    try:
         rclpy.spin(display_camera)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass  # Ctrl-C is how the course stops a node
+    except (ParameterException, ValueError) as error:
+        if display_camera is not None:
+            raise
+        print(f'display_camera: error: {error}', file=sys.stderr)  # a bad --ros-args parameter
+        sys.exit(2)
     finally:
         # `ros2 launch` passes Ctrl-C on to its nodes, which the terminal has already sent it to:
         # that second one must not interrupt the clean-up.
         signal.signal(signal.SIGINT, signal.SIG_IGN)
         cv2.destroyAllWindows()
-        display_camera.destroy_node()
+        if display_camera is not None:
+            display_camera.destroy_node()
         rclpy.try_shutdown()
 
 
