@@ -46,6 +46,7 @@ def main(argv: list[str] | None = None) -> None:
 
     def start() -> RobotViewNode:
         node = RobotViewNode(server)
+        server.start()  # once the node's channels and commands are there
         print(f'robot_view: open {server.url} in a browser (Ctrl-C to quit)', flush=True)
         return node
 

@@ -90,8 +90,16 @@ const imuBody = box(0.05, 0.035, 0.014, 0xdc2626);
 imuBlock.add(imuBody);
 imuBlock.add(new THREE.AxesHelper(0.045));  // x red, y green, z blue: the IMU's own axes
 
+// At most one render per animation frame: updates come faster than a screen shows them (two
+// joints and the IMU), and rendering each would starve the camera and the mouse.
+let renderQueued = false;
 function render() {
-  renderer.render(scene, camera);
+  if (renderQueued) return;
+  renderQueued = true;
+  requestAnimationFrame(() => {
+    renderQueued = false;
+    renderer.render(scene, camera);
+  });
 }
 
 let dragging = null;  // {x, y} of the last pointer position while the IMU is held
