@@ -84,11 +84,11 @@ eye.add(lens);
 
 // the IMU: a block of its own beside the kit, turned by its measured orientation
 const imuBlock = new THREE.Group();
-imuBlock.position.set(0.13, 0.02, 0.03);
+imuBlock.position.set(0.12, -0.07, 0.04);
 scene.add(imuBlock);
-const imuBody = box(0.05, 0.035, 0.014, 0xdc2626);
+const imuBody = box(0.06, 0.04, 0.016, 0xdc2626);
 imuBlock.add(imuBody);
-imuBlock.add(new THREE.AxesHelper(0.045));  // x red, y green, z blue: the IMU's own axes
+imuBlock.add(new THREE.AxesHelper(0.055));  // x red, y green, z blue: the IMU's own axes
 
 // At most one render per animation frame: updates come faster than a screen shows them (two
 // joints and the IMU), and rendering each would starve the camera and the mouse.
