@@ -69,20 +69,38 @@ def test_the_model_follows_the_kit_and_the_mouse_turns_the_head(ros, page):
     wait_until(lambda: abs(yaw_of(imu[-1].orientation)) < 0.05, 10, 'the IMU levelled')
     wait_until(lambda: abs(pan_joints[-1].position[0]) < 0.05, 15, 'the pan servo back at 0')
 
-    # Latency: a drag to the pan servo's joint moving (imu_sim, imu_control_robot, servo_sim on the way).
-    latencies = []
+    # Latency: a drag to the pan servo's joint moving, split where the page's command reaches DDS
+    # (page, WebSocket, robot_view | imu_sim, imu_control_robot, servo_sim).
+    commands: list[float] = []
+    probe = ros.probe.node
+    probe.create_subscription(Quaternion, TRUE_ORIENTATION, lambda _: commands.append(time.monotonic()), 10)
+    timed_joints: list[tuple[float, float]] = []
+    probe.create_subscription(JointState, '/olive/servo/pan/joint',
+                              lambda joint: timed_joints.append((time.monotonic(), joint.position[0])), 10)
+    wait_until(lambda: timed_joints, 10, 'pan joints')
+    to_command, to_moving = [], []
     for sample in range(LATENCY_SAMPLES):
-        before = len(pan_joints)
-        start_position = pan_joints[-1].position[0]
-        started = time.monotonic()
-        drag(page, 20 if sample % 2 == 0 else -20, steps=2)
-        def moving(before: int = before, start_position: float = start_position) -> bool:
-            return any(abs(j.position[0] - start_position) > 0.01 for j in pan_joints[before:])
-        wait_until(moving, 10, 'the pan servo moving')
-        latencies.append(time.monotonic() - started)
+        commands.clear()
+        start_position = timed_joints[-1][1]
+        grip = page.evaluate('window.robotView.imuOnPage()')
+        page.mouse.move(grip['x'], grip['y'])
+        page.mouse.down()
+        started = time.monotonic()  # the one move that turns the IMU, as Playwright sends it
+        page.mouse.move(grip['x'] + (20 if sample % 2 == 0 else -20), grip['y'])
+        page.mouse.up()
+        def moved(started: float = started, start_position: float = start_position) -> float | None:
+            return next((t for t, position in timed_joints if t > started
+                         and abs(position - start_position) > 0.01), None)
+        wait_until(lambda: moved() is not None and commands, 10, 'the pan servo moving')
+        to_command.append(commands[0] - started)
+        to_moving.append(moved() - commands[0])
         time.sleep(0.5)
-    print(f'IMU drag -> pan servo moving: p50 {statistics.median(latencies) * 1000:.0f} ms, '
-          f'max {max(latencies) * 1000:.0f} ms over {len(latencies)} drags')
+    for what, values in (('drag -> hold_imu on DDS', to_command),
+                         ('hold_imu -> pan servo moving', to_moving),
+                         ('drag -> pan servo moving',
+                          [a + b for a, b in zip(to_command, to_moving, strict=True)])):
+        print(f'{what}: p50 {statistics.median(values) * 1000:.0f} ms, max {max(values) * 1000:.0f} ms '
+              f'({len(values)} drags)')
 
     # The camera, pushed: frames per second counted in the page.
     page.wait_for_function('() => window.robotView.frames > 10', timeout=20_000)
