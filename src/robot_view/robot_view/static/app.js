@@ -167,17 +167,20 @@ function hitsImu(event) {
 
 const WORLD_Z = new THREE.Vector3(0, 0, 1);
 const WORLD_Y = new THREE.Vector3(0, 1, 0);
-let pending = false;
+const HOLD_EVERY = 20;  // ms: at most 50 commands a second; the newest orientation is what matters
+let lastHold = -Infinity;
+let trailingHold = null;
 
 function sendHold() {
-  // at most one command per animation frame: the newest orientation is what matters
-  if (pending) return;
-  pending = true;
-  requestAnimationFrame(() => {
-    pending = false;
-    const q = imuBlock.quaternion;
-    if (socket.command('hold_imu', { orientation: { x: q.x, y: q.y, z: q.z, w: q.w } })) view.commandsSent += 1;
-  });
+  // at once when the last command is old enough (no wait for a frame), else once, a little later
+  const wait = lastHold + HOLD_EVERY - performance.now();
+  if (wait > 0) {
+    if (trailingHold === null) trailingHold = setTimeout(() => { trailingHold = null; sendHold(); }, wait);
+    return;
+  }
+  lastHold = performance.now();
+  const q = imuBlock.quaternion;
+  if (socket.command('hold_imu', { orientation: { x: q.x, y: q.y, z: q.z, w: q.w } })) view.commandsSent += 1;
 }
 
 renderer.domElement.addEventListener('pointerdown', (event) => {
