@@ -1,7 +1,9 @@
 """The one message codec of our pages, the server's half (the browser's half is static/socket.js).
 
 - A text message is one JSON object with a "type". A page sends {"type": "subscribe", "id": ...,
-  "channel": ..., <the channel's parameters>} and {"type": "unsubscribe", "id": ...}; the server
+  "channel": ..., <the channel's parameters>}, {"type": "unsubscribe", "id": ...} and
+  {"type": "command", "id": ..., "name": ..., <the command's arguments>} (an action on the robot,
+  e.g. the robot view's "hold_imu"; its answer is a {"type": "done", "id": ...} or an error); the server
   sends {"type": "update", "id": ..., "data": {...}} and {"type": "error", "id": ..., "error": "<one line>"}.
 - A binary message is a frame: a 4-byte big-endian length, that many bytes of a JSON header (an
   "update" as above, whose data describes the payload), then the payload (an image, say).
@@ -106,6 +108,10 @@ def update(subscription_id: int | str, data: dict[str, Any]) -> dict[str, Any]:
     return {'type': 'update', 'id': subscription_id, 'data': data}
 
 
+def done(command_id: int | str | None) -> dict[str, Any]:
+    return {'type': 'done', 'id': command_id}
+
+
 def error(subscription_id: int | str | None, message: str) -> dict[str, Any]:
     return {'type': 'error', 'id': subscription_id, 'error': message}
 
@@ -141,3 +147,28 @@ def json_safe(value: Any) -> Any:
 def message_fields(message: Any) -> dict[str, Any]:
     """A ROS message's values as JSON-safe nested dicts and lists, in declaration order."""
     return json_safe(message_to_plain(message))
+
+
+QUATERNION_KEYS = ('x', 'y', 'z', 'w')
+QUATERNION_NORM_TOLERANCE = 0.01  # a page's float32/float64 rounding, not a different rotation
+
+
+def unit_quaternion(value: Any, what: str = 'the orientation') -> tuple[float, float, float, float]:
+    """(x, y, z, w) of a rotation sent as {"x", "y", "z", "w"}: finite numbers of norm 1 (within
+    QUATERNION_NORM_TOLERANCE), returned normalised; anything else is a one-line ApiError."""
+    if not isinstance(value, dict):
+        raise ApiError(400, f'{what} must be an object {{"x", "y", "z", "w"}}, got {json.dumps(value)[:80]}')
+    check_keys(value, QUATERNION_KEYS, required=QUATERNION_KEYS)
+    parts = []
+    for key in QUATERNION_KEYS:
+        part = value[key]
+        if isinstance(part, bool) or not isinstance(part, (int, float)):
+            raise ApiError(400, f'{what}: "{key}" must be a number, got {json.dumps(part)[:80]}')
+        if not math.isfinite(part):
+            raise ApiError(400, f'{what}: "{key}" must be finite, got {part}')
+        parts.append(float(part))
+    norm = math.sqrt(sum(part * part for part in parts))
+    if abs(norm - 1.0) > QUATERNION_NORM_TOLERANCE:
+        raise ApiError(400, f'{what} must be a unit quaternion (norm 1), got norm {norm:.6g}')
+    x, y, z, w = (part / norm for part in parts)
+    return x, y, z, w

@@ -50,6 +50,7 @@ CONTENT_TYPES = {
 LIBRARY_SUFFIXES = ('.js', '.mjs', '.css', '.map')
 MAX_PENDING_ERRORS = 100  # per connection: error messages wait in order, beyond that the oldest go
 STOP_TIMEOUT = 5.0  # s
+MESSAGE_TYPES = ('subscribe', 'unsubscribe', 'command')  # what a page may send
 
 
 def web_dir() -> Path | None:
@@ -198,6 +199,14 @@ class Connection:
             self._errors.append(codec.encode(codec.error(subscription_id, message)))
         self._notify()
 
+    def done(self, command_id: int | str | None) -> None:
+        """A command carried out: kept in order with the error lines (it answers a request)."""
+        with self._lock:
+            if self.closed:
+                return
+            self._errors.append(codec.encode(codec.done(command_id)))
+        self._notify()
+
     def forget(self, subscription: Subscription) -> None:
         with self._lock:
             subscription.active = False
@@ -251,6 +260,7 @@ class WebServer:
         self.libraries = library_packages(self.web)
         self._routes: list[Route] = []
         self._channels: dict[str, Channel] = {}
+        self._commands: dict[str, Callable[[dict[str, Any]], None]] = {}
         self._connections: set[Connection] = set()
         self._socket = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
         try:
@@ -293,6 +303,12 @@ class WebServer:
         """open(subscription) starts pushing to it (ApiError refuses the subscription); close is
         called once when the page unsubscribes or goes away."""
         self._channels[name] = Channel(name, open, close)
+
+    def command(self, name: str, handler: Callable[[dict[str, Any]], None]) -> None:
+        """handler(arguments) carries out a page's {"type": "command", "name": name, ...arguments}
+        (the message without type, id and name); it raises ApiError to refuse, before anything
+        reaches ROS. Runs in a worker thread; the page gets {"type": "done"} or the error line."""
+        self._commands[name] = handler
 
     # ---- running ---------------------------------------------------------------------------
 
@@ -486,6 +502,8 @@ class WebServer:
             message_id = message.get('id')
             if message['type'] == 'subscribe':
                 await self._subscribe(connection, message)
+            elif message['type'] == 'command':
+                await self._command(connection, message)
             elif message['type'] == 'unsubscribe':
                 codec.check_keys(message, ('type', 'id'), required=('id',))
                 subscription = connection.subscriptions.get(message['id'])
@@ -494,8 +512,8 @@ class WebServer:
                 await self._unsubscribe(connection, subscription)
             else:
                 raise ApiError(400, f"unknown message type {json.dumps(message['type'])}"
-                                    f"{did_you_mean(message['type'], ('subscribe', 'unsubscribe'))}; "
-                                    'expected: subscribe, unsubscribe')
+                                    f"{did_you_mean(message['type'], MESSAGE_TYPES)}; "
+                                    f"expected: {', '.join(MESSAGE_TYPES)}")
         except ApiError as error:
             connection.error(message_id, error.message)
         except Exception as error:  # a bug: one line to the page and the log, the connection lives on
@@ -523,6 +541,19 @@ class WebServer:
         except BaseException:
             connection.forget(subscription)
             raise
+
+    async def _command(self, connection: Connection, message: dict[str, Any]) -> None:
+        name = message.get('name')
+        handler = self._commands.get(name) if isinstance(name, str) else None
+        if handler is None:
+            if 'name' not in message:
+                raise ApiError(400, "missing key 'name' in the command message")
+            hint = did_you_mean(str(name), self._commands)
+            raise ApiError(404, f'unknown command {json.dumps(name)[:80]}{hint}; '
+                                f"known: {', '.join(sorted(self._commands)) or 'none'}")
+        arguments = {k: v for k, v in message.items() if k not in ('type', 'id', 'name')}
+        await self._in_thread(handler, arguments)
+        connection.done(message.get('id'))
 
     async def _unsubscribe(self, connection: Connection, subscription: Subscription) -> None:
         connection.forget(subscription)

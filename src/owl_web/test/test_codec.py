@@ -68,3 +68,18 @@ def test_ros_messages_as_json():
     assert codec.json_safe({'a': [math.nan, 1.0], 'b': -math.inf}) == {'a': ['nan', 1.0], 'b': '-inf'}
     assert codec.one_line(ValueError('first\nsecond')) == 'first'
     assert codec.one_line(KeyError()) == 'KeyError'
+
+
+def test_unit_quaternions():
+    assert codec.unit_quaternion({'x': 0, 'y': 0, 'z': 0, 'w': 1.005}) == pytest.approx((0, 0, 0, 1))
+    for value, error in [
+            ([0, 0, 0, 1], 'the orientation must be an object {"x", "y", "z", "w"}, got [0, 0, 0, 1]'),
+            ({'x': 0, 'y': 0, 'z': 0}, "missing key 'w'"),
+            ({'x': 0, 'y': 0, 'z': 0, 'w': 1, 'v': 0}, "unknown key 'v'; expected: x, y, z, w"),
+            ({'x': True, 'y': 0, 'z': 0, 'w': 1}, 'the orientation: "x" must be a number, got true'),
+            ({'x': 0, 'y': math.inf, 'z': 0, 'w': 1}, 'the orientation: "y" must be finite, got inf'),
+            ({'x': 0, 'y': 0, 'z': 0, 'w': 0},
+             'the orientation must be a unit quaternion (norm 1), got norm 0')]:
+        with pytest.raises(ApiError) as refused:
+            codec.unit_quaternion(value)
+        assert refused.value.message == error and refused.value.status == 400

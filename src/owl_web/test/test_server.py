@@ -30,7 +30,9 @@ def web(tmp_path, monkeypatch):
     monkeypatch.setenv('OWL_ROOT', str(tmp_path))
     log: list[str] = []
     closed: list[object] = []
+    commands: list[object] = []
     server = WebServer('test', static, log=log.append)
+    server.commands_run = commands  # what the 'turn' command was given, for the tests
 
     def echo(request):
         return 201, {'params': request.params, 'query': request.query, 'body': request.json()}
@@ -53,6 +55,11 @@ def web(tmp_path, monkeypatch):
         subscription.send_binary({'content_type': 'image/jpeg', 'frame': 1}, b'\xff\xd8\xff fake jpeg')
         subscription.error('frame 2 cannot be shown')
 
+    def turn(arguments):
+        codec.check_keys(arguments, ('orientation',), required=('orientation',))
+        commands.append(codec.unit_quaternion(arguments['orientation']))
+
+    server.command('turn', turn)
     server.route('POST', '/api/echo/{name}', echo)
     server.route('GET', '/api/broken', broken)
     server.route('GET', '/api/refuse', refuse)
@@ -223,7 +230,18 @@ def test_unsubscribe_stops_the_channel(web):
     ('[1, 2]', 'the message must be a JSON object, got list'),
     ({'id': 1, 'channel': 'counter'}, 'the message needs a "type" string, got null'),
     ({'type': 'subscrbe', 'id': 1}, 'unknown message type "subscrbe" (did you mean \'subscribe\'?); '
-                                    'expected: subscribe, unsubscribe'),
+                                    'expected: subscribe, unsubscribe, command'),
+    ({'type': 'command', 'id': 2}, "missing key 'name' in the command message"),
+    ({'type': 'command', 'id': 2, 'name': 'trun'},
+     'unknown command "trun" (did you mean \'turn\'?); known: turn'),
+    ({'type': 'command', 'id': 2, 'name': 'turn', 'orientation': {'x': 0, 'y': 0, 'z': 0, 'w': 'nan'}},
+     'the orientation: "w" must be a number, got "nan"'),
+    ('{"type": "command", "id": 2, "name": "turn", "orientation": {"x": NaN, "y": 0, "z": 0, "w": 1}}',
+     'the orientation: "x" must be finite, got nan'),
+    ({'type': 'command', 'id': 2, 'name': 'turn', 'orientation': {'x': 0, 'y': 0, 'z': 0, 'w': 2}},
+     'the orientation must be a unit quaternion (norm 1), got norm 2'),
+    ({'type': 'command', 'id': 2, 'name': 'turn', 'orient': {}},
+     "unknown key 'orient' (did you mean 'orientation'?); expected: orientation"),
     ({'type': 'subscribe', 'channel': 'counter'}, "missing key 'id' in the subscribe message"),
     ({'type': 'subscribe', 'id': 1, 'channel': 'countr'},
      'unknown channel "countr" (did you mean \'counter\'?); known: counter, frames'),
@@ -245,6 +263,23 @@ def test_bad_messages_get_one_line_and_the_connection_lives_on(web, message, err
     assert '\n' not in received[0]['error']
     assert received[1]['type'] == 'update' and received[1]['id'] == 'ok'  # the same connection still works
     assert close_code is None
+
+
+def test_commands_are_carried_out_and_answered(web):
+    server, _, _ = web
+    command = {'type': 'command', 'id': 'c1', 'name': 'turn', 'orientation': {'x': 0, 'y': 0, 'z': 1, 'w': 0}}
+    received, _ = run(exchange(server, command, receive=1))
+    assert received == [{'type': 'done', 'id': 'c1'}]
+    assert server.commands_run == [(0.0, 0.0, 1.0, 0.0)]
+
+
+def test_a_bad_command_reaches_no_handler(web):
+    server, _, _ = web
+    bad = {'type': 'command', 'id': 3, 'name': 'turn', 'orientation': {'x': 1, 'y': 1, 'z': 1, 'w': 1}}
+    received, _ = run(exchange(server, bad, receive=1))
+    assert received == [{'type': 'error', 'id': 3,
+                         'error': 'the orientation must be a unit quaternion (norm 1), got norm 2'}]
+    assert server.commands_run == []
 
 
 def test_a_second_subscription_with_the_same_id_is_refused(web):

@@ -60,6 +60,16 @@ export class OwlSocket {
     this.send({ type: 'unsubscribe', id });
   }
 
+  // A command to the server ({"type": "command", "name", ...args}), e.g. the robot view's
+  // "hold_imu". Sent only while connected (a command is for now, not for after a reconnection);
+  // its error line, if refused, goes to onStatus. Returns the command's id, or null if not sent.
+  command(name, args = {}) {
+    if (this.socket.readyState !== WebSocket.OPEN) return null;
+    const id = `command-${this.nextId++}`;
+    this.send({ ...args, type: 'command', id, name });
+    return id;
+  }
+
   sendSubscribe(id, entry) {
     this.send({ ...entry.params, type: 'subscribe', id, channel: entry.channel });
   }

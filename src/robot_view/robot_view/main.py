@@ -1,0 +1,60 @@
+"""`robot_view`: the Owl Kit as a live 3D model on http://127.0.0.1:<port>/."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from owl_common.run import spin_node
+from owl_web.server import WebServer
+from rclpy.utilities import remove_ros_args
+
+from robot_view.node import RobotViewNode
+
+DEFAULT_PORT = 8091  # rqt has 8090
+STATIC_DIR = Path(__file__).parent / 'static'
+
+
+def port_number(text: str) -> int:
+    if not text.isdigit() or int(text) > 65535:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a port number (0..65535)")
+    return int(text)
+
+
+def parse_arguments(argv: list[str]) -> argparse.Namespace:
+    parser = argparse.ArgumentParser(
+        prog='robot_view', description='The Owl Kit as a live 3D model, its camera, and the '
+                                       'simulated IMU turned with the mouse, on one local page.')
+    parser.add_argument('--port', type=port_number, default=DEFAULT_PORT,
+                        help=f'HTTP port on 127.0.0.1 (default: {DEFAULT_PORT}; 0 picks a free one)')
+    return parser.parse_args(argv)
+
+
+def main(argv: list[str] | None = None) -> None:
+    argv = sys.argv if argv is None else argv
+    args = parse_arguments(remove_ros_args(argv)[1:])
+    try:
+        server = WebServer('robot_view', STATIC_DIR, args.port)
+    except OSError as error:
+        print(f'robot_view: cannot serve on 127.0.0.1:{args.port}: {error.strerror or error} '
+              '(is another robot_view running? choose a port with --port N)', file=sys.stderr)
+        sys.exit(1)
+    missing = server.missing_libraries()
+    if missing:
+        print(f'robot_view: {missing}', file=sys.stderr)
+
+    def start() -> RobotViewNode:
+        node = RobotViewNode(server)
+        server.start()  # once the node's channels and commands are there
+        print(f'robot_view: open {server.url} in a browser (Ctrl-C to quit)', flush=True)
+        return node
+
+    try:
+        spin_node(start, argv)
+    finally:
+        server.stop()
+
+
+if __name__ == '__main__':
+    main()

@@ -1,0 +1,227 @@
+// The robot view: the Owl Kit as a three.js model that follows the servos' joints and the IMU's
+// orientation pushed by the server (channel "kit"), the camera's frames (channel "camera"), and
+// the IMU block turned with the mouse ("hold_imu" commands to the simulated IMU).
+// The model works in base_link's frame (metres, z up), from shared/specs/olive_hardware.md §7.
+import * as THREE from 'three';
+import { OwlSocket } from '/owl/socket.js';
+
+const DRAG_RADIANS_PER_PIXEL = 0.01;
+const FPS_WINDOW = 2000;  // ms of frames the shown frame rate counts
+
+const status = document.getElementById('status');
+const errors = document.getElementById('errors');
+const socket = new OwlSocket((connected, detail) => {
+  status.textContent = detail || (connected ? 'connected' : 'disconnected');
+});
+
+// What the tests read (page.evaluate) and the page shows.
+const view = { pan: null, tilt: null, imu: null, frames: 0, fps: 0, commandsSent: 0, errors: [] };
+window.robotView = view;
+
+// ---- scene --------------------------------------------------------------------------------------
+const container = document.getElementById('model');
+const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+renderer.setPixelRatio(window.devicePixelRatio);
+renderer.setSize(container.clientWidth, container.clientHeight);
+container.appendChild(renderer.domElement);
+const scene = new THREE.Scene();
+scene.background = new THREE.Color(0xe5e7eb);
+const camera = new THREE.PerspectiveCamera(35, container.clientWidth / container.clientHeight, 0.01, 10);
+camera.up.set(0, 0, 1);
+camera.position.set(-0.32, -0.38, 0.26);
+camera.lookAt(0.03, 0, 0.07);
+scene.add(new THREE.HemisphereLight(0xffffff, 0x667788, 2.0));
+const sun = new THREE.DirectionalLight(0xffffff, 1.5);
+sun.position.set(-1, -2, 3);
+scene.add(sun);
+const grid = new THREE.GridHelper(0.6, 12, 0x9ca3af, 0xd1d5db);
+grid.rotation.x = Math.PI / 2;  // GridHelper lies in x-z; ours is the x-y floor
+scene.add(grid);
+
+function box(sx, sy, sz, color, x = 0, y = 0, z = 0) {
+  const mesh = new THREE.Mesh(new THREE.BoxGeometry(sx, sy, sz),
+                              new THREE.MeshStandardMaterial({ color, roughness: 0.6 }));
+  mesh.position.set(x, y, z);
+  return mesh;
+}
+
+function cylinder(radius, length, color, axis) {
+  // CylinderGeometry's axis is y: turn it onto the wanted axis
+  const mesh = new THREE.Mesh(new THREE.CylinderGeometry(radius, radius, length, 32),
+                              new THREE.MeshStandardMaterial({ color, roughness: 0.4 }));
+  if (axis === 'x') mesh.rotation.z = Math.PI / 2;
+  if (axis === 'z') mesh.rotation.x = Math.PI / 2;
+  return mesh;
+}
+
+// base plate and the pan servo's body (its bottom face on base_link, 46 mm tall)
+scene.add(box(0.12, 0.12, 0.006, 0x4b5563, 0, 0, -0.003));
+scene.add(box(0.04, 0.04, 0.046, 0x2563eb, 0, 0, 0.023));
+// pan: everything above the pan horn turns about +z at z = 46 mm
+const panJoint = new THREE.Group();
+panJoint.position.set(0, 0, 0.046);
+scene.add(panJoint);
+const panHorn = cylinder(0.012, 0.004, 0xf59e0b, 'z');
+panHorn.position.z = 0.002;
+panJoint.add(panHorn);
+panJoint.add(box(0.012, 0.012, 0.04, 0x9ca3af, 0, 0, 0.02));            // X-Bolt and bracket
+panJoint.add(box(0.04, 0.046, 0.04, 0x2563eb, 0, 0.012, 0.04));         // tilt servo body, on its side
+// tilt: turns about -y of base_link (at zero pan) through (0, 0, 86 mm); positive looks down
+const tiltJoint = new THREE.Group();
+tiltJoint.position.set(0, -0.011, 0.04);
+panJoint.add(tiltJoint);
+const tiltHorn = cylinder(0.012, 0.004, 0xf59e0b, 'y');
+tiltJoint.add(tiltHorn);
+tiltJoint.add(box(0.03, 0.004, 0.075, 0x9ca3af, -0.005, -0.004, 0.037));  // L-bracket up to the eye
+// the camera eye, its lens along -x of base_link at zero angles
+const eye = new THREE.Group();
+eye.position.set(-0.02, 0.011, 0.075);
+tiltJoint.add(eye);
+eye.add(box(0.03, 0.04, 0.04, 0x10b981));
+const lens = cylinder(0.009, 0.012, 0x111827, 'x');
+lens.position.x = -0.02;
+eye.add(lens);
+
+// the IMU: a block of its own beside the kit, turned by its measured orientation
+const imuBlock = new THREE.Group();
+imuBlock.position.set(0.12, -0.07, 0.04);
+scene.add(imuBlock);
+const imuBody = box(0.06, 0.04, 0.016, 0xdc2626);
+imuBlock.add(imuBody);
+imuBlock.add(new THREE.AxesHelper(0.055));  // x red, y green, z blue: the IMU's own axes
+
+// At most one render per animation frame: updates come faster than a screen shows them (two
+// joints and the IMU), and rendering each would starve the camera and the mouse.
+let renderQueued = false;
+function render() {
+  if (renderQueued) return;
+  renderQueued = true;
+  requestAnimationFrame(() => {
+    renderQueued = false;
+    renderer.render(scene, camera);
+  });
+}
+
+let dragging = null;  // {x, y} of the last pointer position while the IMU is held
+
+// ---- the kit's state, pushed ---------------------------------------------------------------------
+const degrees = (radians) => (radians === null ? '–' : `${(radians * 180 / Math.PI).toFixed(1)}°`);
+
+function eulerOf(q) {
+  // roll, pitch, yaw (ZYX) of an (x, y, z, w) quaternion, for the readout
+  const [x, y, z, w] = q;
+  const roll = Math.atan2(2 * (w * x + y * z), 1 - 2 * (x * x + y * y));
+  const pitch = Math.asin(Math.max(-1, Math.min(1, 2 * (w * y - z * x))));
+  const yaw = Math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z));
+  return [roll, pitch, yaw];
+}
+
+socket.subscribe('kit', {}, (state) => {
+  view.pan = state.pan;
+  view.tilt = state.tilt;
+  view.imu = state.imu;
+  if (state.pan !== null) panJoint.rotation.z = state.pan;
+  if (state.tilt !== null) tiltJoint.rotation.y = -state.tilt;  // about -y: a positive tilt looks down
+  if (state.imu !== null && !dragging) imuBlock.quaternion.set(...state.imu);
+  document.getElementById('pan').textContent = degrees(state.pan);
+  document.getElementById('tilt').textContent = degrees(state.tilt);
+  const [roll, pitch, yaw] = state.imu ? eulerOf(state.imu) : [null, null, null];
+  document.getElementById('roll').textContent = degrees(roll);
+  document.getElementById('pitch').textContent = degrees(pitch);
+  document.getElementById('yaw').textContent = degrees(yaw);
+  render();
+}, showError);
+
+function showError(line) {
+  view.errors.push(line);
+  errors.textContent = line;
+}
+
+// ---- the camera, pushed ------------------------------------------------------------------------
+const image = document.getElementById('camera');
+const fpsLabel = document.getElementById('fps');
+const frameTimes = [];
+socket.subscribe('camera', {}, (header, payload) => {
+  const url = URL.createObjectURL(new Blob([payload], { type: header.content_type }));
+  const previous = image.src;
+  image.src = url;
+  if (previous.startsWith('blob:')) URL.revokeObjectURL(previous);
+  const now = performance.now();
+  frameTimes.push(now);
+  while (frameTimes[0] < now - FPS_WINDOW) frameTimes.shift();
+  view.frames += 1;
+  view.fps = frameTimes.length > 1 ? (frameTimes.length - 1) * 1000 / (now - frameTimes[0]) : 0;
+  fpsLabel.textContent = `${view.fps.toFixed(1)} fps`;
+}, showError);
+
+// ---- holding the IMU -----------------------------------------------------------------------------
+const raycaster = new THREE.Raycaster();
+
+function hitsImu(event) {
+  const rect = renderer.domElement.getBoundingClientRect();
+  const pointer = new THREE.Vector2(((event.clientX - rect.left) / rect.width) * 2 - 1,
+                                    -((event.clientY - rect.top) / rect.height) * 2 + 1);
+  raycaster.setFromCamera(pointer, camera);
+  return raycaster.intersectObject(imuBody).length > 0;
+}
+
+const WORLD_Z = new THREE.Vector3(0, 0, 1);
+const WORLD_Y = new THREE.Vector3(0, 1, 0);
+const HOLD_EVERY = 20;  // ms: at most 50 commands a second; the newest orientation is what matters
+let lastHold = -Infinity;
+let trailingHold = null;
+
+function sendHold() {
+  // at once when the last command is old enough (no wait for a frame), else once, a little later
+  const wait = lastHold + HOLD_EVERY - performance.now();
+  if (wait > 0) {
+    if (trailingHold === null) trailingHold = setTimeout(() => { trailingHold = null; sendHold(); }, wait);
+    return;
+  }
+  lastHold = performance.now();
+  const q = imuBlock.quaternion;
+  if (socket.command('hold_imu', { orientation: { x: q.x, y: q.y, z: q.z, w: q.w } })) view.commandsSent += 1;
+}
+
+renderer.domElement.addEventListener('pointerdown', (event) => {
+  if (!hitsImu(event)) return;
+  dragging = { x: event.clientX, y: event.clientY };
+  renderer.domElement.setPointerCapture(event.pointerId);
+  container.style.cursor = 'grabbing';
+});
+renderer.domElement.addEventListener('pointermove', (event) => {
+  if (!dragging) return;
+  const dx = event.clientX - dragging.x;
+  const dy = event.clientY - dragging.y;
+  dragging = { x: event.clientX, y: event.clientY };
+  // left/right turns about the world's vertical (yaw), up/down about the world's y (pitch)
+  const turn = new THREE.Quaternion().setFromAxisAngle(WORLD_Z, dx * DRAG_RADIANS_PER_PIXEL)
+    .multiply(new THREE.Quaternion().setFromAxisAngle(WORLD_Y, dy * DRAG_RADIANS_PER_PIXEL));
+  imuBlock.quaternion.premultiply(turn).normalize();
+  render();
+  sendHold();
+});
+function release(event) {
+  if (!dragging) return;
+  dragging = null;
+  container.style.cursor = '';
+  if (renderer.domElement.hasPointerCapture(event.pointerId)) renderer.domElement.releasePointerCapture(event.pointerId);
+}
+renderer.domElement.addEventListener('pointerup', release);
+renderer.domElement.addEventListener('pointercancel', release);
+
+document.getElementById('level').addEventListener('click', () => {
+  if (socket.command('level')) view.commandsSent += 1;
+});
+
+// Where the IMU block is on the page, for a test's mouse.
+view.imuOnPage = () => {
+  const rect = renderer.domElement.getBoundingClientRect();
+  const centre = new THREE.Vector3();
+  imuBody.getWorldPosition(centre);
+  centre.project(camera);
+  return { x: rect.left + (centre.x + 1) / 2 * rect.width, y: rect.top + (1 - centre.y) / 2 * rect.height };
+};
+view.panOfModel = () => panJoint.rotation.z;
+view.tiltOfModel = () => -tiltJoint.rotation.y;
+render();

@@ -1,0 +1,43 @@
+"""The robot view's commands and joint lookup, without a node."""
+
+import pytest
+from owl_web.codec import ApiError
+from robot_view.kit_state import LEVEL, hold_imu_orientation, joint_position, level_orientation
+from robot_view.main import parse_arguments
+
+
+def test_hold_imu_takes_one_unit_quaternion():
+    assert hold_imu_orientation({'orientation': {'x': 0, 'y': 0, 'z': 0.6, 'w': 0.8}}) == \
+        pytest.approx((0, 0, 0.6, 0.8))
+    for arguments, error in [
+            ({}, "missing key 'orientation'"),
+            ({'orientation': {'x': 0, 'y': 0, 'z': 0, 'w': 1}, 'speed': 1},
+             "unknown key 'speed'; expected: orientation"),
+            ({'orientation': {'x': float('nan'), 'y': 0, 'z': 0, 'w': 1}},
+             'the orientation: "x" must be finite, got nan'),
+            ({'orientation': {'x': 0, 'y': 0, 'z': 0, 'w': 3}},
+             'the orientation must be a unit quaternion (norm 1), got norm 3')]:
+        with pytest.raises(ApiError) as refused:
+            hold_imu_orientation(arguments)
+        assert refused.value.message == error
+
+
+def test_level_takes_nothing():
+    assert level_orientation({}) == LEVEL
+    with pytest.raises(ApiError, match="unknown key 'now'"):
+        level_orientation({'now': True})
+
+
+def test_joint_position_by_name():
+    assert joint_position(['pan_joint'], [0.5], 'pan_joint') == 0.5
+    assert joint_position(['tilt_joint'], [0.5], 'pan_joint') is None
+    assert joint_position([], [], 'pan_joint') is None
+
+
+def test_port_argument(capsys):
+    assert parse_arguments(['--port', '0']).port == 0
+    for bad in ('http', '70000', '-1'):
+        with pytest.raises(SystemExit) as stopped:
+            parse_arguments(['--port', bad])
+        assert stopped.value.code == 2
+    assert "is not a port number (0..65535)" in capsys.readouterr().err

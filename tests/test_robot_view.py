@@ -1,0 +1,172 @@
+"""robot_view over real DDS with the real kit processes, its page in Chromium (web_harness.py): the
+model follows the servos, the mouse holds the IMU and the head follows it (imu_control_robot), the
+camera shows at its rate, and bad input gets one line. docs/screenshots/robot_view.png is made here."""
+
+import math
+import re
+import socket
+import statistics
+import time
+from typing import Any
+
+from geometry_msgs.msg import Quaternion
+from olive_sim.imu_node import DEFAULT_NAMESPACE
+from ros_harness import wait_until
+from sensor_msgs.msg import Imu, JointState
+from web_harness import PageSocket, free_port
+
+URL_LINE = r'robot_view: open (http://127\.0\.0\.1:\d+/) in a browser \(Ctrl-C to quit\)'
+IMU_TOPIC = f'/olive/imu/{DEFAULT_NAMESPACE}/imu'
+TRUE_ORIENTATION = f'/olive_imu_{DEFAULT_NAMESPACE}_dcm_srv/true_orientation'
+MIN_FPS = 25.0  # the camera publishes 30 frames/s
+LATENCY_SAMPLES = 6
+
+
+def start_kit_and_view(ros: Any) -> str:
+    """robot_view.launch.py (the kit with its IMU in command mode, and robot_view): the page's address."""
+    launch = ros.command(['ros2', 'launch', 'robot_view', 'robot_view.launch.py', f'port:={free_port()}'],
+                         label='robot_view.launch')
+    return launch.wait_for(URL_LINE, timeout=60)[0].group(1)
+
+
+def yaw_of(q: Any) -> float:
+    return math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z))
+
+
+def drag(page: Any, dx: float, dy: float = 0.0, steps: int = 10) -> None:
+    """Hold the IMU block with the mouse and move it by dx, dy pixels."""
+    start = page.evaluate('window.robotView.imuOnPage()')
+    page.mouse.move(start['x'], start['y'])
+    page.mouse.down()
+    page.mouse.move(start['x'] + dx, start['y'] + dy, steps=steps)
+    page.mouse.up()
+
+
+def test_the_model_follows_the_kit_and_the_mouse_turns_the_head(ros, page):
+    base = start_kit_and_view(ros)
+    imu = ros.probe.collect(Imu, IMU_TOPIC)
+    pan_joints = ros.probe.collect(JointState, '/olive/servo/pan/joint')
+    robot = ros.run('olive_servo', 'imu_control_robot')
+    robot.wait_for(r'torque enabled: pan, tilt', timeout=40)
+    page.goto(base)
+    page.wait_for_function('() => window.robotView.pan !== null && window.robotView.imu !== null',
+                           timeout=20_000)
+
+    # The model's pan follows the pan servo's joint: drag the IMU (yaw), the head turns, the model too.
+    wait_until(lambda: imu and pan_joints, 20, 'IMU and joint messages')
+    yaw_before = yaw_of(imu[-1].orientation)
+    drag(page, 60)  # 0.01 rad a pixel: 0.6 rad of yaw
+    wait_until(lambda: abs(yaw_of(imu[-1].orientation) - yaw_before - 0.6) < 0.05, 10,
+               'the IMU turned 0.6 rad by the mouse')
+    wait_until(lambda: abs(pan_joints[-1].position[0] - 0.6) < 0.05, 15, 'the pan servo at 0.6 rad')
+    def model_at_joint() -> bool:
+        return abs(page.evaluate('window.robotView.panOfModel()') - pan_joints[-1].position[0]) < 0.02
+    wait_until(model_at_joint, 5, "the model's pan at the servo's joint")
+    assert page.evaluate('window.robotView.commandsSent') > 0
+
+    # "Level" puts the IMU back flat, and the head follows.
+    page.click('#level')
+    wait_until(lambda: abs(yaw_of(imu[-1].orientation)) < 0.05, 10, 'the IMU levelled')
+    wait_until(lambda: abs(pan_joints[-1].position[0]) < 0.05, 15, 'the pan servo back at 0')
+
+    # Latency: a drag to the pan servo's joint moving, split where the page's command reaches DDS
+    # (page, WebSocket, robot_view | imu_sim, imu_control_robot, servo_sim).
+    commands: list[float] = []
+    probe = ros.probe.node
+    probe.create_subscription(Quaternion, TRUE_ORIENTATION, lambda _: commands.append(time.monotonic()), 10)
+    timed_joints: list[tuple[float, float]] = []
+    probe.create_subscription(JointState, '/olive/servo/pan/joint',
+                              lambda joint: timed_joints.append((time.monotonic(), joint.position[0])), 10)
+    wait_until(lambda: timed_joints, 10, 'pan joints')
+    to_command, to_moving = [], []
+    for sample in range(LATENCY_SAMPLES):
+        commands.clear()
+        start_position = timed_joints[-1][1]
+        grip = page.evaluate('window.robotView.imuOnPage()')
+        page.mouse.move(grip['x'], grip['y'])
+        page.mouse.down()
+        started = time.monotonic()  # the one move that turns the IMU, as Playwright sends it
+        page.mouse.move(grip['x'] + (20 if sample % 2 == 0 else -20), grip['y'])
+        page.mouse.up()
+        def moved(started: float = started, start_position: float = start_position) -> float | None:
+            return next((t for t, position in timed_joints if t > started
+                         and abs(position - start_position) > 0.01), None)
+        wait_until(lambda: moved() is not None and commands, 10, 'the pan servo moving')
+        to_command.append(commands[0] - started)
+        to_moving.append(moved() - commands[0])
+        time.sleep(0.5)
+    for what, values in (('drag -> hold_imu on DDS', to_command),
+                         ('hold_imu -> pan servo moving', to_moving),
+                         ('drag -> pan servo moving',
+                          [a + b for a, b in zip(to_command, to_moving, strict=True)])):
+        print(f'{what}: p50 {statistics.median(values) * 1000:.0f} ms, max {max(values) * 1000:.0f} ms '
+              f'({len(values)} drags)')
+
+    # The camera, pushed: frames per second counted in the page.
+    page.wait_for_function('() => window.robotView.frames > 10', timeout=20_000)
+    frames_before = page.evaluate('window.robotView.frames')
+    time.sleep(4.0)
+    fps = (page.evaluate('window.robotView.frames') - frames_before) / 4.0
+    print(f'camera in the page: {fps:.1f} frames/s')
+    assert fps >= MIN_FPS
+
+    drag(page, 30, 25)  # a pose worth a picture
+    time.sleep(2.0)
+    page.screenshot_to('robot_view')
+
+
+def test_bad_websocket_input_gets_one_line_and_nothing_reaches_the_imu(ros):
+    base = start_kit_and_view(ros)
+    held = ros.probe.collect(Quaternion, TRUE_ORIENTATION)
+    with PageSocket(base) as page_socket:
+        for message, error in [
+                ('{"type": "command", "id": 1, "name": "hold_imu", "orientation": {"x": NaN, "y": 0, "z": 0, '
+                 '"w": 1}}', 'the orientation: "x" must be finite, got nan'),
+                ({'type': 'command', 'id': 2, 'name': 'hold_imu',
+                  'orientation': {'x': 1, 'y': 1, 'z': 1, 'w': 1}},
+                 'the orientation must be a unit quaternion (norm 1), got norm 2'),
+                ({'type': 'command', 'id': 3, 'name': 'hold_imu', 'orientation': [0, 0, 0, 1]},
+                 'the orientation must be an object {"x", "y", "z", "w"}, got [0, 0, 0, 1]'),
+                ({'type': 'command', 'id': 4, 'name': 'hold_imu'}, "missing key 'orientation'"),
+                ({'type': 'command', 'id': 5, 'name': 'levle'},
+                 'unknown command "levle" (did you mean \'level\'?); known: hold_imu, level'),
+                ({'type': 'command', 'id': 6, 'name': 'level', 'now': 1}, "unknown key 'now'; expected: "),
+                ('{"type": "command", ', 'malformed JSON in the message: '),
+                ({'type': 'comand', 'id': 7}, 'unknown message type "comand" (did you mean \'command\'?)')]:
+            page_socket.send(message)
+            answer = page_socket.receive()
+            assert answer['type'] == 'error' and answer['error'].startswith(error), answer
+            assert '\n' not in answer['error']
+        time.sleep(1.0)
+        assert held == []  # nothing reached the simulated IMU
+        page_socket.send({'type': 'command', 'id': 'ok', 'name': 'level'})
+        assert page_socket.receive() == {'type': 'done', 'id': 'ok'}
+        wait_until(lambda: held and (held[-1].w, held[-1].z) == (1.0, 0.0), 10, 'the level command published')
+
+
+def test_a_busy_port_and_a_bad_port_get_one_line(ros):
+    with socket.socket() as busy:
+        busy.bind(('127.0.0.1', 0))
+        busy.listen(1)
+        port = busy.getsockname()[1]
+        taken = ros.command(['ros2', 'run', 'robot_view', 'robot_view', '--port', str(port)])
+        assert taken.wait(timeout=30) == 1
+        # one line of ours; `ros2 run` adds its own "[ros2run]: Process exited with failure 1"
+        lines = [line for line in taken.output.strip().splitlines() if not line.startswith('[ros2run]')]
+        assert len(lines) == 1, lines
+        assert re.match(rf'robot_view: cannot serve on 127\.0\.0\.1:{port}: ', lines[0]), lines
+    bad = ros.command(['ros2', 'run', 'robot_view', 'robot_view', '--port', 'eighty'])
+    assert bad.wait(timeout=30) == 2
+    assert "robot_view: error: argument --port: 'eighty' is not a port number (0..65535)" in bad.output
+    assert 'Traceback' not in bad.output
+
+
+def test_ctrl_c_stops_robot_view_cleanly(ros):
+    view = ros.command(['ros2', 'run', 'robot_view', 'robot_view', '--port', '0'])
+    view.wait_for(URL_LINE, timeout=30)
+    # The line comes just before rclpy spins; a Ctrl-C in that gap once (1 run in 8 here) ended in
+    # rclpy's own AttributeError ('SignalHandlerGuardCondition' ...): this test is about a user's
+    # Ctrl-C on a running page, not that start-up race (reported to the lead).
+    time.sleep(1.0)
+    assert view.stop(timeout=10) == 0, view.output
+    assert 'Traceback' not in view.output
