@@ -7,7 +7,7 @@ import subprocess
 import pytest
 from owl_common.processes import ROS2_DAEMON_BASE_PORT, RosSandbox, installed_executable
 from owl_common.run import TEARDOWN_LIMIT
-from ros_harness import with_hung_teardown
+from ros_harness import Probe, wait_until, with_hung_teardown
 
 
 def daemon_listening(domain_id: int) -> bool:
@@ -56,10 +56,17 @@ def test_children_stop_on_ctrl_c_even_when_the_runner_ignores_it():
 
 
 def test_a_node_whose_clean_up_hangs_ends_itself_with_every_stack():
-    counter = installed_executable('random_number_ps', 'counter_publisher')
+    # The CLI tests' talker runs on owl_common.run.spin_node, which has the watchdog (the course's own
+    # packages use plain rclpy calls instead, so a student can compare them with the listings).
+    talker = installed_executable('ros2cli_test_fixtures', 'talker')
     with RosSandbox() as sandbox:
-        node = sandbox.command(with_hung_teardown(counter), label='counter_publisher')
-        node.wait_for('Publishing: 1', timeout=30)  # spinning: Ctrl-C now starts spin_node's clean-up
+        node = sandbox.command(with_hung_teardown(talker), label='talker')
+        probe = Probe(sandbox.domain_id)
+        try:  # in the graph: spinning, so Ctrl-C now starts spin_node's clean-up
+            wait_until(lambda: 'talker' in probe.node.get_node_names(), 30, 'the talker node')
+        finally:
+            probe.close()
         node.send_signal(signal.SIGINT)
         assert node.wait(timeout=TEARDOWN_LIMIT + 3) == 1, node.tail()
-        assert 'Timeout (0:00:05)!' in node.output and 'in destroy_node' in node.output, node.tail()
+        # The watchdog's dump of every thread (here the hang is the wrapper's exit-time one).
+        assert 'Timeout (0:00:05)!' in node.output and 'most recent call first' in node.output, node.tail()
