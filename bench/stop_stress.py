@@ -20,8 +20,13 @@ have. The others are a node class of ours run by course_main() below, a main() o
 (plain rclpy.init / rclpy.spin / destroy_node / try_shutdown) in variants: `... course` builds the
 node before the `try`, the others inside it; `ALL` keeps rclpy's own Ctrl-C handler (plain
 `rclpy.init(args=args)`), `NO` passes signal_handler_options=SignalHandlerOptions.NO; `polling`
-spins in 0.1 s spin_once calls. By default the installed nodes run, with `imu_turtle ALL` as the
-baseline: the same node with rclpy's own handler.
+spins in 0.1 s spin_once calls; `quiet` sets Python's SIGINT handler to SIG_IGN so only rclpy's
+acts; `guard` calls owl_common.run.interrupt_between_callbacks-style code (Ctrl-C triggers a guard
+condition whose callback raises KeyboardInterrupt); `owl_common.run` is the stop-request main()
+the nodes had before. By default the installed nodes run, with `imu_turtle ALL` as the baseline:
+the same node with rclpy's own handler. --flood adds a process publishing IMU messages as fast as
+it can, so imu_turtle takes a message most of the time (an accelerated test of the Ctrl-C that
+lands while rclpy builds a message).
 --hogs busy-loop processes compete for the CPU during the whole run.
 """
 
@@ -40,14 +45,17 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import rclpy
-from olive_imu.imu_turtle import ImuTurtle
+from olive_imu.imu_turtle import DEFAULT_IMU_TOPIC, ImuTurtle
 from olive_servo.control_servo import ControlServo
 from olive_servo.pid_testing import PidTesting
 from olive_srvcli.service_temperature import TempService
 from owl_common.processes import RosProcess, RosSandbox
+from owl_common.run import begin_cleanup, init_with_stop_request, spin_until_stopped
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
+from rclpy.qos import qos_profile_sensor_data
 from rclpy.signals import SignalHandlerOptions
+from sensor_msgs.msg import Imu
 from teardown_hangs import HOG, native_stacks, upper_bound, version
 
 KILL_AFTER = 8.0   # s after the SIGINT: still running by then is a hang
@@ -67,18 +75,29 @@ SERVO_PARAMETERS = ['-p', 'min_position:=-1.5708', '-p', 'max_position:=1.5708']
 
 
 def course_main(make_node: Callable[[], Node], options: SignalHandlerOptions, construct_in_try: bool,
-                spin: Callable[[Node], None] = rclpy.spin, torque: bool = False) -> None:
+                spin: Callable[[Node], None] = rclpy.spin, torque: bool = False, quiet: bool = False,
+                guard: bool = False) -> None:
     """A node's main() in the course's shape, in the variants measured here.
 
     construct_in_try False is the shape of common.md (the node is built before the try); True
     builds it inside the try, so a Ctrl-C during construction is caught too. torque: enable the
-    torque before spinning and disable it in the clean-up, as the servo nodes do.
+    torque before spinning and disable it in the clean-up, as the servo nodes do. quiet: Python's
+    own SIGINT handler is SIG_IGN, so Ctrl-C only shuts ROS down (rclpy's handler) and rclpy.spin
+    returns or raises ExternalShutdownException; there is no KeyboardInterrupt. guard: once the node
+    is built, Ctrl-C only triggers a guard condition of the node whose callback raises
+    KeyboardInterrupt, so it leaves rclpy.spin between two callbacks, never from Python code that
+    rclpy's C++ calls (a message's constructor while a message is taken).
     """
+    if quiet:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)  # rclpy's handler alone: no KeyboardInterrupt
     rclpy.init(signal_handler_options=options)
     node = None if construct_in_try else make_node()
     try:
         if node is None:
             node = make_node()
+        if guard:
+            stop = node.create_guard_condition(raise_keyboard_interrupt)
+            signal.signal(signal.SIGINT, lambda signum, frame: stop.trigger())
         if torque:
             node.enable_torque()
         print('spinning', flush=True)
@@ -91,6 +110,46 @@ def course_main(make_node: Callable[[], Node], options: SignalHandlerOptions, co
                 node.disable_torque()
             node.destroy_node()
         rclpy.try_shutdown()
+
+
+def owl_common_main(make_node: Callable[[], Node]) -> None:
+    """The main() the course's nodes had before: owl_common.run's stop request (never raises inside
+    rclpy while it spins; polls every 0.1 s) and teardown watchdog."""
+    stop = init_with_stop_request()
+    node = None
+    try:
+        node = make_node()
+        print('spinning', flush=True)
+        spin_until_stopped(node, stop)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        begin_cleanup()
+        if node is not None:
+            node.destroy_node()
+        rclpy.try_shutdown()
+
+
+def flood_imu() -> None:
+    """Publish a level IMU's messages on imu_turtle's topic as fast as Python can (--flood): the
+    nodes then take a message most of the time, where a KeyboardInterrupt can land in rclpy."""
+    rclpy.init()
+    node = Node('imu_flood')
+    publisher = node.create_publisher(Imu, DEFAULT_IMU_TOPIC, qos_profile_sensor_data)
+    msg = Imu()
+    msg.orientation.w = 1.0
+    try:
+        while True:
+            publisher.publish(msg)
+    except KeyboardInterrupt:
+        pass
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown()
+
+
+def raise_keyboard_interrupt() -> None:
+    raise KeyboardInterrupt
 
 
 def spin_polling(node: Node) -> None:
@@ -111,6 +170,10 @@ CHILDREN: dict[str, Callable[[], None]] = {
     'control_servo NO': lambda: course_main(ControlServo, NO, True, torque=True),
     'pid_testing NO': lambda: course_main(PidTesting, NO, True, torque=True),
     'pid_testing NO polling': lambda: course_main(PidTesting, NO, True, spin_polling, torque=True),
+    'imu_turtle ALL quiet': lambda: course_main(ImuTurtle, ALL, True, quiet=True),
+    'imu_turtle NO guard': lambda: course_main(ImuTurtle, NO, True, guard=True),
+    'imu_turtle owl_common.run': lambda: owl_common_main(ImuTurtle),
+    'flood': flood_imu,
     'temp_server ALL': lambda: course_main(TempService, ALL, True),
     'temp_server NO': lambda: course_main(TempService, NO, True),
 }
@@ -257,10 +320,13 @@ def main() -> int:
                         help=f'comma-separated labels to run (default {DEFAULT_KINDS!r}), of: ' + ', '.join(
                             [*CHILDREN, 'imu_turtle', 'control_servo']))
     parser.add_argument('--no-startup', action='store_true', help='only steady stops')
+    parser.add_argument('--flood', action='store_true',
+                        help="also flood imu_turtle's IMU topic with messages, as fast as one process can")
     parser.add_argument('--start-timeout', type=float, default=30.0)
     args = parser.parse_args()
 
-    kinds = [Kind(label, child_starter(label), CHILD_READY, servo='servo' in label) for label in CHILDREN]
+    kinds = [Kind(label, child_starter(label), CHILD_READY, servo='servo' in label)
+             for label in CHILDREN if label != 'flood']
     kinds += [Kind('imu_turtle', installed_starter('olive_imu', 'imu_turtle'), IMU_READY, servo=False),
               Kind('control_servo', installed_starter('olive_servo', 'control_servo'), SERVO_READY,
                    servo=True)]
@@ -280,6 +346,8 @@ def main() -> int:
     try:
         with RosSandbox() as sandbox:
             simulators = start_simulators(sandbox)
+            if args.flood:
+                sandbox.command([sys.executable, __file__, '--child', 'flood'], label='imu flood')
             every = max(1, args.stops // 10)
             for index in range(args.stops):
                 for kind in kinds:

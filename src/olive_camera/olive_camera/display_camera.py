@@ -11,6 +11,7 @@ import time
 import cv2
 import rclpy
 from cv_bridge import CvBridge, CvBridgeError
+from owl_common.run import interrupt_between_callbacks
 from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.exceptions import InvalidTopicNameException, ParameterException
 from rclpy.executors import ExternalShutdownException
@@ -76,12 +77,12 @@ class DisplayCamera(Node):
 
 def main(args: list[str] | None = None) -> None:
     # Ctrl-C raises KeyboardInterrupt here (Python's own handler): rclpy's handler shuts ROS down
-    # from another thread, which can fail a frame being taken (a traceback in ~3 % of stops under
-    # load: bench/stop_stress.py). CHECK_PERIOD's timer keeps rclpy.spin waking without frames.
+    # from another thread, which can fail a frame being taken (bench/stop_stress.py).
     rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
     display_camera = None
     try:
         display_camera = DisplayCamera()
+        interrupt_between_callbacks(display_camera)  # Ctrl-C: never while rclpy takes a frame (README)
         rclpy.spin(display_camera)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass  # Ctrl-C is how the course stops a node

@@ -6,6 +6,7 @@ import time
 
 import rclpy
 from geometry_msgs.msg import Quaternion, Twist
+from owl_common.run import interrupt_between_callbacks
 from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor
 from rclpy.exceptions import InvalidTopicNameException, ParameterException
 from rclpy.executors import ExternalShutdownException
@@ -88,13 +89,13 @@ class ImuTurtle(Node):
 
 
 def main(args: list[str] | None = None) -> None:
-    # Ctrl-C raises KeyboardInterrupt in this thread (Python's own handler). rclpy's handler would
-    # shut ROS down from a thread of its own while this one may be taking a message: about 1 stop
-    # in 30 then ended in a traceback (see this package's README).
+    # Not rclpy's own Ctrl-C handler: it shuts ROS down from a thread of its own while this one may
+    # still be using it (tracebacks in stress runs, see this package's README).
     rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
     imu_turtle = None
     try:
         imu_turtle = ImuTurtle()
+        interrupt_between_callbacks(imu_turtle)  # Ctrl-C: never while rclpy takes a message (README)
         rclpy.spin(imu_turtle)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass  # Ctrl-C is how the course stops a node

@@ -7,6 +7,7 @@ import time
 import rclpy
 from geometry_msgs.msg import Quaternion
 from olive_imu.euler import orientation_problem, quaternion_to_euler
+from owl_common.run import interrupt_between_callbacks
 from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.exceptions import InvalidTopicNameException, ParameterException
 from rclpy.executors import ExternalShutdownException
@@ -100,6 +101,7 @@ def main(args: list[str] | None = None) -> None:
     try:
         imu_control_robot = ImuControlRobot()
         imu_control_robot.enable_torque()
+        interrupt_between_callbacks(imu_control_robot)  # Ctrl-C: never while rclpy takes a message (README)
         rclpy.spin(imu_control_robot)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass  # Ctrl-C is how the course stops a node
