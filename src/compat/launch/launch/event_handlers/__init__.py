@@ -16,8 +16,15 @@ if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
 
 __all__ = [
-    'EventHandler', 'OnActionEventBase', 'OnExecutionComplete', 'OnIncludeLaunchDescription',
-    'OnProcessExit', 'OnProcessIO', 'OnProcessStart', 'OnShutdown',
+    'EventHandler',
+    'OnActionEventBase',
+    'OnExecutionComplete',
+    'OnIncludeLaunchDescription',
+    'OnProcessExit',
+    'OnProcessIO',
+    'OnProcessStart',
+    'OnShutdown',
+    'event_named',
 ]
 
 # A reaction: entities, or a callable (event, context) -> entities | None.
@@ -141,3 +148,7 @@ class OnIncludeLaunchDescription(EventHandler):
     def handle(self, event: Event, context: LaunchContext) -> Iterable[LaunchDescriptionEntity] | None:
         super().handle(event, context)
         return [event.launch_description]  # type: ignore[attr-defined]
+
+
+# Last: the module has no imports from this package, but upstream exports it here.
+from launch.event_handlers.event_named import event_named  # noqa: E402

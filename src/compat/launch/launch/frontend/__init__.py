@@ -8,7 +8,7 @@ import os
 import tempfile
 from typing import TYPE_CHECKING, Any, TextIO
 
-from launch.frontend import substitution_parser
+from launch.frontend import substitution_parser, type_utils
 from launch.frontend.entity import Entity, LaunchFileError, load_xml_root, load_yaml_root
 from launch.frontend.expose import action_parse_methods, expose_action, expose_substitution
 from launch.substitution import Substitution, TextSubstitution
@@ -20,7 +20,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     'Entity', 'LaunchFileError', 'Parser', 'expose_action', 'expose_substitution',
-    'load_launch_file', 'parse_substitution',
+    'load_launch_file', 'parse_substitution', 'type_utils',
 ]
 
 # Packages whose actions and substitutions extend the frontend, loaded when present.
