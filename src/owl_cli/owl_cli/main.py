@@ -7,7 +7,7 @@ import os
 import sys
 from concurrent.futures import ThreadPoolExecutor
 
-from owl_cli import network_check
+from owl_cli import check, network_check
 
 
 def positive_seconds(text: str) -> float:
@@ -59,6 +59,11 @@ def main(argv: list[str] | None = None) -> int:
     check_network.add_argument('--discovery-time', type=positive_seconds, default=3.0, metavar='SECONDS',
                                help='how long to listen for the modules\' ROS nodes (default 3)')
     check_network.set_defaults(run=network)
+    check_exercise = commands.add_parser(
+        'check', help="check a course exercise in your workspace (owl check --list)",
+        description=check.__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    check.add_arguments(check_exercise)
+    check_exercise.set_defaults(run=check.check)
     args = parser.parse_args(argv)
     try:
         return args.run(args)
