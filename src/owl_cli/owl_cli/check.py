@@ -1,7 +1,7 @@
 """owl check: checks a student's exercise of the course (sections 3.4 to 4.5) over real ROS 2.
 
 owl check --list                       the exercises and projects, with their ids
-owl check ID [--workspace DIR]         build the package if needed, run the check, one line per criterion
+owl check ID... [--workspace DIR]      build the package if needed, run the checks, one line per criterion
 owl check --all [--workspace DIR]      every exercise whose package is in the workspace, then a table
 
 Each check starts what the exercise needs (the simulated kit, turtlesim, a service server) and
@@ -41,11 +41,17 @@ BUILD_LIMIT = 900.0
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument('exercise', nargs='?', metavar='ID', help="the exercise's id (see --list)")
-    parser.add_argument('--workspace', type=Path, metavar='DIR',
-                        help='the colcon workspace (default: the current folder or the one above it)')
+    parser.add_argument('exercises', nargs='*', metavar='ID', help='exercise ids (see --list)')
+    parser.add_argument(
+        '--workspace',
+        type=Path,
+        metavar='DIR',
+        help='the colcon workspace (default: the current folder or the one above it)',
+    )
     parser.add_argument('--list', action='store_true', help='list the exercises and projects and exit')
-    parser.add_argument('--all', action='store_true', help='check every exercise whose package is in the workspace')
+    parser.add_argument(
+        '--all', action='store_true', help='check every exercise whose package is in the workspace'
+    )
     parser.add_argument('--json', action='store_true', help='print the results as JSON (for teachers)')
 
 
@@ -55,8 +61,9 @@ def build(workspace: Path, names: list[str], quiet: bool) -> str | None:
     if not quiet:
         print(f'owl check: building {", ".join(sorted(names))} ({shlex.join(command)})', flush=True)
     try:
-        done = subprocess.run(command, cwd=workspace, capture_output=True, text=True, timeout=BUILD_LIMIT,
-                              check=False)
+        done = subprocess.run(
+            command, cwd=workspace, capture_output=True, text=True, timeout=BUILD_LIMIT, check=False
+        )
     except FileNotFoundError:
         return "colcon is not on PATH: run 'source env.sh' in the Owl Kit Lab folder first"
     except subprocess.TimeoutExpired:
@@ -70,17 +77,24 @@ def run_check(exercise: Exercise, workspace: Path, on_criterion) -> ExerciseResu
     """Run the check's ROS part in a shell that sourced the workspace, with a hard time limit."""
     result = ExerciseResult(exercise.id)
     setup = workspace / 'install' / 'local_setup.bash'
-    script = f'source {shlex.quote(str(setup))} && exec {shlex.quote(sys.executable)} -m owl_cli.check_ros {exercise.id}'
+    python = shlex.quote(sys.executable)
+    script = f'source {shlex.quote(str(setup))} && exec {python} -m owl_cli.check_ros {exercise.id}'
     started = time.monotonic()
-    process = subprocess.Popen(['bash', '-c', script], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                               text=True, errors='replace', start_new_session=True)
+    process = subprocess.Popen(
+        ['bash', '-c', script],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        errors='replace',
+        start_new_session=True,
+    )
     other: list[str] = []
 
     def read() -> None:
         assert process.stdout is not None
         for line in process.stdout:
             if line.startswith(RESULT_PREFIX):
-                criterion = Criterion.from_dict(json.loads(line[len(RESULT_PREFIX):]))
+                criterion = Criterion.from_dict(json.loads(line[len(RESULT_PREFIX) :]))
                 result.criteria.append(criterion)
                 on_criterion(criterion)
             else:
@@ -98,8 +112,11 @@ def run_check(exercise: Exercise, workspace: Path, on_criterion) -> ExerciseResu
         except subprocess.TimeoutExpired:
             os.killpg(process.pid, 9)
             process.wait()
-        timeout = Criterion(f'the check ends within {HARD_LIMIT:.0f} s', False,
-                            'the check was stopped: a node that never answers or never ends')
+        timeout = Criterion(
+            f'the check ends within {HARD_LIMIT:.0f} s',
+            False,
+            'the check was stopped: a node that never answers or never ends',
+        )
         result.criteria.append(timeout)
         on_criterion(timeout)
     reader.join(5)
@@ -117,24 +134,27 @@ def check(args: argparse.Namespace) -> int:
     if args.list:
         print('\n'.join(catalogue.listing()))
         return 0
-    if args.all == bool(args.exercise):
-        print('owl check: give one exercise id or --all (owl check --list lists the ids)', file=sys.stderr)
+    if args.all == bool(args.exercises):
+        print('owl check: give exercise ids or --all (owl check --list lists the ids)', file=sys.stderr)
         return 2
-    if args.exercise and catalogue.find(args.exercise) is None:
-        print(catalogue.unknown_id_message(args.exercise), file=sys.stderr)
-        return 2
+    for exercise_id in args.exercises:
+        if catalogue.find(exercise_id) is None:
+            print(catalogue.unknown_id_message(exercise_id), file=sys.stderr)
+            return 2
     try:
         workspace = ws.find_workspace(args.workspace or Path.cwd())
         available = ws.packages(workspace)
     except ws.WorkspaceError as error:
         print(f'owl check: {error}', file=sys.stderr)
         return 2
-    if args.exercise:
-        exercises = [catalogue.find(args.exercise)]
-        missing = exercises[0].package
-        if missing not in available:
-            print(f"owl check: no package '{missing}' in {workspace / 'src'} (the course creates it with "
-                  f"'ros2 pkg create {missing} --build-type ament_python')", file=sys.stderr)
+    if args.exercises:
+        exercises = [catalogue.BY_ID[i] for i in dict.fromkeys(args.exercises)]
+        for missing in sorted({e.package for e in exercises} - set(available)):
+            print(
+                f"owl check: no package '{missing}' in {workspace / 'src'} (the course creates it with "
+                f"'ros2 pkg create {missing} --build-type ament_python')",
+                file=sys.stderr,
+            )
             return 2
     else:
         exercises = [e for e in catalogue.EXERCISES if e.package in available]
@@ -153,17 +173,22 @@ def check(args: argparse.Namespace) -> int:
     for exercise in exercises:
         if not args.json:
             print(f'owl check {exercise.id} (section {exercise.section}): {exercise.description}', flush=True)
-        result = run_check(exercise, workspace,
-                           (lambda c: None) if args.json else (lambda c: print(criterion_line(c), flush=True)))
+        result = run_check(
+            exercise,
+            workspace,
+            (lambda c: None) if args.json else (lambda c: print(criterion_line(c), flush=True)),
+        )
         results.append(result)
         if not args.json:
             if result.error:
                 print(f'  {result.error}')
-            verdict = 'passed' if result.passed else f'FAILED ({result.failed_count} of {len(result.criteria)})'
+            verdict = (
+                'passed' if result.passed else f'FAILED ({result.failed_count} of {len(result.criteria)})'
+            )
             print(f'{exercise.id}: {verdict} in {result.seconds:.1f} s', flush=True)
     if args.json:
         print(to_json(results, str(workspace)))
-    elif args.all:
+    elif len(results) > 1:
         print()
         print('\n'.join(summary_table(results)))
     return exit_code(results)

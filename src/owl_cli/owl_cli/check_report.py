@@ -11,15 +11,19 @@ RESULT_PREFIX = 'owl-check-criterion '
 
 @dataclass
 class Criterion:
-    text: str          # what is checked, in the course's terms
+    text: str  # what is checked, in the course's terms
     passed: bool
-    hint: str = ''     # for a failure: what to look at
-    detail: str = ''   # what was measured (both outcomes)
+    hint: str = ''  # for a failure: what to look at
+    detail: str = ''  # what was measured (both outcomes)
 
     @classmethod
     def from_dict(cls, values: dict) -> Criterion:
-        return cls(str(values['text']), bool(values['passed']), str(values.get('hint', '')),
-                   str(values.get('detail', '')))
+        return cls(
+            str(values['text']),
+            bool(values['passed']),
+            str(values.get('hint', '')),
+            str(values.get('detail', '')),
+        )
 
 
 @dataclass
@@ -27,7 +31,7 @@ class ExerciseResult:
     exercise: str
     criteria: list[Criterion] = field(default_factory=list)
     seconds: float = 0.0
-    error: str = ''    # a problem that stopped the check before its criteria (exit code 2)
+    error: str = ''  # a problem that stopped the check before its criteria (exit code 2)
 
     @property
     def passed(self) -> bool:
@@ -52,8 +56,11 @@ def exercise_lines(result: ExerciseResult) -> list[str]:
     if result.error:
         return [f'owl check {result.exercise}: {result.error}']
     verdict = 'passed' if result.passed else f'FAILED ({result.failed_count} of {len(result.criteria)})'
-    return ([f'owl check {result.exercise}:'] + [criterion_line(c) for c in result.criteria]
-            + [f'{result.exercise}: {verdict} in {result.seconds:.1f} s'])
+    return (
+        [f'owl check {result.exercise}:']
+        + [criterion_line(c) for c in result.criteria]
+        + [f'{result.exercise}: {verdict} in {result.seconds:.1f} s']
+    )
 
 
 def summary_table(results: list[ExerciseResult]) -> list[str]:
@@ -72,12 +79,23 @@ def summary_table(results: list[ExerciseResult]) -> list[str]:
 
 
 def to_json(results: list[ExerciseResult], workspace: str) -> str:
-    return json.dumps({
-        'workspace': workspace,
-        'passed': all(r.passed for r in results),
-        'exercises': [{'exercise': r.exercise, 'passed': r.passed, 'seconds': round(r.seconds, 2),
-                       'error': r.error, 'criteria': [asdict(c) for c in r.criteria]} for r in results],
-    }, indent=2)
+    return json.dumps(
+        {
+            'workspace': workspace,
+            'passed': all(r.passed for r in results),
+            'exercises': [
+                {
+                    'exercise': r.exercise,
+                    'passed': r.passed,
+                    'seconds': round(r.seconds, 2),
+                    'error': r.error,
+                    'criteria': [asdict(c) for c in r.criteria],
+                }
+                for r in results
+            ],
+        },
+        indent=2,
+    )
 
 
 def exit_code(results: list[ExerciseResult]) -> int:

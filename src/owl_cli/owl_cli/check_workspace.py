@@ -34,8 +34,10 @@ def find_workspace(start: Path) -> Path:
             continue  # a package's own src/ (C++ sources) is not a workspace
         if (folder / 'src').is_dir() and any(_package_files(folder / 'src', max_depth=3)):
             return folder
-    raise WorkspaceError(f'{start} is not in a colcon workspace (no src/ folder with a package.xml '
-                         'here or above); run it in your workspace or give --workspace DIR')
+    raise WorkspaceError(
+        f'{start} is not in a colcon workspace (no src/ folder with a package.xml '
+        'here or above); run it in your workspace or give --workspace DIR'
+    )
 
 
 def _package_files(root: Path, max_depth: int) -> list[Path]:
@@ -60,8 +62,11 @@ def read_package(manifest: Path) -> Package:
         raise WorkspaceError(f'{manifest} is not valid XML: {error}') from None
     name = (root.findtext('name') or '').strip()
     build_type = (root.findtext('export/build_type') or 'ament_cmake').strip()
-    depends = {(e.text or '').strip() for e in root
-               if e.tag in ('depend', 'build_depend', 'exec_depend', 'buildtool_depend')}
+    depends = {
+        (e.text or '').strip()
+        for e in root
+        if e.tag in ('depend', 'build_depend', 'exec_depend', 'buildtool_depend')
+    }
     return Package(name, manifest.parent, build_type, depends)
 
 
@@ -88,7 +93,7 @@ def needed(name: str, available: dict[str, Package]) -> list[str]:
 
 
 def newest_source_time(package: Path) -> float:
-    newest = package.stat().st_mtime
+    newest = 0.0  # files only: Python's __pycache__ folders change folder times without a change
     for folder, subfolders, files in os.walk(package):
         subfolders[:] = [s for s in subfolders if s not in SKIPPED_FOLDERS and not s.endswith('.egg-info')]
         for name in files:
@@ -99,8 +104,10 @@ def newest_source_time(package: Path) -> float:
 
 def install_marker(workspace: Path, name: str) -> Path | None:
     """The file colcon writes when it has installed a package (isolated or merged install)."""
-    for candidate in (workspace / 'install' / name / 'share' / 'colcon-core' / 'packages' / name,
-                      workspace / 'install' / 'share' / 'colcon-core' / 'packages' / name):
+    for candidate in (
+        workspace / 'install' / name / 'share' / 'colcon-core' / 'packages' / name,
+        workspace / 'install' / 'share' / 'colcon-core' / 'packages' / name,
+    ):
         if candidate.exists():
             return candidate
     return None
