@@ -130,9 +130,17 @@ def build_command(names: list[str]) -> list[str]:
 ERROR_LINE = re.compile(r'error|Error|ERROR|Traceback|failed|Failed')
 
 
+# A line that says what went wrong (a Python exception, a compiler or CMake error), rather than
+# which command failed (colcon's "Command [...] returned non-zero exit status 1").
+CAUSE_LINE = re.compile(r'^(\w+(Error|Exception)\b|CMake Error|.*\berror:)')
+
+
 def last_error_line(output: str) -> str:
-    """The build output's last line that names an error, skipping colcon's own summary lines."""
+    """The build output's last line that names the error's cause, else its last line naming an error."""
     lines = [line.strip() for line in output.splitlines() if line.strip()]
+    for line in reversed(lines):
+        if CAUSE_LINE.search(line):
+            return line
     summary = re.compile(r'^(Summary:|Failed\s+<<<|Aborted\s+<<<|---|\d+ packages? (failed|aborted))')
     for line in reversed(lines):
         if ERROR_LINE.search(line) and not summary.search(line):

@@ -149,6 +149,7 @@ def test_the_last_error_line_of_a_failed_build():
             '--- stderr: olive_imu',
             '  File "setup.py", line 2',
             "SyntaxError: '(' was never closed",
+            "Failed to run: Command '['python', '-c', 'import sys']' returned non-zero exit status 1.",
             '---',
             'Failed   <<< olive_imu [0.41s, exited with code 1]',
             'Summary: 0 packages finished [0.8s]',
@@ -156,6 +157,7 @@ def test_the_last_error_line_of_a_failed_build():
         ]
     )
     assert ws.last_error_line(output) == "SyntaxError: '(' was never closed"
+    assert ws.last_error_line('a\nsomething failed\nb') == 'something failed'
 
 
 # -- judgements ------------------------------------------------------------------------------------
