@@ -11,7 +11,7 @@ from pathlib import Path
 
 from owl_web.server import port_number
 
-from owl_cli import network_check
+from owl_cli import check, network_check
 
 
 def positive_seconds(text: str) -> float:
@@ -113,6 +113,11 @@ def main(argv: list[str] | None = None) -> int:
                               help='the windows\' folder (default: $OWL_WINDOWS_DIR, else the one the '
                                    'programs use by default)')
     show_windows.set_defaults(run=windows)
+    check_exercise = commands.add_parser(
+        'check', help="check a course exercise in your workspace (owl check --list)",
+        description=check.__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    check.add_arguments(check_exercise)
+    check_exercise.set_defaults(run=check.check)
     args = parser.parse_args(argv)
     try:
         return args.run(args)
