@@ -272,8 +272,19 @@ class Session:
         return list(response.result.names) if response else []
 
     def get_parameter(self, node: str, name: str) -> Any:
-        response = self.call(GetParameters, f'/{node}/get_parameters', GetParameters.Request(names=[name]))
-        return parameter_value_to_python(response.values[0]) if response and response.values else None
+        return self.get_parameters(node, [name]).get(name)
+
+    def get_parameters(self, node: str, names: list[str]) -> dict[str, Any]:
+        """The values of the parameters, in one service call (each call is a round trip)."""
+        response = self.call(GetParameters, f'/{node}/get_parameters', GetParameters.Request(names=names))
+        if response is None or len(response.values) != len(names):
+            return {}
+        return {name: parameter_value_to_python(v) for name, v in zip(names, response.values, strict=True)}
+
+    def own_parameters(self, node: str) -> dict[str, Any]:
+        """A node's parameters and values, without those rclpy declares for every node."""
+        names = [n for n in self.parameters(node) if not n.startswith(STANDARD_PARAMETERS)]
+        return self.get_parameters(node, names) if names else {}
 
     def set_parameter(self, node: str, name: str, value: Any) -> tuple[bool, str]:
         request = SetParameters.Request(parameters=[Parameter(name, value=value).to_parameter_msg()])
@@ -638,13 +649,8 @@ def check_imu_turtle_speed(s: Session) -> None:
 
     before = speed()
     found, detail = None, []
-    for name in s.parameters('imu_turtle'):
-        value = s.get_parameter('imu_turtle', name)
-        if (
-            name.startswith(STANDARD_PARAMETERS)
-            or isinstance(value, bool)
-            or not isinstance(value, (int, float))
-        ):
+    for name, value in s.own_parameters('imu_turtle').items():
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
             continue
         changed = type(value)(value * 2 if value else 1)
         ok, _ = s.set_parameter('imu_turtle', name, changed)
@@ -1530,7 +1536,7 @@ def check_params_file(s: Session) -> None:
         env=env,
     )
     s.wait(lambda: node in s.node.get_node_names() or not process.running(), START_TIMEOUT)
-    actual = {name: s.get_parameter(node, name) for name in values} if process.running() else {}
+    actual = s.get_parameters(node, list(values)) if process.running() else {}
     different = {name: actual.get(name) for name, value in values.items() if actual.get(name) != value}
     s.add(
         Criterion(
@@ -1576,7 +1582,7 @@ def check_imu_turtle_topic(s: Session) -> None:
 
     process = s.student('olive_imu', 'imu_turtle')
     s.wait(lambda: 'imu_turtle' in s.node.get_node_names(), START_TIMEOUT)
-    names = [name for name in s.parameters('imu_turtle') if s.get_parameter('imu_turtle', name) == IMU_TOPIC]
+    names = [name for name, value in s.own_parameters('imu_turtle').items() if value == IMU_TOPIC]
     s.stopped = True  # our own stop: its exit is no crash
     process.stop(3.0)
     if not s.add(
@@ -1627,13 +1633,11 @@ def check_imu_turtle_topic(s: Session) -> None:
 
 def numeric_parameters(s: Session, node: str, preferred: tuple[str, ...]) -> list[tuple[str, float]]:
     """(name, value) of a node's own numeric parameters, those naming a preferred word first."""
-    found = []
-    for name in s.parameters(node):
-        value = s.get_parameter(node, name)
-        own = not name.startswith(STANDARD_PARAMETERS)
-        if not own or isinstance(value, bool) or not isinstance(value, (int, float)):
-            continue
-        found.append((name, value))
+    found = [
+        (name, value)
+        for name, value in s.own_parameters(node).items()
+        if isinstance(value, (int, float)) and not isinstance(value, bool)
+    ]
     return sorted(found, key=lambda item: not any(word in item[0].lower() for word in preferred))
 
 
