@@ -193,6 +193,10 @@ class Session:
         )
 
     def close(self) -> None:
+        # Ctrl-C to every process at once: the sandbox then waits for each in turn, and the kit's
+        # modules end together (0.4 s for four, where one after the other took 2.7 s).
+        for process in self.sandbox.processes:
+            process.send_signal(signal.SIGINT)
         try:
             self.probe.close()
         finally:
