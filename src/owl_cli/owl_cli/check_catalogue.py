@@ -152,7 +152,7 @@ EXERCISES: tuple[Exercise, ...] = (
         '4.3 exercise',
         'olive_imu',
         "the IMU's debug web GUI: watch roll, pitch and yaw while turning the IMU by hand",
-        not_checked="it is done by hand on the real IMU's web page; nothing is left to check",
+        not_checked="done by hand on the IMU's web page (the module's or olive_sim's); nothing is left",
     ),
     Exercise(
         'imu_turtle',

@@ -45,6 +45,9 @@ TILT_RANGE = (-1.3, 0.9)  # the kit's tilt servo (camera bracket)
 START_TIMEOUT = 15.0  # s for a student's node to show up in the graph
 STOP_TIMEOUT = 8.0  # s for Ctrl-C to end a student's node
 PROBE_NODE = 'owl_check'
+# The simulated modules serve no web page during a check: a page binds the module's fixed address
+# (127.42.0.N), which the student's own kit may hold, and nobody watches it here.
+NO_WEB_PAGE = ('-p', 'web_port:=0')  # after --ros-args
 
 
 def goal_topic(servo: str) -> str:
@@ -112,6 +115,7 @@ class Session:
                 'seed:=1',
                 '-p',
                 'orientation_noise:=0.0',
+                *NO_WEB_PAGE,
             )
             nodes.append('olive_imu_x1684267976913_dcm_srv')
         for servo, (low, high) in (('pan', PAN_RANGE), ('tilt', TILT_RANGE)):
@@ -126,12 +130,13 @@ class Session:
                     f'min_position:={low}',
                     '-p',
                     f'max_position:={high}',
+                    *NO_WEB_PAGE,
                     label=f'servo {servo}',
                 )
                 self.helpers[servo] = process
                 nodes.append(f'olive_servo_{servo}_dcm_srv')
         if 'camera' in modules:
-            self.helper('olive_sim', 'camera_sim')
+            self.helper('olive_sim', 'camera_sim', '--ros-args', *NO_WEB_PAGE)
             nodes.append('olive_camera_eye_dcm_srv')
         for name in nodes:
             if not self.wait(lambda n=name: n in self.node.get_node_names(), 30.0):
