@@ -46,6 +46,7 @@ PLOT_SERIES = (*(f'{servo}_{what}' for servo in SERVOS for what in ('goal', 'pos
 PLOT_PUSH_EVERY = 0.1  # s: ten batches a second keep a 10 s plot moving smoothly
 SERVICE_TIMEOUT = 3.0  # s for a servo to answer a command's service call
 RESEND_EVERY = 1.0  # s: see _call
+ASK_GAINS_EVERY = 1.0  # s between two questions to a servo whose gains are not known yet
 
 
 class RobotViewNode(Node):
@@ -90,6 +91,8 @@ class RobotViewNode(Node):
         self.create_subscription(CompressedImage, CAMERA_TOPIC, self._on_frame, qos_profile_sensor_data)
         self.true_orientation = self.create_publisher(Quaternion, TRUE_ORIENTATION_TOPIC, 10)
         self.create_timer(PLOT_PUSH_EVERY, self._push_plots)
+        self._asking: dict[str, Any] = {}  # servo -> its unanswered question for its gains
+        self.create_timer(ASK_GAINS_EVERY, self._ask_for_unknown_gains)
         server.channel('kit', self._watch_kit, self._kit_watchers.discard)
         server.channel('camera', self._watch_camera, self._camera_watchers.discard)
         server.channel('plots', self._watch_plots, self._forget_plot_watcher)
@@ -175,23 +178,31 @@ class RobotViewNode(Node):
     def _watch_servos(self, watcher: Subscription) -> None:
         with self._lock:
             self._servo_watchers.add(watcher)
-            unknown = [servo for servo, state in self._servos.items() if state['kp'] is None]
-        for servo in unknown:  # the gains of a servo not heard of yet; a page's first look
-            self._fetch_gains(servo)
-        with self._lock:
             message = self._servo_message()
         watcher.send(message)
 
-    def _fetch_gains(self, servo: str) -> None:
-        try:
-            response = self._call(self._get_parameters[servo], GetParameters.Request(names=list(GAINS)),
-                                  f'servo {servo}')
-        except ApiError:
-            return  # not running yet: /parameter_events tells when its gains change
-        values = [value.double_value for value in response.values]
-        if len(values) == len(GAINS):
+    def _ask_for_unknown_gains(self) -> None:
+        """Ask each servo whose gains are not known yet for them (a servo that started before
+        robot_view announced them on /parameter_events before robot_view listened). Never waits:
+        this runs on the executor."""
+        for servo, client in self._get_parameters.items():
             with self._lock:
-                self._servos[servo].update(zip(GAINS, values, strict=True))
+                known = self._servos[servo]['kp'] is not None
+            if known or not client.service_is_ready():
+                continue
+            unanswered = self._asking.pop(servo, None)
+            if unanswered is not None:  # lost in discovery (see _call): ask again
+                client.remove_pending_request(unanswered)
+            future = client.call_async(GetParameters.Request(names=list(GAINS)))
+            self._asking[servo] = future
+            future.add_done_callback(lambda done, servo=servo: self._on_gains(servo, done))
+
+    def _on_gains(self, servo: str, future: Any) -> None:
+        if self._asking.get(servo) is future:
+            del self._asking[servo]
+        values = future.result().values if future.result() is not None else []
+        if len(values) == len(GAINS) and all(v.type == ParameterType.PARAMETER_DOUBLE for v in values):
+            self._update_servo(servo, **{name: v.double_value for name, v in zip(GAINS, values, strict=True)})
 
     def _update_servo(self, servo: str, **values: Any) -> None:
         with self._lock:

@@ -24,6 +24,17 @@ const PLOTS = {
 };
 const HEIGHT = 190;
 
+// A y range at least `span` tall around the data, padded by 8 %: uPlot's own range for a flat line
+// (a servo at rest, effort 0) is 0..100, which hides the line on the axis.
+function rangeAtLeast(span) {
+  return (plot, min, max) => {
+    if (min === null || max === null) return [-span / 2, span / 2];
+    const centre = (min + max) / 2;
+    const half = Math.max(max - min, span) / 2 * 1.08;
+    return [centre - half, centre + half];
+  };
+}
+
 function makePlot(key, spec) {
   const target = document.getElementById(`plot-${key}`);
   const width = target.clientWidth || 400;
@@ -34,7 +45,8 @@ function makePlot(key, spec) {
     width,
     height: HEIGHT,
     // x: seconds before the newest sample, always the whole window
-    scales: { x: { time: false, range: [-WINDOW_SECONDS, 0] }, rad: { auto: true }, Nm: { auto: true } },
+    scales: { x: { time: false, range: [-WINDOW_SECONDS, 0] }, rad: { range: rangeAtLeast(0.5) },
+              Nm: { range: rangeAtLeast(0.5) } },
     series: [{ label: 't (s)' },
              ...spec.series.map((s) => ({ label: s.label, stroke: s.stroke, dash: s.dash, scale: s.scale,
                                           width: 1.5, spanGaps: true, points: { show: false } }))],
