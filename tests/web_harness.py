@@ -91,8 +91,10 @@ class BrowserPage:
         return path
 
 
-SAME_PICTURE_PIXELS = 0.01  # share of pixels that may differ visibly in "the same" picture (two runs
-# of the plots page: 0.4 %; its tilt axis from 0..100 to -0.2..0.2: 0.8 %, so OWL_SCREENSHOTS=always)
+# The share of pixels that may differ visibly in "the same" picture: two runs of robot_view.png (the
+# head following the IMU, the camera) differ in 1.9 %, of robot_view_plots.png in 0.4 %; a change
+# as small as a plot's axis labels (0.8 %) needs OWL_SCREENSHOTS=always.
+SAME_PICTURE_PIXELS = 0.03
 VISIBLE_DIFFERENCE = 48  # of 255 in any colour channel
 
 
