@@ -66,25 +66,27 @@ class RecordingLogger:
     def __getattr__(self, name: str) -> Any:
         return getattr(self._logger, name)
 
-    def _log(self, level: str, method: Callable[..., bool], message: Any, **kwargs: Any) -> bool:
-        logged = method(message, **kwargs)
+    # Each severity calls rclpy from a line of its own: rclpy keeps a context per calling line and
+    # refuses a second severity from the same line.
+    def _record(self, level: str, message: Any, logged: bool) -> bool:
         if logged:
             self._book.add(level, str(message))
         return logged
 
     def debug(self, message: Any, **kwargs: Any) -> bool:
-        return self._log('debug', self._logger.debug, message, **kwargs)
+        return self._record('debug', message, self._logger.debug(message, **kwargs))
 
     def info(self, message: Any, **kwargs: Any) -> bool:
-        return self._log('info', self._logger.info, message, **kwargs)
+        return self._record('info', message, self._logger.info(message, **kwargs))
 
     def warning(self, message: Any, **kwargs: Any) -> bool:
-        return self._log('warning', self._logger.warning, message, **kwargs)
+        return self._record('warning', message, self._logger.warning(message, **kwargs))
 
-    warn = warning
+    def warn(self, message: Any, **kwargs: Any) -> bool:
+        return self._record('warning', message, self._logger.warning(message, **kwargs))
 
     def error(self, message: Any, **kwargs: Any) -> bool:
-        return self._log('error', self._logger.error, message, **kwargs)
+        return self._record('error', message, self._logger.error(message, **kwargs))
 
     def fatal(self, message: Any, **kwargs: Any) -> bool:
-        return self._log('fatal', self._logger.fatal, message, **kwargs)
+        return self._record('fatal', message, self._logger.fatal(message, **kwargs))

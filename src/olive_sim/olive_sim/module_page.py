@@ -16,6 +16,7 @@ watches: each live channel has a thread only while a page subscribes to it.
 from __future__ import annotations
 
 import errno
+import os
 import shutil
 import threading
 import time
@@ -155,6 +156,7 @@ class ModulePage:
                 'Device Type': module.module_type,
                 'Namespace': module.namespace_name,
                 'Node': module.get_name(),
+                'Process ID': os.getpid(),  # the simulated module is this process; a restart keeps it
                 'Serial Number': module.serial,
                 'Firmware version': module.firmware,
                 'DCM version': module.firmware,

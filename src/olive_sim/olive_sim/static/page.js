@@ -230,7 +230,7 @@ function onOrientation(data) {
   for (const angle of ['roll', 'pitch', 'yaw']) {
     $(angle).textContent = `${(data[angle] * DEGREES).toFixed(1)}°`;
   }
-  if (view) {
+  if (view && view.imu) {  // the 3D view is ready
     const q = data.quaternion;
     view.imu.quaternion.set(q.x, q.y, q.z, q.w);
     view.render();
