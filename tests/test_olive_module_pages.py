@@ -270,6 +270,10 @@ def test_a_taken_address_and_a_bad_address_parameter_get_one_line(ros):
     assert bad.wait(timeout=60) == 2
     assert "error: parameter address: Network IP '10.42.0.300' is not an IPv4 address" in bad.output
     assert 'Traceback' not in bad.output
+    launch = ros.command(['ros2', 'launch', 'olive_sim', 'owl_kit.launch.py', 'web_port:=http'])
+    launch.wait(timeout=60)
+    assert "web_port must be a TCP port number 0..65535 (0: no pages), got 'http'" in launch.output
+    assert 'Traceback' not in launch.output and 'process started' not in launch.output
 
 
 # ---- helpers ---------------------------------------------------------------------------------------

@@ -11,6 +11,8 @@ from olive_sim.module_node import WEB_PORT
 
 def modules(context):
     port = LaunchConfiguration('web_port').perform(context)
+    if not port.isdigit() or int(port) > 65535:
+        raise ValueError(f"web_port must be a TCP port number 0..65535 (0: no pages), got '{port}'")
     nodes = [Node(package='olive_sim', executable=module.executable, output='screen',
                   parameters=[{**module.parameters, 'web_port': int(port)}])
              for module in OWL_KIT]
