@@ -25,11 +25,12 @@ PUBLISHED = {
 SUBSCRIBED = {'goal/position': 'std_msgs/msg/Float32', 'led': 'std_msgs/msg/Bool'}
 DEFAULTS = {
     'namespace': 'pan', 'control_mode': 'position', 'kp': 5.0, 'ki': 10.0, 'kd': 0.3,
-    'physics_rate': 1000.0, 'pid_rate': 500.0, 'joint_rate': 100.0, 'button_pressed': False, 'address': '10.42.0.7', 'web_port': 8042,
+    'physics_rate': 1000.0, 'pid_rate': 500.0, 'joint_rate': 100.0, 'button_pressed': False,
     'inertia': 0.02, 'stall_torque': 1.5, 'no_load_speed': 6.0, 'max_torque': 1.5,
     'viscous_friction': 0.01, 'coulomb_friction': 0.15, 'load_mass': 0.0, 'load_offset': 0.04,
     'min_position': -math.pi, 'max_position': math.pi, 'ambient_temperature': 25.0,
     'encoder_counts': 4096, 'use_sim_time': False, 'start_type_description_service': True,
+    'address': '10.42.0.7', 'web_port': 8042,
 }
 
 
