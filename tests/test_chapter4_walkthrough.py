@@ -11,7 +11,6 @@ the torque service after Ctrl-C keeps ROS up with SignalHandlerOptions.NO.
 
 import os
 import signal
-import subprocess
 import textwrap
 from pathlib import Path
 
@@ -20,6 +19,7 @@ from ros_harness import wait_for_messages, wait_until
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float32
 from turtlesim.msg import Pose
+from workspace import shell
 
 HEADLESS = {'DISPLAY': None, 'WAYLAND_DISPLAY': None}
 
@@ -255,14 +255,6 @@ PACKAGES = {
     'olive_camera': (['rclpy', 'sensor_msgs', 'cv_bridge'], ['python3-opencv'],
                      {'display_camera': DISPLAY_CAMERA}, {'robot_camera.launch.py': CAMERA_LAUNCH}),
 }
-
-
-def shell(workspace: Path, command: str, env: dict[str, str] | None = None,
-          timeout: float = 300) -> subprocess.CompletedProcess:
-    setup = workspace / 'install' / 'local_setup.bash'
-    script = (f'source {setup} && ' if setup.exists() else '') + command
-    return subprocess.run(['bash', '-c', script], capture_output=True, text=True, cwd=workspace,
-                          env=env, timeout=timeout, check=False)
 
 
 def write_package(src: Path, name: str) -> None:

@@ -4,9 +4,9 @@ import argparse
 import sys
 from typing import Any
 
-from ros2cli.verb import Verb, add_verbs, run_verb
+from ros2cli.command import VerbCommand
+from ros2cli.verb import VerbExtension
 
-DESCRIPTION = 'Various action related sub-commands'
 STATUS_NAMES = {0: 'UNKNOWN', 1: 'ACCEPTED', 2: 'EXECUTING', 3: 'CANCELING', 4: 'SUCCEEDED', 5: 'CANCELED',
                 6: 'ABORTED'}
 
@@ -21,8 +21,8 @@ def _action_argument(parser: argparse.ArgumentParser, help_text: str) -> None:
     parser.add_argument('action_name', help=help_text).completer = action_completer
 
 
-class ListVerb(Verb):
-    DESCRIPTION = 'Output a list of action names'
+class ListVerb(VerbExtension):
+    """Output a list of action names."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.node.strategy import add_strategy_arguments
@@ -32,7 +32,7 @@ class ListVerb(Verb):
                             help='Only display the number of actions discovered')
         add_strategy_arguments(parser)
 
-    def main(self, args: argparse.Namespace) -> int:
+    def main(self, *, args: argparse.Namespace) -> int:
         from ros2cli.graph_listing import print_listing
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
@@ -40,8 +40,8 @@ class ListVerb(Verb):
         return print_listing(actions, args.show_types, args.count_actions)
 
 
-class InfoVerb(Verb):
-    DESCRIPTION = 'Print information about an action'
+class InfoVerb(VerbExtension):
+    """Print information about an action."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.node.strategy import add_strategy_arguments
@@ -52,7 +52,7 @@ class InfoVerb(Verb):
                             'clients and action servers')
         add_strategy_arguments(parser)
 
-    def main(self, args: argparse.Namespace) -> int | str:
+    def main(self, *, args: argparse.Namespace) -> int | str:
         from ros2cli.names import did_you_mean, full_node_name
         from ros2cli.node.strategy import NodeStrategy
 
@@ -83,15 +83,15 @@ class InfoVerb(Verb):
         return 0
 
 
-class TypeVerb(Verb):
-    DESCRIPTION = 'Print a action\'s type'
+class TypeVerb(VerbExtension):
+    """Print a action's type."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.node.strategy import add_strategy_arguments
         _action_argument(parser, "Name of the ROS action to get type (e.g. '/fibonacci')")
         add_strategy_arguments(parser)
 
-    def main(self, args: argparse.Namespace) -> int:
+    def main(self, *, args: argparse.Namespace) -> int:
         from ros2cli.graph_listing import print_types
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
@@ -104,8 +104,8 @@ def indented_yaml(message: Any, first_line_indent: str) -> str:
     return first_line_indent + message_to_yaml(message)
 
 
-class SendGoalVerb(Verb):
-    DESCRIPTION = 'Send an action goal'
+class SendGoalVerb(VerbExtension):
+    """Send an action goal."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.command.topic_pub import add_values_arguments
@@ -117,7 +117,7 @@ class SendGoalVerb(Verb):
         parser.add_argument('-f', '--feedback', action='store_true',
                             help='Echo feedback messages for the goal')
 
-    def main(self, args: argparse.Namespace) -> int | str:
+    def main(self, *, args: argparse.Namespace) -> int | str:
         from ros2cli.command.topic_pub import read_values
         from ros2cli.interfaces import InvalidType, canonical_type, import_type
         from ros2cli.message_yaml import FieldError, fill_message
@@ -201,10 +201,7 @@ class SendGoalVerb(Verb):
             tear_down(node, client)
 
 
-def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:
-    add_verbs(parser, cli_name, {'info': InfoVerb, 'list': ListVerb,
-                                 'send_goal': SendGoalVerb, 'type': TypeVerb})
+class ActionCommand(VerbCommand):
+    """Various action related sub-commands."""
 
-
-def main(args: argparse.Namespace) -> Any:
-    return run_verb(args)
+    VERB_GROUP = 'ros2action.verb'

@@ -4,9 +4,9 @@ import argparse
 import sys
 from typing import Any
 
-from ros2cli.verb import Verb, add_verbs, run_verb
+from ros2cli.command import VerbCommand
+from ros2cli.verb import VerbExtension
 
-DESCRIPTION = 'Various param related sub-commands'
 SERVICE_TIMEOUT = 5.0
 TYPE_NAMES = {0: 'not set', 1: 'boolean', 2: 'integer', 3: 'double', 4: 'string', 5: 'byte array',
               6: 'boolean array', 7: 'integer array', 8: 'double array', 9: 'string array'}
@@ -130,8 +130,8 @@ def _add_common(parser: argparse.ArgumentParser, node_required: bool = True, tim
     add_strategy_arguments(parser)
 
 
-class ListVerb(Verb):
-    DESCRIPTION = 'Output a list of available parameters'
+class ListVerb(VerbExtension):
+    """Output a list of available parameters."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         _add_common(parser, node_required=False, timeout=False)
@@ -141,7 +141,7 @@ class ListVerb(Verb):
                             help='Print parameter types with parameter names')
         parser.add_argument('--filter', metavar='REGEX', help='Only list parameters matching this regex')
 
-    def main(self, args: argparse.Namespace) -> int | str:
+    def main(self, *, args: argparse.Namespace) -> int | str:
         import re
 
         from ros2cli.command.node import node_names
@@ -181,15 +181,15 @@ class ListVerb(Verb):
             print(f'  {name} (type: {TYPE_NAMES[types[name]]})' if args.param_type else f'  {name}')
 
 
-class GetVerb(Verb):
-    DESCRIPTION = 'Get parameter'
+class GetVerb(VerbExtension):
+    """Get parameter."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         _add_common(parser)
         parser.add_argument('parameter_name', help='Name of the parameter')
         parser.add_argument('--hide-type', action='store_true', help='Hide the type information')
 
-    def main(self, args: argparse.Namespace) -> int | str:
+    def main(self, *, args: argparse.Namespace) -> int | str:
         with ParameterSession(args, args.node_name) as session:
             values = session.values([args.parameter_name])
             if not values:
@@ -231,15 +231,15 @@ def failure_reason(reason: str, name: str, session: ParameterSession) -> str:
     return reason or 'no reason given'
 
 
-class SetVerb(Verb):
-    DESCRIPTION = 'Set parameter'
+class SetVerb(VerbExtension):
+    """Set parameter."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         _add_common(parser)
         parser.add_argument('parameter_name', help='Name of the parameter')
         parser.add_argument('value', help='Value of the parameter')
 
-    def main(self, args: argparse.Namespace) -> int:
+    def main(self, *, args: argparse.Namespace) -> int:
         from rclpy.parameter import get_parameter_value
         with ParameterSession(args, args.node_name) as session:
             _set_one(args, session, get_parameter_value(args.value),
@@ -247,14 +247,14 @@ class SetVerb(Verb):
         return 0
 
 
-class DeleteVerb(Verb):
-    DESCRIPTION = 'Delete parameter'
+class DeleteVerb(VerbExtension):
+    """Delete parameter."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         _add_common(parser)
         parser.add_argument('parameter_name', help='Name of the parameter')
 
-    def main(self, args: argparse.Namespace) -> int:
+    def main(self, *, args: argparse.Namespace) -> int:
         from rcl_interfaces.msg import ParameterValue
         with ParameterSession(args, args.node_name) as session:
             _set_one(args, session, ParameterValue(type=0),
@@ -262,14 +262,14 @@ class DeleteVerb(Verb):
         return 0
 
 
-class DescribeVerb(Verb):
-    DESCRIPTION = 'Show descriptive information about declared parameters'
+class DescribeVerb(VerbExtension):
+    """Show descriptive information about declared parameters."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         _add_common(parser)
         parser.add_argument('parameter_names', nargs='+', help='Names of the parameters')
 
-    def main(self, args: argparse.Namespace) -> int:
+    def main(self, *, args: argparse.Namespace) -> int:
         with ParameterSession(args, args.node_name) as session:
             # One request per name: a node answers nothing at all when any name is undeclared.
             descriptors, hints = [], {}
@@ -311,13 +311,13 @@ def nested_parameters(names: list[str], values: list[Any]) -> dict[str, Any]:
     return tree
 
 
-class DumpVerb(Verb):
-    DESCRIPTION = 'Show all of the parameters of a node in a YAML file format'
+class DumpVerb(VerbExtension):
+    """Show all of the parameters of a node in a YAML file format."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         _add_common(parser)
 
-    def main(self, args: argparse.Namespace) -> int:
+    def main(self, *, args: argparse.Namespace) -> int:
         import yaml
         with ParameterSession(args, args.node_name) as session:
             names = session.names()
@@ -390,8 +390,8 @@ def read_parameter_file(path: str) -> Any:
         raise RuntimeError(f"'{path}': {str(error).split(': ' + repr(text))[0]}") from None
 
 
-class LoadVerb(Verb):
-    DESCRIPTION = 'Load parameter file for a node'
+class LoadVerb(VerbExtension):
+    """Load parameter file for a node."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         _add_common(parser)
@@ -399,7 +399,7 @@ class LoadVerb(Verb):
         parser.add_argument('--no-use-wildcard', action='store_true',
                             help="Do not load parameters in the '/**' namespace into the node")
 
-    def main(self, args: argparse.Namespace) -> int:
+    def main(self, *, args: argparse.Namespace) -> int:
         parameters = parameters_for_node(read_parameter_file(args.parameter_file), full_name(args.node_name),
                                          not args.no_use_wildcard)
         with ParameterSession(args, args.node_name) as session:
@@ -413,11 +413,7 @@ class LoadVerb(Verb):
         return 0
 
 
-def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:
-    add_verbs(parser, cli_name, {
-        'delete': DeleteVerb, 'describe': DescribeVerb, 'dump': DumpVerb, 'get': GetVerb, 'list': ListVerb,
-        'load': LoadVerb, 'set': SetVerb})
+class ParamCommand(VerbCommand):
+    """Various param related sub-commands."""
 
-
-def main(args: argparse.Namespace) -> Any:
-    return run_verb(args)
+    VERB_GROUP = 'ros2param.verb'

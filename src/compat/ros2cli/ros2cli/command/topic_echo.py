@@ -5,7 +5,7 @@ import sys
 from typing import Any
 
 from ros2cli.command.topic import _topic_argument, _type_argument, topic_types
-from ros2cli.verb import Verb
+from ros2cli.verb import VerbExtension
 
 RECEIVE_DEPTH = 1000
 # What upstream (Jazzy) shows of a message's receive information (printed with sorted keys).
@@ -125,8 +125,8 @@ class MessagePrinter:
         return message_to_yaml(value, self.truncate, args.no_arr, args.no_str, args.flow_style) + '---'
 
 
-class EchoVerb(Verb):
-    DESCRIPTION = 'Output messages from a topic'
+class EchoVerb(VerbExtension):
+    """Output messages from a topic."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.node.strategy import add_strategy_arguments
@@ -148,7 +148,7 @@ class EchoVerb(Verb):
         parser.add_argument('--include-message-info', '-i', action='store_true',
                             help='Shows the associated message info.')
 
-    def main(self, args: argparse.Namespace) -> int | str:
+    def main(self, *, args: argparse.Namespace) -> int | str:
         from ros2cli.interfaces import InvalidType, import_type
         from ros2cli.names import expand_topic_name
         from ros2cli.node.direct import NAMED_LOOKUP_GRACE, DirectNode

@@ -7,7 +7,7 @@ from typing import Any
 
 from ros2cli.command.topic import _topic_argument, _type_argument
 from ros2cli.command.topic_echo import positive_float
-from ros2cli.verb import Verb
+from ros2cli.verb import VerbExtension
 
 # A subscriber that our writer has matched may not yet have matched our writer (each side learns of
 # the other from its own discovery message) and drops what it receives until it has; a pause after
@@ -40,8 +40,8 @@ def add_values_arguments(parser: argparse.ArgumentParser, what: str, example: st
     group.add_argument('--stdin', action='store_true', help=f'Read {what} values from stdin.')
 
 
-class PubVerb(Verb):
-    DESCRIPTION = 'Publish a message to a topic'
+class PubVerb(VerbExtension):
+    """Publish a message to a topic."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.node.direct import add_direct_node_arguments
@@ -70,7 +70,7 @@ class PubVerb(Verb):
         add_qos_arguments(parser, 'publish', 'default')
         add_direct_node_arguments(parser)
 
-    def main(self, args: argparse.Namespace) -> int | str:
+    def main(self, *, args: argparse.Namespace) -> int | str:
         from ros2cli.interfaces import InvalidType, import_type
         from ros2cli.message_yaml import FieldError, fill_message
         from ros2cli.names import expand_topic_name
