@@ -53,7 +53,9 @@ class InfoVerb(VerbExtension):
         add_strategy_arguments(parser)
 
     def main(self, *, args: argparse.Namespace) -> int | str:
-        from ros2cli.names import did_you_mean, full_node_name
+        from rosidl_runtime_py.graph import full_node_name
+        from rosidl_runtime_py.hints import did_you_mean
+
         from ros2cli.node.strategy import NodeStrategy
 
         if not args.action_name.startswith('/') or args.action_name.endswith('/') or '//' in args.action_name:
@@ -100,7 +102,7 @@ class TypeVerb(VerbExtension):
 
 def indented_yaml(message: Any, first_line_indent: str) -> str:
     """Upstream's shape: the indent before the first YAML line only."""
-    from ros2cli.message_yaml import message_to_yaml
+    from rosidl_runtime_py.convert import message_to_yaml
     return first_line_indent + message_to_yaml(message)
 
 
@@ -118,9 +120,10 @@ class SendGoalVerb(VerbExtension):
                             help='Echo feedback messages for the goal')
 
     def main(self, *, args: argparse.Namespace) -> int | str:
+        from rosidl_runtime_py.set_message import FieldError, set_message_fields
+        from rosidl_runtime_py.utilities import InvalidType, canonical_type, import_type
+
         from ros2cli.command.topic_pub import read_values
-        from ros2cli.interfaces import InvalidType, canonical_type, import_type
-        from ros2cli.message_yaml import FieldError, fill_message
 
         try:
             action_class = import_type(args.action_type, 'action')
@@ -128,7 +131,8 @@ class SendGoalVerb(VerbExtension):
             return f'The passed action type is invalid: {error}'
         values = read_values(args, 'message fields')
         try:
-            goal = fill_message(action_class.Goal(), values)
+            goal = action_class.Goal()
+            set_message_fields(goal, values)
         except FieldError as error:
             return f'Failed to populate message fields: {error}'
         node_name = '_ros2cli_send_goal_' + canonical_type(args.action_type, 'action').replace('/', '_')
@@ -138,9 +142,10 @@ class SendGoalVerb(VerbExtension):
         import rclpy
         from rclpy.action import ActionClient, get_action_names_and_types
         from rclpy.node import Node
+        from rosidl_runtime_py.convert import message_to_yaml
+        from rosidl_runtime_py.graph import expand_topic_name
 
-        from ros2cli.message_yaml import message_to_yaml
-        from ros2cli.names import WaitingHint, expand_topic_name
+        from ros2cli.names import WaitingHint
         from ros2cli.node.direct import NAMED_LOOKUP_GRACE, tear_down
 
         rclpy.init(args=[])

@@ -27,8 +27,8 @@ def _wanted_kinds(args: argparse.Namespace) -> list[str]:
 
 
 def _unknown_package(package: str) -> str:
-    from ros2cli.interfaces import interface_index
-    from ros2cli.names import did_you_mean
+    from rosidl_runtime_py.get_interfaces import interface_index
+    from rosidl_runtime_py.hints import did_you_mean
     return f"Unknown package '{package}'{did_you_mean(package, interface_index())}"
 
 
@@ -69,8 +69,8 @@ def definition_lines(package: str, kind: str, name: str) -> list[str]:
         with open(path, encoding='utf-8') as definition:
             return definition.read().splitlines()
     except OSError:
-        from ros2cli.interfaces import interface_index
-        from ros2cli.names import did_you_mean
+        from rosidl_runtime_py.get_interfaces import interface_index
+        from rosidl_runtime_py.hints import did_you_mean
         known = interface_index().get(package, {}).get(kind, [])
         idl = os.path.join(share, kind, f'{name}.idl')
         raise RuntimeError(f"Could not find the interface '{idl}'{did_you_mean(name, known)}") from None
@@ -140,7 +140,7 @@ class ListVerb(VerbExtension):
         _add_kind_filters(parser)
 
     def main(self, *, args: argparse.Namespace) -> int:
-        from ros2cli.interfaces import interface_index
+        from rosidl_runtime_py.get_interfaces import interface_index
         index = interface_index()
         wanted = _wanted_kinds(args)
         for kind, title in SECTION_TITLES:
@@ -161,7 +161,7 @@ class PackageVerb(VerbExtension):
         _add_kind_filters(parser)
 
     def main(self, *, args: argparse.Namespace) -> int | str:
-        from ros2cli.interfaces import interface_index
+        from rosidl_runtime_py.get_interfaces import interface_index
         index = interface_index()
         if args.package_name not in index:
             return _unknown_package(args.package_name)
@@ -178,7 +178,7 @@ class PackagesVerb(VerbExtension):
         _add_kind_filters(parser)
 
     def main(self, *, args: argparse.Namespace) -> int:
-        from ros2cli.interfaces import interface_index
+        from rosidl_runtime_py.get_interfaces import interface_index
         wanted = _wanted_kinds(args)
         for package, kinds in sorted(interface_index().items()):
             if any(kinds[kind] for kind in wanted):
@@ -188,7 +188,7 @@ class PackagesVerb(VerbExtension):
 
 def default_instance(type_name: str) -> Any:
     """A default message, service request or action goal for an interface name."""
-    from ros2cli.interfaces import InvalidType, import_type
+    from rosidl_runtime_py.utilities import InvalidType, import_type
     parts = type_name.split('/')
     kind = parts[1] if len(parts) == 3 else 'msg'
     if kind not in ('msg', 'srv', 'action'):
@@ -212,7 +212,7 @@ class ProtoVerb(VerbExtension):
         parser.add_argument('--no-quotes', action='store_true', help='if true output has no outer quotes.')
 
     def main(self, *, args: argparse.Namespace) -> int:
-        from ros2cli.message_yaml import message_to_yaml
+        from rosidl_runtime_py.convert import message_to_yaml
         text = message_to_yaml(default_instance(args.type))
         print(text if args.no_quotes else f'"{text}"')
         return 0

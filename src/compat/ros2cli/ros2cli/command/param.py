@@ -19,22 +19,10 @@ def full_name(node_name: str) -> str:
     return node_name if node_name.startswith('/') else '/' + node_name
 
 
-VALUE_FIELDS = {1: 'bool_value', 2: 'integer_value', 3: 'double_value', 4: 'string_value',
-                5: 'byte_array_value', 6: 'bool_array_value', 7: 'integer_array_value',
-                8: 'double_array_value', 9: 'string_array_value'}
-
-
-def python_value(value: Any) -> Any:
-    """A ParameterValue as a plain Python value (arrays as lists, not set as None)."""
-    if value.type not in VALUE_FIELDS:
-        return None
-    result = getattr(value, VALUE_FIELDS[value.type])
-    return list(result) if value.type >= 5 else result
-
-
 def value_text(value: Any) -> str:
     """What `param get` prints after the label (Python's str of the value)."""
-    return str(python_value(value))
+    from rclpy.parameter import parameter_value_to_python
+    return str(parameter_value_to_python(value))
 
 
 class ParameterSession:
@@ -53,8 +41,9 @@ class ParameterSession:
         self._caller: Any = None
 
     def __enter__(self) -> 'ParameterSession':
+        from rosidl_runtime_py.hints import did_you_mean
+
         from ros2cli.command.node import node_names
-        from ros2cli.names import did_you_mean
         from ros2cli.node.direct import NAMED_LOOKUP_GRACE
         from ros2cli.node.strategy import NodeStrategy
         from ros2cli.service_call import DaemonServiceCaller, ServiceCaller
@@ -106,7 +95,7 @@ class ParameterSession:
 
     def unknown(self, name: str) -> str:
         """' (did you mean ...)' for an undeclared parameter name."""
-        from ros2cli.names import did_you_mean
+        from rosidl_runtime_py.hints import did_you_mean
         return did_you_mean(name, self.names())
 
     def close(self) -> None:
@@ -301,13 +290,14 @@ class DescribeVerb(VerbExtension):
 
 def nested_parameters(names: list[str], values: list[Any]) -> dict[str, Any]:
     """{'a.b': 1} -> {'a': {'b': 1}}, the shape of a parameter file."""
+    from rclpy.parameter import parameter_value_to_python
     tree: dict[str, Any] = {}
     for name, value in zip(names, values, strict=True):
         *path, leaf = name.split('.')
         branch = tree
         for part in path:
             branch = branch.setdefault(part, {})
-        branch[leaf] = python_value(value)
+        branch[leaf] = parameter_value_to_python(value)
     return tree
 
 
@@ -327,56 +317,34 @@ class DumpVerb(VerbExtension):
         return 0
 
 
-def parameters_for_node(document: Any, node_name: str, use_wildcard: bool) -> list[Any]:
+def parameters_for_node(path: str, node_name: str, use_wildcard: bool) -> list[Any]:
     """The Parameter messages a parameter file holds for one node: the '/**' entry (when used) first,
-    then the node's own entry, which overrides it. RuntimeError with one line when nothing fits.
+    then the node's own entry, which overrides it (rclpy's parameter_dict_from_yaml_file reads
+    them). RuntimeError with one line when the file cannot be read or nothing in it fits.
     """
-    from rclpy.parameter import Parameter
+    from rclpy.parameter import parameter_dict_from_yaml_file
+    from rosidl_runtime_py.hints import did_you_mean
 
-    from ros2cli.names import did_you_mean
-
+    document = read_parameter_file(path)  # its YAML errors and shape, said in one line
     if not isinstance(document, dict):
         raise RuntimeError('the file is not a ROS parameter file (expected '
                            "'<node>: ros__parameters: ...' as written by `ros2 param dump`)")
     namespace, _, base = node_name.rpartition('/')
     keys = (['/**'] if use_wildcard else []) + [node_name] + ([base] if not namespace else [])
-    values: dict[str, Any] = {}
-    for key in keys:
-        entry = document.get(key)
-        if entry is None:
-            continue
-        if not isinstance(entry, dict) or not isinstance(entry.get('ros__parameters'), dict):
-            raise RuntimeError(f"the entry '{key}' of the file has no 'ros__parameters' mapping")
-        values.update(flatten(entry['ros__parameters']))
-    if not values:
+    present = [key for key in dict.fromkeys(keys) if key in document]
+    if not present:
         nodes = [str(k) for k in document]
         raise RuntimeError(f'Param file does not contain selected parameters: nothing for {node_name}'
                            f"{did_you_mean(node_name, nodes)}; it has: {', '.join(nodes) or 'no nodes'}")
-    parameters = []
-    for name, value in values.items():
-        try:
-            parameters.append(Parameter(name, value=value).to_parameter_msg())
-        except (TypeError, ValueError):
-            raise RuntimeError(f"parameter '{name}' has a value of no parameter type: {value!r} "
-                               '(lists must hold values of one type)') from None
-    return parameters
-
-
-def flatten(tree: dict[str, Any], prefix: str = '') -> dict[str, Any]:
-    """{'a': {'b': 1}} -> {'a.b': 1}."""
-    flat: dict[str, Any] = {}
-    for key, value in tree.items():
-        name = f'{prefix}{key}'
-        if isinstance(value, dict):
-            flat.update(flatten(value, name + '.'))
-        else:
-            flat[name] = value
-    return flat
+    try:
+        return list(parameter_dict_from_yaml_file(path, target_nodes=present).values())
+    except (TypeError, ValueError) as error:  # a value rclpy cannot make a parameter of
+        raise RuntimeError(f"'{path}': {' '.join(str(error).split())}") from None
 
 
 def read_parameter_file(path: str) -> Any:
     """The parsed YAML of a parameter file; RuntimeError with one line when it cannot be read."""
-    from ros2cli.message_yaml import FieldError, parse_yaml
+    from rosidl_runtime_py.set_message import FieldError, parse_yaml
     try:
         with open(path, encoding='utf-8') as parameter_file:
             text = parameter_file.read()
@@ -400,7 +368,7 @@ class LoadVerb(VerbExtension):
                             help="Do not load parameters in the '/**' namespace into the node")
 
     def main(self, *, args: argparse.Namespace) -> int:
-        parameters = parameters_for_node(read_parameter_file(args.parameter_file), full_name(args.node_name),
+        parameters = parameters_for_node(args.parameter_file, full_name(args.node_name),
                                          not args.no_use_wildcard)
         with ParameterSession(args, args.node_name) as session:
             results = session.set(parameters)

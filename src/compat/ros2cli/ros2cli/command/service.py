@@ -19,7 +19,7 @@ def _add_hidden_argument(parser: argparse.ArgumentParser) -> None:
 
 
 def visible_services(graph: Any, include_hidden: bool) -> list[list[Any]]:
-    from ros2cli.names import is_hidden_name
+    from rosidl_runtime_py.graph import is_hidden_name
     return [[name, types] for name, types in graph.service_names_and_types()
             if include_hidden or not is_hidden_name(name)]
 
@@ -101,11 +101,11 @@ class CallVerb(VerbExtension):
     def main(self, *, args: argparse.Namespace) -> int | str:
         import rclpy
         from rclpy.node import Node
+        from rosidl_runtime_py.graph import expand_topic_name
+        from rosidl_runtime_py.set_message import FieldError, set_message_fields
+        from rosidl_runtime_py.utilities import InvalidType, import_type, split_type
 
         from ros2cli.command.topic_pub import read_values
-        from ros2cli.interfaces import InvalidType, import_type, split_type
-        from ros2cli.message_yaml import FieldError, fill_message
-        from ros2cli.names import expand_topic_name
         from ros2cli.node.direct import tear_down
 
         if args.rate is not None and args.rate <= 0:
@@ -116,7 +116,8 @@ class CallVerb(VerbExtension):
             return f'The passed service type is invalid: {error}'
         values = read_values(args, 'field')
         try:
-            request = fill_message(service_class.Request(), values)
+            request = service_class.Request()
+            set_message_fields(request, values)
         except FieldError as error:
             return f'Failed to populate field: {error}'
         package, _, name = split_type(args.service_type, 'srv')

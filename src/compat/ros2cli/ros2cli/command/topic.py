@@ -17,7 +17,7 @@ def _add_hidden_argument(parser: argparse.ArgumentParser) -> None:
 
 
 def visible_topics(graph: Any, include_hidden: bool) -> list[list[Any]]:
-    from ros2cli.names import is_hidden_name
+    from rosidl_runtime_py.graph import is_hidden_name
     return [[name, types] for name, types in graph.topic_names_and_types()
             if include_hidden or not is_hidden_name(name)]
 
@@ -40,7 +40,7 @@ def topic_types(graph: Any, topic: str) -> list[str] | None:
 
 
 def unknown_topic(graph: Any, topic: str) -> str:
-    from ros2cli.names import did_you_mean
+    from rosidl_runtime_py.hints import did_you_mean
     return f"Unknown topic '{topic}'{did_you_mean(topic, [n for n, _ in graph.topic_names_and_types()])}"
 
 

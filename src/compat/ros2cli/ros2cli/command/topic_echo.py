@@ -114,15 +114,18 @@ class MessagePrinter:
         return value
 
     def format(self, message: Any) -> str:
-        from ros2cli.message_yaml import is_message, message_to_csv, message_to_yaml
+        from rosidl_runtime_py.convert import message_to_csv, message_to_yaml
+        from rosidl_runtime_py.utilities import is_message
 
         value = self.select(message)
         args = self.args
         if not is_message(value):
             return f'{value}\n---' if not args.csv else str(value)
         if args.csv:
-            return message_to_csv(value, self.truncate, args.no_arr, args.no_str)
-        return message_to_yaml(value, self.truncate, args.no_arr, args.no_str, args.flow_style) + '---'
+            return message_to_csv(value, truncate_length=self.truncate, no_arr=args.no_arr,
+                                  no_str=args.no_str)
+        return message_to_yaml(value, truncate_length=self.truncate, no_arr=args.no_arr, no_str=args.no_str,
+                               flow_style=args.flow_style) + '---'
 
 
 class EchoVerb(VerbExtension):
@@ -149,8 +152,9 @@ class EchoVerb(VerbExtension):
                             help='Shows the associated message info.')
 
     def main(self, *, args: argparse.Namespace) -> int | str:
-        from ros2cli.interfaces import InvalidType, import_type
-        from ros2cli.names import expand_topic_name
+        from rosidl_runtime_py.graph import expand_topic_name
+        from rosidl_runtime_py.utilities import InvalidType, import_type
+
         from ros2cli.node.direct import NAMED_LOOKUP_GRACE, DirectNode
 
         printer = MessagePrinter(args)
@@ -201,7 +205,7 @@ class EchoVerb(VerbExtension):
                         return
                     text = printer.format(message)
                 if args.include_message_info and info is not None:
-                    from ros2cli.message_yaml import dump_yaml
+                    from rosidl_runtime_py.convert import dump_yaml
                     details = {key: info[key] for key in MESSAGE_INFO_KEYS if key in info}
                     text = (','.join(str(v) for v in details.values()) + ',' + text if args.csv
                             else dump_yaml(details) + '---\n' + text)

@@ -83,9 +83,9 @@ class HzVerb(VerbExtension):
     def main(self, *, args: argparse.Namespace) -> int | str:
         from rclpy.clock import Clock, ClockType
         from rclpy.executors import SingleThreadedExecutor
+        from rosidl_runtime_py.graph import expand_topic_name
+        from rosidl_runtime_py.utilities import InvalidType, import_type
 
-        from ros2cli.interfaces import InvalidType, import_type
-        from ros2cli.names import expand_topic_name
         from ros2cli.node.direct import DirectNode
 
         topic = expand_topic_name(args.topic_name)

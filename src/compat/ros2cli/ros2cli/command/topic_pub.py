@@ -24,7 +24,7 @@ def nonnegative_int(text: str) -> int:
 
 def read_values(args: argparse.Namespace, kind: str) -> Any:
     """The YAML values of the positional argument or --stdin, parsed; RuntimeError when malformed."""
-    from ros2cli.message_yaml import FieldError, parse_yaml
+    from rosidl_runtime_py.set_message import FieldError, parse_yaml
     text = sys.stdin.read() if getattr(args, 'stdin', False) else (args.values or '{}')
     try:
         return parse_yaml(text)
@@ -71,9 +71,10 @@ class PubVerb(VerbExtension):
         add_direct_node_arguments(parser)
 
     def main(self, *, args: argparse.Namespace) -> int | str:
-        from ros2cli.interfaces import InvalidType, import_type
-        from ros2cli.message_yaml import FieldError, fill_message
-        from ros2cli.names import expand_topic_name
+        from rosidl_runtime_py.graph import expand_topic_name
+        from rosidl_runtime_py.set_message import FieldError, set_message_fields
+        from rosidl_runtime_py.utilities import InvalidType, import_type
+
         from ros2cli.node.direct import DirectNode
         from ros2cli.qos import profile_from_args
 
@@ -91,9 +92,10 @@ class PubVerb(VerbExtension):
         values = read_values(args, 'field')
         if not isinstance(values, dict) and values is not None:
             return 'The passed value needs to be a dictionary in YAML format'
-        stamps: list[Any] = []
+        message = message_class()
         try:
-            message = fill_message(message_class(), values, stamps)
+            # `header: auto` and `stamp: now` are filled in before each publish.
+            stamps = set_message_fields(message, values, expand_header_auto=True, expand_time_now=True)
         except FieldError as error:
             return f'Failed to populate field: {error}'
 
