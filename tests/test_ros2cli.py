@@ -88,16 +88,18 @@ def cli(ros):
 def test_help_at_every_level(graph):
     top = ros2(graph, '-h')
     assert top.returncode == 0 and 'ros2 is an extensible command-line tool for ROS 2.' in top.stdout
-    assert top.stdout.endswith('Commands:\n  action     Various action related sub-commands\n'
-                               '  daemon     Various daemon related sub-commands\n'
-                               '  interface  Show information about ROS interfaces\n'
-                               '  launch     Run a launch file\n'
-                               '  node       Various node related sub-commands\n'
-                               '  param      Various param related sub-commands\n'
-                               '  pkg        Various package related sub-commands\n'
-                               '  run        Run a package specific executable\n'
-                               '  service    Various service related sub-commands\n'
-                               '  topic      Various topic related sub-commands\n\n'
+    assert top.stdout.endswith('Commands:\n  action            Various action related sub-commands\n'
+                               '  daemon            Various daemon related sub-commands\n'
+                               '  extension_points  List extension points\n'
+                               '  extensions        List extensions\n'
+                               '  interface         Show information about ROS interfaces\n'
+                               '  launch            Run a launch file\n'
+                               '  node              Various node related sub-commands\n'
+                               '  param             Various param related sub-commands\n'
+                               '  pkg               Various package related sub-commands\n'
+                               '  run               Run a package specific executable\n'
+                               '  service           Various service related sub-commands\n'
+                               '  topic             Various topic related sub-commands\n\n'
                                '  Call `ros2 <command> -h` for more detailed usage.\n')
     bare = ros2(graph)
     assert bare.returncode == 0 and bare.stdout == top.stdout

@@ -27,6 +27,8 @@ setup(
         'ros2cli.command': [
             'action = ros2cli.command.action:ActionCommand',
             'daemon = ros2cli.command.daemon:DaemonCommand',
+            'extension_points = ros2cli.command.extensions:ExtensionPointsCommand',
+            'extensions = ros2cli.command.extensions:ExtensionsCommand',
             'interface = ros2cli.command.interface:InterfaceCommand',
             'node = ros2cli.command.node:NodeCommand',
             'param = ros2cli.command.param:ParamCommand',

@@ -16,7 +16,7 @@ from ros2cli.plugin_system import PLUGIN_SYSTEM_VERSION, instantiate_extensions,
 
 
 class VerbExtension:
-    """The base class of verbs."""
+    """The extension point for a command's verbs (the base class of a verb)."""
 
     NAME: str | None = None
     EXTENSION_POINT_VERSION = '0.1'

@@ -23,7 +23,7 @@ ARGV: list[str] | None = None
 
 
 class CommandExtension:
-    """The base class of `ros2` commands."""
+    """The extension point for `ros2` commands (the base class of a command)."""
 
     NAME: str | None = None
     EXTENSION_POINT_VERSION = '0.1'
