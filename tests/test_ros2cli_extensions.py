@@ -82,7 +82,8 @@ def test_ros2_extensions_lists_them_and_says_why_one_fails(workspace):
     quiet = shell(workspace, 'ros2 extensions')
     assert quiet.returncode == 0 and len(warnings(quiet)) == 1 and '  broken' not in quiet.stdout
     points = shell(workspace, 'ros2 extension_points')
-    assert 'ros2hello.verb: The extension point for a command\'s verbs' in points.stdout.splitlines()
+    assert "ros2hello.verb: The extension point for a command's verbs (the base class of a verb)" \
+        in points.stdout.splitlines()
     wrong = shell(workspace, 'ros2 extensions --nope')
     assert wrong.returncode == 2 and 'unrecognized arguments: --nope' in wrong.stderr
 
