@@ -35,10 +35,13 @@ It has two jobs; neither changes a line of the program that imports the library.
    which stops the wheel's Qt from printing "QFontDatabase: Cannot find font directory" ten times
    per window.
 
-The seam (for a browser view of these windows): OWL_WINDOWS_DIR
----------------------------------------------------------------
-With OWL_WINDOWS_DIR=<dir> in the environment, headless windows also write what they show to
-files there and read key events from a file there. Nothing happens with a display.
+The seam (the browser view of these windows, `owl windows`): OWL_WINDOWS_DIR
+-----------------------------------------------------------------------------
+Headless windows also write what they show to files in a folder and read key events from a file
+there; `owl windows` serves them as a page (http://127.0.0.1:8092/). The folder is
+OWL_WINDOWS_DIR; unset, it is the user's own <tmp>/owl-windows-<uid> (made private, 0700), the
+one `owl windows` shows by default; set and empty, nothing is written. Nothing happens with a
+display.
 
   <dir>/<program>-<pid>/    one folder per process, made at its first window; removed when the
                             process exits normally. <program> is its script's name without .py
@@ -84,6 +87,7 @@ APT_HINT = "'sudo apt install libgl1 libglib2.0-0'"
 FONT_DIR = '/usr/share/fonts'
 DEFAULT_FPS = 10.0
 RQT_HINT = 'To see the camera, run rqt and open Plugins > Visualization > Image View'
+WINDOWS_HINT = "To see it in a browser, run 'owl windows'"
 SERVO_HINT = ('To move the servos without keys: stop it, call /olive/servo/pan/setTorqueEnable and '
               'publish goals on /olive/servo/pan/goal/position (and tilt) with rqt or '
               'ros2 service call / ros2 topic pub')
@@ -279,18 +283,42 @@ def program_name(argv: list[str]) -> str:
 
 def cv2_notice(program: str, reason: str, window: str, windows_dir: str | None) -> str:
     line = (f"{program}: no display ({reason}), so the window {window!r} is not shown; the program "
-            f'runs on without it. {RQT_HINT}')
+            'runs on without it. ')
     if windows_dir:
-        line += f' (its frames go to {windows_dir})'
-    return line
+        return line + f'{WINDOWS_HINT} (its frames go to {windows_dir})'
+    return line + RQT_HINT
 
 
 def pygame_notice(program: str, reason: str, windows_dir: str | None) -> str:
     line = (f'{program}: no display ({reason}), so the pygame window is not shown and gets no key '
-            f'presses; the program runs on without them. {SERVO_HINT}')
+            'presses; the program runs on without them. ')
     if windows_dir:
-        line += f"; or append key events to {os.path.join(windows_dir, 'keys')} ('down left', 'up left')"
-    return line
+        return line + ("To see it and press its keys in a browser, run 'owl windows'; or append key "
+                       f"events to {os.path.join(windows_dir, 'keys')} ('down left', 'up left')")
+    return line + SERVO_HINT
+
+
+def default_windows_dir() -> str:
+    """The user's own folder of headless windows, the one `owl windows` shows by default."""
+    import tempfile
+
+    return os.path.join(tempfile.gettempdir(), f'owl-windows-{os.getuid()}')
+
+
+def windows_root(environ: dict[str, str]) -> str | None:
+    """Where headless windows are written: OWL_WINDOWS_DIR; unset, the default; empty, nowhere."""
+    root = environ.get('OWL_WINDOWS_DIR')
+    if root is None:
+        return default_windows_dir()
+    return root or None
+
+
+def private_root(root: str) -> None:
+    """Make the windows folder's root, only the user's (0700); OSError if it is someone else's: another
+    user could otherwise watch these windows or press their keys."""
+    os.makedirs(root, mode=0o700, exist_ok=True)
+    if os.stat(root).st_uid != os.getuid():
+        raise PermissionError(13, 'it belongs to another user')
 
 
 def window_file(kind: str, name: str) -> str:
@@ -367,6 +395,7 @@ class WindowsFolder:
     def __init__(self, root: str, program: str, fps: float) -> None:
         from urllib.parse import quote
 
+        self.root = root
         self.path = os.path.join(root, f"{quote(program, safe='')}-{os.getpid()}")
         self.period = 1.0 / fps
         self.last_write: dict[str, float] = {}
@@ -381,6 +410,7 @@ class WindowsFolder:
         import atexit
 
         try:
+            private_root(self.root)
             os.makedirs(self.path, exist_ok=True)
             with open(os.path.join(self.path, 'keys'), 'ab'):
                 pass
@@ -504,7 +534,7 @@ class Seam:
             SETTINGS_CHECKED.append(True)  # once per process, for cv2 and pygame together
             for problem in setting_problems(os.environ):
                 say(f'owl_gui_hook: {problem}')
-        root = os.environ.get('OWL_WINDOWS_DIR')
+        root = windows_root(dict(os.environ))
         self.folder = WindowsFolder(root, self.program, windows_fps(os.environ)) if root else None
         self.library = library
         self.noticed = False

@@ -18,6 +18,7 @@ import pytest
 from ros_harness import wait_for_messages, wait_until
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float32
+from student_workspace import shell
 from turtlesim.msg import Pose
 from workspace import shell
 

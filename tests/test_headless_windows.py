@@ -6,6 +6,7 @@ of scripts/owl_gui_hook.py). Under Xvfb the same programs open real windows and 
 of the way. tests/student_scripts/ holds the programs, written as the course writes them.
 """
 
+import os
 import re
 import sys
 import time
@@ -18,13 +19,10 @@ from ros_harness import wait_until
 
 STUDENT_SCRIPTS = Path(__file__).parent / 'student_scripts'
 CV2_NOTICE = ("cv2_viewer: no display (DISPLAY is not set), so the window 'camera' is not shown; the "
-              'program runs on without it. To see the camera, run rqt and open Plugins > Visualization > '
-              'Image View')
+              "program runs on without it. To see it in a browser, run 'owl windows'")
 PYGAME_NOTICE = ('pygame_keys: no display (neither DISPLAY nor WAYLAND_DISPLAY is set), so the pygame '
-                 'window is not shown and gets no key presses; the program runs on without them. To move '
-                 'the servos without keys: stop it, call /olive/servo/pan/setTorqueEnable and publish '
-                 'goals on /olive/servo/pan/goal/position (and tilt) with rqt or ros2 service call / '
-                 'ros2 topic pub')
+                 'window is not shown and gets no key presses; the program runs on without them. To see '
+                 "it and press its keys in a browser, run 'owl windows'")
 PYGAME_GREETING = re.compile(r'pygame \d+\.\d+\.\d+ \(SDL|Hello from the pygame community')
 RED = (0, 0, 255)  # BGR
 
@@ -52,14 +50,22 @@ def close_to(pixel, colour, tolerance=30):
     return int(np.abs(pixel.astype(int) - colour).max()) < tolerance
 
 
-def test_cv2_viewer_without_a_display_says_so_in_one_line_runs_on_and_stops_at_ctrl_c(ros):
-    viewer = student(ros, 'cv2_viewer.py', NO_DISPLAY)
+def default_folder(tmp_path, process):
+    """Where a process's windows go without OWL_WINDOWS_DIR: the user's own folder in TMPDIR."""
+    return tmp_path / f'owl-windows-{os.getuid()}' / f'{Path(process.label).stem}-{process.pid}'
+
+
+def test_cv2_viewer_without_a_display_says_so_in_one_line_runs_on_and_stops_at_ctrl_c(ros, tmp_path):
+    viewer = student(ros, 'cv2_viewer.py', {**NO_DISPLAY, 'TMPDIR': str(tmp_path)})
     viewer.wait_for('no display', timeout=30)
     time.sleep(2.0)
     assert viewer.running(), viewer.output
+    folder = default_folder(tmp_path, viewer)
+    assert (folder / 'cv2-camera.jpg').exists()  # for `owl windows`, which reads the same folder
+    assert folder.parent.stat().st_mode & 0o777 == 0o700  # only this user sees the windows
     viewer.stop_cleanly(timeout=10)
     notice, summary = viewer.lines
-    assert notice == CV2_NOTICE
+    assert notice == f'{CV2_NOTICE} (its frames go to {folder})'
     assert int(re.fullmatch(r'shown (\d+) frames', summary)[1]) > 100  # waitKey(1) waited about 1 ms
 
 
@@ -100,14 +106,15 @@ def test_bad_settings_are_said_in_one_line_each_and_ignored(ros, tmp_path):
     assert len(viewer.lines) == 4
 
 
-def test_pygame_keys_without_a_display_says_so_in_one_line_runs_on_and_stops_at_ctrl_c(ros):
-    keys = student(ros, 'pygame_keys.py', NO_DISPLAY)
+def test_pygame_keys_without_a_display_says_so_in_one_line_runs_on_and_stops_at_ctrl_c(ros, tmp_path):
+    keys = student(ros, 'pygame_keys.py', {**NO_DISPLAY, 'TMPDIR': str(tmp_path)})
     keys.wait_for('no display', timeout=30)
     time.sleep(2.0)
     assert keys.running(), keys.output
     keys.stop_cleanly(timeout=10)
     notice, summary = own_lines(keys)
-    assert notice == PYGAME_NOTICE
+    keys_file = default_folder(tmp_path, keys) / 'keys'
+    assert notice == f"{PYGAME_NOTICE}; or append key events to {keys_file} ('down left', 'up left')"
     assert int(re.fullmatch(r'ran (\d+) loops', summary)[1]) > 20
     assert 'ALSA' not in keys.output and 'XDG' not in keys.output  # SDL on its dummy drivers
 
@@ -146,8 +153,8 @@ def test_a_students_display_camera_without_a_display_runs_on_the_camera_and_stop
     camera.stop_cleanly(timeout=10)
     assert [line for line in camera.lines if 'frames shown' not in line] == [
         "student_display_camera: no display (DISPLAY is not set), so the window 'Olive Camera' is not shown; "
-        'the program runs on without it. To see the camera, run rqt and open Plugins > Visualization > '
-        f'Image View (its frames go to {folder})']
+        "the program runs on without it. To see it in a browser, run 'owl windows' "
+        f'(its frames go to {folder})']
 
 
 def test_cv2_viewer_with_a_display_opens_a_real_window_that_gets_keys(ros, x_display, tmp_path):

@@ -16,8 +16,11 @@ from sensor_msgs.msg import CompressedImage
 from std_msgs.msg import Float32
 
 IMAGE_TOPIC = '/olive/camera/eye/image/compressed'
-NOTICE = ("display_camera: no display (DISPLAY is not set), so the window 'camera' is not shown; the program "
-          'runs on without it. To see the camera, run rqt and open Plugins > Visualization > Image View')
+NOTICE_START = ("display_camera: no display (DISPLAY is not set), so the window 'camera' is not shown; the "
+                'program runs on without it. ')
+# OWL_WINDOWS_DIR set but empty: no windows' folder, so the line points at rqt instead of `owl windows`.
+NOTICE = NOTICE_START + 'To see the camera, run rqt and open Plugins > Visualization > Image View'
+
 COURSE_QOS = QoSProfile(depth=10, durability=DurabilityPolicy.VOLATILE,
                         reliability=ReliabilityPolicy.BEST_EFFORT)
 RED = LANDMARKS[0][1]  # RGB of the tower straight ahead
@@ -63,14 +66,15 @@ def test_without_a_display_it_says_so_once_and_its_window_gets_the_cameras_image
     time.sleep(1.0)
     assert display_camera.running()
     display_camera.stop_cleanly(timeout=10)
-    assert own_lines(display_camera) == [f'{NOTICE} (its frames go to {window.parent})']
+    assert own_lines(display_camera) == [f"{NOTICE_START}To see it in a browser, run 'owl windows' "
+                                         f'(its frames go to {window.parent})']
     assert 'Traceback' not in display_camera.output
     assert not window.parent.exists()
 
 
 def test_without_a_display_and_without_the_seam_the_line_is_exactly_this(ros):
     ros.run('olive_sim', 'camera_sim')
-    display_camera = ros.run('olive_camera', 'display_camera', env=NO_DISPLAY)
+    display_camera = ros.run('olive_camera', 'display_camera', env={**NO_DISPLAY, 'OWL_WINDOWS_DIR': ''})
     display_camera.wait_for(r'no display', timeout=60)
     time.sleep(2.0)
     display_camera.stop_cleanly(timeout=10)

@@ -6,6 +6,7 @@ Its headless pygame needs SDL in a process of its own: tests/test_headless_windo
 
 import importlib.util
 import os
+import tempfile
 import time
 import types
 from pathlib import Path
@@ -60,13 +61,35 @@ def test_notices_say_what_happened_and_where_to_look_instead():
     assert line == ("display_camera: no display (DISPLAY is not set), so the window 'camera' is not shown; "
                     'the program runs on without it. To see the camera, run rqt and open Plugins > '
                     'Visualization > Image View')
-    assert hook.cv2_notice('v', 'r', 'camera', '/w/v-1').endswith(' (its frames go to /w/v-1)')
-    line = hook.pygame_notice('keyboard_servos', 'OWL_HEADLESS=1', '/w/keyboard_servos-7')
+    assert hook.cv2_notice('v', 'r', 'camera', '/w/v-1').endswith(
+        "the program runs on without it. To see it in a browser, run 'owl windows' (its frames go to /w/v-1)")
+    line = hook.pygame_notice('keyboard_servos', 'OWL_HEADLESS=1', None)
     assert line.startswith('keyboard_servos: no display (OWL_HEADLESS=1), so the pygame window is not '
                            'shown and gets no key presses; the program runs on without them.')
     assert '/olive/servo/pan/goal/position' in line and 'setTorqueEnable' in line
-    assert line.endswith("append key events to /w/keyboard_servos-7/keys ('down left', 'up left')")
+    line = hook.pygame_notice('keyboard_servos', 'OWL_HEADLESS=1', '/w/keyboard_servos-7')
+    assert line.endswith("the program runs on without them. To see it and press its keys in a browser, run "
+                         "'owl windows'; or append key events to /w/keyboard_servos-7/keys ('down left', "
+                         "'up left')")
     assert '\n' not in line
+
+
+def test_windows_go_to_the_users_own_folder_unless_said_otherwise(tmp_path, monkeypatch):
+    monkeypatch.setattr(tempfile, 'tempdir', str(tmp_path))
+    assert hook.windows_root({}) == str(tmp_path / f'owl-windows-{os.getuid()}')
+    assert hook.windows_root({'OWL_WINDOWS_DIR': '/w'}) == '/w'
+    assert hook.windows_root({'OWL_WINDOWS_DIR': ''}) is None  # set and empty: no folder at all
+
+
+def test_the_windows_root_is_private_and_never_someone_elses(tmp_path, monkeypatch):
+    root = tmp_path / 'owl-windows'
+    hook.private_root(str(root))
+    assert root.stat().st_mode & 0o777 == 0o700
+    hook.private_root(str(root))  # there already: fine
+    someone_else = os.getuid() + 1
+    monkeypatch.setattr(hook.os, 'getuid', lambda: someone_else)
+    with pytest.raises(PermissionError, match='belongs to another user'):
+        hook.private_root(str(root))
 
 
 def test_window_files():
@@ -239,7 +262,7 @@ def test_headless_wait_key_waits_its_delay_and_returns_injected_keys(headless_cv
 
 
 def test_headless_wait_key_zero_without_a_keys_file_says_ctrl_c_stops_it(monkeypatch, capsys):
-    monkeypatch.delenv('OWL_WINDOWS_DIR', raising=False)
+    monkeypatch.setenv('OWL_WINDOWS_DIR', '')  # no windows' folder
     monkeypatch.setattr(hook.sys, 'argv', ['viewer.py'])
     fake = types.SimpleNamespace(error=cv2.error, UMat=cv2.UMat, waitKey=None, imshow=None)
     hook.patch_cv2(fake, 'DISPLAY is not set')

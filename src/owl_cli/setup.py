@@ -8,15 +8,17 @@ setup(
     name=package_name,
     version='0.1.0',
     packages=find_packages(exclude=['test']),
+    package_data={package_name: ['windows_static/*']},
     data_files=[
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),
     ],
     install_requires=['setuptools'],
-    zip_safe=True,
+    zip_safe=False,
     maintainer='Owl Kit Lab',
     maintainer_email='team@owlkitlab.invalid',
-    description='The owl command: owl network checks the way to the Olive modules.',
+    description=('The owl command: owl network checks the way to the Olive modules; owl windows '
+                 'shows the windows of programs without a display.'),
     license='Apache-2.0',
     tests_require=['pytest'],
     entry_points={

@@ -5,9 +5,13 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+import threading
 from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
 
-from owl_cli import network_check
+from owl_web.server import port_number
+
+from owl_cli import check, network_check
 
 
 def positive_seconds(text: str) -> float:
@@ -48,6 +52,44 @@ def network(args: argparse.Namespace) -> int:
     return 0 if all(v.ok for v in verdicts) else 1
 
 
+WINDOWS_PORT = 8092  # rqt has 8090, robot_view 8091
+
+
+def windows(args: argparse.Namespace) -> int:
+    # Imported here: only this command needs the venv's start-up hook (the windows' folder).
+    from owl_web.server import WebServer
+
+    from owl_cli.windows_folder import default_windows_dir, private_root
+    from owl_cli.windows_page import STATIC_DIR, WindowsPage
+
+    folder = Path(args.folder or os.environ.get('OWL_WINDOWS_DIR') or default_windows_dir())
+    try:
+        private_root(str(folder))
+    except OSError as error:
+        print(f'owl windows: cannot use {folder}: {error.strerror or error}', file=sys.stderr)
+        return 1
+    try:
+        server = WebServer('owl windows', STATIC_DIR, args.port)
+    except OSError as error:
+        print(f'owl windows: cannot serve on 127.0.0.1:{args.port}: {error.strerror or error} '
+              '(is another owl windows running? choose a port with --port N)', file=sys.stderr)
+        return 1
+    page = WindowsPage(server, folder)
+    stopped = threading.Event()
+    try:
+        page.start()
+        server.start()
+        print(f'owl windows: open {server.url} in a browser: the windows of programs without a display '
+              f'(from {folder}); Ctrl-C to quit', flush=True)
+        stopped.wait()
+    except KeyboardInterrupt:
+        pass  # Ctrl-C is how a page server is stopped
+    finally:
+        page.stop()
+        server.stop()
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog='owl', description=__doc__)
     commands = parser.add_subparsers(dest='command', metavar='COMMAND', required=True)
@@ -59,6 +101,23 @@ def main(argv: list[str] | None = None) -> int:
     check_network.add_argument('--discovery-time', type=positive_seconds, default=3.0, metavar='SECONDS',
                                help='how long to listen for the modules\' ROS nodes (default 3)')
     check_network.set_defaults(run=network)
+    show_windows = commands.add_parser(
+        'windows', help='the windows of programs without a display (cv2.imshow, pygame) on a local page, '
+                        'with their keys',
+        description='Serve the windows that programs without a display open (cv2.imshow, a pygame '
+                    'display; the venv writes their frames to a folder) as one live page on 127.0.0.1, '
+                    'and send the keys pressed on it to those programs.')
+    show_windows.add_argument('--port', type=port_number, default=WINDOWS_PORT,
+                              help=f'HTTP port on 127.0.0.1 (default: {WINDOWS_PORT}; 0 picks a free one)')
+    show_windows.add_argument('--folder', metavar='DIR',
+                              help='the windows\' folder (default: $OWL_WINDOWS_DIR, else the one the '
+                                   'programs use by default)')
+    show_windows.set_defaults(run=windows)
+    check_exercise = commands.add_parser(
+        'check', help="check a course exercise in your workspace (owl check --list)",
+        description=check.__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    check.add_arguments(check_exercise)
+    check_exercise.set_defaults(run=check.check)
     args = parser.parse_args(argv)
     try:
         return args.run(args)

@@ -19,6 +19,7 @@ take seconds), never on the event loop. Whatever a client sends, the answer to a
 one line ({"error": ...} or an "error" message) and the server keeps serving.
 """
 
+import argparse
 import asyncio
 import ipaddress
 import json
@@ -241,6 +242,13 @@ class Connection:
                         await self.websocket.send_str(message)
         except (ConnectionError, RuntimeError):  # the page closed the connection mid-send
             return
+
+
+def port_number(text: str) -> int:
+    """argparse's type for a page's --port: 0..65535 (0 picks a free one)."""
+    if not text.isdigit() or int(text) > 65535:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a port number (0..65535)")
+    return int(text)
 
 
 class WebServer:

@@ -7,19 +7,13 @@ import sys
 from pathlib import Path
 
 from owl_common.run import spin_node
-from owl_web.server import WebServer
+from owl_web.server import WebServer, port_number
 from rclpy.utilities import remove_ros_args
 
 from robot_view.node import RobotViewNode
 
 DEFAULT_PORT = 8091  # rqt has 8090
 STATIC_DIR = Path(__file__).parent / 'static'
-
-
-def port_number(text: str) -> int:
-    if not text.isdigit() or int(text) > 65535:
-        raise argparse.ArgumentTypeError(f"'{text}' is not a port number (0..65535)")
-    return int(text)
 
 
 def parse_arguments(argv: list[str]) -> argparse.Namespace:

@@ -1,20 +1,34 @@
 """launch: the ROS 2 launch system (compatible re-implementation for Owl Kit Lab)."""
 
-from launch import actions, conditions, event_handlers, events, launch_description_sources, substitutions
-from launch.action import Action
+from launch import (
+    actions,
+    conditions,
+    descriptions,
+    event_handlers,
+    events,
+    frontend,
+    launch_description_sources,
+    logging,
+    substitutions,
+    utilities,
+)
+from launch.action import Action, SomeActionsType, SomeActionsType_types_tuple
 from launch.condition import Condition
 from launch.event import Event
-from launch.event_handler import EventHandler
+from launch.event_handler import BaseEventHandler, EventHandler
 from launch.launch_context import LaunchContext
 from launch.launch_description import LaunchDescription
 from launch.launch_description_entity import LaunchDescriptionEntity
 from launch.launch_description_source import LaunchDescriptionSource
+from launch.launch_introspector import LaunchIntrospector
 from launch.launch_service import LaunchService
-from launch.substitution import SomeSubstitutionsType, Substitution
+from launch.substitution import SomeSubstitutionsType, SomeSubstitutionsType_types_tuple, Substitution
 
 __all__ = [
-    'Action', 'Condition', 'Event', 'EventHandler', 'LaunchContext', 'LaunchDescription',
-    'LaunchDescriptionEntity', 'LaunchDescriptionSource', 'LaunchService', 'SomeSubstitutionsType',
-    'Substitution', 'actions', 'conditions', 'event_handlers', 'events', 'launch_description_sources',
-    'substitutions',
+    'Action', 'BaseEventHandler', 'Condition', 'Event', 'EventHandler', 'LaunchContext', 'LaunchDescription',
+    'LaunchDescriptionEntity', 'LaunchDescriptionSource', 'LaunchIntrospector', 'LaunchService',
+    'SomeActionsType', 'SomeActionsType_types_tuple', 'SomeSubstitutionsType',
+    'SomeSubstitutionsType_types_tuple', 'Substitution', 'actions', 'conditions', 'descriptions',
+    'event_handlers', 'events', 'frontend', 'launch_description_sources', 'logging', 'substitutions',
+    'utilities',
 ]

@@ -10,13 +10,17 @@ if TYPE_CHECKING:
 
 
 class Condition:
-    """Wraps a predicate `context -> bool`, evaluated when the action is visited."""
+    """Wraps a predicate `context -> bool`, evaluated when the action is visited.
+
+    Without a predicate a condition is false, as upstream's is: an action given a bare
+    Condition() never executes.
+    """
 
     def __init__(self, *, predicate: Callable[[LaunchContext], bool] | None = None) -> None:
         self._predicate = predicate
 
     def evaluate(self, context: LaunchContext) -> bool:
-        return True if self._predicate is None else bool(self._predicate(context))
+        return False if self._predicate is None else bool(self._predicate(context))
 
     def describe(self) -> str:
         return type(self).__name__

@@ -12,6 +12,7 @@ if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
 
 SomeEntitiesType = LaunchDescriptionEntity | Iterable[LaunchDescriptionEntity]
+SomeEntitiesType_types_tuple = (LaunchDescriptionEntity, Iterable)
 
 
 class BaseEventHandler:

@@ -44,6 +44,8 @@ class LaunchContext:
         self._asyncio_loop: asyncio.AbstractEventLoop | None = None
         self._is_shutdown = False
         self._node_names: dict[str, int] = {}
+        # Work launch waits for besides the visited entities' futures (add_completion_future).
+        self._completion_futures: list[asyncio.Future] = []
         # Every ExecuteProcess that ran, so that nothing outlives a cancelled launch.
         self._process_actions: list[Any] = []
 
@@ -115,6 +117,12 @@ class LaunchContext:
 
     async def emit_event(self, event: Event) -> None:
         self.emit_event_sync(event)
+
+    def add_completion_future(self, completion_future: asyncio.Future) -> None:
+        """Keep launch running until this future is done (e.g. a service call in a thread)."""
+        self._completion_futures.append(completion_future)
+        if self._wakeup is not None:
+            self._wakeup.set()
 
     @property
     def is_shutdown(self) -> bool:

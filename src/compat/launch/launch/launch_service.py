@@ -39,7 +39,7 @@ class LaunchService:
         self.__context.register_event_handler(OnIncludeLaunchDescription())
         self.__context.register_event_handler(CallbackEventHandler(
             matcher=lambda event: isinstance(event, Shutdown), callback=self._on_shutdown))
-        self.__futures: list[tuple[LaunchDescriptionEntity, asyncio.Future]] = []
+        self.__futures: list[tuple[LaunchDescriptionEntity | None, asyncio.Future]] = []
         self.__return_code = 0
         self.__loop: asyncio.AbstractEventLoop | None = None
         self.__sigint_count = 0
@@ -190,6 +190,7 @@ class LaunchService:
             if context._event_queue:
                 continue
             pending = [future for _, future in self.__futures if not future.done()]
+            pending += [future for future in context._completion_futures if not future.done()]
             if not pending:
                 if context.is_shutdown:
                     return
@@ -202,13 +203,15 @@ class LaunchService:
             waiter.cancel()
 
     def _check_futures(self) -> None:
+        context = self.__context
         still_pending = []
-        for entity, future in self.__futures:
+        for entity, future in [*self.__futures, *((None, f) for f in context._completion_futures)]:
             if not future.done():
                 still_pending.append((entity, future))
             elif not future.cancelled() and future.exception() is not None:
                 self._report(future.exception())  # type: ignore[arg-type]
-        self.__futures = still_pending
+        self.__futures = [(entity, future) for entity, future in still_pending if entity is not None]
+        context._completion_futures = [future for entity, future in still_pending if entity is None]
 
     def _kill_leftover_processes(self) -> None:
         """Launch was cancelled: SIGKILL what is still running rather than leave orphans."""

@@ -39,6 +39,7 @@ class TextSubstitution(Substitution):
 
 
 SomeSubstitutionsType = str | Substitution | Iterable[str | Substitution]
+SomeSubstitutionsType_types_tuple = (str, Substitution, Iterable)
 
 
 def _normalize_item(item: object) -> Substitution:

@@ -1,5 +1,16 @@
 """launch_ros: ROS-specific launch actions (compatible re-implementation for Owl Kit Lab)."""
 
-from launch_ros import actions, parameter_descriptions, substitutions
+from launch_ros import (
+    actions,
+    descriptions,
+    event_handlers,
+    events,
+    parameter_descriptions,
+    substitutions,
+    utilities,
+)
 
-__all__ = ['actions', 'parameter_descriptions', 'substitutions']
+__all__ = [
+    'actions', 'descriptions', 'event_handlers', 'events', 'parameter_descriptions', 'substitutions',
+    'utilities',
+]

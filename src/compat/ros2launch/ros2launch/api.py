@@ -6,9 +6,8 @@ import os
 from collections.abc import Iterable
 
 from ament_index_python.packages import PackageNotFoundError, get_package_share_directory
-from launch import LaunchDescription, LaunchService
+from launch import LaunchDescription, LaunchIntrospector, LaunchService
 from launch.actions import IncludeLaunchDescription
-from launch.launch_description_entity import LaunchDescriptionEntity
 from launch.launch_description_sources import (
     AnyLaunchDescriptionSource,
     get_launch_description_from_any_launch_file,
@@ -79,18 +78,8 @@ def format_arguments_of_launch_file(path: str) -> str:
 
 def format_launch_description(path: str) -> str:
     """An indented tree of what the file would do (`ros2 launch -p`)."""
-    lines = [f'<launch.LaunchDescription from {path}>']
-
-    def walk(entities: Iterable[LaunchDescriptionEntity], depth: int) -> None:
-        for entity in entities:
-            lines.append('    ' * depth + '├── ' + entity.describe())
-            walk(entity.describe_sub_entities(), depth + 1)
-            for description, sub_entities in entity.describe_conditional_sub_entities():
-                lines.append('    ' * (depth + 1) + f'({description})')
-                walk(sub_entities, depth + 2)
-
-    walk(load_launch_file(path).entities, 0)
-    return '\n'.join(lines)
+    return LaunchIntrospector().format_launch_description(
+        load_launch_file(path), title=f'<launch.LaunchDescription from {path}>')
 
 
 def launch_a_launch_file(path: str, launch_arguments: list[tuple[str, str]], *, noninteractive: bool,

@@ -8,7 +8,7 @@ import webbrowser
 from pathlib import Path
 
 from owl_common.run import spin_node
-from owl_web.server import WebServer
+from owl_web.server import WebServer, port_number
 from rclpy.utilities import remove_ros_args
 
 from rqt_web.node import RqtWebNode
@@ -18,12 +18,6 @@ STATIC_DIR = Path(__file__).parent / 'static'
 # upstream plugin name -> the page's tab (rqt -s rqt_graph opens the Node Graph)
 PLUGINS = {'rqt_graph': 'node-graph', 'rqt_publisher': 'message-publisher',
            'rqt_service_caller': 'service-caller', 'rqt_image_view': 'image-view'}
-
-
-def port_number(text: str) -> int:
-    if not text.isdigit() or int(text) > 65535:
-        raise argparse.ArgumentTypeError(f"'{text}' is not a port number (0..65535)")
-    return int(text)
 
 
 def parse_arguments(argv: list[str]) -> argparse.Namespace:

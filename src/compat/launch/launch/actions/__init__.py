@@ -26,6 +26,8 @@ from launch.actions.launch_configuration_actions import (
     SetLaunchConfiguration,
     UnsetLaunchConfiguration,
 )
+from launch.actions.opaque_coroutine import OpaqueCoroutine
+from launch.actions.reset_launch_configurations import ResetLaunchConfigurations
 from launch.actions.timer_action import TimerAction
 
 # Upstream's name for the process-running base class.
@@ -33,8 +35,9 @@ ExecuteLocal = ExecuteProcess
 
 __all__ = [
     'AppendEnvironmentVariable', 'DeclareLaunchArgument', 'EmitEvent', 'ExecuteLocal', 'ExecuteProcess',
-    'GroupAction', 'IncludeLaunchDescription', 'LogInfo', 'OpaqueFunction', 'PopEnvironment',
-    'PopLaunchConfigurations', 'PushEnvironment', 'PushLaunchConfigurations', 'RegisterEventHandler',
-    'ResetEnvironment', 'SetEnvironmentVariable', 'SetLaunchConfiguration', 'Shutdown', 'TimerAction',
-    'UnregisterEventHandler', 'UnsetEnvironmentVariable', 'UnsetLaunchConfiguration',
+    'GroupAction', 'IncludeLaunchDescription', 'LogInfo', 'OpaqueCoroutine', 'OpaqueFunction',
+    'PopEnvironment', 'PopLaunchConfigurations', 'PushEnvironment', 'PushLaunchConfigurations',
+    'RegisterEventHandler', 'ResetEnvironment', 'ResetLaunchConfigurations', 'SetEnvironmentVariable',
+    'SetLaunchConfiguration', 'Shutdown', 'TimerAction', 'UnregisterEventHandler',
+    'UnsetEnvironmentVariable', 'UnsetLaunchConfiguration',
 ]

@@ -7,13 +7,13 @@ from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
 from launch.actions.named_value_actions import SetNamedValue, UnsetNamedValue
-from launch.conditions import evaluate_condition_expression
 from launch.frontend.expose import expose_action
 from launch.substitution import (
     SomeSubstitutionsType,
     normalize_to_list_of_substitutions,
     perform_substitutions,
 )
+from launch.utilities.type_utils import perform_typed_substitution
 
 if TYPE_CHECKING:
     from launch.frontend import Entity, Parser
@@ -62,7 +62,7 @@ class AppendEnvironmentVariable(Action):
         value = perform_substitutions(context, self.value)
         separator = perform_substitutions(context, self.separator)
         prepend = (self.prepend if isinstance(self.prepend, bool)
-                   else evaluate_condition_expression(context, self.prepend))
+                   else perform_typed_substitution(context, self.prepend, bool))
         current = context.environment.get(name)
         if not current:
             context.environment[name] = value

@@ -15,7 +15,6 @@ from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
-from launch.conditions import evaluate_condition_expression
 from launch.descriptions import Executable
 from launch.event_handler import CallbackEventHandler
 from launch.event_handlers import OnProcessExit
@@ -39,6 +38,7 @@ from launch.substitution import (
     perform_substitutions,
 )
 from launch.substitutions import LaunchConfiguration
+from launch.utilities.type_utils import perform_typed_substitution
 
 if TYPE_CHECKING:
     from launch.event import Event
@@ -257,9 +257,10 @@ class ExecuteProcess(Action):
         description.final_env = env
 
     def _flag(self, context: LaunchContext, value: Any) -> bool:
+        """A bool setting (respawn, emulate_tty) given as a bool or as text read the YAML way."""
         if value is None or isinstance(value, bool):
             return bool(value)
-        return evaluate_condition_expression(context, value)
+        return perform_typed_substitution(context, value, bool)
 
     # ---- execution ----
     def execute(self, context: LaunchContext) -> None:

@@ -10,9 +10,9 @@ from launch.actions.environment_actions import PopEnvironment, PushEnvironment, 
 from launch.actions.launch_configuration_actions import (
     PopLaunchConfigurations,
     PushLaunchConfigurations,
-    ReplaceLaunchConfigurations,
     SetLaunchConfiguration,
 )
+from launch.actions.reset_launch_configurations import ResetLaunchConfigurations
 from launch.frontend.expose import expose_action
 from launch.launch_description_entity import LaunchDescriptionEntity
 from launch.substitution import (
@@ -75,5 +75,5 @@ class GroupAction(Action):
         kept = {perform_substitutions(context, k): perform_substitutions(context, v)
                 for k, v in self.launch_configurations}
         return [PushLaunchConfigurations(), PushEnvironment(), ResetEnvironment(),
-                ReplaceLaunchConfigurations(kept), *self.actions,
+                ResetLaunchConfigurations(kept), *self.actions,
                 PopEnvironment(), PopLaunchConfigurations()]

@@ -16,8 +16,15 @@ if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
 
 __all__ = [
-    'EventHandler', 'OnActionEventBase', 'OnExecutionComplete', 'OnIncludeLaunchDescription',
-    'OnProcessExit', 'OnProcessIO', 'OnProcessStart', 'OnShutdown',
+    'EventHandler',
+    'OnActionEventBase',
+    'OnExecutionComplete',
+    'OnIncludeLaunchDescription',
+    'OnProcessExit',
+    'OnProcessIO',
+    'OnProcessStart',
+    'OnShutdown',
+    'event_named',
 ]
 
 # A reaction: entities, or a callable (event, context) -> entities | None.
@@ -35,14 +42,26 @@ def _entities_or_callable(on_event: SomeActionsOrCallable) -> Callable[[Event, L
     return lambda _event, _context: entities
 
 
-def _action_matcher(target_action: Any) -> Callable[[Any], bool]:
+def _action_matcher(target_action: Any, *, processes_only: bool = False) -> Callable[[Any], bool]:
+    """Which actions' events a handler takes: all (None), one action, or those a callable accepts.
+
+    For process events (processes_only) an action target must be a process action
+    (ExecuteProcess, Node...), as upstream requires: another action never starts a process.
+    """
     if target_action is None:
         return lambda _action: True
     if isinstance(target_action, LaunchDescriptionEntity):
+        if processes_only:
+            from launch.actions.execute_process import ExecuteProcess
+
+            if not isinstance(target_action, ExecuteProcess):
+                raise TypeError("target_action must be an ExecuteProcess (or Node) action, a callable "
+                                f"taking one, or None; got '{type(target_action).__name__}'")
         return lambda action: action is target_action
     if callable(target_action):
-        return target_action
-    raise TypeError(f"target_action must be an action, a callable or None, got '{type(target_action)}'")
+        return lambda action: bool(target_action(action))
+    raise TypeError("target_action must be an action, a callable taking an action, or None; got "
+                    f"'{type(target_action).__name__}'")
 
 
 class OnActionEventBase(BaseEventHandler):
@@ -50,7 +69,10 @@ class OnActionEventBase(BaseEventHandler):
 
     def __init__(self, *, event_type: type, on_event: SomeActionsOrCallable,
                  target_action: Any = None, handle_once: bool = False) -> None:
-        action_matches = _action_matcher(target_action)
+        from launch.events.process import RunningProcessEvent
+
+        action_matches = _action_matcher(target_action,
+                                         processes_only=issubclass(event_type, RunningProcessEvent))
         super().__init__(
             matcher=lambda event: isinstance(event, event_type) and action_matches(event.action),
             handle_once=handle_once)
@@ -90,7 +112,7 @@ class OnProcessIO(BaseEventHandler):
                  on_stdout: Callable[[ProcessIO], Any] | None = None,
                  on_stderr: Callable[[ProcessIO], Any] | None = None,
                  handle_once: bool = False) -> None:
-        action_matches = _action_matcher(target_action)
+        action_matches = _action_matcher(target_action, processes_only=True)
         self._callbacks = {0: on_stdin, 1: on_stdout, 2: on_stderr}
         super().__init__(
             matcher=lambda event: (isinstance(event, ProcessIO) and action_matches(event.action)
@@ -126,3 +148,7 @@ class OnIncludeLaunchDescription(EventHandler):
     def handle(self, event: Event, context: LaunchContext) -> Iterable[LaunchDescriptionEntity] | None:
         super().handle(event, context)
         return [event.launch_description]  # type: ignore[attr-defined]
+
+
+# Last: the module has no imports from this package, but upstream exports it here.
+from launch.event_handlers.event_named import event_named  # noqa: E402

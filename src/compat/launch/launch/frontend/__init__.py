@@ -4,9 +4,11 @@ from __future__ import annotations
 
 import importlib
 import importlib.util
-from typing import TYPE_CHECKING, Any
+import os
+import tempfile
+from typing import TYPE_CHECKING, Any, TextIO
 
-from launch.frontend import substitution_parser
+from launch.frontend import substitution_parser, type_utils
 from launch.frontend.entity import Entity, LaunchFileError, load_xml_root, load_yaml_root
 from launch.frontend.expose import action_parse_methods, expose_action, expose_substitution
 from launch.substitution import Substitution, TextSubstitution
@@ -18,7 +20,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     'Entity', 'LaunchFileError', 'Parser', 'expose_action', 'expose_substitution',
-    'load_launch_file', 'parse_substitution',
+    'load_launch_file', 'parse_substitution', 'type_utils',
 ]
 
 # Packages whose actions and substitutions extend the frontend, loaded when present.
@@ -48,8 +50,65 @@ def parse_substitution(text: str) -> list[Substitution]:
     return substitution_parser.parse_substitution(text)
 
 
+# The file extensions the frontend reads, and which root loader reads each.
+FRONTEND_EXTENSIONS = {'xml': 'xml', 'yaml': 'yaml', 'yml': 'yaml'}
+
+
 class Parser:
     """Turns entities into actions; parse methods of actions call back into it."""
+
+    @classmethod
+    def get_available_extensions(cls) -> list[str]:
+        """The extensions of the launch files the frontend reads."""
+        return list(FRONTEND_EXTENSIONS)
+
+    @classmethod
+    def is_extension_valid(cls, extension: str) -> bool:
+        return extension.lstrip('.') in FRONTEND_EXTENSIONS
+
+    @classmethod
+    def get_file_extension_from_filename(cls, filename: str | os.PathLike) -> str:
+        return os.path.splitext(os.fspath(filename))[1].lstrip('.')
+
+    @classmethod
+    def is_filename_valid(cls, filename: str | os.PathLike) -> bool:
+        return cls.is_extension_valid(cls.get_file_extension_from_filename(filename))
+
+    @classmethod
+    def load(cls, file: str | os.PathLike | TextIO) -> tuple[Entity, Parser]:
+        """The root entity of an XML or YAML launch file and a parser for it, as upstream's
+        `root, parser = Parser.load(path)` then `parser.parse_description(root)`.
+
+        file is a path or an open text file; the extension picks the format, and a file with
+        another extension is tried as XML, then as YAML.
+        """
+        _load_extensions()
+        if isinstance(file, (str, os.PathLike)):
+            return cls._load_path(os.fspath(file)), cls()
+        name = getattr(file, 'name', None)
+        if isinstance(name, str) and os.path.isfile(name):
+            return cls._load_path(name), cls()
+        # A stream with no file behind it (io.StringIO): its text, in a file of its own.
+        extension = cls.get_file_extension_from_filename(name) if isinstance(name, str) else ''
+        with tempfile.TemporaryDirectory() as directory:
+            path = os.path.join(directory, 'launch' + (f'.{extension}' if extension else ''))
+            with open(path, 'w', encoding='utf-8') as handle:
+                handle.write(file.read())
+            return cls._load_path(path), cls()
+
+    @classmethod
+    def _load_path(cls, path: str) -> Entity:
+        if not os.path.isfile(path):
+            raise LaunchFileError(f"launch file '{path}' does not exist")
+        chosen = FRONTEND_EXTENSIONS.get(cls.get_file_extension_from_filename(path))
+        formats = [chosen] if chosen else ['xml', 'yaml']
+        errors = []
+        for format_name in formats:
+            try:
+                return load_xml_root(path) if format_name == 'xml' else load_yaml_root(path)
+            except LaunchFileError as error:
+                errors.append(str(error))
+        raise LaunchFileError('; '.join(errors))
 
     def parse_substitution(self, text: str) -> list[Substitution]:
         return substitution_parser.parse_substitution(text)
@@ -67,17 +126,18 @@ class Parser:
         raise TypeError(f'expected a text value, got {value!r}')
 
     def boolean(self, entity: Entity, name: str) -> bool | None:
-        """A true/false attribute: YAML booleans, or 'true'/'false'/'1'/'0' text."""
+        """A true/false attribute, read with YAML's rules as upstream's typed attributes are:
+        true/false, yes/no, on/off in any case (YAML booleans pass as they are)."""
+        from launch.utilities.type_utils import coerce_to_type
+
         value = entity.get_attr(name, optional=True)
         if value is None or isinstance(value, bool):
             return value
-        text = str(value).strip().lower()
-        if text in ('true', '1'):
-            return True
-        if text in ('false', '0'):
-            return False
-        raise entity.error(f"attribute '{name}' of `{entity.type_name}` must be true or false, "
-                           f'got {value!r}')
+        try:
+            return coerce_to_type(str(value).strip(), bool)
+        except ValueError:
+            raise entity.error(f"attribute '{name}' of `{entity.type_name}` must be true or false "
+                               f'(or yes/no, on/off), got {value!r}') from None
 
     def parse_condition(self, entity: Entity) -> Condition | None:
         from launch.conditions import IfCondition, UnlessCondition

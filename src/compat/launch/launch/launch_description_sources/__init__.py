@@ -15,15 +15,21 @@ if TYPE_CHECKING:
     from launch.launch_description import LaunchDescription
 
 __all__ = [
-    'AnyLaunchDescriptionSource', 'FrontendLaunchDescriptionSource', 'InvalidLaunchFileError',
+    'AnyLaunchDescriptionSource', 'FrontendLaunchDescriptionSource', 'InvalidFrontendLaunchFileError',
+    'InvalidLaunchFileError',
     'InvalidPythonLaunchFileError', 'LaunchDescriptionSource', 'PythonLaunchDescriptionSource',
-    'get_launch_description_from_any_launch_file', 'get_launch_description_from_python_launch_file',
+    'get_launch_description_from_any_launch_file', 'get_launch_description_from_frontend_launch_file',
+    'get_launch_description_from_python_launch_file',
     'load_python_launch_file_as_module',
 ]
 
 
 class InvalidPythonLaunchFileError(Exception):
     pass
+
+
+class InvalidFrontendLaunchFileError(Exception):
+    """An XML or YAML launch file could not be read."""
 
 
 class InvalidLaunchFileError(Exception):
@@ -109,6 +115,17 @@ def get_launch_description_from_any_launch_file(launch_file_path: str) -> Launch
         except Exception as error:
             errors.append(error)
     raise InvalidLaunchFileError(extension, likely_errors=errors)
+
+
+def get_launch_description_from_frontend_launch_file(frontend_launch_file_path: str) -> LaunchDescription:
+    """Read an XML or YAML launch file (format by extension, else tried as both)."""
+    from launch.frontend import Parser
+
+    try:
+        root, parser = Parser.load(frontend_launch_file_path)
+    except Exception as error:
+        raise InvalidFrontendLaunchFileError(str(error)) from error
+    return parser.parse_description(root)
 
 
 class PythonLaunchDescriptionSource(LaunchDescriptionSource):

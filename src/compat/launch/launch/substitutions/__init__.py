@@ -13,7 +13,7 @@ import subprocess
 from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
-from launch.conditions import evaluate_condition_expression
+from launch.conditions import InvalidConditionExpressionError, evaluate_condition_expression
 from launch.logging import get_logger, launch_config
 from launch.substitution import (
     SomeSubstitutionsType,
@@ -216,12 +216,20 @@ class Command(Substitution):
             raise SubstitutionFailure(f"expected 'on_stderr' to be one of: 'fail', 'ignore', 'warn' or "
                                       f"'capture', got '{on_stderr}'")
         try:
+            argv = shlex.split(command)
+        except ValueError as error:  # an unclosed quote
+            raise SubstitutionFailure(f'cannot split command line: {command} ({error})') from None
+        if not argv:
+            raise SubstitutionFailure('the command of a Command substitution is empty')
+        try:
             result = subprocess.run(
-                shlex.split(command), capture_output=True, text=True, errors='replace',
+                argv, capture_output=True, text=True, errors='replace',
                 env=dict(context.environment),
                 stdin=subprocess.DEVNULL)
+        except FileNotFoundError:
+            raise SubstitutionFailure(f"file not found: '{argv[0]}' (command: {command})") from None
         except OSError as error:
-            raise SubstitutionFailure(f'command not found: {command} ({error.strerror})') from None
+            raise SubstitutionFailure(f'command could not run: {command} ({error.strerror})') from None
         if result.returncode != 0:
             message = f'executed command failed. Command: {command}'
             if result.stderr:
@@ -243,7 +251,13 @@ class Command(Substitution):
 
 
 def _truth(context: LaunchContext, value: list[Substitution]) -> bool:
-    return evaluate_condition_expression(context, value)
+    """A boolean operand; one that is not true/false/1/0 is a SubstitutionFailure, as upstream."""
+    try:
+        return evaluate_condition_expression(context, value)
+    except InvalidConditionExpressionError:
+        text = perform_substitutions(context, value)
+        raise SubstitutionFailure(f"'{text}' is not a valid boolean value, expected true, false, 1 or 0 "
+                                  f"(expanded from {describe_substitutions(value)})") from None
 
 
 class NotSubstitution(Substitution):
@@ -281,16 +295,53 @@ class AllSubstitution(AnySubstitution):
         return str(all(_truth(context, arg) for arg in self.args)).lower()
 
 
-class EqualsSubstitution(Substitution):
-    """'true' when both sides perform to the same text."""
+def _comparable(value: object) -> list[Substitution]:
+    """An EqualsSubstitution side: None is '', a bool is 'true'/'false', other values their str()."""
+    from launch.utilities.type_utils import is_substitution
 
-    def __init__(self, left: SomeSubstitutionsType, right: SomeSubstitutionsType) -> None:
-        self.left = normalize_to_list_of_substitutions(left)
-        self.right = normalize_to_list_of_substitutions(right)
+    if is_substitution(value):
+        return normalize_to_list_of_substitutions(value)  # type: ignore[arg-type]
+    if value is None:
+        return [TextSubstitution(text='')]
+    if isinstance(value, bool):
+        return [TextSubstitution(text=str(value).lower())]
+    return [TextSubstitution(text=str(value))]
+
+
+def _is_boolean_text(text: str) -> bool:
+    return text.lower() in ('true', 'false', '1', '0')
+
+
+def _is_number_text(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+class EqualsSubstitution(Substitution):
+    """'true' when both sides are equal: as booleans if both are true/false/1/0, as numbers (close
+    enough) if both are numbers, else as text.  Sides may be any value: None, bools, numbers."""
+
+    def __init__(self, left: object, right: object) -> None:
+        self.left = _comparable(left)
+        self.right = _comparable(right)
 
     def perform(self, context: LaunchContext) -> str:
-        return str(perform_substitutions(context, self.left)
-                   == perform_substitutions(context, self.right)).lower()
+        left = perform_substitutions(context, self.left)
+        right = perform_substitutions(context, self.right)
+        if _is_boolean_text(left) and _is_boolean_text(right):
+            equal = (left.lower() in ('true', '1')) == (right.lower() in ('true', '1'))
+        elif _is_number_text(left) and _is_number_text(right):
+            equal = math.isclose(float(left), float(right))
+        else:
+            equal = left == right
+        return str(equal).lower()
+
+    def describe(self) -> str:
+        left, right = describe_substitutions(self.left), describe_substitutions(self.right)
+        return f'EqualsSubstitution({left}, {right})'
 
 
 class NotEqualsSubstitution(EqualsSubstitution):

@@ -97,17 +97,16 @@ class Node(ExecuteProcess):
         super().__init__(cmd=cmd, **kwargs)
         if parameters is not None and not isinstance(parameters, list):
             raise TypeError(f"Node 'parameters' must be a list, got '{type(parameters).__name__}'")
+        for parameter in parameters or []:
+            check_parameters_item(parameter)
         self.__package = None if package is None else normalize_to_list_of_substitutions(package)
         self.__executable = normalize_to_list_of_substitutions(executable)
         self.__node_name = None if name is None else normalize_to_list_of_substitutions(name)
         self.__node_namespace = None if namespace is None else normalize_to_list_of_substitutions(namespace)
         self.__parameters = list(parameters or [])
-        self.__remappings = []
-        for rule in remappings or []:
-            if not isinstance(rule, tuple) or len(rule) != 2:
-                raise TypeError(f'remap_rule must be a tuple of length 2, got {rule!r}')
-            self.__remappings.append((normalize_to_list_of_substitutions(rule[0]),
-                                      normalize_to_list_of_substitutions(rule[1])))
+        from launch_ros.utilities.normalize_parameters import normalize_remap_rules
+
+        self.__remappings = normalize_remap_rules(remappings or [])
         self.__expanded_name: str | None = None
         self.__expanded_namespace: str | None = None
         self.__expanded_remappings: list[tuple[str, str]] | None = None
@@ -188,8 +187,10 @@ class Node(ExecuteProcess):
         super().execute(context)
         label = self.process_description.final_name
         if self.__expanded_name is not None and label is not None:
-            count = context._node_names.get(self.node_name, 0) + 1
-            context._node_names[self.node_name] = count
+            from launch_ros.utilities.track_node_names import add_node_name, get_node_name_count
+
+            add_node_name(context, self.node_name)
+            count = get_node_name_count(context, self.node_name)
             if count > 1:
                 get_logger(label).warning(
                     f'there are now at least {count} nodes with the name {self.node_name} created '
@@ -236,6 +237,19 @@ class Node(ExecuteProcess):
             get_logger('launch_ros.actions.node').warning(f'Parameter file path is not a file: {path}')
             return []
         return ['--params-file', path]
+
+
+def check_parameters_item(item: Any) -> None:
+    """One item of Node(parameters=[...]): a dict, a parameter file path or a Parameter object.
+
+    A bare value such as 5.0 has no name to be the value of: refused at construction, as upstream.
+    """
+    if isinstance(item, (dict, Parameter, ParameterFile, str, Substitution, pathlib.Path)):
+        return
+    if isinstance(item, (list, tuple)) and item and all(isinstance(i, (str, Substitution)) for i in item):
+        return  # a path made of text and substitutions
+    raise TypeError(f"Node parameters must be dicts, parameter file paths or Parameter objects, got "
+                    f"{item!r} ('{type(item).__name__}')")
 
 
 PARAMETER_TYPES = {

@@ -20,7 +20,7 @@ from launch.substitution import (
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
 
-__all__ = ['ExecutableInPackage', 'FindPackage', 'FindPackagePrefix', 'FindPackageShare']
+__all__ = ['ExecutableInPackage', 'FindPackage', 'FindPackagePrefix', 'FindPackageShare', 'Parameter']
 
 
 def package_prefix(package: str) -> str:
@@ -106,3 +106,7 @@ def _find_pkg_prefix(package: Args) -> FindPackagePrefix:
 @expose_substitution('exec-in-pkg', 2)
 def _exec_in_pkg(executable: Args, package: Args) -> ExecutableInPackage:
     return ExecutableInPackage(executable, package)
+
+
+# Last: the module imports this package's helpers.
+from launch_ros.substitutions.parameter import Parameter  # noqa: E402

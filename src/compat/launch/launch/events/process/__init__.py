@@ -9,7 +9,8 @@ from launch.event import Event
 
 __all__ = [
     'ProcessExited', 'ProcessIO', 'ProcessStarted', 'ProcessStderr', 'ProcessStdin', 'ProcessStdout',
-    'RunningProcessEvent', 'ShutdownProcess', 'SignalProcess',
+    'ProcessTargetedEvent', 'RunningProcessEvent', 'ShutdownProcess', 'SignalProcess', 'matches_executable',
+    'matches_name', 'matches_pid',
 ]
 
 
@@ -64,18 +65,39 @@ class ProcessStdin(ProcessIO):
         super().__init__(fd=0, **kwargs)
 
 
-class _ProcessTargetingEvent(Event):
+class ProcessTargetedEvent(Event):
+    """An event for the process actions that process_matcher(action) accepts."""
+
     def __init__(self, *, process_matcher: Callable[[Any], bool]) -> None:
         self.process_matcher = process_matcher
 
 
-class ShutdownProcess(_ProcessTargetingEvent):
+class ShutdownProcess(ProcessTargetedEvent):
     """Stop the matching processes (SIGINT, then the SIGTERM/SIGKILL escalation)."""
 
 
-class SignalProcess(_ProcessTargetingEvent):
+class SignalProcess(ProcessTargetedEvent):
     """Send a signal to the matching processes."""
 
     def __init__(self, *, signal_number: int, process_matcher: Callable[[Any], bool]) -> None:
         super().__init__(process_matcher=process_matcher)
         self.signal = signal_number
+
+
+# Matchers for ShutdownProcess / SignalProcess: which process actions an event is for.
+def matches_pid(*pids: int) -> Callable[[Any], bool]:
+    """Process actions whose process has one of these pids right now."""
+    def match(action: Any) -> bool:
+        process = getattr(action, '_process', None)
+        return process is not None and process.pid in pids
+    return match
+
+
+def matches_name(*names: str) -> Callable[[Any], bool]:
+    """Process actions whose label (e.g. 'talker-1') is one of names."""
+    return lambda action: action.process_description.final_name in names
+
+
+def matches_executable(*executables: Any) -> Callable[[Any], bool]:
+    """Exactly these process actions."""
+    return lambda action: any(action is executable for executable in executables)

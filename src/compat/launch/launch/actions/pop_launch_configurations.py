@@ -1,0 +1,5 @@
+"""Upstream's module path; implemented in launch.actions.launch_configuration_actions."""
+
+from launch.actions.launch_configuration_actions import PopLaunchConfigurations
+
+__all__ = ['PopLaunchConfigurations']

@@ -1,0 +1,5 @@
+"""Upstream's module path; implemented in launch.actions.event_actions."""
+
+from launch.actions.event_actions import RegisterEventHandler
+
+__all__ = ['RegisterEventHandler']

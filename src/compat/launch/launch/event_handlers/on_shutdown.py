@@ -1,0 +1,5 @@
+"""Upstream's module path; implemented in launch.event_handlers."""
+
+from launch.event_handlers import OnShutdown
+
+__all__ = ['OnShutdown']

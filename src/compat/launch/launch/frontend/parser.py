@@ -1,0 +1,5 @@
+"""Upstream's module path; implemented in launch.frontend."""
+
+from launch.frontend import Parser
+
+__all__ = ['Parser']

@@ -1,0 +1,5 @@
+"""Upstream's module path; implemented in launch_ros.actions.scoped."""
+
+from launch_ros.actions.scoped import SetRemap
+
+__all__ = ['SetRemap']

@@ -1,0 +1,40 @@
+"""SetROSLogDir: where the ROS nodes started after it (in scope) write their logs."""
+
+from __future__ import annotations
+
+import os
+from typing import TYPE_CHECKING, Any
+
+from launch.action import Action
+from launch.frontend.expose import expose_action
+from launch.logging import default_log_root
+from launch.substitution import (
+    SomeSubstitutionsType,
+    normalize_to_list_of_substitutions,
+    perform_substitutions,
+)
+
+if TYPE_CHECKING:
+    from launch.frontend import Entity, Parser
+    from launch.launch_context import LaunchContext
+
+
+@expose_action('set_ros_log_dir')
+class SetROSLogDir(Action):
+    """Set ROS_LOG_DIR in launch's environment; a relative new_log_dir goes below the current one
+    ($ROS_LOG_DIR, else rcl's default $ROS_HOME/log or ~/.ros/log).  Scoped by a GroupAction."""
+
+    def __init__(self, new_log_dir: SomeSubstitutionsType, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.log_dir = normalize_to_list_of_substitutions(new_log_dir)
+
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        return cls, {'new_log_dir': parser.substitutions(entity.get_attr('new_log_dir'))}
+
+    def execute(self, context: LaunchContext) -> None:
+        new_log_dir = perform_substitutions(context, self.log_dir)
+        if not new_log_dir:
+            raise ValueError('SetROSLogDir needs a directory, got an empty one')
+        # An absolute new_log_dir replaces the current one: os.path.join drops what comes before it.
+        context.environment['ROS_LOG_DIR'] = os.path.join(str(default_log_root()), new_log_dir)

@@ -1,0 +1,33 @@
+"""Node parameters and remapping rules checked and normalised at construction."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from typing import Any
+
+from launch.substitution import Substitution, normalize_to_list_of_substitutions
+
+from launch_ros.actions.node import check_parameters_item
+
+__all__ = ['normalize_parameters', 'normalize_remap_rule', 'normalize_remap_rules']
+
+
+def normalize_parameters(parameters: Iterable[Any]) -> list[Any]:
+    """The items of Node(parameters=...) after checking each (a bare value is a TypeError)."""
+    if isinstance(parameters, (str, dict)):
+        raise TypeError(f"parameters must be a list, got '{type(parameters).__name__}'")
+    items = list(parameters)
+    for item in items:
+        check_parameters_item(item)
+    return items
+
+
+def normalize_remap_rule(remap_rule: Any) -> tuple[list[Substitution], list[Substitution]]:
+    if not isinstance(remap_rule, tuple) or len(remap_rule) != 2:
+        raise TypeError(f'remap_rule must be a tuple of length 2, got {remap_rule!r}')
+    return (normalize_to_list_of_substitutions(remap_rule[0]),
+            normalize_to_list_of_substitutions(remap_rule[1]))
+
+
+def normalize_remap_rules(remap_rules: Iterable[Any]) -> list[tuple[list[Substitution], list[Substitution]]]:
+    return [normalize_remap_rule(rule) for rule in remap_rules]

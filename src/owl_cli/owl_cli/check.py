@@ -1,0 +1,194 @@
+"""owl check: checks a student's exercise of the course (sections 3.4 to 4.5) over real ROS 2.
+
+owl check --list                       the exercises and projects, with their ids
+owl check ID... [--workspace DIR]      build the package if needed, run the checks, one line per criterion
+owl check --all [--workspace DIR]      every exercise whose package is in the workspace, then a table
+
+Each check starts what the exercise needs (the simulated kit, turtlesim, a service server) and
+your node in a private ROS domain, drives it from outside through the course's topics, services
+and parameters, and stops everything again. Exit code 0: every criterion passed; 1: one failed;
+2: the check could not run (no workspace, no package, a failed build, an unknown id).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shlex
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+from owl_cli import check_catalogue as catalogue
+from owl_cli import check_workspace as ws
+from owl_cli.check_catalogue import Exercise
+from owl_cli.check_report import (
+    RESULT_PREFIX,
+    Criterion,
+    ExerciseResult,
+    criterion_line,
+    exit_code,
+    summary_table,
+    to_json,
+)
+
+# s: the most one check may take, start-up and clean-up included (each aims at well under 30 s).
+HARD_LIMIT = 60.0
+BUILD_LIMIT = 900.0
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument('exercises', nargs='*', metavar='ID', help='exercise ids (see --list)')
+    parser.add_argument(
+        '--workspace',
+        type=Path,
+        metavar='DIR',
+        help='the colcon workspace (default: the current folder or the one above it)',
+    )
+    parser.add_argument('--list', action='store_true', help='list the exercises and projects and exit')
+    parser.add_argument(
+        '--all', action='store_true', help='check every exercise whose package is in the workspace'
+    )
+    parser.add_argument('--json', action='store_true', help='print the results as JSON (for teachers)')
+
+
+def build(workspace: Path, names: list[str], quiet: bool) -> str | None:
+    """colcon build of the packages; None when it worked, else the build's last error line."""
+    command = ws.build_command(names)
+    if not quiet:
+        print(f'owl check: building {", ".join(sorted(names))} ({shlex.join(command)})', flush=True)
+    try:
+        done = subprocess.run(
+            command, cwd=workspace, capture_output=True, text=True, timeout=BUILD_LIMIT, check=False
+        )
+    except FileNotFoundError:
+        return "colcon is not on PATH: run 'source env.sh' in the Owl Kit Lab folder first"
+    except subprocess.TimeoutExpired:
+        return f'colcon build took longer than {BUILD_LIMIT:.0f} s'
+    if done.returncode != 0:
+        return ws.last_error_line(done.stdout + '\n' + done.stderr)
+    return None
+
+
+def run_check(exercise: Exercise, workspace: Path, on_criterion) -> ExerciseResult:
+    """Run the check's ROS part in a shell that sourced the workspace, with a hard time limit."""
+    result = ExerciseResult(exercise.id)
+    setup = workspace / 'install' / 'local_setup.bash'
+    python = shlex.quote(sys.executable)
+    script = f'source {shlex.quote(str(setup))} && exec {python} -m owl_cli.check_ros {exercise.id}'
+    started = time.monotonic()
+    process = subprocess.Popen(
+        ['bash', '-c', script],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        errors='replace',
+        start_new_session=True,
+    )
+    other: list[str] = []
+
+    def read() -> None:
+        assert process.stdout is not None
+        for line in process.stdout:
+            if line.startswith(RESULT_PREFIX):
+                criterion = Criterion.from_dict(json.loads(line[len(RESULT_PREFIX) :]))
+                result.criteria.append(criterion)
+                on_criterion(criterion)
+            else:
+                other.append(line.rstrip())
+
+    reader = threading.Thread(target=read, daemon=True)
+    reader.start()
+    try:
+        process.wait(HARD_LIMIT)
+    except subprocess.TimeoutExpired:
+        # SIGTERM lets the check stop what it started; SIGKILL if even that hangs.
+        os.killpg(process.pid, 15)
+        try:
+            process.wait(15)
+        except subprocess.TimeoutExpired:
+            os.killpg(process.pid, 9)
+            process.wait()
+        timeout = Criterion(
+            f'the check ends within {HARD_LIMIT:.0f} s',
+            False,
+            'the check was stopped: a node that never answers or never ends',
+        )
+        result.criteria.append(timeout)
+        on_criterion(timeout)
+    reader.join(5)
+    if process.returncode not in (0, -15, None) and not result.criteria:
+        result.error = f'the check itself failed: {" | ".join(other[-5:]) or "no output"}'
+    elif process.returncode != 0 and any('Traceback' in line for line in other):
+        crash = Criterion('the check ran to its end', False, ' | '.join(other[-3:]))
+        result.criteria.append(crash)
+        on_criterion(crash)
+    result.seconds = time.monotonic() - started
+    return result
+
+
+def check(args: argparse.Namespace) -> int:
+    if args.list:
+        print('\n'.join(catalogue.listing()))
+        return 0
+    if args.all == bool(args.exercises):
+        print('owl check: give exercise ids or --all (owl check --list lists the ids)', file=sys.stderr)
+        return 2
+    for exercise_id in args.exercises:
+        if catalogue.find(exercise_id) is None:
+            print(catalogue.unknown_id_message(exercise_id), file=sys.stderr)
+            return 2
+    try:
+        workspace = ws.find_workspace(args.workspace or Path.cwd())
+        available = ws.packages(workspace)
+    except ws.WorkspaceError as error:
+        print(f'owl check: {error}', file=sys.stderr)
+        return 2
+    if args.exercises:
+        exercises = [catalogue.BY_ID[i] for i in dict.fromkeys(args.exercises)]
+        for missing in sorted({e.package for e in exercises} - set(available)):
+            print(
+                f"owl check: no package '{missing}' in {workspace / 'src'} (the course creates it with "
+                f"'ros2 pkg create {missing} --build-type ament_python')",
+                file=sys.stderr,
+            )
+            return 2
+    else:
+        exercises = [e for e in catalogue.EXERCISES if e.package in available]
+        if not exercises:
+            print(f"owl check: none of the course's packages is in {workspace / 'src'}", file=sys.stderr)
+            return 2
+    wanted = sorted({name for e in exercises for name in ws.needed(e.package, available)})
+    to_build = ws.stale(workspace, wanted, available)
+    if to_build:
+        problem = build(workspace, to_build, args.json)
+        if problem:
+            print(f'owl check: colcon build failed: {problem}', file=sys.stderr)
+            return 2
+
+    results = []
+    for exercise in exercises:
+        if not args.json:
+            print(f'owl check {exercise.id} (section {exercise.section}): {exercise.description}', flush=True)
+        result = run_check(
+            exercise,
+            workspace,
+            (lambda c: None) if args.json else (lambda c: print(criterion_line(c), flush=True)),
+        )
+        results.append(result)
+        if not args.json:
+            if result.error:
+                print(f'  {result.error}')
+            verdict = (
+                'passed' if result.passed else f'FAILED ({result.failed_count} of {len(result.criteria)})'
+            )
+            print(f'{exercise.id}: {verdict} in {result.seconds:.1f} s', flush=True)
+    if args.json:
+        print(to_json(results, str(workspace)))
+    elif len(results) > 1:
+        print()
+        print('\n'.join(summary_table(results)))
+    return exit_code(results)

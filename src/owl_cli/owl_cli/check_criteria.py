@@ -1,0 +1,167 @@
+"""The judgements of `owl check`, from measured values to a passed or failed criterion with a hint.
+
+No ROS here: check_ros.py measures, these functions decide, so each decision is unit-tested.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Sequence
+
+from owl_cli.check_report import Criterion
+
+# Velocities or goals smaller than this count as "nothing" (the IMU's own noise stays far below).
+STILL = 0.05
+
+
+def kelvin(temp_c: float, temp_k: float) -> Criterion:
+    expected = temp_c + 273.15
+    return Criterion(
+        f'temp_conversion: {temp_c:g} °C is {expected:g} K (formula 2)',
+        math.isclose(temp_k, expected, abs_tol=1e-6),
+        'temp_k must be temp_c + 273.15',
+        f'answered {temp_k:g} K',
+    )
+
+
+def fahrenheit(temp_c: float, temp_f: float) -> Criterion:
+    expected = temp_c * 9 / 5 + 32
+    passed = math.isclose(temp_f, expected, abs_tol=1e-6)
+    if math.isclose(temp_f, temp_c * 9 / 2 + 32, abs_tol=1e-6):
+        hint = "that is the listing's temp_c * 9 / 2 + 32, a typo: formula (1) is °F = °C * 9/5 + 32"
+    else:
+        hint = 'temp_f must be temp_c * 9 / 5 + 32 (formula 1)'
+    return Criterion(
+        f'temp_conversion: {temp_c:g} °C is {expected:g} °F (formula 1)',
+        passed,
+        hint,
+        f'answered {temp_f:g} °F',
+    )
+
+
+def rate(stamps: Sequence[float]) -> float:
+    """Messages per second over the stamps (monotonic seconds) of consecutive messages."""
+    if len(stamps) < 2 or stamps[-1] <= stamps[0]:
+        return 0.0
+    return (len(stamps) - 1) / (stamps[-1] - stamps[0])
+
+
+def in_range(what: str, values: Sequence[float], low: float, high: float, hint: str) -> Criterion:
+    outside = [v for v in values if not low <= v <= high]
+    detail = f'{len(values)} values from {min(values):g} to {max(values):g}' if values else 'no values'
+    return Criterion(
+        f'{what} stay within {low:g}..{high:g}',
+        bool(values) and not outside,
+        hint if values else f'no {what} arrived',
+        detail,
+    )
+
+
+def turtle_response(motion: str, linear: float, angular: float) -> Criterion:
+    """How the turtle answers an IMU tilted forward (motion 'pitch') or turned left ('yaw').
+
+    linear and angular are the mean linear.x and angular.z while the IMU held that orientation.
+    REP 103: pitching forward is a positive pitch, turning left a positive yaw; turtlesim drives
+    forward for a positive linear.x and turns left for a positive angular.z.
+    """
+    detail = f'linear.x {linear:+.2f}, angular.z {angular:+.2f}'
+    if motion == 'pitch':
+        text = 'the turtle drives forward when the IMU pitches forward'
+        wanted, other, name = linear, angular, 'pitch'
+        wrong_way = (
+            'the turtle goes backwards when the IMU pitches forward: check the sign of pitch '
+            '(linear.x must grow with pitch)'
+        )
+    else:
+        text = 'the turtle turns left when the IMU turns left (yaw)'
+        wanted, other, name = angular, linear, 'yaw'
+        wrong_way = (
+            'the turtle turns right when the IMU turns left: check the sign of yaw '
+            '(angular.z must grow with yaw)'
+        )
+    if abs(other) > STILL and abs(other) >= abs(wanted):
+        return Criterion(
+            text,
+            False,
+            (
+                f'the turtle {"turns" if motion == "pitch" else "drives"} when only the {name} changes: '
+                'pitch must set linear.x (the speed) and yaw angular.z (the turn rate); are pitch and yaw '
+                'swapped?'
+            ),
+            detail,
+        )
+    if wanted < -STILL:
+        return Criterion(text, False, wrong_way, detail)
+    if wanted <= STILL:
+        moved = 'pitches forward' if motion == 'pitch' else 'turns left'
+        return Criterion(
+            text,
+            False,
+            f'the turtle does not move when the IMU {moved}: use the {name} '
+            'angle from equations (3) for the velocity',
+            detail,
+        )
+    return Criterion(text, True, '', detail)
+
+
+def standing_still(linear: float, angular: float) -> Criterion:
+    return Criterion(
+        'the turtle stands still while the IMU is level and faces ahead',
+        abs(linear) <= STILL and abs(angular) <= STILL,
+        'with roll, pitch and yaw all 0 the velocities must be 0: use pitch and yaw from '
+        'equations (3), not the raw quaternion',
+        f'linear.x {linear:+.2f}, angular.z {angular:+.2f}',
+    )
+
+
+def follows(what: str, goal: float, angle: float, tolerance: float = 0.15) -> Criterion:
+    """A servo goal that must equal an IMU angle (within the bounds)."""
+    return Criterion(
+        f'{what}',
+        math.isclose(goal, angle, abs_tol=tolerance),
+        '',
+        f'goal {goal:+.2f} rad for {angle:+.2f} rad',
+    )
+
+
+def bounded_goal(servo: str, goals: Sequence[float], low: float, high: float, cause: str) -> Criterion:
+    """Goals of a servo that something (a key held, the IMU turned far) pushed toward its limit."""
+    text = f"{servo} goals stay within the servo's range {low:g}..{high:g} rad when {cause}"
+    if not goals:
+        return Criterion(text, False, f'no {servo} goal arrived while {cause}')
+    beyond = max(goals, key=lambda g: max(g - high, low - g))
+    passed = low - 1e-3 <= min(goals) and max(goals) <= high + 1e-3
+    return Criterion(
+        text,
+        passed,
+        (
+            f'a goal of {beyond:+.2f} rad would drive the {servo} servo past its range: add upper and lower '
+            'bounds to the goals (max(low, min(high, goal)))'
+        ),
+        f'goals {min(goals):+.2f}..{max(goals):+.2f} rad',
+    )
+
+
+def oscillates(values: Sequence[float], least_swing: float = 0.2) -> bool:
+    """Whether values swing by least_swing and turn back at least once (a sine, not a ramp)."""
+    if len(values) < 3 or max(values) - min(values) < least_swing:
+        return False
+    rising = None
+    for previous, current in itertools.pairwise(values):
+        if abs(current - previous) < 1e-6:
+            continue
+        now_rising = current > previous
+        if rising is not None and now_rising != rising:
+            return True
+        rising = now_rising
+    return False
+
+
+def mean(values: Sequence[float]) -> float:
+    return sum(values) / len(values) if values else 0.0
+
+
+def tail_lines(output: str, count: int = 5) -> str:
+    lines = [line for line in output.splitlines() if line.strip()]
+    return ' | '.join(lines[-count:]) if lines else '(no output)'

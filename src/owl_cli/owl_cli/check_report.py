@@ -1,0 +1,105 @@
+"""Results of `owl check`: one line per criterion, JSON for teachers, the --all summary table."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import asdict, dataclass, field
+
+# How the check's ROS process (check_ros.py) hands each decided criterion to `owl check`: one line.
+RESULT_PREFIX = 'owl-check-criterion '
+
+
+@dataclass
+class Criterion:
+    text: str  # what is checked, in the course's terms
+    passed: bool
+    hint: str = ''  # for a failure: what to look at
+    detail: str = ''  # what was measured (both outcomes)
+
+    @classmethod
+    def from_dict(cls, values: dict) -> Criterion:
+        return cls(
+            str(values['text']),
+            bool(values['passed']),
+            str(values.get('hint', '')),
+            str(values.get('detail', '')),
+        )
+
+
+@dataclass
+class ExerciseResult:
+    exercise: str
+    criteria: list[Criterion] = field(default_factory=list)
+    seconds: float = 0.0
+    error: str = ''  # a problem that stopped the check before its criteria (exit code 2)
+
+    @property
+    def passed(self) -> bool:
+        return not self.error and bool(self.criteria) and all(c.passed for c in self.criteria)
+
+    @property
+    def failed_count(self) -> int:
+        return sum(not c.passed for c in self.criteria)
+
+
+def criterion_line(criterion: Criterion) -> str:
+    mark = 'passed' if criterion.passed else 'FAILED'
+    line = f'  {mark}: {criterion.text}'
+    if criterion.detail:
+        line += f' ({criterion.detail})'
+    if not criterion.passed and criterion.hint:
+        line += f'\n          hint: {criterion.hint}'
+    return line
+
+
+def exercise_lines(result: ExerciseResult) -> list[str]:
+    if result.error:
+        return [f'owl check {result.exercise}: {result.error}']
+    verdict = 'passed' if result.passed else f'FAILED ({result.failed_count} of {len(result.criteria)})'
+    return (
+        [f'owl check {result.exercise}:']
+        + [criterion_line(c) for c in result.criteria]
+        + [f'{result.exercise}: {verdict} in {result.seconds:.1f} s']
+    )
+
+
+def summary_table(results: list[ExerciseResult]) -> list[str]:
+    width = max([len('exercise')] + [len(r.exercise) for r in results])
+    lines = [f'{"exercise":<{width}}  result   criteria  time', f'{"-" * width}  -------  --------  -----']
+    for r in results:
+        if r.error:
+            state, counts = 'ERROR  ', '       -'
+        else:
+            state = 'passed ' if r.passed else 'FAILED '
+            counts = f'{len(r.criteria) - r.failed_count:>4}/{len(r.criteria):<3}'
+        lines.append(f'{r.exercise:<{width}}  {state}  {counts:>8}  {r.seconds:4.1f}s')
+    passed = sum(r.passed for r in results)
+    lines.append(f'{passed} of {len(results)} exercises passed in {sum(r.seconds for r in results):.1f} s')
+    return lines
+
+
+def to_json(results: list[ExerciseResult], workspace: str) -> str:
+    return json.dumps(
+        {
+            'workspace': workspace,
+            'passed': all(r.passed for r in results),
+            'exercises': [
+                {
+                    'exercise': r.exercise,
+                    'passed': r.passed,
+                    'seconds': round(r.seconds, 2),
+                    'error': r.error,
+                    'criteria': [asdict(c) for c in r.criteria],
+                }
+                for r in results
+            ],
+        },
+        indent=2,
+    )
+
+
+def exit_code(results: list[ExerciseResult]) -> int:
+    """0 when every criterion passed, 2 when a check could not run (bad input), else 1."""
+    if any(r.error for r in results):
+        return 2
+    return 0 if all(r.passed for r in results) else 1

@@ -1,0 +1,97 @@
+"""An upstream-style launch file runs under `ros2 launch` over real DDS: OnProcessExit imported from
+its upstream module path, a LifecycleNode that launch configures and activates through the node's
+real lifecycle services, and `$(param ...)` reading what SetParameter gave every node."""
+
+import sys
+import textwrap
+
+from lifecycle_msgs.msg import State
+from lifecycle_msgs.srv import GetState
+from ros_harness import LAUNCH_STOP_TIMEOUT
+
+# A lifecycle node as a student would write it with rclpy.lifecycle; it says which transitions ran.
+LIFECYCLE_NODE = '''
+import rclpy
+from rclpy.executors import ExternalShutdownException
+from rclpy.lifecycle import LifecycleNode, TransitionCallbackReturn
+
+
+class Greeter(LifecycleNode):
+    def __init__(self):
+        super().__init__('greeter')
+        self.declare_parameter('greeting', 'unset')
+
+    def on_configure(self, state):
+        self.get_logger().info('configured with greeting ' + self.get_parameter('greeting').value)
+        return TransitionCallbackReturn.SUCCESS
+
+    def on_activate(self, state):
+        self.get_logger().info('activated')
+        return TransitionCallbackReturn.SUCCESS
+
+
+def main():
+    rclpy.init()
+    node = Greeter()
+    try:
+        rclpy.spin(node)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown()
+
+
+main()
+'''
+
+LAUNCH_FILE = '''
+import lifecycle_msgs.msg
+from launch import LaunchDescription
+from launch.actions import EmitEvent, ExecuteProcess, LogInfo, RegisterEventHandler
+from launch.event_handlers.on_process_exit import OnProcessExit
+from launch.events import matches_action
+from launch_ros.actions import LifecycleNode, SetParameter
+from launch_ros.event_handlers import OnStateTransition
+from launch_ros.events.lifecycle import ChangeState
+from launch_ros.substitutions import Parameter
+
+
+def generate_launch_description():
+    greeter = LifecycleNode(executable=PYTHON, arguments=[SCRIPT], name='greeter', namespace='lab',
+                            output='screen')
+    echo = ExecuteProcess(cmd=['echo', 'param says', Parameter('greeting')], output='screen')
+    return LaunchDescription([
+        SetParameter('greeting', 'hello_from_launch'),
+        greeter,
+        RegisterEventHandler(OnStateTransition(
+            target_lifecycle_node=greeter, goal_state='inactive',
+            entities=[EmitEvent(event=ChangeState(
+                lifecycle_node_matcher=matches_action(greeter),
+                transition_id=lifecycle_msgs.msg.Transition.TRANSITION_ACTIVATE))])),
+        RegisterEventHandler(OnStateTransition(
+            target_lifecycle_node=greeter, goal_state='active', entities=[echo])),
+        RegisterEventHandler(OnProcessExit(
+            target_action=echo, on_exit=[LogInfo(msg='echo exited, greeter is active')])),
+        EmitEvent(event=ChangeState(
+            lifecycle_node_matcher=matches_action(greeter),
+            transition_id=lifecycle_msgs.msg.Transition.TRANSITION_CONFIGURE)),
+    ])
+'''
+
+
+def test_upstream_style_launch_file_drives_a_lifecycle_node_and_reads_a_param(ros, tmp_path):
+    script = tmp_path / 'greeter.py'
+    script.write_text(LIFECYCLE_NODE)
+    launch_file = tmp_path / 'lifecycle_launch.py'
+    launch_file.write_text(textwrap.dedent(LAUNCH_FILE).replace('PYTHON', repr(sys.executable))
+                           .replace('SCRIPT', repr(str(script))))
+    process = ros.command(['ros2', 'launch', str(launch_file)])
+    process.wait_for(r'\[lab\.greeter\]: configured with greeting hello_from_launch', timeout=60)
+    process.wait_for(r'\[lab\.greeter\]: activated', timeout=30)
+    process.wait_for(r'\[echo-\d+\] param says hello_from_launch', timeout=30)
+    process.wait_for(r'\[INFO\] \[launch\.user\]: echo exited, greeter is active', timeout=30)
+    state = ros.probe.call(GetState, '/lab/greeter/get_state', GetState.Request(), timeout=30,
+                           resend_every=2.0).current_state
+    assert (state.id, state.label) == (State.PRIMARY_STATE_ACTIVE, 'active')
+    process.stop_cleanly(timeout=LAUNCH_STOP_TIMEOUT)
