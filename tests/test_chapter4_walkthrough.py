@@ -20,7 +20,6 @@ from sensor_msgs.msg import JointState
 from std_msgs.msg import Float32
 from student_workspace import shell
 from turtlesim.msg import Pose
-from workspace import shell
 
 HEADLESS = {'DISPLAY': None, 'WAYLAND_DISPLAY': None}
 

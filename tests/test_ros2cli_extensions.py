@@ -7,11 +7,10 @@ The two packages (tests/ros2_extensions) are written against upstream's extensio
 """
 
 import re
-import shutil
 from pathlib import Path
 
 import pytest
-from workspace import shell
+from student_workspace import build_from, shell
 
 EXTENSIONS = Path(__file__).resolve().parent / 'ros2_extensions'
 
@@ -19,12 +18,8 @@ EXTENSIONS = Path(__file__).resolve().parent / 'ros2_extensions'
 @pytest.fixture(scope='module')
 def workspace(tmp_path_factory):
     """A workspace with ros2hello and ros2broken in src/, built as a student builds one."""
-    workspace = tmp_path_factory.mktemp('extension_ws')
-    for package in ('ros2hello', 'ros2broken'):
-        shutil.copytree(EXTENSIONS / package, workspace / 'src' / package)
-    build = shell(workspace, 'colcon build')
-    assert build.returncode == 0, build.stdout + build.stderr
-    return workspace
+    return build_from(tmp_path_factory.mktemp('extension_ws'),
+                      [EXTENSIONS / 'ros2hello', EXTENSIONS / 'ros2broken'])
 
 
 def warnings(result):
