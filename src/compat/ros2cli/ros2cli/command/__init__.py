@@ -47,8 +47,8 @@ def _chosen_name(cli_name: str, argv: list[str] | None) -> str | None:
     """The word at this parser's depth ('ros2' 0, 'ros2 topic' 1): the extension the user chose.
     Option values are not told apart from words here; a wrong guess only means every extension of
     the group is loaded, as for `-h`."""
-    words = [word for word in (ARGV if argv is None and ARGV is not None else argv or sys.argv[1:])
-             if not word.startswith('-')]
+    given = argv if argv is not None else ARGV if ARGV is not None else sys.argv[1:]
+    words = [word for word in given if not word.startswith('-')]
     depth = len(cli_name.split()) - 1
     return words[depth] if len(words) > depth else None
 
