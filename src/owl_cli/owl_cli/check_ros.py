@@ -10,7 +10,6 @@ criterion as one JSON line as soon as it is decided, and stops everything it sta
 
 from __future__ import annotations
 
-import importlib
 import itertools
 import json
 import math
@@ -30,6 +29,7 @@ from owl_common.probe import Probe
 from owl_common.processes import RosProcess, RosSandbox
 from rcl_interfaces.srv import GetParameters, ListParameters, SetParameters
 from rclpy.parameter import Parameter, parameter_value_to_python
+from rosidl_runtime_py.utilities import get_service
 
 from owl_cli import check_criteria as judge
 from owl_cli import check_workspace as ws
@@ -1259,12 +1259,6 @@ def own_service(name: str) -> bool:
     return not name.endswith(STANDARD_SERVICE_SUFFIXES) and '/_action/' not in name
 
 
-def interface_type(type_name: str) -> Any:
-    """The Python class of 'pkg/srv/Name' (the student's workspace is sourced, so its types import)."""
-    package, kind, name = type_name.split('/')
-    return getattr(importlib.import_module(f'{package}.{kind}'), name)
-
-
 def fields(message: Any, kinds: tuple[str, ...]) -> list[str]:
     return [name for name, kind in message.get_fields_and_field_types().items() if kind in kinds]
 
@@ -1313,7 +1307,7 @@ def check_service_server(s: Session, subject: str) -> None:
         s.stop_student()
         return
     name, type_name = offered[0]
-    srv = interface_type(type_name)
+    srv = get_service(type_name)  # the student's workspace is sourced: its types import
     number_fields = fields(srv.Request(), FLOAT_TYPES + INTEGER_TYPES)
     if not s.add(
         Criterion(
@@ -1406,7 +1400,7 @@ def check_service_client(s: Session, subject: str) -> None:
             s.stop_student()
         return
     name, type_name = seen[0]
-    srv = interface_type(type_name)
+    srv = get_service(type_name)  # the student's workspace is sourced: its types import
     requests: list[float] = []
     expected: list[float] = []
 
