@@ -8,12 +8,13 @@ command as a student or teacher types it, so they need no harness of their own.
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 from pathlib import Path
 
 import pytest
 from owl_cli.check_catalogue import EXERCISES
-from student_workspace import build_from
+from student_workspace import build_from, shell
 
 ROOT = Path(__file__).resolve().parents[1]
 VARIANTS = Path(__file__).parent / 'owl_check_variants'
@@ -63,7 +64,11 @@ def broken_too(tmp_path_factory) -> Path:
     """The mistakes that share a package name with one above, and no olive_camera at all."""
     return build_from(
         tmp_path_factory.mktemp('broken_too_ws'),
-        [VARIANTS / 'imu_sign' / 'olive_imu', VARIANTS / 'crashing_publisher' / 'random_number_ps'],
+        [
+            VARIANTS / 'imu_sign' / 'olive_imu',
+            VARIANTS / 'crashing_publisher' / 'random_number_ps',
+            VARIANTS / 'factorial_own_names' / 'olive_srvcli',
+        ],
     )
 
 
@@ -122,6 +127,86 @@ def test_the_reference_solutions_pass_every_calibrated_check():
         # The issue's budget is 30 s per check; 45 s leaves room for a loaded 2-core CI machine.
         assert found[exercise]['seconds'] < 45, (exercise, found[exercise]['seconds'])
     assert done.returncode == 0
+
+
+# The checks added for the rest of sections 3.4-4.5 (3.6's exercise, 3.7.1's file, the "+" extras).
+EXTRAS = [
+    'currency_server',
+    'currency_client',
+    'factorial_server',
+    'factorial_client',
+    'params_file',
+    'imu_turtle_topic',
+    'control_servo_frequency',
+    'keyboard_servos_torque',
+    'keyboard_servos_speed',
+    'robot_camera_launch',
+]
+
+
+@pytest.mark.timeout(600)
+def test_the_reference_solutions_pass_the_exercise_and_extra_checks():
+    # params_file finds docs/turtlesim/turtlesim.yaml, section 3.7.1's edited dump.
+    done = owl_check(*EXTRAS, '--workspace', str(ROOT), '--json', timeout=580)
+    found = results(done)
+    for exercise in EXTRAS:
+        failed = [c for c in found[exercise]['criteria'] if not c['passed']]
+        assert not failed, (exercise, failed)
+        assert found[exercise]['seconds'] < 45, (exercise, found[exercise]['seconds'])
+    assert done.returncode == 0
+
+
+FRESH_DUMP = """/turtlesim:
+  ros__parameters:
+    background_b: 255
+    background_g: 86
+    background_r: 69
+    use_sim_time: false
+"""
+
+
+@pytest.mark.timeout(300)
+def test_all_in_a_workspace_of_ros2_pkg_create_and_an_unedited_parameter_file(tmp_path):
+    """Section 3.4's command makes a package that passes; ~/Documents/turtlesim.yaml straight from
+    ros2 param dump was never edited; --all checks just these two (3.6's choice: none attempted)."""
+    workspace, home = tmp_path / 'ws', tmp_path / 'home'
+    (workspace / 'src').mkdir(parents=True)
+    (home / 'Documents').mkdir(parents=True)
+    (home / 'Documents' / 'turtlesim.yaml').write_text(FRESH_DUMP)
+    created = shell(workspace / 'src', 'ros2 pkg create test_package --build-type ament_python')
+    assert created.returncode == 0, created.stdout + created.stderr
+    done = subprocess.run(
+        ['owl', 'check', '--all', '--json'],
+        capture_output=True,
+        text=True,
+        cwd=workspace / 'src' / 'test_package',
+        env={**os.environ, 'HOME': str(home)},
+        timeout=280,
+        check=False,
+    )
+    assert done.returncode == 1, done.stdout + done.stderr
+    found = results(done)
+    assert sorted(found) == ['params_file', 'test_package']
+    assert found['test_package']['passed'], found['test_package']
+    failed = [c for c in found['params_file']['criteria'] if not c['passed']]
+    assert [c['text'] for c in failed] == [
+        'the file changes a value from its default, as the course asks (e.g. background 0/0/0)'
+    ]
+    assert 'a fresh dump holds the defaults' in failed[0]['hint']
+
+
+@pytest.mark.timeout(300)
+def test_a_factorial_server_and_client_of_their_own_names_are_found_and_judged(broken_too):
+    """fact_service offers compute_factorial and stops its loop one short; fact_client is right."""
+    done = owl_check('factorial_server', 'factorial_client', '--workspace', str(broken_too), '--json')
+    assert done.returncode == 1, done.stdout + done.stderr
+    found = results(done)
+    server = found['factorial_server']['criteria']
+    assert server[0]['passed'] and '/compute_factorial' in server[0]['detail'], server
+    failed = [c for c in server if not c['passed']]
+    assert [c['text'] for c in failed] == ['the factorial of 5 is 120', 'the factorial of 10 is 3628800']
+    assert '1 * 2 * ... * 5' in failed[0]['hint'] and 'answered 24' in failed[0]['detail']
+    assert found['factorial_client']['passed'], found['factorial_client']
 
 
 @pytest.mark.timeout(300)

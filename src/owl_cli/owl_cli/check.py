@@ -20,6 +20,7 @@ import subprocess
 import sys
 import threading
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 from owl_cli import check_catalogue as catalogue
@@ -27,6 +28,7 @@ from owl_cli import check_workspace as ws
 from owl_cli.check_catalogue import Exercise
 from owl_cli.check_report import (
     RESULT_PREFIX,
+    WORKSPACE_VARIABLE,
     Criterion,
     ExerciseResult,
     criterion_line,
@@ -73,7 +75,9 @@ def build(workspace: Path, names: list[str], quiet: bool) -> str | None:
     return None
 
 
-def run_check(exercise: Exercise, workspace: Path, on_criterion) -> ExerciseResult:
+def run_check(
+    exercise: Exercise, workspace: Path, on_criterion: Callable[[Criterion], None]
+) -> ExerciseResult:
     """Run the check's ROS part in a shell that sourced the workspace, with a hard time limit."""
     result = ExerciseResult(exercise.id)
     setup = workspace / 'install' / 'local_setup.bash'
@@ -82,6 +86,7 @@ def run_check(exercise: Exercise, workspace: Path, on_criterion) -> ExerciseResu
     started = time.monotonic()
     process = subprocess.Popen(
         ['bash', '-c', script],
+        env={**os.environ, WORKSPACE_VARIABLE: str(workspace)},
         stdout=subprocess.PIPE,
         stderr=subprocess.STDOUT,
         text=True,
@@ -130,6 +135,21 @@ def run_check(exercise: Exercise, workspace: Path, on_criterion) -> ExerciseResu
     return result
 
 
+def attempted(exercise: Exercise, workspace: Path, available: dict[str, ws.Package]) -> bool:
+    """For --all: whether the workspace holds something of this exercise to check.
+
+    Of the course's "choose one" exercises (3.6: currency or factorial) only those whose
+    executable is installed; params_file only when the workspace (or ~/Documents) has a file."""
+    if not exercise.package:
+        return bool(ws.parameter_files(workspace, Path.home()))
+    if exercise.choice:
+        subject, role = exercise.id.split('_')
+        return any(
+            ws.find_executable(ws.executables(workspace, name), subject, role) for name in available
+        )
+    return True
+
+
 def check(args: argparse.Namespace) -> int:
     if args.list:
         print('\n'.join(catalogue.listing()))
@@ -138,8 +158,12 @@ def check(args: argparse.Namespace) -> int:
         print('owl check: give exercise ids or --all (owl check --list lists the ids)', file=sys.stderr)
         return 2
     for exercise_id in args.exercises:
-        if catalogue.find(exercise_id) is None:
+        exercise = catalogue.find(exercise_id)
+        if exercise is None:
             print(catalogue.unknown_id_message(exercise_id), file=sys.stderr)
+            return 2
+        if not exercise.checkable:
+            print(catalogue.not_checked_message(exercise), file=sys.stderr)
             return 2
     try:
         workspace = ws.find_workspace(args.workspace or Path.cwd())
@@ -149,7 +173,7 @@ def check(args: argparse.Namespace) -> int:
         return 2
     if args.exercises:
         exercises = [catalogue.BY_ID[i] for i in dict.fromkeys(args.exercises)]
-        for missing in sorted({e.package for e in exercises} - set(available)):
+        for missing in sorted({e.package for e in exercises if e.package} - set(available)):
             print(
                 f"owl check: no package '{missing}' in {workspace / 'src'} (the course creates it with "
                 f"'ros2 pkg create {missing} --build-type ament_python')",
@@ -157,7 +181,7 @@ def check(args: argparse.Namespace) -> int:
             )
             return 2
     else:
-        exercises = [e for e in catalogue.EXERCISES if e.package in available]
+        exercises = [e for e in catalogue.CHECKABLE if e.package in available or not e.package]
         if not exercises:
             print(f"owl check: none of the course's packages is in {workspace / 'src'}", file=sys.stderr)
             return 2
@@ -168,6 +192,8 @@ def check(args: argparse.Namespace) -> int:
         if problem:
             print(f'owl check: colcon build failed: {problem}', file=sys.stderr)
             return 2
+    if args.all:
+        exercises = [e for e in exercises if attempted(e, workspace, available)]
 
     results = []
     for exercise in exercises:

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import re
 from collections.abc import Sequence
 
 from owl_cli.check_report import Criterion
@@ -165,3 +166,67 @@ def mean(values: Sequence[float]) -> float:
 def tail_lines(output: str, count: int = 5) -> str:
     lines = [line for line in output.splitlines() if line.strip()]
     return ' | '.join(lines[-count:]) if lines else '(no output)'
+
+
+def currency_answers(at_100: Sequence[float], at_250: Sequence[float]) -> list[Criterion]:
+    """The amounts a currency service answered for 100 and for 250 euros (its number fields)."""
+    amounts = [a for a in at_100 if a > 0]
+    three = Criterion(
+        'answers 100 euros in three currencies (three amounts above 0)',
+        len(amounts) >= 3,
+        'the response needs one number per currency (e.g. dollars, pounds, swiss_francs), each '
+        'the euros times its rate',
+        f'answered {", ".join(f"{a:g}" for a in at_100)}',
+    )
+    proportional = bool(at_100) and len(at_100) == len(at_250) and all(
+        math.isclose(b, a * 2.5, rel_tol=0.01, abs_tol=0.02) for a, b in zip(at_100, at_250, strict=True)
+    )
+    scaled = Criterion(
+        'each amount grows with the euros (250 euros give 2.5 times the amounts of 100)',
+        proportional,
+        'multiply the request\'s euros by a fixed rate for each currency',
+        f'answered {", ".join(f"{a:g}" for a in at_250)} for 250 euros',
+    )
+    different = Criterion(
+        'the three currencies have different rates',
+        len({round(a, 2) for a in amounts}) >= 3,
+        'dollar, pound and Swiss franc each have their own rate: one amount per currency',
+        f'{", ".join(f"{a:g}" for a in amounts)}',
+    )
+    return [three, scaled, different]
+
+
+def factorial_answer(n: int, values: Sequence[float]) -> Criterion:
+    """A factorial service's number fields for the request n."""
+    expected = math.factorial(n)
+    if n == 0:
+        hint = '0! is 1 (the empty product): start the product at 1'
+    else:
+        hint = f'{n}! is 1 * 2 * ... * {n}: multiply, in a loop or with math.factorial({n})'
+    return Criterion(
+        f'the factorial of {n} is {expected}',
+        any(v == expected for v in values),
+        hint,
+        f'answered {", ".join(str(v) for v in values) or "no number"}',
+    )
+
+
+NUMBER = re.compile(r'[-+]?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?')
+
+
+def numbers_in(text: str) -> list[float]:
+    """Every number printed in text (log time stamps included, which never match an answer)."""
+    return [float(m) for m in NUMBER.findall(text)]
+
+
+def slope(samples: Sequence[tuple[float, float]]) -> float:
+    """The least-squares rate of change (value per second) of (time, value) samples, as a magnitude."""
+    if len(samples) < 3:
+        return 0.0
+    times = [t for t, _ in samples]
+    values = [v for _, v in samples]
+    mean_t, mean_v = mean(times), mean(values)
+    spread = sum((t - mean_t) ** 2 for t in times)
+    if spread == 0:
+        return 0.0
+    return abs(sum((t - mean_t) * (v - mean_v) for t, v in samples) / spread)

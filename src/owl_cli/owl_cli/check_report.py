@@ -7,6 +7,8 @@ from dataclasses import asdict, dataclass, field
 
 # How the check's ROS process (check_ros.py) hands each decided criterion to `owl check`: one line.
 RESULT_PREFIX = 'owl-check-criterion '
+# The student's workspace, for the check's ROS process (its executables, its parameter files).
+WORKSPACE_VARIABLE = 'OWL_CHECK_WORKSPACE'
 
 
 @dataclass
@@ -17,7 +19,7 @@ class Criterion:
     detail: str = ''  # what was measured (both outcomes)
 
     @classmethod
-    def from_dict(cls, values: dict) -> Criterion:
+    def from_dict(cls, values: dict[str, object]) -> Criterion:
         return cls(
             str(values['text']),
             bool(values['passed']),

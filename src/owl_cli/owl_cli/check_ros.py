@@ -29,9 +29,11 @@ from owl_common.probe import Probe
 from owl_common.processes import RosProcess, RosSandbox
 from rcl_interfaces.srv import GetParameters, ListParameters, SetParameters
 from rclpy.parameter import Parameter, parameter_value_to_python
+from rosidl_runtime_py.utilities import get_service
 
 from owl_cli import check_criteria as judge
-from owl_cli.check_report import RESULT_PREFIX, Criterion
+from owl_cli import check_workspace as ws
+from owl_cli.check_report import RESULT_PREFIX, WORKSPACE_VARIABLE, Criterion
 
 IMU_TOPIC = '/olive/imu/x1684267976913/imu'
 IMU_COMMAND_TOPIC = '/olive_imu_x1684267976913_dcm_srv/true_orientation'
@@ -43,6 +45,9 @@ TILT_RANGE = (-1.3, 0.9)  # the kit's tilt servo (camera bracket)
 START_TIMEOUT = 15.0  # s for a student's node to show up in the graph
 STOP_TIMEOUT = 8.0  # s for Ctrl-C to end a student's node
 PROBE_NODE = 'owl_check'
+# The simulated modules serve no web page during a check: a page binds the module's fixed address
+# (127.42.0.N), which the student's own kit may hold, and nobody watches it here.
+NO_WEB_PAGE = ('-p', 'web_port:=0')  # after --ros-args
 
 
 def goal_topic(servo: str) -> str:
@@ -110,6 +115,7 @@ class Session:
                 'seed:=1',
                 '-p',
                 'orientation_noise:=0.0',
+                *NO_WEB_PAGE,
             )
             nodes.append('olive_imu_x1684267976913_dcm_srv')
         for servo, (low, high) in (('pan', PAN_RANGE), ('tilt', TILT_RANGE)):
@@ -124,12 +130,13 @@ class Session:
                     f'min_position:={low}',
                     '-p',
                     f'max_position:={high}',
+                    *NO_WEB_PAGE,
                     label=f'servo {servo}',
                 )
                 self.helpers[servo] = process
                 nodes.append(f'olive_servo_{servo}_dcm_srv')
         if 'camera' in modules:
-            self.helper('olive_sim', 'camera_sim')
+            self.helper('olive_sim', 'camera_sim', '--ros-args', *NO_WEB_PAGE)
             nodes.append('olive_camera_eye_dcm_srv')
         for name in nodes:
             if not self.wait(lambda n=name: n in self.node.get_node_names(), 30.0):
@@ -142,9 +149,11 @@ class Session:
         )
         return self.student_process
 
-    def student_launch(self, package: str, launch_file: str) -> RosProcess:
+    def student_launch(
+        self, package: str, launch_file: str, env: dict[str, str | None] | None = None
+    ) -> RosProcess:
         self.student_process = self.sandbox.command(
-            ['ros2', 'launch', package, launch_file], label=launch_file
+            ['ros2', 'launch', package, launch_file], label=launch_file, env=env
         )
         return self.student_process
 
@@ -189,6 +198,10 @@ class Session:
         )
 
     def close(self) -> None:
+        # Ctrl-C to every process at once: the sandbox then waits for each in turn, and the kit's
+        # modules end together (0.4 s for four, where one after the other took 2.7 s).
+        for process in self.sandbox.processes:
+            process.send_signal(signal.SIGINT)
         try:
             self.probe.close()
         finally:
@@ -268,8 +281,19 @@ class Session:
         return list(response.result.names) if response else []
 
     def get_parameter(self, node: str, name: str) -> Any:
-        response = self.call(GetParameters, f'/{node}/get_parameters', GetParameters.Request(names=[name]))
-        return parameter_value_to_python(response.values[0]) if response and response.values else None
+        return self.get_parameters(node, [name]).get(name)
+
+    def get_parameters(self, node: str, names: list[str]) -> dict[str, Any]:
+        """The values of the parameters, in one service call (each call is a round trip)."""
+        response = self.call(GetParameters, f'/{node}/get_parameters', GetParameters.Request(names=names))
+        if response is None or len(response.values) != len(names):
+            return {}
+        return {name: parameter_value_to_python(v) for name, v in zip(names, response.values, strict=True)}
+
+    def own_parameters(self, node: str) -> dict[str, Any]:
+        """A node's parameters and values, without those rclpy declares for every node."""
+        names = [n for n in self.parameters(node) if not n.startswith(STANDARD_PARAMETERS)]
+        return self.get_parameters(node, names) if names else {}
 
     def set_parameter(self, node: str, name: str, value: Any) -> tuple[bool, str]:
         request = SetParameters.Request(parameters=[Parameter(name, value=value).to_parameter_msg()])
@@ -634,13 +658,8 @@ def check_imu_turtle_speed(s: Session) -> None:
 
     before = speed()
     found, detail = None, []
-    for name in s.parameters('imu_turtle'):
-        value = s.get_parameter('imu_turtle', name)
-        if (
-            name.startswith(STANDARD_PARAMETERS)
-            or isinstance(value, bool)
-            or not isinstance(value, (int, float))
-        ):
+    for name, value in s.own_parameters('imu_turtle').items():
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
             continue
         changed = type(value)(value * 2 if value else 1)
         ok, _ = s.set_parameter('imu_turtle', name, changed)
@@ -1156,7 +1175,668 @@ def check_display_camera(s: Session) -> None:
     s.stop_student()
 
 
+# -- section 3.4 -------------------------------------------------------------------------------------
+
+
+def workspace() -> Path:
+    return Path(os.environ.get(WORKSPACE_VARIABLE, '.'))
+
+
+def check_test_package(s: Session) -> None:
+    from ament_index_python.packages import PackageNotFoundError, get_package_prefix
+
+    found = ws.packages(workspace()).get('test_package')
+    if not s.add(
+        Criterion(
+            'the workspace has a package named test_package (package.xml)',
+            found is not None,
+            'in src/: ros2 pkg create test_package --build-type ament_python',
+        )
+    ):
+        return
+    assert found is not None
+    s.add(
+        Criterion(
+            'its build type is ament_python (package.xml: <build_type>ament_python</build_type>)',
+            found.build_type == 'ament_python',
+            f'it is an {found.build_type} package: without --build-type ament_python, ros2 pkg create '
+            'makes a CMake package; delete it and create it again with --build-type ament_python',
+            found.build_type,
+        )
+    )
+    missing = ws.package_layout_problems(found.path, 'test_package')
+    s.add(
+        Criterion(
+            'it has the layout ros2 pkg create gives: package.xml, setup.py, setup.cfg, '
+            'resource/test_package, '
+            'test_package/__init__.py',
+            not missing,
+            'create the package with ros2 pkg create rather than by hand, or add what is missing',
+            '; '.join(missing),
+        )
+    )
+    try:
+        prefix = Path(get_package_prefix('test_package')).resolve()
+    except PackageNotFoundError:
+        prefix = None
+    s.add(
+        Criterion(
+            'colcon build installs it: ros2 pkg list lists test_package',
+            prefix is not None and workspace().resolve() in prefix.parents,
+            'run colcon build --symlink-install in the workspace root, then source install/setup.bash',
+            str(prefix or 'not installed'),
+        )
+    )
+
+
+# -- section 3.6 exercise: currency or factorial ----------------------------------------------------
+
+# Services every node offers (parameters, type description), never the exercise's own.
+STANDARD_SERVICE_SUFFIXES = (
+    '/describe_parameters',
+    '/get_parameter_types',
+    '/get_parameters',
+    '/list_parameters',
+    '/set_parameters',
+    '/set_parameters_atomically',
+    '/get_type_description',
+)
+REFERENCE = {
+    'currency': (
+        "the reference solution's currency_server offers currency_conversion "
+        '(olive_interfaces/srv/CurrencyConv: float64 euros -> float64 dollars, pounds, swiss_francs)'
+    ),
+    'factorial': (
+        "the reference solution's factorial_server offers factorial "
+        '(olive_interfaces/srv/Factorial: int64 n -> uint64 factorial)'
+    ),
+}
+FLOAT_TYPES = ('double', 'float')
+INTEGER_TYPES = ('int8', 'uint8', 'int16', 'uint16', 'int32', 'uint32', 'int64', 'uint64')
+
+
+def own_service(name: str) -> bool:
+    return not name.endswith(STANDARD_SERVICE_SUFFIXES) and '/_action/' not in name
+
+
+def fields(message: Any, kinds: tuple[str, ...]) -> list[str]:
+    return [name for name, kind in message.get_fields_and_field_types().items() if kind in kinds]
+
+
+def find_student_executable(s: Session, subject: str, role: str) -> tuple[str, str] | None:
+    """(package, executable) of the workspace for the exercise, olive_srvcli (the course's) first."""
+    names = sorted(ws.packages(workspace()), key=lambda name: name != 'olive_srvcli')
+    for package in names:
+        executable = ws.find_executable(ws.executables(workspace(), package), subject, role)
+        if executable:
+            return package, executable
+    s.add(
+        Criterion(
+            f'the workspace has a {subject} {role} executable',
+            False,
+            f"no executable with '{subject}' and '{role}' in its name in the workspace's packages "
+            f'({REFERENCE[subject]}; its executable is {subject}_{role})',
+        )
+    )
+    return None
+
+
+def check_service_server(s: Session, subject: str) -> None:
+    found = find_student_executable(s, subject, 'server')
+    if found is None:
+        return
+    s.student(*found)
+
+    def services() -> list[tuple[str, str]]:
+        return [
+            (name, types[0])
+            for name, types in s.node.get_service_names_and_types()
+            if own_service(name) and types and not name.startswith(f'/{PROBE_NODE}/')
+        ]
+
+    s.wait(lambda: bool(services()), START_TIMEOUT)
+    offered = sorted(services(), key=lambda item: subject[:4] not in (item[0] + item[1]).lower())
+    if not s.add(
+        Criterion(
+            f'{found[1]} offers a service',
+            bool(offered),
+            f'no service appeared: create_service(YourType, name, callback) ({REFERENCE[subject]})',
+            ', '.join(f'{name} ({kind})' for name, kind in offered),
+        )
+    ):
+        s.stop_student()
+        return
+    name, type_name = offered[0]
+    srv = get_service(type_name)  # the student's workspace is sourced: its types import
+    number_fields = fields(srv.Request(), FLOAT_TYPES + INTEGER_TYPES)
+    if not s.add(
+        Criterion(
+            f"{type_name}'s request has a number field",
+            bool(number_fields),
+            f'the request must carry the {"euros" if subject == "currency" else "integer"} '
+            f'({REFERENCE[subject]})',
+            ', '.join(srv.Request().get_fields_and_field_types()),
+        )
+    ):
+        s.stop_student()
+        return
+    field = number_fields[0]
+    integer = srv.Request().get_fields_and_field_types()[field] in INTEGER_TYPES
+
+    def ask(value: float) -> Any | None:
+        request = srv.Request()
+        setattr(request, field, int(value) if integer else float(value))
+        response = s.call(srv, name, request)
+        if response is None:
+            s.add(
+                Criterion(
+                    f'{name} answers {value:g}',
+                    False,
+                    'no answer in 10 s: the callback must return the response',
+                )
+            )
+        return response
+
+    if subject == 'currency':
+        answers = {euros: ask(euros) for euros in (100, 250)}
+        if None not in answers.values():
+            amounts = {
+                euros: [float(getattr(r, f)) for f in fields(r, FLOAT_TYPES + INTEGER_TYPES)]
+                for euros, r in answers.items()
+            }
+            for criterion in judge.currency_answers(amounts[100], amounts[250]):
+                s.add(criterion)
+    else:
+        for n in (5, 0, 10):
+            response = ask(n)
+            if response is not None:
+                values = [getattr(response, f) for f in fields(response, FLOAT_TYPES + INTEGER_TYPES)]
+                s.add(judge.factorial_answer(n, values))
+    s.stop_student()
+
+
+def check_currency_server(s: Session) -> None:
+    check_service_server(s, 'currency')
+
+
+def check_factorial_server(s: Session) -> None:
+    check_service_server(s, 'factorial')
+
+
+CLIENT_ARGUMENT = {'currency': 100, 'factorial': 5}
+RATES = (1.25, 0.75, 1.5)  # the check's own server: different units per euro for each field
+
+
+def check_service_client(s: Session, subject: str) -> None:
+    found = find_student_executable(s, subject, 'client')
+    if found is None:
+        return
+    argument = CLIENT_ARGUMENT[subject]
+    process = s.student(*found, str(argument))
+
+    def clients() -> list[tuple[str, str]]:
+        found_clients = []
+        for node, namespace in s.node.get_node_names_and_namespaces():
+            if node == PROBE_NODE or node.startswith(('olive_', '_')):
+                continue
+            try:
+                pairs = s.node.get_client_names_and_types_by_node(node, namespace)
+            except Exception:  # the node left the graph between the two calls
+                continue
+            found_clients += [(name, types[0]) for name, types in pairs if own_service(name) and types]
+        return found_clients
+
+    s.wait(lambda: bool(clients()), START_TIMEOUT)
+    seen = clients()
+    if not s.add(
+        Criterion(
+            f'{found[1]} {argument} creates a service client',
+            bool(seen),
+            f'no client appeared: create_client(YourType, name) ({REFERENCE[subject]})',
+            ', '.join(f'{name} ({kind})' for name, kind in seen),
+        )
+    ):
+        if process.running():
+            s.stop_student()
+        return
+    name, type_name = seen[0]
+    srv = get_service(type_name)  # the student's workspace is sourced: its types import
+    requests: list[float] = []
+    expected: list[float] = []
+
+    def answer(request: Any, response: Any) -> Any:
+        numbers = fields(request, FLOAT_TYPES + INTEGER_TYPES)
+        value = getattr(request, numbers[0]) if numbers else 0
+        requests.append(value)
+        for flag in fields(response, ('boolean',)):
+            setattr(response, flag, True)
+        outputs = fields(response, FLOAT_TYPES + INTEGER_TYPES)
+        expected.clear()
+        for index, out in enumerate(outputs):
+            kind = response.get_fields_and_field_types()[out]
+            if subject == 'currency':
+                result = round(value * RATES[index % len(RATES)], 2)
+            else:
+                result = math.factorial(int(value)) if 0 <= value <= 20 else 0
+            result = int(result) if kind in INTEGER_TYPES else float(result)
+            setattr(response, out, result)
+            expected.append(result)
+        return response
+
+    s.node.create_service(srv, name, answer)
+    s.wait(lambda: not process.running(), 15.0)
+    s.add(
+        Criterion(
+            f'sends the command-line value ({found[1]} {argument} asks for {argument})',
+            any(math.isclose(r, argument) for r in requests),
+            'read the value from sys.argv[1] and put it into the request',
+            f'requests {requests}',
+        )
+    )
+    printed = judge.numbers_in(process.output)
+    s.add(
+        Criterion(
+            f"prints the server's answer ({', '.join(f'{v:g}' for v in expected) or 'nothing asked'})",
+            bool(expected) and all(any(math.isclose(v, p, abs_tol=0.006) for p in printed) for v in expected),
+            "log the response's fields with self.get_logger().info(...)",
+            judge.tail_lines(process.output, 1),
+        )
+    )
+    code = process.popen.poll()
+    s.add(
+        Criterion(
+            'ends by itself with exit code 0 after the answer',
+            code == 0,
+            'after the answer: destroy_node() and rclpy.shutdown(), so main() returns'
+            if code is None
+            else f'exit code {code}: {judge.tail_lines(process.output)}',
+            f'exit code {code}',
+        )
+    )
+    if process.running():
+        s.stop_student()
+
+
+def check_currency_client(s: Session) -> None:
+    check_service_client(s, 'currency')
+
+
+def check_factorial_client(s: Session) -> None:
+    check_service_client(s, 'factorial')
+
+
+# -- section 3.7.1: a parameter file ----------------------------------------------------------------
+
+# The nodes a parameter file of the course sets, with the defaults an edited file must change.
+PARAMETER_FILE_NODES = {
+    'turtlesim': (
+        ('turtlesim', 'turtlesim_node'),
+        {'background_r': 69, 'background_g': 86, 'background_b': 255},
+    ),
+    'random_number_publisher': (
+        ('random_number_ps', 'random_number_publisher'),
+        {'upper_limit': 100},
+    ),
+}
+
+
+def check_params_file(s: Session) -> None:
+    files = ws.parameter_files(workspace(), Path.home())
+    files.sort(key=lambda f: f.name != 'turtlesim.yaml')
+    if not s.add(
+        Criterion(
+            'a parameter file is found (in the workspace or ~/Documents)',
+            bool(files),
+            'save one as section 3.7.1 does: cd ~/Documents; ros2 param dump /turtlesim > turtlesim.yaml',
+            ', '.join(str(f) for f in files[:3]),
+        )
+    ):
+        return
+    chosen, nodes, problem = files[0], {}, ''
+    for candidate in files:
+        try:
+            nodes = ws.read_parameter_file(candidate.read_text(errors='replace'))
+        except ValueError as error:
+            problem = problem or f'{candidate.name}: {error}'
+            continue
+        if any(key.strip('/') in PARAMETER_FILE_NODES for key in nodes):
+            chosen = candidate
+            break
+    target = next((key for key in nodes if key.strip('/') in PARAMETER_FILE_NODES), None)
+    if not s.add(
+        Criterion(
+            f"{chosen.name} sets a node's ros__parameters (turtlesim or random_number_publisher)",
+            target is not None,
+            problem
+            or 'the file must start with the node name, then ros__parameters:, as ros2 param dump '
+            '/turtlesim writes it',
+            ', '.join(nodes) or str(chosen),
+        )
+    ):
+        return
+    assert target is not None
+    node = target.strip('/')
+    (package, executable), defaults = PARAMETER_FILE_NODES[node]
+    values = {
+        name: value
+        for name, value in nodes[target].items()
+        if not name.startswith(('qos_overrides.', 'use_sim_time', 'start_type_description_service'))
+    }
+    changed = {name: value for name, value in values.items() if name in defaults and value != defaults[name]}
+    s.add(
+        Criterion(
+            'the file changes a value from its default, as the course asks (e.g. background 0/0/0)',
+            bool(changed),
+            f"a fresh dump holds the defaults ({', '.join(f'{k} {v}' for k, v in defaults.items())}): "
+            'edit the values in the file to see the difference',
+            ', '.join(f'{k} {v}' for k, v in values.items()),
+        )
+    )
+    env = {'DISPLAY': None, 'WAYLAND_DISPLAY': None}
+    process = s.sandbox.command(
+        ['ros2', 'run', package, executable, '--ros-args', '--params-file', str(chosen)],
+        label=executable,
+        env=env,
+    )
+    s.wait(lambda: node in s.node.get_node_names() or not process.running(), START_TIMEOUT)
+    actual = s.get_parameters(node, list(values)) if process.running() else {}
+    different = {name: actual.get(name) for name, value in values.items() if actual.get(name) != value}
+    s.add(
+        Criterion(
+            f'ros2 run {package} {executable} --ros-args --params-file {chosen.name} starts it with '
+            "the file's values",
+            process.running() and not different,
+            (
+                f'the node has {", ".join(f"{k} {v!r}" for k, v in different.items())}: '
+                f"the file's first key must be the node's name (/{node}) and its values of the "
+                "parameters' types"
+            )
+            if process.running()
+            else f'it did not start with the file: {judge.tail_lines(process.output, 2)}',
+            ', '.join(f'{k} {actual.get(k)!r}' for k in values),
+        )
+    )
+    process.stop(3.0)
+
+
+# -- 4.3.2 +: the IMU topic parameter ---------------------------------------------------------------
+
+OTHER_IMU_TOPIC = '/owl_check/imu'
+
+
+def feed_imu(s: Session, topic: str, pitch: float, seconds: float) -> None:
+    """Publish the IMU's messages ourselves on a topic of our choice, 20 per second."""
+    from olive_sim.quaternion import from_euler
+    from sensor_msgs.msg import Imu
+
+    publisher = s.node.create_publisher(Imu, topic, 10)
+    message = Imu()
+    message.header.frame_id = 'imu'
+    x, y, z, w = from_euler(0.0, pitch, 0.0)
+    message.orientation.x, message.orientation.y, message.orientation.z, message.orientation.w = x, y, z, w
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        publisher.publish(message)
+        time.sleep(0.05)
+
+
+def check_imu_turtle_topic(s: Session) -> None:
+    from geometry_msgs.msg import Twist
+
+    process = s.student('olive_imu', 'imu_turtle')
+    s.wait(lambda: 'imu_turtle' in s.node.get_node_names(), START_TIMEOUT)
+    names = [name for name, value in s.own_parameters('imu_turtle').items() if value == IMU_TOPIC]
+    s.stopped = True  # our own stop: its exit is no crash
+    process.stop(3.0)
+    if not s.add(
+        Criterion(
+            f"a string parameter of imu_turtle holds the IMU's topic (default {IMU_TOPIC})",
+            bool(names),
+            f"declare_parameter('imu_topic', '{IMU_TOPIC}') and subscribe to "
+            "self.get_parameter('imu_topic').value",
+            ', '.join(names),
+        )
+    ):
+        return
+    s.wait(lambda: 'imu_turtle' not in s.node.get_node_names(), 3.0)
+    twists = s.collect(Twist, CMD_VEL)
+    s.student('olive_imu', 'imu_turtle', '--ros-args', '-p', f'{names[0]}:={OTHER_IMU_TOPIC}')
+    s.stopped = False
+    s.expect_endpoint(
+        OTHER_IMU_TOPIC,
+        'subscriptions',
+        'sensor_msgs/msg/Imu',
+        f'with -p {names[0]}:={OTHER_IMU_TOPIC} nothing subscribes there: create the subscription with '
+        'the parameter\'s value',
+    )
+    old = s.endpoints(IMU_TOPIC, 'subscriptions')
+    s.add(
+        Criterion(
+            f'it no longer subscribes to {IMU_TOPIC}',
+            not old,
+            'the subscription still uses the fixed topic: use the parameter\'s value instead',
+        )
+    )
+    start = time.monotonic()
+    feed_imu(s, OTHER_IMU_TOPIC, 0.4, 2.0)
+    speeds = [m.linear.x for t, m in twists if t >= start + 1.0]
+    s.add(
+        Criterion(
+            f'the IMU on {OTHER_IMU_TOPIC} (pitched 0.4 rad) drives the turtle forward',
+            judge.mean(speeds) > judge.STILL,
+            'no forward velocity from the IMU on the new topic',
+            f'linear.x {judge.mean(speeds):+.2f} from {len(speeds)} messages',
+        )
+    )
+    s.stop_student()
+
+
+# -- 4.4 + and 4.4.1 +: frequency, torque and speed extras ------------------------------------------
+
+
+def numeric_parameters(s: Session, node: str, preferred: tuple[str, ...]) -> list[tuple[str, float]]:
+    """(name, value) of a node's own numeric parameters, those naming a preferred word first."""
+    found = [
+        (name, value)
+        for name, value in s.own_parameters(node).items()
+        if isinstance(value, (int, float)) and not isinstance(value, bool)
+    ]
+    return sorted(found, key=lambda item: not any(word in item[0].lower() for word in preferred))
+
+
+def scaled(value: float, factor: float) -> float:
+    if isinstance(value, int):
+        return max(1, round(value * factor)) if value else 1
+    return value * factor if value else 1.0
+
+
+def check_control_servo_frequency(s: Session) -> None:
+    from std_msgs.msg import Float32
+
+    s.kit('pan')
+    goals = s.collect(Float32, goal_topic('pan'))
+    s.student('olive_servo', 'control_servo')
+    s.wait(lambda: len(goals) >= 20 and 'control_servo' in s.node.get_node_names(), START_TIMEOUT)
+
+    def measured_rate() -> float:
+        start = time.monotonic() + 0.3  # the new period takes effect from the timer's next call
+        s.wait(lambda: time.monotonic() > start + 1.2, 2.0)
+        return judge.rate([t for t, _ in goals if t >= start])
+
+    before = measured_rate()
+    found, detail = None, []
+    for name, value in numeric_parameters(s, 'control_servo', ('freq', 'rate', 'period', 'hz')):
+        changed = scaled(value, 0.5)
+        ok, _ = s.set_parameter('control_servo', name, changed)
+        if not ok:
+            continue
+        after = measured_rate()
+        s.set_parameter('control_servo', name, value)
+        detail.append(f'{name} {value}->{changed}: {before:.0f}->{after:.0f} goals/s')
+        if before > 0 and abs(after - before) > 0.3 * before:
+            found = name
+            break
+        before = measured_rate()
+    s.add(
+        Criterion(
+            'a parameter changes the publishing frequency while it runs (ros2 param set)',
+            found is not None,
+            "declare_parameter('frequency', 100.0) and change the timer's period when it is set "
+            '(add_post_set_parameters_callback), or read it when the timer is created',
+            '; '.join(detail) or 'no numeric parameter',
+        )
+    )
+    s.stop_student()
+
+
+KEYBOARD_ENV_KEYS = ('DISPLAY', 'WAYLAND_DISPLAY')
+
+
+def start_keyboard_servos(s: Session) -> RosProcess:
+    env: dict[str, str | None] = {key: None for key in KEYBOARD_ENV_KEYS}
+    env.update({'OWL_HEADLESS': '1', 'OWL_WINDOWS_DIR': s.temporary.name})
+    return s.student('olive_servo', 'keyboard_servos', env=env)
+
+
+def check_keyboard_servos_torque(s: Session) -> None:
+    from std_msgs.msg import Float32
+
+    s.kit('pan', 'tilt')
+    goals = {servo: s.collect(Float32, goal_topic(servo)) for servo in ('pan', 'tilt')}
+    start_keyboard_servos(s)
+    s.wait(lambda: all(len(g) >= 5 for g in goals.values()), START_TIMEOUT)
+    for servo in ('pan', 'tilt'):
+        torque_criterion(s, servo, goals[servo])
+    s.stop_student()
+    disabled = s.wait(lambda: all('torque disabled' in s.helpers[v].output for v in ('pan', 'tilt')), 2.0)
+    s.add(
+        Criterion(
+            'Ctrl-C disables the pan and tilt torque (setTorqueDisable) before the node ends',
+            disabled,
+            'after rclpy.spin, call /olive/servo/pan/setTorqueDisable and '
+            '/olive/servo/tilt/setTorqueDisable; '
+            "with rclpy's own Ctrl-C handler ROS is already shut down by then: "
+            'rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)',
+            ', '.join(v for v in ('pan', 'tilt') if 'torque disabled' in s.helpers[v].output),
+        )
+    )
+
+
+def check_keyboard_servos_speed(s: Session) -> None:
+    from std_msgs.msg import Float32
+
+    s.kit('pan', 'tilt')
+    pan = s.collect(Float32, goal_topic('pan'))
+    process = start_keyboard_servos(s)
+    window = s.wait(lambda: press(s, process) and len(pan) >= 5, START_TIMEOUT)
+    if not s.add(
+        Criterion(
+            'opens a pygame window and publishes pan goals',
+            window,
+            'pygame.display.set_mode(...) gives the window whose keys move the servos',
+        )
+    ):
+        s.stop_student()
+        return
+    keys = itertools.cycle(('left', 'right'))
+
+    def speed() -> float:
+        key = next(keys)
+        start = time.monotonic()
+        press(s, process, f'down {key}')
+        s.wait(lambda: time.monotonic() > start + 0.7, 1.0)
+        press(s, process, f'up {key}')
+        samples = [(t, m.data) for t, m in pan if start + 0.2 <= t <= start + 0.7]
+        return judge.slope([(t, v) for t, v in samples if PAN_RANGE[0] + 0.01 < v < PAN_RANGE[1] - 0.01])
+
+    before = speed()
+    found, detail = None, []
+    for name, value in numeric_parameters(s, 'keyboard_servos', ('speed', 'step', 'vel', 'rate', 'gain')):
+        if any(word in name.lower() for word in ('min', 'max', 'limit', 'bound')):
+            continue  # the goals' bounds, not their speed
+        changed = scaled(value, 2.0)
+        ok, _ = s.set_parameter('keyboard_servos', name, changed)
+        if not ok:
+            continue
+        after = speed()
+        s.set_parameter('keyboard_servos', name, value)
+        detail.append(f'{name} {value}->{changed}: {before:.2f}->{after:.2f} rad/s')
+        if before > judge.STILL and abs(after - before) > 0.3 * before:
+            found = name
+            break
+        before = speed()
+    s.add(
+        Criterion(
+            'a parameter changes how fast a held key moves the servo (ros2 param set)',
+            found is not None,
+            "declare_parameter('speed', 1.0) and scale each step of the goal by "
+            "self.get_parameter('speed').value in the timer callback",
+            '; '.join(detail) or 'no numeric parameter',
+        )
+    )
+    s.stop_student()
+
+
+# -- 4.5 +: the robot_camera launch file ------------------------------------------------------------
+
+
+def check_robot_camera_launch(s: Session) -> None:
+    from std_msgs.msg import Float32
+
+    files = [
+        f
+        for f in launch_files('olive_camera')
+        if 'imu_control_robot' in f.read_text() and 'display_camera' in f.read_text()
+    ]
+    if not s.add(
+        Criterion(
+            'olive_camera installs a launch file that names imu_control_robot and display_camera',
+            bool(files),
+            'a launch file in olive_camera/launch, installed through data_files in setup.py',
+            ', '.join(f.name for f in files),
+        )
+    ):
+        return
+    s.kit('imu', 'pan', 'tilt', 'camera')  # the IMU's scripted motion turns the head
+    pan = s.collect(Float32, goal_topic('pan'))
+    windows = Path(s.temporary.name)
+    s.student_launch(
+        'olive_camera',
+        files[0].name,
+        env={'DISPLAY': None, 'WAYLAND_DISPLAY': None, 'OWL_HEADLESS': '1', 'OWL_WINDOWS_DIR': str(windows)},
+    )
+    s.wait(lambda: len({round(m.data, 2) for _, m in pan}) >= 3, 20.0)
+    s.add(
+        Criterion(
+            f'ros2 launch olive_camera {files[0].name}: imu_control_robot turns the head with the IMU',
+            len({round(m.data, 2) for _, m in pan}) >= 3,
+            'no changing pan goals arrived: the launch file must start olive_servo\'s imu_control_robot',
+            f'{len(pan)} pan goals',
+        )
+    )
+    shown = s.wait(lambda: any(windows.glob('*/cv2-*.jpg')), 15.0)
+    s.add(
+        Criterion(
+            "ros2 launch ... : display_camera shows the camera's images",
+            shown,
+            "no image reached cv2.imshow: the launch file must start olive_camera's display_camera",
+        )
+    )
+    s.stop_student('Ctrl-C stops the launch cleanly (exit code 0, no traceback)', launch=True)
+
+
 CHECKS: dict[str, Callable[[Session], None]] = {
+    'test_package': check_test_package,
+    'currency_server': check_currency_server,
+    'currency_client': check_currency_client,
+    'factorial_server': check_factorial_server,
+    'factorial_client': check_factorial_client,
+    'params_file': check_params_file,
+    'imu_turtle_topic': check_imu_turtle_topic,
+    'control_servo_frequency': check_control_servo_frequency,
+    'keyboard_servos_torque': check_keyboard_servos_torque,
+    'keyboard_servos_speed': check_keyboard_servos_speed,
+    'robot_camera_launch': check_robot_camera_launch,
     'random_number_publisher': check_random_number_publisher,
     'random_number_subscriber': check_random_number_subscriber,
     'counter_publisher': check_counter_publisher,

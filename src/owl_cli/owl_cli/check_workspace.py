@@ -146,3 +146,99 @@ def last_error_line(output: str) -> str:
         if ERROR_LINE.search(line) and not summary.search(line):
             return line
     return lines[-1] if lines else '(no output)'
+
+
+def executables(workspace: Path, package: str) -> list[str]:
+    """The executables `ros2 run` finds for a package of the workspace (isolated or merged install)."""
+    install = workspace / 'install'
+    for folder in (install / package / 'lib' / package, install / 'lib' / package):
+        if folder.is_dir():
+            return sorted(p.name for p in folder.iterdir() if p.is_file() and os.access(p, os.X_OK))
+    return []
+
+
+# Words a student's executable name may use for the 3.6 exercise's subjects and roles.
+SUBJECT_WORDS = {'currency': ('currency', 'money', 'euro', 'exchange'), 'factorial': ('factorial', 'fact')}
+ROLE_WORDS = {'server': ('server', 'service', 'srv'), 'client': ('client', 'cli')}
+
+
+def find_executable(names: list[str], subject: str, role: str) -> str | None:
+    """The executable for a subject ('currency') and role ('server'): the reference name
+    (currency_server) if there is one, else the first whose name has a word of each."""
+    if f'{subject}_{role}' in names:
+        return f'{subject}_{role}'
+    for name in sorted(names):
+        lower = name.lower()
+        if any(w in lower for w in SUBJECT_WORDS[subject]) and any(w in lower for w in ROLE_WORDS[role]):
+            return name
+    return None
+
+
+def parameter_files(workspace: Path, home: Path | None = None) -> list[Path]:
+    """YAML files with a `ros__parameters` key (what `ros2 param dump` writes): in the workspace
+    (outside build/install/log) and in ~/Documents, where section 3.7.1 saves turtlesim.yaml."""
+    found = []
+    roots = [(workspace, 4)] + ([(home / 'Documents', 1)] if home is not None else [])
+    for root, max_depth in roots:
+        if not root.is_dir():
+            continue
+        for folder, subfolders, files in os.walk(root):
+            depth = len(Path(folder).relative_to(root).parts)
+            subfolders[:] = sorted(
+                s for s in subfolders if s not in SKIPPED_FOLDERS and depth + 1 < max_depth
+            )
+            for name in sorted(files):
+                path = Path(folder) / name
+                if name.endswith(('.yaml', '.yml')) and _has_ros_parameters(path):
+                    found.append(path)
+    return found
+
+
+def _has_ros_parameters(path: Path) -> bool:
+    try:
+        return 'ros__parameters' in path.read_text(errors='replace')[:100_000]
+    except OSError:
+        return False
+
+
+def read_parameter_file(text: str) -> dict[str, dict[str, object]]:
+    """{node name: {parameter: value}} of a parameter file; nested keys joined with '.' as ROS does.
+
+    Raises ValueError with a one-line reason when the text is not such a file."""
+    import yaml
+
+    try:
+        content = yaml.safe_load(text)
+    except yaml.YAMLError as error:
+        raise ValueError(f'not valid YAML: {str(error).splitlines()[0]}') from None
+    if not isinstance(content, dict):
+        raise ValueError('the file must map node names to their ros__parameters')
+    nodes: dict[str, dict[str, object]] = {}
+    for node, section in content.items():
+        if not isinstance(section, dict) or not isinstance(section.get('ros__parameters'), dict):
+            raise ValueError(f"'{node}' has no ros__parameters mapping under it")
+        flat: dict[str, object] = {}
+        _flatten(section['ros__parameters'], '', flat)
+        nodes[str(node)] = flat
+    return nodes
+
+
+def _flatten(values: dict, prefix: str, into: dict[str, object]) -> None:
+    for key, value in values.items():
+        name = f'{prefix}{key}'
+        if isinstance(value, dict):
+            _flatten(value, name + '.', into)
+        else:
+            into[name] = value
+
+
+def package_layout_problems(package: Path, name: str) -> list[str]:
+    """What an `ros2 pkg create NAME --build-type ament_python` package misses, in its own words."""
+    expected = {
+        'package.xml': package / 'package.xml',
+        'setup.py': package / 'setup.py',
+        'setup.cfg': package / 'setup.cfg',
+        f'resource/{name}': package / 'resource' / name,
+        f'{name}/__init__.py': package / name / '__init__.py',
+    }
+    return [f'{label} is missing' for label, path in expected.items() if not path.exists()]

@@ -14,11 +14,22 @@ from owl_cli.main import main
 # -- catalogue -------------------------------------------------------------------------------------
 
 
-def test_every_exercise_has_a_check_and_a_unique_id():
+def test_every_checkable_exercise_has_a_check_and_a_unique_id():
     from owl_cli.check_ros import CHECKS
 
     assert [e.id for e in catalogue.EXERCISES] == list(catalogue.BY_ID)
-    assert set(catalogue.BY_ID) == set(CHECKS)
+    assert {e.id for e in catalogue.CHECKABLE} == set(CHECKS)
+
+
+def test_the_catalogue_covers_sections_3_4_to_4_5_with_every_extra():
+    sections = {e.section.split()[0].rstrip(',') for e in catalogue.EXERCISES}
+    course = {'3.4', '3.5', '3.6', '3.6.1', '3.7.1', '3.7.2', '3.8', '3.9'}
+    course |= {'4.3', '4.3.2', '4.4', '4.4.1', '4.5'}
+    assert course <= sections | {s.rsplit('.', 1)[0] for s in sections}
+    # The course's "+" items: 3 of 4.3.2, 2 of 4.4, 2 of 4.4.1, 1 of 4.5.
+    extras = [e.id for e in catalogue.EXERCISES if e.extra]
+    assert len(extras) == 8, extras
+    assert all(catalogue.BY_ID[i].checkable for i in extras)
 
 
 def test_the_ids_are_the_course_executable_names():
@@ -51,7 +62,8 @@ def test_the_listing_has_one_aligned_line_per_exercise():
     for line, exercise in zip(lines, catalogue.EXERCISES, strict=True):
         assert line[:width].rstrip() == exercise.id
         assert line[width:].startswith(exercise.section + ' ')
-        assert line.endswith(exercise.description)
+        suffix = '' if exercise.checkable else ' [not checked: done by hand]'
+        assert line.endswith(exercise.description + suffix)
 
 
 # -- command line (no ROS: the bad inputs stop before any check runs) -------------------------------
@@ -64,6 +76,9 @@ def test_list_and_bad_input_exit_codes(capsys, tmp_path, monkeypatch):
     assert "did you mean 'imu_turtle'" in capsys.readouterr().err
     assert main(['check']) == 2
     assert 'give exercise ids or --all' in capsys.readouterr().err
+    assert main(['check', 'turtle_background']) == 2
+    [line] = capsys.readouterr().err.strip().splitlines()
+    assert line.startswith('owl check: turtle_background (section 3.7.1 exercise) is not checked: typed at')
     monkeypatch.chdir(tmp_path)
     assert main(['check', 'imu_turtle']) == 2
     [line] = capsys.readouterr().err.strip().splitlines()
@@ -160,6 +175,74 @@ def test_the_last_error_line_of_a_failed_build():
     assert ws.last_error_line('a\nsomething failed\nb') == 'something failed'
 
 
+def test_the_3_6_exercise_executables_are_found_by_their_words():
+    assert ws.find_executable(['currency_server', 'money_service'], 'currency', 'server') == 'currency_server'
+    assert ws.find_executable(['euro_srv', 'euro_cli'], 'currency', 'server') == 'euro_srv'
+    assert ws.find_executable(['euro_srv', 'euro_cli'], 'currency', 'client') == 'euro_cli'
+    assert ws.find_executable(['fact_service', 'temp_server'], 'factorial', 'server') == 'fact_service'
+    assert ws.find_executable(['temp_server', 'temp_client'], 'factorial', 'client') is None
+
+
+def test_executables_of_an_isolated_install(tmp_path):
+    folder = tmp_path / 'install' / 'olive_srvcli' / 'lib' / 'olive_srvcli'
+    folder.mkdir(parents=True)
+    for name, mode in (('factorial_server', 0o755), ('notes.txt', 0o644)):
+        (folder / name).write_text('')
+        (folder / name).chmod(mode)
+    assert ws.executables(tmp_path, 'olive_srvcli') == ['factorial_server']
+    assert ws.executables(tmp_path, 'missing') == []
+
+
+DUMP = """/turtlesim:
+  ros__parameters:
+    background_b: 0
+    background_g: 0
+    background_r: 0
+    qos_overrides:
+      /parameter_events:
+        publisher:
+          depth: 1000
+    use_sim_time: false
+"""
+
+
+def test_parameter_files_are_found_in_the_workspace_and_documents_and_read_flat(tmp_path):
+    workspace, home = tmp_path / 'ws', tmp_path / 'home'
+    (workspace / 'config').mkdir(parents=True)
+    (workspace / 'config' / 'turtlesim.yaml').write_text(DUMP)
+    (workspace / 'config' / 'other.yaml').write_text('a: 1\n')  # no ros__parameters
+    (workspace / 'install').mkdir()
+    (workspace / 'install' / 'copy.yaml').write_text(DUMP)  # colcon's copies do not count
+    (home / 'Documents').mkdir(parents=True)
+    (home / 'Documents' / 'turtlesim.yaml').write_text(DUMP)
+    assert ws.parameter_files(workspace, home) == [
+        workspace / 'config' / 'turtlesim.yaml',
+        home / 'Documents' / 'turtlesim.yaml',
+    ]
+    nodes = ws.read_parameter_file(DUMP)
+    assert nodes['/turtlesim']['background_r'] == 0
+    assert nodes['/turtlesim']['qos_overrides./parameter_events.publisher.depth'] == 1000
+    bad_files = (('[1, 2]', 'map node names'), ('x: 1', 'no ros__parameters'), ('a: [', 'not valid YAML'))
+    for bad, reason in bad_files:
+        with pytest.raises(ValueError, match=reason):
+            ws.read_parameter_file(bad)
+
+
+def test_the_layout_of_ros2_pkg_create(tmp_path):
+    package = make_package(tmp_path / 'src', 'test_package')
+    assert ws.package_layout_problems(package, 'test_package') == [
+        'setup.cfg is missing',
+        'resource/test_package is missing',
+        'test_package/__init__.py is missing',
+    ]
+    (package / 'setup.cfg').write_text('')
+    (package / 'resource').mkdir()
+    (package / 'resource' / 'test_package').write_text('')
+    (package / 'test_package').mkdir()
+    (package / 'test_package' / '__init__.py').write_text('')
+    assert ws.package_layout_problems(package, 'test_package') == []
+
+
 # -- judgements ------------------------------------------------------------------------------------
 
 
@@ -195,6 +278,32 @@ def test_bounds_rate_and_sine():
     assert not judge.oscillates([0.0, 0.05, 0.0])  # too small
     assert judge.in_range('numbers', [1, 2, 3], 1, 3, 'x').passed
     assert not judge.in_range('numbers', [1, 50], 1, 3, 'x').passed
+
+
+def test_currency_and_factorial_answers():
+    good = judge.currency_answers([116.0, 88.0, 93.0], [290.0, 220.0, 232.5])
+    assert all(c.passed for c in good)
+    one_rate = judge.currency_answers([116.0, 116.0, 116.0], [290.0, 290.0, 290.0])
+    assert [c.passed for c in one_rate] == [True, True, False]
+    fixed = judge.currency_answers([116.0, 88.0, 93.0], [116.0, 88.0, 93.0])
+    assert not fixed[1].passed and 'fixed rate' in fixed[1].hint
+    assert not judge.currency_answers([116.0], [290.0])[0].passed
+    assert judge.factorial_answer(5, [True, 120]).passed
+    zero = judge.factorial_answer(0, [0])
+    assert not zero.passed and 'empty product' in zero.hint
+    assert judge.factorial_answer(10, [3628800]).passed
+
+
+def test_numbers_printed_and_the_slope_of_held_keys():
+    assert judge.numbers_in('[INFO] [17.5] [c]: 100.0 Euros are 125.0 dollars, 75 pounds') == [
+        17.5,
+        100.0,
+        125.0,
+        75.0,
+    ]
+    assert judge.slope([(0.0, 0.0), (0.5, 0.5), (1.0, 1.0)]) == pytest.approx(1.0)
+    assert judge.slope([(0.0, 1.0), (0.5, 0.0), (1.0, -1.0)]) == pytest.approx(2.0)
+    assert judge.slope([(0.0, 1.0)]) == 0.0
 
 
 # -- report ----------------------------------------------------------------------------------------
