@@ -87,7 +87,7 @@ def _yaml_reading(text: str, what: str, can_be_str: bool) -> Any:
     except yaml.YAMLError as error:
         if can_be_str:
             return text
-        raise ValueError(f'{what}: it is not valid YAML ({error.problem})') from None
+        raise ValueError(f'{what}: it is not valid YAML ({getattr(error, "problem", error)})') from None
     if value is None:
         return text
     if not is_instance_of_valid_type(value, can_be_str):
