@@ -7,20 +7,28 @@ Everything is measured in one run, against baselines measured in the same run:
 - Highest camera frame rate at 640x480: render + JPEG encode in this process (no ROS), with the
   head moving and still, and what a best-effort subscriber receives from camera_sim asked for 240 fps.
 - Servo physics: time of each fixed step of the model (p50/p99) against its 1 ms period.
+- The modules' own web pages: the kit without pages (web_port 0), with pages no browser watches
+  (the default), and with a page client watching every module's System Status (and the IMU's and
+  camera's Debug GUI), the client's own CPU not counted.
 """
 
 from __future__ import annotations
 
 import argparse
+import asyncio
+import json
 import math
 import os
+import socket
 import sys
+import threading
 import time
 
 import rclpy
 from measure import cpu_seconds
 from olive_sim.camera_render import CameraRenderer
 from olive_sim.kit import OWL_KIT
+from olive_sim.network_settings import page_host
 from olive_sim.servo_model import PidGains, ServoSim
 from owl_common.processes import RosProcess, RosSandbox
 from rclpy.context import Context
@@ -74,10 +82,73 @@ def measure_cpu(args: argparse.Namespace) -> dict[str, float]:
         with RosSandbox() as sandbox:
             process = sandbox.run('olive_sim', executable, *extra)
             results[executable] = cpu_percent([process], args.warmup, args.seconds)
-    with RosSandbox() as sandbox:
-        kit = [sandbox.run('olive_sim', m.executable, *module_args(m.parameters)) for m in OWL_KIT]
-        results['whole kit (4 processes)'] = cpu_percent(kit, args.warmup, args.seconds)
+    for name, port, watch in (('whole kit (4 processes)', free_port(), False),
+                              ('whole kit, no web pages (web_port 0)', 0, False),
+                              ('whole kit, every page watched', free_port(), True)):
+        with RosSandbox() as sandbox:
+            kit = [sandbox.run('olive_sim', m.executable, *module_args({**m.parameters, 'web_port': port}))
+                   for m in OWL_KIT]
+            watcher = PageWatcher(port) if watch else None
+            try:
+                results[name] = cpu_percent(kit, args.warmup, args.seconds)
+            finally:
+                if watcher is not None:
+                    updates = watcher.stop()
+                    print(f'  (the page client received {updates} updates in that case)')
     return results
+
+
+def free_port() -> int:
+    with socket.socket() as probe:
+        probe.bind(('127.0.0.1', 0))
+        return probe.getsockname()[1]
+
+
+class PageWatcher:
+    """A browser's share of the work, without a browser: each module page's WebSocket subscribed to
+    System Status, and the IMU's and camera's to their Debug GUI orientation."""
+
+    def __init__(self, port: int) -> None:
+        import aiohttp
+        self.aiohttp = aiohttp
+        self.port = port
+        self.updates = 0
+        self.loop = asyncio.new_event_loop()
+        self.stopping: asyncio.Event | None = None
+        self.thread = threading.Thread(target=self.loop.run_until_complete, args=(self._watch(),),
+                                       daemon=True)
+        self.thread.start()
+
+    async def _watch(self) -> None:
+        self.stopping = asyncio.Event()
+        async with self.aiohttp.ClientSession() as session:
+            tasks = [asyncio.create_task(self._module(session, m)) for m in OWL_KIT]
+            await self.stopping.wait()
+            for task in tasks:
+                task.cancel()
+            await asyncio.gather(*tasks, return_exceptions=True)
+
+    async def _module(self, session: object, module: object) -> None:
+        url = f'ws://{page_host(module.address)}:{self.port}/ws'
+        deadline = time.monotonic() + 60
+        while True:
+            try:
+                websocket = await session.ws_connect(url)
+                break
+            except OSError:
+                if time.monotonic() > deadline:
+                    raise
+                await asyncio.sleep(0.5)
+        channels = ['system'] + (['orientation'] if module.module_type in ('imu', 'camera') else [])
+        for index, channel in enumerate(channels):
+            await websocket.send_str(json.dumps({'type': 'subscribe', 'id': index, 'channel': channel}))
+        async for _ in websocket:
+            self.updates += 1
+
+    def stop(self) -> int:
+        self.loop.call_soon_threadsafe(self.stopping.set)
+        self.thread.join(10)
+        return self.updates
 
 
 def camera_render_rate(frames: int, moving: bool) -> float:
@@ -150,6 +221,8 @@ def main() -> int:
         print(f'{name:<38}{value:>8.1f}{value / base:>12.2f}')
     kit = cpu['whole kit (4 processes)']
     print(f'whole kit: {kit:.1f} % of one core (target < 25 %: {"met" if kit < 25 else "NOT met"})')
+    print(f"web pages with no browser: {kit - cpu['whole kit, no web pages (web_port 0)']:+.1f} points; "
+          f"every page watched: {cpu['whole kit, every page watched'] - kit:+.1f} points more")
 
     moving = camera_render_rate(120, moving=True)
     still = camera_render_rate(300, moving=False)

@@ -306,7 +306,9 @@ def test_respawn_restarts_with_the_same_label_until_shutdown(ros, tmp_path):
     labels = [label for label, _pid in re.findall(STARTED, process.output)]
     assert len(labels) >= 2 and set(labels) == {labels[0]}, labels
     assert re.fullmatch(r'flaky-\d+', labels[0])
-    assert process.output.count(f'[{labels[0]}] run') == len(labels)
+    # The start that shutdown meets can be stopped before `echo` runs (seen under load: 9 runs
+    # for 10 starts), as upstream's would: every start but that last one prints.
+    assert len(labels) - 1 <= process.output.count(f'[{labels[0]}] run') <= len(labels)
 
 
 STUBBORN = """

@@ -26,7 +26,7 @@ DEFAULTS = {
     'gyro_noise': 0.002, 'gyro_bias': 0.005, 'accel_noise': 0.02, 'mag_noise': 0.2e-6,
     'orientation_noise': 0.002, 'seed': 0, 'imu_rate': 100.0, 'imu_frame_id': f'{NAMESPACE}_base_link',
     'imu_reliability': 'reliable', 'button_pressed': False, 'use_sim_time': False,
-    'start_type_description_service': True,
+    'start_type_description_service': True, 'address': '10.42.0.7', 'web_port': 8042,
 }
 
 

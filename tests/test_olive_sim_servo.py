@@ -30,6 +30,7 @@ DEFAULTS = {
     'viscous_friction': 0.01, 'coulomb_friction': 0.15, 'load_mass': 0.0, 'load_offset': 0.04,
     'min_position': -math.pi, 'max_position': math.pi, 'ambient_temperature': 25.0,
     'encoder_counts': 4096, 'use_sim_time': False, 'start_type_description_service': True,
+    'address': '10.42.0.7', 'web_port': 8042,
 }
 
 

@@ -1,16 +1,30 @@
-"""The whole Owl Kit: IMU, servos pan and tilt, camera eye, each module its own process."""
+"""The whole Owl Kit: IMU, servos pan and tilt, camera eye, each module its own process with its
+own web page (http://127.42.0.N:<web_port>/ for the module at 10.42.0.N)."""
 
 from launch import LaunchDescription
-from launch.actions import LogInfo
+from launch.actions import DeclareLaunchArgument, LogInfo, OpaqueFunction
+from launch.substitutions import LaunchConfiguration
 from launch_ros.actions import Node
-from olive_sim.kit import OWL_KIT, topic_table
+from olive_sim.kit import OWL_KIT, address_table, topic_table
+from olive_sim.module_node import WEB_PORT
+
+
+def modules(context):
+    port = LaunchConfiguration('web_port').perform(context)
+    if not port.isdigit() or int(port) > 65535:
+        raise ValueError(f"web_port must be a TCP port number 0..65535 (0: no pages), got '{port}'")
+    nodes = [Node(package='olive_sim', executable=module.executable, output='screen',
+                  parameters=[{**module.parameters, 'web_port': int(port)}])
+             for module in OWL_KIT]
+    return [LogInfo(msg='Owl Kit simulated modules:\n' + topic_table()),
+            LogInfo(msg='Owl Kit module addresses (a page moves with an IP changed on it):\n'
+                        + address_table(port)),
+            *nodes]
 
 
 def generate_launch_description():
-    nodes = [Node(package='olive_sim', executable=module.executable, output='screen',
-                  parameters=[module.parameters] if module.parameters else [])
-             for module in OWL_KIT]
     return LaunchDescription([
-        LogInfo(msg='Owl Kit simulated modules:\n' + topic_table()),
-        *nodes,
+        DeclareLaunchArgument('web_port', default_value=str(WEB_PORT),
+                              description="TCP port of every module's web page (0: no pages)"),
+        OpaqueFunction(function=modules),
     ])

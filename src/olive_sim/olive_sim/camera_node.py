@@ -61,6 +61,8 @@ class CameraModule(OliveModule):
         self.camera_info = SerializedTemplate(serialize_message(self._camera_info()), [])
         # Polled by the frame and IMU threads just before they use pan and tilt, as bytes: only
         # the position is read from them.
+        # Each joint's callback runs under its subscription's lock, the frames on their own thread.
+        self.pan_traffic, self.tilt_traffic, self.frame_traffic = (self.traffic.counter() for _ in range(3))
         self.joints = [self.create_polled_subscription(JointState, value(topic).value, callback, 10,
                                                        raw=True)
                        for topic, callback in (('pan_joint_topic', self._on_pan),
@@ -95,11 +97,13 @@ class CameraModule(OliveModule):
         return position
 
     def _on_pan(self, data: bytes) -> None:
+        self.pan_traffic.received += len(data)
         position = self._joint_position(data, 'pan')
         if position is not None:
             self.pan = position
 
     def _on_tilt(self, data: bytes) -> None:
+        self.tilt_traffic.received += len(data)
         position = self._joint_position(data, 'tilt')
         if position is not None:
             self.tilt = position
@@ -127,7 +131,12 @@ class CameraModule(OliveModule):
         msg.header.frame_id = self.frame_id
         msg.data = self.renderer.jpeg(self.pan, self.tilt, caption, self.jpeg_quality)
         self.image_publisher.publish(msg)
-        self.info_publisher.publish(self.camera_info.fill(now, ()))
+        info = self.camera_info.fill(now, ())
+        self.info_publisher.publish(info)
+        self.frame_traffic.sent += len(msg.data) + len(info) + 64  # 64: the image's header and format
+
+    def imu_orientation(self) -> Quaternion | None:
+        return self.output.latest
 
     def temperature(self) -> float:
         return 42.0

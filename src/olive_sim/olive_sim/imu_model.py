@@ -55,6 +55,10 @@ class CommandedMotion:
     def command(self, target: Quaternion) -> None:
         self.target = quat.normalize(target)
 
+    def hold(self, orientation: Quaternion) -> None:
+        """Be at orientation now, as the target (a restarted module: the hand has not moved)."""
+        self.target = self._current = quat.normalize(orientation)
+
     def orientation(self, t: float) -> Quaternion:
         if self._time is not None and t > self._time:
             remaining = quat.angle_between(self._current, self.target)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 from geometry_msgs.msg import Quaternion as QuaternionMsg
 from rcl_interfaces.msg import FloatingPointRange
 from std_srvs.srv import Trigger
@@ -36,6 +38,9 @@ class ImuModule(OliveModule):
             self.motion = RecordedMotion(self.get_parameter('motion_file').value)
         else:
             self.motion = CommandedMotion(self.get_parameter('command_max_rate').value)
+            held = self.handover.get('held')  # the hand still holds the IMU after a restart
+            if isinstance(held, list) and len(held) == 4:
+                self.motion.hold(tuple(held))
             # A simulator control, so it lives under the node's name, not in the module's topics.
             self.create_subscription(QuaternionMsg, '~/true_orientation', self._on_command, 10)
         self.output = ImuOutput(self, self.topic, f'{namespace}_base_link', self.motion.orientation)
@@ -77,6 +82,15 @@ class ImuModule(OliveModule):
 
     def temperature(self) -> float:
         return 31.5
+
+    def imu_orientation(self) -> Quaternion | None:
+        return self.output.latest
+
+    def handover_state(self) -> dict[str, Any]:
+        state = {**super().handover_state(), 'imu_time': self.output.motion_time()}
+        if isinstance(self.motion, CommandedMotion):
+            state['held'] = list(self.motion.target)
+        return state
 
 
 def main(args: list[str] | None = None) -> None:

@@ -62,7 +62,10 @@ class ImuOutput:
         self.mag_publisher = node.create_publisher(MagneticField, topic('magnetometer'), qos)
         self.lock = threading.Lock()  # the sensor is sampled on the output thread, reset by services
         self._imu, self._mag = self._templates()
-        self._epoch = time.monotonic()
+        # The motion goes on where the process before a restart left it (restart.py).
+        self._epoch = time.monotonic() - float(node.handover.get('imu_time', 0.0))
+        self.latest: Quaternion | None = None  # the last orientation published, for the web page
+        self.traffic = node.traffic.counter()
         self.thread = node.create_periodic(value('imu_rate').value, self.publish, 'imu')
 
     def _templates(self) -> tuple[SerializedTemplate, SerializedTemplate]:
@@ -92,9 +95,17 @@ class ImuOutput:
         t = time.monotonic() - self._epoch
         with self.lock:
             reading = self.sensor.sample(t, self.true_orientation(t))
-        self.imu_publisher.publish(self._imu.fill(stamp, (
-            *reading.orientation, *reading.angular_velocity, *reading.linear_acceleration)))
-        self.mag_publisher.publish(self._mag.fill(stamp, reading.magnetic_field))
+        imu = self._imu.fill(stamp, (*reading.orientation, *reading.angular_velocity,
+                                     *reading.linear_acceleration))
+        mag = self._mag.fill(stamp, reading.magnetic_field)
+        self.imu_publisher.publish(imu)
+        self.mag_publisher.publish(mag)
+        self.latest = reading.orientation
+        self.traffic.sent += len(imu) + len(mag)
+
+    def motion_time(self) -> float:
+        """s of motion so far (a restarted module goes on from there)."""
+        return time.monotonic() - self._epoch
 
 
 def _diagonal(variance: float) -> list[float]:

@@ -6,7 +6,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from olive_sim.imu_node import DEFAULT_NAMESPACE as IMU_NAMESPACE
-from olive_sim.module_node import node_name
+from olive_sim.module_node import WEB_PORT, node_name
+from olive_sim.network_settings import page_host
 
 COMMON_TOPICS = ('led', 'status', 'switch', 'temperature')
 # Topic names and types per module type, as `ros2 topic list -t` shows them in the course.
@@ -28,11 +29,20 @@ class KitModule:
     namespace: str
     executable: str
     address: str  # the module's IP address in the course's set-up (sections 4.3.2 to 4.5)
-    parameters: dict[str, Any] = field(default_factory=dict)
+    own_parameters: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def parameters(self) -> dict[str, Any]:
+        """The module's parameters in the kit: its own and its address."""
+        return {**self.own_parameters, 'address': self.address}
 
     @property
     def node(self) -> str:
         return node_name(self.module_type, self.namespace)
+
+    def page_url(self, port: int | str = WEB_PORT) -> str:
+        """Where the module's web page answers while its address is the kit's."""
+        return f'http://{page_host(self.address)}:{port}/'
 
     def topics(self) -> dict[str, str]:
         """Absolute topic name -> type of everything the module offers (position mode for servos)."""
@@ -55,6 +65,15 @@ OWL_KIT = (
 # The modules' subnet (a module's factory address is 10.42.0.7) and the student's PC on it.
 KIT_SUBNET = '10.42.0.0/24'
 STUDENT_ADDRESS = '10.42.0.1'
+
+
+def address_table(port: int | str = WEB_PORT, modules: tuple[KitModule, ...] = OWL_KIT) -> str:
+    """The modules' addresses and web pages, printed when the kit starts."""
+    rows = [('MODULE', 'ADDRESS', 'WEB PAGE')]
+    rows += [(f'{m.module_type} {m.namespace}', m.address, m.page_url(port)) for m in modules]
+    widths = [max(len(row[i]) for row in rows) for i in range(3)]
+    return '\n'.join('  '.join(cell.ljust(width) for cell, width in zip(row, widths, strict=True)).rstrip()
+                     for row in rows)
 
 
 def topic_table(modules: tuple[KitModule, ...] = OWL_KIT) -> str:

@@ -7,18 +7,20 @@ node named olive_T_N_dcm_srv (like the course's /olive_servo_pan_dcm_srv).
 from __future__ import annotations
 
 import math
+import os
 import re
+import signal
 import sys
 import threading
 import time
 from collections.abc import Callable
-from typing import Any
+from typing import Any, ClassVar
 
 import yaml
 from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
 from owl_common.periodic import PeriodicThread
 from owl_common.run import spin_node
-from rcl_interfaces.msg import ParameterDescriptor
+from rcl_interfaces.msg import IntegerRange, ParameterDescriptor
 from rclpy.callback_groups import CallbackGroup
 from rclpy.node import Node
 from rclpy.parameter import Parameter
@@ -26,10 +28,17 @@ from rclpy.qos import QoSProfile
 from sensor_msgs.msg import Temperature
 from std_msgs.msg import Bool
 
+from olive_sim import network_settings
+from olive_sim.module_log import LogBook, RecordingLogger
+from olive_sim.process_stats import TrafficMeter
+from olive_sim.quaternion import Quaternion
+from olive_sim.restart import start_again, take_handover
+
 FIRMWARE_VERSION = 'olive_sim 0.1.0'
 NAMESPACE_PATTERN = re.compile(r'^[A-Za-z][A-Za-z0-9_]*$')
 STATUS_PERIOD = 1.0  # s: status, temperature and switch are published at 1 Hz
 WARN_EVERY = 2.0     # s between repeats of one kind of warning
+WEB_PORT = 8042      # of every module's page (a real module's is 80, which needs root)
 
 
 def check_namespace(namespace: str) -> str:
@@ -128,10 +137,21 @@ class PolledSubscription:
 
 
 class OliveModule(Node):
-    """Base class of the module nodes: the common topics and the `namespace` parameter."""
+    """Base class of the module nodes: the common topics, the `namespace` parameter, the module's
+    web page and its restart."""
+
+    # What the process before this one handed over at a restart (restart.py); run_module sets it.
+    handover: ClassVar[dict[str, Any]] = {}
 
     def __init__(self, module_type: str, namespace: str, serial: str) -> None:
+        self.logbook = LogBook()
         super().__init__(node_name(module_type, namespace))
+        self._recording_logger = RecordingLogger(super().get_logger(), self.logbook)
+        self.traffic = TrafficMeter()
+        self.firmware = FIRMWARE_VERSION
+        self.boot_id = time.time_ns()  # tells a page that the module started again
+        self.page: Any = None  # the ModulePage, once start_page() serves it
+        self.restart_delay: float | None = None  # set by the page's Restart Services / Reboot Device
         self.module_type = module_type
         self.namespace_name = namespace
         self.serial = serial
@@ -140,6 +160,12 @@ class OliveModule(Node):
             f'Module namespace: topics are /olive/{module_type}/<namespace>/...', read_only=True))
         self.declare_parameter('button_pressed', False, describe(
             'Simulated state of the module button, published on switch.'))
+        self.declare_parameter('address', network_settings.FACTORY_ADDRESS, describe(
+            "The module's IP address at start (its web page answers at 127.B.C.D for A.B.C.D; the "
+            "page's Network Settings change it).", read_only=True))
+        self.declare_parameter('web_port', WEB_PORT, describe(
+            'TCP port of the web page (0: no page).', read_only=True,
+            integer_range=[IntegerRange(from_value=0, to_value=65535, step=1)]))
         self.led_on = False
         self.started = time.monotonic()
         self._wrong_led_types: set[str] = set()
@@ -154,6 +180,51 @@ class OliveModule(Node):
 
     def topic(self, name: str) -> str:
         return self.prefix + name
+
+    def get_logger(self) -> Any:
+        """The node's logger; what it logs also goes to the page's Log Monitor."""
+        recording = getattr(self, '_recording_logger', None)
+        return recording if recording is not None else super().get_logger()
+
+    # -- the web page and restarts ----------------------------------------------------------
+
+    def start_page(self) -> None:
+        """Serve the module's page at its address (one warning line if that cannot be done)."""
+        from olive_sim.module_page import ModulePage  # aiohttp is imported only for a page
+
+        port = self.get_parameter('web_port').value
+        network = self.handover.get('network')
+        try:
+            settings = (network_settings.checked(network_settings.NetworkSettings(**network))
+                        if isinstance(network, dict) else
+                        network_settings.default_settings(self.get_parameter('address').value))
+        except (TypeError, ValueError) as error:
+            raise ValueError(f'parameter address: {error}') from None
+        if port == 0:
+            return
+        page = ModulePage(self, settings, port)
+        try:
+            page.start()
+        except OSError as error:
+            self.get_logger().warning(
+                f'no web page: {page.url} cannot be served ({error.strerror or error}; another module '
+                f'with the address {settings.address}?)')
+            return
+        self.page = page
+        self.get_logger().info(f'web page at {page.url} (module address {settings.address})')
+
+    def request_restart(self, delay: float, after: float) -> None:
+        """Stop as at Ctrl-C in `after` s, then start again (run_module) after `delay` s."""
+        self.restart_delay = delay
+        threading.Timer(after, os.kill, (os.getpid(), signal.SIGTERM)).start()
+
+    def handover_state(self) -> dict[str, Any]:
+        """What the next process of this module keeps (extended by modules with physical state)."""
+        return {'network': self.page.settings.as_dict()} if self.page is not None else {}
+
+    def imu_orientation(self) -> Quaternion | None:
+        """The orientation the module's IMU last published, for the Debug GUI (None: no IMU)."""
+        return None
 
     def now_ns(self) -> int:
         """The node's ROS time in ns, for stamps. Clock.now() costs as much as a publication, so
@@ -174,6 +245,8 @@ class OliveModule(Node):
 
     def destroy_node(self) -> None:
         # spin_node already ignores a second Ctrl-C during this clean-up.
+        if self.page is not None:
+            self.page.stop()
         for periodic in self._periodic:
             periodic.stop()
         super().destroy_node()
@@ -243,9 +316,18 @@ class OliveModule(Node):
 
 
 def run_module(make_node: Any, default_namespace: str, args: list[str] | None = None) -> None:
-    """main() of a module executable: read the namespace, build the node, spin until Ctrl-C."""
+    """main() of a module executable: read the namespace, build the node, serve its page, spin
+    until Ctrl-C; after the page's Restart Services or Reboot Device, start again (restart.py)."""
+    OliveModule.handover = take_handover()
+    built: list[OliveModule] = []
+
     def build() -> Node:
-        return make_node(read_namespace(default_namespace, sys.argv if args is None else args))
+        node = make_node(read_namespace(default_namespace, sys.argv if args is None else args))
+        built.append(node)
+        node.start_page()
+        return node
 
     spin_node(build, args)
+    if built and built[0].restart_delay is not None:
+        start_again(built[0].handover_state(), built[0].restart_delay)
 

@@ -10,6 +10,7 @@ import math
 import threading
 import time
 from dataclasses import fields
+from typing import Any
 
 from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
 from rcl_interfaces.msg import FloatingPointRange, IntegerRange, SetParametersResult
@@ -86,7 +87,11 @@ class ServoModule(OliveModule):
         self._wall_start = time.monotonic()
         # The model is stepped on the joint thread and commanded from executor callbacks.
         self.lock = threading.RLock()
+        self._take_over(self.handover.get('servo'))
         self.joint_template = self._joint_template(namespace)
+        self.joint_traffic = self.traffic.counter()  # the joint thread's
+        self.goal_traffic = self.traffic.counter()   # the executor's
+        self.goal_bytes = len(serialize_message(Float32()))
 
         self.add_on_set_parameters_callback(self._check_parameters)
         self.add_post_set_parameters_callback(self._apply_parameters)
@@ -100,6 +105,32 @@ class ServoModule(OliveModule):
         self.joint_thread = self.create_periodic(self.get_parameter('joint_rate').value,
                                                  self._publish_joint, 'joint')
         self.diagnostics_timer = self.create_timer(1.0, self._publish_diagnostics)
+
+    def _take_over(self, state: Any) -> None:
+        """The shaft where the process before a restart left it, and after Restart Services its
+        torque and goal (restart.py); a reboot hands over the shaft only."""
+        if not isinstance(state, dict):
+            return
+        try:
+            position = float(state['position'])
+            goal = self.sim.clamp_goal(float(state.get('goal', position)))
+        except (KeyError, TypeError, ValueError):
+            return
+        if not (math.isfinite(position) and math.isfinite(goal)):
+            return
+        self.sim.state.position = position
+        self.sim.state.temperature = float(state.get('temperature', self.sim.state.temperature))
+        if state.get('torque') is True:
+            self.sim.enable_torque(True)
+            self.sim.goal_position = goal
+
+    def handover_state(self) -> dict[str, Any]:
+        with self.lock:
+            self._advance_to_now()
+            servo = {'position': self.sim.state.position, 'temperature': self.sim.state.temperature}
+            if not self.restart_delay:  # Restart Services: the motor driver keeps its state
+                servo.update(torque=self.sim.torque_enabled, goal=self.sim.goal_position)
+        return {**super().handover_state(), 'servo': servo}
 
     @staticmethod
     def _joint_template(namespace: str) -> SerializedTemplate:
@@ -173,6 +204,7 @@ class ServoModule(OliveModule):
         return True
 
     def _on_goal_position(self, msg: Float32) -> None:
+        self.goal_traffic.received += self.goal_bytes
         if not self._accept('goal/position', msg.data):
             return
         goal = self.sim.clamp_goal(msg.data)
@@ -185,6 +217,7 @@ class ServoModule(OliveModule):
             self.sim.goal_position = goal
 
     def _on_goal_velocity(self, msg: Float32) -> None:
+        self.goal_traffic.received += self.goal_bytes
         if not self._accept('goal/velocity', msg.data):
             return
         limit = self.sim.params.no_load_speed
@@ -197,6 +230,7 @@ class ServoModule(OliveModule):
             self.sim.goal_velocity = goal
 
     def _on_pwm(self, msg: Float32) -> None:
+        self.goal_traffic.received += self.goal_bytes
         if not self._accept('pwm', msg.data):
             return
         if not -1.0 <= msg.data <= 1.0:
@@ -232,7 +266,9 @@ class ServoModule(OliveModule):
         with self.lock:
             self._advance_to_now()
             values = (self.sim.measured_position(), self.sim.state.velocity, self.sim.state.torque)
-        self.joint_publisher.publish(self.joint_template.fill(self.now_ns(), values))
+        joint = self.joint_template.fill(self.now_ns(), values)
+        self.joint_publisher.publish(joint)
+        self.joint_traffic.sent += len(joint)
 
     def _publish_diagnostics(self) -> None:
         with self.lock:
