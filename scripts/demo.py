@@ -2,8 +2,9 @@
 
 Starts the simulated Owl Kit (IMU, pan and tilt servos, camera), the course's projects on it
 (imu_control_robot points the head where the IMU points, display_camera shows the camera,
-imu_turtle drives turtlesim's turtle with the IMU), prints a few readable lines of what happens,
-then stops everything with Ctrl-C's signal, as a user at a terminal would.
+imu_turtle drives turtlesim's turtle with the IMU) and robot_view (the kit live in a browser, with
+its plots and the camera), prints the robot view's address and a few readable lines of what
+happens, then stops everything with Ctrl-C's signal, as a user at a terminal would.
 """
 
 from __future__ import annotations
@@ -11,6 +12,7 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import socket
 import sys
 import time
 from dataclasses import dataclass, field
@@ -28,6 +30,8 @@ IMU_TOPIC = '/olive/imu/x1684267976913/imu'
 CAMERA_TOPIC = '/olive/camera/eye/image/compressed'
 SERVOS = ('pan', 'tilt')
 STARTUP_TIMEOUT = 60.0  # s for every node to say it is working, on a loaded 2-core machine
+ROBOT_VIEW_PORT = 8091  # robot_view's own default; another free port when it is taken
+ROBOT_VIEW_LINE = r'robot_view: open (http://127\.0\.0\.1:\d+/) in a browser'
 
 
 @dataclass
@@ -88,19 +92,36 @@ def report_line(elapsed: float, state: RobotState, fps: float) -> str:
     return ' | '.join(parts)
 
 
+def robot_view_port(preferred: int = ROBOT_VIEW_PORT) -> int:
+    """The preferred port when it is free on 127.0.0.1 (a robot_view or another demo may have it), else 0:
+    robot_view then picks a free one and prints it."""
+    with socket.socket() as probe:
+        try:
+            probe.bind(('127.0.0.1', preferred))
+        except OSError:
+            return 0
+    return preferred
+
+
 def start_robot(sandbox: RosSandbox) -> dict[str, RosProcess]:
-    """The kit and the course's projects, each waited for until it says it works."""
+    """The kit, the course's projects and robot_view, each waited for until it says it works."""
     processes = {
         'kit': sandbox.command(['ros2', 'launch', 'olive_sim', 'owl_kit.launch.py'], label='kit'),
         'imu_turtle': sandbox.command(['ros2', 'launch', 'olive_imu', 'imu_turtle.launch.py'],
                                       label='imu_turtle'),
         'imu_control_robot': sandbox.run('olive_servo', 'imu_control_robot'),
         'display_camera': sandbox.run('olive_camera', 'display_camera'),
+        'robot_view': sandbox.run('robot_view', 'robot_view', '--port', str(robot_view_port())),
     }
     processes['imu_control_robot'].wait_for(r'steering the pan and tilt servos', STARTUP_TIMEOUT)
     processes['imu_turtle'].wait_for(r'IMU data on', STARTUP_TIMEOUT)
     processes['display_camera'].wait_for(r'showing them in the window', STARTUP_TIMEOUT)
+    processes['robot_view'].wait_for(ROBOT_VIEW_LINE, STARTUP_TIMEOUT)
     return processes
+
+
+def robot_view_address(process: RosProcess) -> str:
+    return process.wait_for(ROBOT_VIEW_LINE, 1.0)[0].group(1)
 
 
 def display_camera_lines(process: RosProcess) -> list[str]:
@@ -127,6 +148,8 @@ def run_demo(seconds: float, report_every: float) -> int:
             time.sleep(0.5)  # the no-display line follows the first frame's
             for line in display_camera_lines(processes['display_camera']):
                 print(f'   display_camera says: {line}', flush=True)
+            print(f"== robot view: open {robot_view_address(processes['robot_view'])} in a browser "
+                  '(the kit in 3D, live plots, the camera; the IMU follows its script here)', flush=True)
             print('== running', flush=True)
             start = last = time.monotonic()
             frames_then = state.frames

@@ -9,12 +9,15 @@ import sys
 from pathlib import Path
 
 import pytest
+from web_harness import chromium_missing
 
 BENCH = Path(__file__).resolve().parents[1] / 'bench'
+NEEDS_CHROMIUM = {'robot_view_latency.py'}  # drives the robot view's page as the browser tests do
 SHRUNK = {
     'dds_discovery.py': ['--runs', '2', '--nodes', '2', '--periods'],
     'launch_timings.py': ['--repeat', '1'],
     'olive_sim_cpu.py': ['--seconds', '1', '--warmup', '1'],
+    'robot_view_latency.py': ['--samples', '3'],
     'ros2cli_graph.py': ['--runs', '1', '--seconds', '2.5', '--messages', '200'],
     'service_roundtrip.py': ['--calls', '20'],
     'stop_stress.py': ['--stops', '1', '--hogs', '0', '--kinds', 'temp_server ALL'],
@@ -30,6 +33,8 @@ def test_every_benchmark_has_a_shrunk_run():
 
 @pytest.mark.parametrize('script', sorted(SHRUNK))
 def test_benchmark_runs(script):
+    if script in NEEDS_CHROMIUM and chromium_missing():
+        pytest.skip(chromium_missing())
     result = subprocess.run([sys.executable, str(BENCH / script), *SHRUNK[script]], capture_output=True,
                             text=True, timeout=110, check=False)
     assert result.returncode == 0, result.stdout + result.stderr

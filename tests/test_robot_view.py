@@ -129,7 +129,8 @@ def test_bad_websocket_input_gets_one_line_and_nothing_reaches_the_imu(ros):
                  'the orientation must be an object {"x", "y", "z", "w"}, got [0, 0, 0, 1]'),
                 ({'type': 'command', 'id': 4, 'name': 'hold_imu'}, "missing key 'orientation'"),
                 ({'type': 'command', 'id': 5, 'name': 'levle'},
-                 'unknown command "levle" (did you mean \'level\'?); known: hold_imu, level'),
+                 'unknown command "levle" (did you mean \'level\'?); known: goal, hold_imu, level, '
+                 'set_gains, torque'),
                 ({'type': 'command', 'id': 6, 'name': 'level', 'now': 1}, "unknown key 'now'; expected: "),
                 ('{"type": "command", ', 'malformed JSON in the message: '),
                 ({'type': 'comand', 'id': 7}, 'unknown message type "comand" (did you mean \'command\'?)')]:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import asyncio
 import json
+import os
 import socket
 import threading
 import urllib.error
@@ -75,12 +76,39 @@ class BrowserPage:
     def __getattr__(self, name: str) -> Any:
         return getattr(self.page, name)
 
-    def screenshot_to(self, name: str) -> Path:
-        """A screenshot for the documentation: docs/screenshots/<name>.png."""
+    def screenshot_to(self, name: str, full_page: bool = False) -> Path:
+        """A screenshot for the documentation: docs/screenshots/<name>.png (the whole page with
+        full_page, else the viewport). A picture that hardly differs from the one there (a live
+        page is never the same twice: the camera's clock, the plots' noise) leaves the file as it
+        is, so a test run does not dirty the tree when the page did not change; OWL_SCREENSHOTS=always
+        writes it anyway (after a change too small for that test, say)."""
         SCREENSHOTS.mkdir(parents=True, exist_ok=True)
         path = SCREENSHOTS / f'{name}.png'
-        self.page.screenshot(path=str(path))
+        picture = self.page.screenshot(full_page=full_page)
+        if os.environ.get('OWL_SCREENSHOTS') == 'always' or not path.exists() \
+                or not nearly_the_same(path.read_bytes(), picture):
+            path.write_bytes(picture)
         return path
+
+
+# The share of pixels that may differ visibly in "the same" picture: two runs of robot_view.png (the
+# head following the IMU, the camera) differ in 1.9 %, of robot_view_plots.png in 0.4 %; a change
+# as small as a plot's axis labels (0.8 %) needs OWL_SCREENSHOTS=always.
+SAME_PICTURE_PIXELS = 0.03
+VISIBLE_DIFFERENCE = 48  # of 255 in any colour channel
+
+
+def nearly_the_same(old_png: bytes, new_png: bytes) -> bool:
+    """Whether two screenshots show the same page: the same size, and at most SAME_PICTURE_PIXELS of
+    their pixels differ by more than VISIBLE_DIFFERENCE."""
+    import cv2  # here: only a test that takes a picture needs OpenCV loaded
+    import numpy
+    old, new = (cv2.imdecode(numpy.frombuffer(png, numpy.uint8), cv2.IMREAD_COLOR)
+                for png in (old_png, new_png))
+    if old is None or new is None or old.shape != new.shape:
+        return False
+    differing = (cv2.absdiff(old, new).max(axis=2) > VISIBLE_DIFFERENCE).mean()
+    return bool(differing <= SAME_PICTURE_PIXELS)
 
 
 class SocketClosed(Exception):

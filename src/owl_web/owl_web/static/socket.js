@@ -21,6 +21,7 @@ export class OwlSocket {
     this.url = `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}${path}`;
     this.onStatus = onStatus;
     this.subscriptions = new Map();  // id -> {channel, params, onUpdate, onError}
+    this.pendingCommands = new Map();  // command id -> onAnswer, until its done or error comes
     this.nextId = 1;
     this.retry = RETRY_FIRST;
     this.connect();
@@ -39,6 +40,9 @@ export class OwlSocket {
       if (this.socket !== socket) return;
       const reason = event.reason || (event.code === 1009 ? 'message too big' : `code ${event.code}`);
       this.onStatus(false, `connection closed (${reason}); reconnecting`);
+      // a command's answer cannot come on a new connection
+      for (const answer of this.pendingCommands.values()) answer(`connection closed (${reason})`);
+      this.pendingCommands.clear();
       setTimeout(() => this.connect(), this.retry);
       this.retry = Math.min(this.retry * 2, RETRY_MOST);
     };
@@ -61,11 +65,13 @@ export class OwlSocket {
   }
 
   // A command to the server ({"type": "command", "name", ...args}), e.g. the robot view's
-  // "hold_imu". Sent only while connected (a command is for now, not for after a reconnection);
-  // its error line, if refused, goes to onStatus. Returns the command's id, or null if not sent.
-  command(name, args = {}) {
+  // "hold_imu". Sent only while connected (a command is for now, not for after a reconnection).
+  // onAnswer(null) hears that it was done, onAnswer(line) its one-line error; without onAnswer the
+  // error line goes to onStatus. Returns the command's id, or null if not sent.
+  command(name, args = {}, onAnswer = null) {
     if (this.socket.readyState !== WebSocket.OPEN) return null;
     const id = `command-${this.nextId++}`;
+    if (onAnswer) this.pendingCommands.set(id, onAnswer);
     this.send({ ...args, type: 'command', id, name });
     return id;
   }
@@ -85,6 +91,12 @@ export class OwlSocket {
       message = JSON.parse(data);
     } else {
       [message, payload] = unpackFrame(data);
+    }
+    const answer = this.pendingCommands.get(message.id);
+    if (answer && (message.type === 'done' || message.type === 'error')) {
+      this.pendingCommands.delete(message.id);
+      answer(message.type === 'error' ? message.error : null);
+      return;
     }
     const entry = this.subscriptions.get(message.id);
     if (message.type === 'update' && entry) {

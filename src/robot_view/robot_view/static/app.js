@@ -1,9 +1,12 @@
 // The robot view: the Owl Kit as a three.js model that follows the servos' joints and the IMU's
 // orientation pushed by the server (channel "kit"), the camera's frames (channel "camera"), and
-// the IMU block turned with the mouse ("hold_imu" commands to the simulated IMU).
+// the IMU block turned with the mouse ("hold_imu" commands to the simulated IMU); beside it the
+// live plots (plots.js) and the servos' controls (controls.js), on the same socket.
 // The model works in base_link's frame (metres, z up), from shared/specs/olive_hardware.md §7.
 import * as THREE from 'three';
 import { OwlSocket } from '/owl/socket.js';
+import { startControls } from '/static/controls.js';
+import { startPlots } from '/static/plots.js';
 
 const DRAG_RADIANS_PER_PIXEL = 0.01;
 const FPS_WINDOW = 2000;  // ms of frames the shown frame rate counts
@@ -225,3 +228,6 @@ view.imuOnPage = () => {
 view.panOfModel = () => panJoint.rotation.z;
 view.tiltOfModel = () => -tiltJoint.rotation.y;
 render();
+
+startPlots(socket, view, showError);
+startControls(socket, view);

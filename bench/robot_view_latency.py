@@ -1,0 +1,163 @@
+"""Latency from a drag of the IMU in the robot view to the pan servo moving, against a baseline
+measured in the same run: the same turn of the simulated IMU published straight on DDS.
+
+One private ROS domain runs robot_view.launch.py (the kit with its IMU in command mode, and
+robot_view) and the course's imu_control_robot (the head points where the IMU points). Chromium
+(Debian's, through Playwright, as the browser tests) opens the page.
+
+- page: the mouse holds the IMU block and moves it 20 px (0.2 rad of yaw), the next time left,
+  then right, ...; timed from that one mouse move (Playwright's call) to the first pan `joint`
+  message 0.01 rad away from where it was: browser, WebSocket, robot_view, DDS to imu_sim, imu_sim
+  turning, imu_control_robot, servo_sim. Also split where the page's hold_imu reaches DDS.
+- direct (baseline): this process publishes the same 0.2 rad turns on imu_sim's true_orientation:
+  everything after robot_view.
+
+Prints p50, p99 and max of each in ms and the ratio page / direct: what the browser path adds.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import time
+from pathlib import Path
+
+from geometry_msgs.msg import Quaternion
+from measure import percentile
+from owl_common.probe import Probe
+from owl_common.processes import RosSandbox
+from sensor_msgs.msg import JointState
+
+TESTS = Path(__file__).resolve().parents[1] / 'tests'
+sys.path.insert(0, str(TESTS))  # the browser tests' Chromium set-up: one piece of code for it
+from web_harness import Browser, chromium_missing, free_port  # noqa: E402
+
+TRUE_ORIENTATION = '/olive_imu_x1684267976913_dcm_srv/true_orientation'
+PAN_JOINT = '/olive/servo/pan/joint'
+URL_LINE = r'robot_view: open (http://127\.0\.0\.1:\d+/) in a browser'
+PIXELS = 20  # one drag; the page turns the IMU 0.01 rad a pixel
+TURN = PIXELS * 0.01
+MOVED = 0.01  # rad: the pan servo has moved
+STARTUP_TIMEOUT = 60.0
+SAMPLE_TIMEOUT = 10.0
+
+
+class Timings:
+    """Arrival times (time.monotonic) of the pan joint's positions and of true_orientation messages."""
+
+    def __init__(self, probe: Probe) -> None:
+        self.joints: list[tuple[float, float]] = []
+        self.commands: list[float] = []
+        probe.node.create_subscription(JointState, PAN_JOINT, self._on_joint, 10)
+        probe.node.create_subscription(
+            Quaternion, TRUE_ORIENTATION, lambda _: self.commands.append(time.monotonic()), 10)
+
+    def _on_joint(self, joint: JointState) -> None:
+        self.joints.append((time.monotonic(), joint.position[0]))
+
+    def wait_for_move(self, started: float, from_position: float) -> float:
+        """Time of the first joint message after `started` MOVED away from `from_position`."""
+        deadline = time.monotonic() + SAMPLE_TIMEOUT
+        index = max(0, len(self.joints) - 5)  # the list only grows; what came before is older
+        while time.monotonic() < deadline:
+            while index < len(self.joints):
+                arrived, position = self.joints[index]
+                index += 1
+                if arrived > started and abs(position - from_position) > MOVED:
+                    return arrived
+            time.sleep(0.002)
+        raise SystemExit(f'the pan servo did not move within {SAMPLE_TIMEOUT} s')
+
+    def settle(self, seconds: float) -> float:
+        """Wait, then the pan's latest position."""
+        time.sleep(seconds)
+        return self.joints[-1][1]
+
+
+def yaw_quaternion(yaw: float) -> Quaternion:
+    return Quaternion(x=0.0, y=0.0, z=math.sin(yaw / 2), w=math.cos(yaw / 2))
+
+
+def measure_page(page, timings: Timings, samples: int, pause: float) -> tuple[list[float], list[float]]:
+    """ms from the mouse move to the pan moving, and to robot_view's hold_imu on DDS."""
+    to_moving, to_command = [], []
+    for sample in range(samples):
+        start_position = timings.settle(pause)
+        grip = page.evaluate('window.robotView.imuOnPage()')
+        page.mouse.move(grip['x'], grip['y'])
+        page.mouse.down()
+        commands_before = len(timings.commands)
+        started = time.monotonic()
+        page.mouse.move(grip['x'] + (PIXELS if sample % 2 == 0 else -PIXELS), grip['y'])
+        page.mouse.up()
+        moved = timings.wait_for_move(started, start_position)
+        to_moving.append((moved - started) * 1000)
+        if len(timings.commands) > commands_before:  # the probe heard robot_view's command
+            to_command.append((timings.commands[commands_before] - started) * 1000)
+    return to_moving, to_command
+
+
+def measure_direct(probe: Probe, timings: Timings, samples: int, pause: float) -> list[float]:
+    """ms from publishing a 0.2 rad turn on true_orientation to the pan moving."""
+    publisher = probe.node.create_publisher(Quaternion, TRUE_ORIENTATION, 10)
+    publisher.publish(yaw_quaternion(0.0))
+    results = []
+    for sample in range(samples):
+        start_position = timings.settle(pause)
+        started = time.monotonic()
+        publisher.publish(yaw_quaternion(TURN if sample % 2 == 0 else 0.0))
+        results.append((timings.wait_for_move(started, start_position) - started) * 1000)
+    return results
+
+
+def line(what: str, values: list[float]) -> str:
+    return (f'{what:<38} p50 {percentile(values, 0.5):6.1f} ms   p99 {percentile(values, 0.99):6.1f} ms   '
+            f'max {max(values):6.1f} ms   ({len(values)} samples)')
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument('--samples', type=int, default=100, help='turns per path (default 100)')
+    parser.add_argument('--pause', type=float, default=0.5, help='s the servo gets to settle between turns')
+    args = parser.parse_args()
+    if args.samples < 1 or not args.pause > 0:
+        parser.error('--samples must be at least 1 and --pause positive')
+    missing = chromium_missing()
+    if missing:
+        print(f'robot_view_latency: cannot run: {missing}', file=sys.stderr)
+        return 1
+    with RosSandbox() as sandbox:
+        launch = sandbox.command(
+            ['ros2', 'launch', 'robot_view', 'robot_view.launch.py', f'port:={free_port()}'],
+            label='robot_view.launch')
+        robot = sandbox.run('olive_servo', 'imu_control_robot')
+        base = launch.wait_for(URL_LINE, STARTUP_TIMEOUT)[0].group(1)
+        robot.wait_for(r'torque enabled: pan, tilt', STARTUP_TIMEOUT)
+        probe = Probe(sandbox.domain_id, 'latency_bench')
+        browser = Browser()
+        try:
+            timings = Timings(probe)
+            page = browser.new_page()
+            page.goto(base)
+            page.wait_for_function('() => window.robotView.pan !== null && window.robotView.imu !== null',
+                                   timeout=STARTUP_TIMEOUT * 1000)
+            # the baseline first, then the page: both start from a level IMU and the head at rest
+            direct = measure_direct(probe, timings, args.samples, args.pause)
+            page.click('#level')
+            to_moving, to_command = measure_page(page, timings, args.samples, args.pause)
+        finally:
+            browser.close()
+            probe.close()
+    print(line('page: drag -> pan servo moving', to_moving))
+    if to_command:
+        print(line('page: drag -> hold_imu on DDS', to_command))
+    print(line('direct: true_orientation -> pan moving', direct))
+    print(f'ratio page / direct: p50 {percentile(to_moving, 0.5) / percentile(direct, 0.5):.2f}x, '
+          f'p99 {percentile(to_moving, 0.99) / percentile(direct, 0.99):.2f}x')
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

@@ -1,0 +1,125 @@
+"""The robot view's live plots as plain data (node-free): samples of the servos' goal, position and
+effort and of the IMU's roll, pitch and yaw, decimated into buckets and kept for a rolling window,
+and the columns a page is sent.
+
+Why buckets: the joints and the IMU come at 100 Hz each; a plot 10 s wide and a few hundred pixels
+across shows no more than 50 points a second, and the page's WebSocket should carry only what it
+shows. A bucket holds the mean of each series' samples that fell into it; a *held* series (a goal,
+which is a step, not a stream) keeps its last value in every bucket after it, so the plot draws
+the step where it happened.
+
+Why overlap: owl_web replaces an update not yet sent to a slow page by a newer one (pages want
+state, not a backlog). So each push repeats the last OVERLAP seconds already pushed, and the page
+replaces what it has from the batch's first time on (plot_data.js, mergeBatch): one replaced
+update loses nothing, and the bucket still filling when a batch was made is sent again complete.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import deque
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+
+BUCKET = 0.02   # s: 50 points a second in the plot
+WINDOW = 10.0   # s a page shows and a new page is sent at once
+OVERLAP = 0.5   # s each push repeats of the previous one
+DECIMALS = 4    # of a value sent (0.1 mrad, 0.1 mN*m: finer than any plot shows)
+
+
+@dataclass
+class Bucket:
+    index: int  # start time / BUCKET
+    sums: dict[str, float] = field(default_factory=dict)
+    counts: dict[str, int] = field(default_factory=dict)
+    held: dict[str, float] = field(default_factory=dict)
+
+    def value(self, series: str) -> float | None:
+        if series in self.held:
+            return self.held[series]
+        count = self.counts.get(series, 0)
+        return self.sums[series] / count if count else None
+
+
+class PlotWindow:
+    """Samples of named series in time order, decimated into buckets of `bucket` seconds, kept for
+    `window` (+ OVERLAP) seconds. Times are any clock's seconds (the node uses time.monotonic)."""
+
+    def __init__(self, series: Iterable[str], held: Iterable[str] = (), bucket: float = BUCKET,
+                 window: float = WINDOW) -> None:
+        self.series = tuple(series)
+        self.held_series = frozenset(held)
+        unknown = self.held_series - set(self.series)
+        if unknown:
+            raise ValueError(f'held series not among the series: {", ".join(sorted(unknown))}')
+        if not bucket > 0 or not window > bucket:
+            raise ValueError(f'need 0 < bucket < window, got bucket {bucket}, window {window}')
+        self.bucket = bucket
+        self.window = window
+        self._buckets: deque[Bucket] = deque()
+        self._held: dict[str, float] = {}  # the last value of each held series
+
+    def add(self, time: float, values: dict[str, float]) -> None:
+        """Samples taken at `time` (seconds). A time before the newest bucket counts in the newest
+        (callbacks of different topics may be handled a little out of order); non-finite values and
+        unknown series are refused with ValueError (the node checks what it takes from ROS)."""
+        for name, value in values.items():
+            if name not in self.series:
+                raise ValueError(f"unknown series '{name}'; known: {', '.join(self.series)}")
+            if not math.isfinite(value):
+                raise ValueError(f'{name}: {value} is not a finite number')
+        # the small nudge keeps a time on a bucket's edge (5.00 s / 0.02 s) in the bucket it starts
+        bucket = self._bucket_at(math.floor(time / self.bucket + 1e-6))
+        for name, value in values.items():
+            if name in self.held_series:
+                self._held[name] = value
+                bucket.held[name] = value
+            else:
+                bucket.sums[name] = bucket.sums.get(name, 0.0) + value
+                bucket.counts[name] = bucket.counts.get(name, 0) + 1
+        self._trim()
+
+    def _bucket_at(self, index: int) -> Bucket:
+        if self._buckets and index <= self._buckets[-1].index:
+            return self._buckets[-1]
+        bucket = Bucket(index, held=dict(self._held))
+        self._buckets.append(bucket)
+        return bucket
+
+    def _trim(self) -> None:
+        oldest = self._buckets[-1].index - math.ceil((self.window + OVERLAP) / self.bucket)
+        while self._buckets and self._buckets[0].index < oldest:
+            self._buckets.popleft()
+
+    def newest(self) -> float | None:
+        """The start time of the newest bucket, or None before the first sample."""
+        return self._buckets[-1].index * self.bucket if self._buckets else None
+
+    def columns(self, since: float = -math.inf) -> dict[str, list[float | None]]:
+        """{'t': bucket start times, <series>: values (None where a bucket has no sample)} of the
+        buckets that start at or after `since`, oldest first: what a page's plot (uPlot) takes."""
+        chosen = [b for b in self._buckets if b.index * self.bucket >= since - 1e-9]
+        columns: dict[str, list[float | None]] = {'t': [round(b.index * self.bucket, 3) for b in chosen]}
+        for name in self.series:
+            values = (b.value(name) for b in chosen)
+            columns[name] = [None if v is None else round(v, DECIMALS) for v in values]
+        return columns
+
+
+class PushCursor:
+    """Where one page's pushes are: the first push sends the whole window, each later one what is
+    new plus OVERLAP seconds of what was sent (see the module's docstring)."""
+
+    def __init__(self) -> None:
+        self.since = -math.inf  # the first batch: everything the window has
+        self.sent_newest: float | None = None
+
+    def batch(self, window: PlotWindow) -> dict[str, list[float | None]] | None:
+        """The next batch for this page, or None when no bucket was begun since the last one."""
+        newest = window.newest()
+        if newest is None or newest == self.sent_newest:
+            return None
+        columns = window.columns(self.since)
+        self.since = newest - OVERLAP
+        self.sent_newest = newest
+        return columns

@@ -1,0 +1,86 @@
+"""The live plots' decimation, window and pushes, without a node."""
+
+import math
+
+import pytest
+from robot_view.plot_window import OVERLAP, PlotWindow, PushCursor
+
+
+def window(**kwargs):
+    return PlotWindow(('goal', 'position', 'effort'), held=('goal',), **kwargs)
+
+
+def test_samples_are_averaged_per_bucket_and_a_bucket_without_samples_is_none():
+    plot = window(bucket=0.02)
+    plot.add(1.000, {'position': 1.0, 'effort': 0.5})
+    plot.add(1.010, {'position': 2.0})
+    plot.add(1.025, {'effort': -0.25})
+    assert plot.columns() == {'t': [1.0, 1.02], 'goal': [None, None], 'position': [1.5, None],
+                              'effort': [0.5, -0.25]}
+
+
+def test_a_goal_is_held_from_its_bucket_on_as_a_step():
+    plot = window(bucket=0.02)
+    plot.add(0.0, {'position': 0.0})
+    plot.add(0.05, {'goal': 1.57})
+    for step in range(4, 8):
+        plot.add(step * 0.02, {'position': 0.1 * step})
+    columns = plot.columns()
+    assert columns['t'] == [0.0, 0.04, 0.08, 0.1, 0.12, 0.14]
+    assert columns['goal'] == [None, 1.57, 1.57, 1.57, 1.57, 1.57]
+    plot.add(0.16, {'goal': 0.0})
+    assert plot.columns(since=0.15)['goal'] == [0.0]
+
+
+def test_100_hz_becomes_50_points_a_second():
+    plot = window()  # the default bucket
+    for sample in range(1000):  # 10 s at 100 Hz
+        plot.add(sample / 100, {'position': math.sin(sample / 100)})
+    columns = plot.columns()
+    assert len(columns['t']) == 500
+    assert columns['position'][250] == pytest.approx(math.sin(5.005), abs=1e-4)
+
+
+def test_only_the_window_and_the_overlap_are_kept():
+    plot = window(bucket=0.1, window=2.0)
+    for sample in range(100):  # 10 s
+        plot.add(sample * 0.1, {'position': float(sample)})
+    times = plot.columns()['t']
+    assert times[-1] == pytest.approx(9.9)
+    assert times[0] == pytest.approx(9.9 - 2.0 - OVERLAP)
+
+
+def test_late_samples_count_in_the_newest_bucket():
+    plot = window(bucket=0.02)
+    plot.add(1.0, {'position': 1.0})
+    plot.add(0.99, {'position': 3.0})  # handled after a newer callback
+    assert plot.columns() == {'t': [1.0], 'goal': [None], 'position': [2.0], 'effort': [None]}
+
+
+def test_bad_samples_and_bad_windows_are_refused():
+    plot = window()
+    with pytest.raises(ValueError, match="unknown series 'speed'"):
+        plot.add(0.0, {'speed': 1.0})
+    with pytest.raises(ValueError, match='position: nan is not a finite number'):
+        plot.add(0.0, {'position': float('nan')})
+    assert plot.newest() is None
+    with pytest.raises(ValueError, match='held series not among the series: speed'):
+        PlotWindow(('goal',), held=('speed',))
+    with pytest.raises(ValueError, match='need 0 < bucket < window'):
+        PlotWindow(('goal',), bucket=0.0)
+
+
+def test_a_page_gets_the_window_first_then_what_is_new_with_an_overlap():
+    plot = window(bucket=0.1, window=2.0)
+    cursor = PushCursor()
+    assert cursor.batch(plot) is None  # nothing yet
+    for sample in range(30):  # 3 s
+        plot.add(sample * 0.1, {'position': float(sample)})
+    first = cursor.batch(plot)
+    assert first['t'][0] == pytest.approx(2.9 - 2.0 - OVERLAP) and first['t'][-1] == pytest.approx(2.9)
+    assert cursor.batch(plot) is None  # no new bucket
+    plot.add(3.0, {'position': 30.0})
+    second = cursor.batch(plot)
+    # from OVERLAP before the last batch's newest bucket: a replaced update loses nothing
+    assert second['t'] == pytest.approx([2.4, 2.5, 2.6, 2.7, 2.8, 2.9, 3.0])
+    assert second['position'][-1] == 30.0

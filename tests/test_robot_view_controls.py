@@ -1,0 +1,248 @@
+"""robot_view's live plots and servo controls over real DDS with the kit's processes, its page in
+Chromium: a Kp change shows in the plotted step response, the goal buttons move the servo, the
+torque switch switches, Pause freezes the plots, and bad input gets one line and reaches no servo.
+docs/screenshots/robot_view_plots.png is made here."""
+
+from __future__ import annotations
+
+import math
+import statistics
+import time
+from typing import Any
+
+from diagnostic_msgs.msg import DiagnosticStatus
+from ros_harness import wait_until
+from sensor_msgs.msg import JointState
+from std_msgs.msg import Float32
+from test_robot_view import drag, start_kit_and_view
+from web_harness import PageSocket, SocketClosed
+
+PAN_NODE = '/olive_servo_pan_dcm_srv'
+TILT_NODE = '/olive_servo_tilt_dcm_srv'
+STEP = 1.57  # the appendix 5.3 script's goal
+SETTLE = 3.0  # s between two goals, as in the appendix script
+
+
+def servo_row(servo: str) -> str:
+    return f'#servo-controls tr[data-servo={servo}]'
+
+
+def open_page(ros: Any, page: Any) -> str:
+    base = start_kit_and_view(ros)
+    page.goto(base)
+    page.wait_for_function('() => window.robotView.servos && window.robotView.servos.pan.kp !== null '
+                           '&& window.robotView.servos.tilt.kp !== null', timeout=30_000)
+    page.wait_for_function('() => window.robotView.plots.batches > 2', timeout=20_000)
+    return base
+
+
+def answers(page: Any) -> list[dict[str, Any]]:
+    return page.evaluate('window.robotView.commandAnswers')
+
+
+def click_and_wait_for_answer(page: Any, selector: str) -> dict[str, Any]:
+    """Click a control and return the server's answer to the command it sent."""
+    before = len(answers(page))
+    page.click(selector)
+    wait_until(lambda: len(answers(page)) > before, 10, f'the answer to {selector}')
+    return answers(page)[-1]
+
+
+def set_gains(page: Any, servo: str, **gains: str) -> dict[str, Any]:
+    """Type the gains into the servo's row and press Set."""
+    for name, value in gains.items():
+        page.fill(f'{servo_row(servo)} input.{name}', value)
+    return click_and_wait_for_answer(page, f'{servo_row(servo)} button.set-gains')
+
+
+def torque_enabled(diagnostics: list[DiagnosticStatus]) -> bool | None:
+    if not diagnostics:
+        return None
+    return next(v.value for v in diagnostics[-1].values if v.key == 'torque_enabled') == 'true'
+
+
+def step_response(plotted: dict[str, list[float | None]], goal: float) -> dict[str, float]:
+    """Rise time (10-90 %), overshoot and remaining error of the last step to `goal` in a plot read
+    from the page ({x, goal, position, effort})."""
+    x, goals, positions = plotted['x'], plotted['goal'], plotted['position']
+    steps = [i for i in range(1, len(x)) if goals[i] == goal and goals[i - 1] != goal]
+    assert steps, f'no step to {goal} in the plot: goals {sorted({g for g in goals if g is not None})}'
+    first = steps[-1]
+    start = next(p for p in reversed(positions[:first]) if p is not None)
+    after = [(x[i] - x[first], p) for i, p in enumerate(positions) if i >= first and p is not None]
+    span = goal - start
+
+    def reached(fraction: float) -> float:
+        return next(t for t, p in after if (p - start) / span >= fraction)
+
+    tail = [p for t, p in after if t >= after[-1][0] - 0.3]
+    return {'rise': reached(0.9) - reached(0.1), 'overshoot': max(p for _, p in after) - goal,
+            'remaining': abs(goal - statistics.fmean(tail)), 'seconds': after[-1][0]}
+
+
+def test_a_kp_change_shows_in_the_plotted_step_response(ros, page):
+    diagnostics = ros.probe.collect(DiagnosticStatus, '/olive/servo/pan/joint/diagnostics')
+    pan_joints = ros.probe.collect(JointState, '/olive/servo/pan/joint')
+    open_page(ros, page)
+    # The servo's factory gains are in the inputs (read from the node, not from the page's code).
+    assert page.input_value(f'{servo_row("pan")} input.kp') == '5'
+    assert page.input_value(f'{servo_row("pan")} input.ki') == '10'
+
+    # The torque switch turns the servo's torque on (setTorqueEnable): its diagnostics say so.
+    assert not page.is_checked(f'{servo_row("pan")} input.torque')
+    assert click_and_wait_for_answer(page, f'{servo_row("pan")} input.torque')['error'] is None
+    wait_until(lambda: torque_enabled(diagnostics), 10, 'pan torque enabled in joint/diagnostics')
+
+    responses = {}
+    for kp in ('1', '5'):  # the course's first exercise, then a raised Kp (Ki and Kd off)
+        assert set_gains(page, 'pan', kp=kp, ki='0', kd='0')['error'] is None
+        assert ros.probe.get_parameters(PAN_NODE, 'kp', 'ki', 'kd') == [float(kp), 0.0, 0.0]
+        click_and_wait_for_answer(page, f'{servo_row("pan")} button.goal[data-goal="0"]')
+        wait_until(lambda: abs(pan_joints[-1].position[0]) < 0.1, 10, 'the pan servo near 0')
+        time.sleep(1.0)  # settled at its remaining error
+        click_and_wait_for_answer(page, f'{servo_row("pan")} button.goal[data-goal="1.57"]')
+        # the goal button moved the servo
+        wait_until(lambda: abs(pan_joints[-1].position[0] - STEP) < 0.1, 10, 'the pan servo near 1.57')
+        time.sleep(SETTLE)
+        responses[kp] = step_response(page.evaluate('window.robotView.plotted("pan")'), STEP)
+        print(f"Kp={kp}: rise {responses[kp]['rise']:.2f} s, overshoot {responses[kp]['overshoot']:.3f} rad, "
+              f"remaining error {responses[kp]['remaining']:.3f} rad (read from the page's plot)")
+    # servo_sim's model (olive_sim README): Kp=1 rises in 0.36 s with no overshoot and 0.065 rad
+    # left; Kp=5 in 0.26 s, 0.115 rad over, 0.011 rad left.
+    slow, fast = responses['1'], responses['5']
+    assert fast['overshoot'] > slow['overshoot'] + 0.05, responses
+    assert fast['rise'] < slow['rise'], responses
+    assert slow['remaining'] > fast['remaining'] + 0.02, responses
+    assert slow['seconds'] > 2.5 and fast['seconds'] > 2.5, responses  # the plot kept the whole step
+
+    # A picture with something in every plot: the IMU held a little off level.
+    drag(page, 40, 25)
+    time.sleep(2.0)
+    page.screenshot_to('robot_view_plots', full_page=True)
+
+
+def test_goal_buttons_torque_switch_and_pause(ros, page):
+    diagnostics = ros.probe.collect(DiagnosticStatus, '/olive/servo/tilt/joint/diagnostics')
+    tilt_joints = ros.probe.collect(JointState, '/olive/servo/tilt/joint')
+    tilt_goals = ros.probe.collect(Float32, '/olive/servo/tilt/goal/position')
+    open_page(ros, page)
+    row = servo_row('tilt')
+    # The tilt servo's top is 0.9 rad: its second button is 0.9, not pi/2.
+    assert page.locator(f'{row} button.goal').all_inner_texts() == ['0', '0.9']
+
+    click_and_wait_for_answer(page, f'{row} input.torque')
+    wait_until(lambda: torque_enabled(diagnostics), 10, 'tilt torque on')
+    click_and_wait_for_answer(page, f'{row} button.goal[data-goal="0.9"]')
+    wait_until(lambda: abs(tilt_joints[-1].position[0] - 0.9) < 0.05, 10, 'the tilt servo at 0.9')
+    # The plot shows the goal and the position.
+    wait_until(lambda: page.evaluate('Math.max(...window.robotView.plotted("tilt").position'
+                                     '.filter((p) => p !== null))') > 0.85, 5, 'the plotted tilt at 0.9')
+
+    # Torque off: the servo lets go (the switch and the servo's own diagnostics agree).
+    click_and_wait_for_answer(page, f'{row} input.torque')
+    wait_until(lambda: torque_enabled(diagnostics) is False, 10, 'tilt torque off')
+    assert not page.is_checked(f'{row} input.torque')
+
+    # "flip every 3 s" sends the appendix script's goals in turn.
+    click_and_wait_for_answer(page, f'{row} input.torque')
+    tilt_goals.clear()
+    page.check(f'{row} input.flip')
+    # as the appendix script: pi/2 (here the tilt's 0.9) first, 3 s after the start, then 0
+    wait_until(lambda: [round(g.data, 3) for g in tilt_goals][:2] == [0.9, 0.0], 10, 'two flipped goals')
+    page.uncheck(f'{row} input.flip')
+
+    # Pause freezes what the plots draw while the data keeps coming; Resume goes live again.
+    page.click('#pause')
+    frozen = page.evaluate('window.robotView.plotted("imu")')
+    batches = page.evaluate('window.robotView.plots.batches')
+    time.sleep(1.5)
+    assert page.evaluate('window.robotView.plotted("imu")') == frozen
+    assert page.evaluate('window.robotView.plotted("tilt").x.length') > 100
+    assert page.evaluate('window.robotView.plots.batches') >= batches + 5  # still pushed
+    assert page.get_attribute('#pause', 'aria-pressed') == 'true' and page.inner_text('#pause') == 'Resume'
+    page.click('#pause')
+    wait_until(lambda: page.evaluate('window.robotView.plotted("imu")') != frozen, 5, 'the plots live again')
+    # The window is 10 s: nothing older is drawn.
+    time.sleep(11)
+    assert page.evaluate('window.robotView.plotted("imu").x[0]') >= -10.0
+
+
+def test_bad_control_input_gets_one_line_and_reaches_no_servo(ros, page):
+    pan_goals = ros.probe.collect(Float32, '/olive/servo/pan/goal/position')
+    tilt_goals = ros.probe.collect(Float32, '/olive/servo/tilt/goal/position')
+    diagnostics = ros.probe.collect(DiagnosticStatus, '/olive/servo/pan/joint/diagnostics')
+    base = open_page(ros, page)
+    factory = ros.probe.get_parameters(PAN_NODE, 'kp', 'ki', 'kd')
+
+    # In the page: an out-of-range Kp and an empty Kd are refused with the server's line.
+    answer = set_gains(page, 'pan', kp='500')
+    assert answer['error'] == 'pan kp must be within 0..100, got 500', answer
+    assert page.inner_text('#command-status') == 'refused: pan kp must be within 0..100, got 500'
+    page.fill(f'{servo_row("pan")} input.kp', '5')
+    answer = set_gains(page, 'pan', kd='')
+    assert answer['error'] == 'pan kd must be a number, got null', answer
+
+    with PageSocket(base) as page_socket:
+        for message, error in [
+                ({'type': 'command', 'id': 1, 'name': 'set_gains', 'servo': 'pan', 'kp': 101},
+                 'pan kp must be within 0..100, got 101'),
+                ({'type': 'command', 'id': 2, 'name': 'set_gains', 'servo': 'pan', 'ki': -0.5},
+                 'pan ki must be within 0..1000, got -0.5'),
+                ('{"type": "command", "id": 3, "name": "set_gains", "servo": "pan", "kd": Infinity}',
+                 'pan kd must be finite, got inf'),
+                ('{"type": "command", "id": 4, "name": "set_gains", "servo": "pan", "kp": NaN}',
+                 'pan kp must be finite, got nan'),
+                ({'type': 'command', 'id': 5, 'name': 'set_gains', 'servo': 'pan', 'kq': 1},
+                 "unknown key 'kq'; expected: servo, kp, ki, kd"),
+                ({'type': 'command', 'id': 6, 'name': 'set_gains', 'servo': 'elbow', 'kp': 1},
+                 'unknown servo "elbow"; known: pan, tilt'),
+                ({'type': 'command', 'id': 7, 'name': 'goal', 'servo': 'pan', 'position': 3.0},
+                 'the pan goal must be within -1.5708..1.5708, got 3'),
+                ({'type': 'command', 'id': 8, 'name': 'goal', 'servo': 'tilt', 'position': 1.57},
+                 'the tilt goal must be within -1.3..0.9, got 1.57'),
+                ({'type': 'command', 'id': 9, 'name': 'goal', 'servo': 'pan', 'position': '1.57'},
+                 'the pan goal must be a number, got "1.57"'),
+                ({'type': 'command', 'id': 10, 'name': 'torque', 'servo': 'pan', 'enabled': 'yes'},
+                 '"enabled" must be true or false, got "yes"'),
+                ({'type': 'command', 'id': 11, 'name': 'torqe', 'servo': 'pan', 'enabled': True},
+                 'unknown command "torqe" (did you mean \'torque\'?); known: goal, hold_imu, level, '
+                 'set_gains, torque'),
+                ('{"type": "command", "name": "goal", "servo": "pan", "position": ',
+                 'malformed JSON in the message: '),
+                ('{"type": "command", "id": 12, "name": "goal", "servo": "pan", "position": 1, "pad": "'
+                 + 'x' * 70_000 + '"}', 'message of 70'),
+        ]:
+            page_socket.send(message)
+            answer = page_socket.receive()
+            assert answer['type'] == 'error' and answer['error'].startswith(error), (answer, error)
+            assert '\n' not in answer['error']
+        # A message over 1 MiB is not read at all: that connection closes ("message too big").
+        page_socket.send('{"type": "command", "name": "goal", "pad": "' + 'x' * (1 << 20) + '"}')
+        try:
+            closed = page_socket.receive()
+        except SocketClosed as error:
+            closed = error.code
+        assert closed in (1009, 1006, None), closed
+
+    # Nothing reached a servo: no goal published, the gains and the torque are as they were.
+    time.sleep(1.0)
+    assert pan_goals == [] and tilt_goals == []
+    assert ros.probe.get_parameters(PAN_NODE, 'kp', 'ki', 'kd') == factory
+    assert ros.probe.get_parameters(TILT_NODE, 'kp') == [factory[0]]
+    wait_until(lambda: diagnostics, 5, 'pan diagnostics')
+    assert torque_enabled(diagnostics) is False
+
+    # robot_view kept serving: the page's next command is carried out.
+    assert set_gains(page, 'pan', kp='2.5', ki='10', kd='0.3')['error'] is None
+    assert ros.probe.get_parameters(PAN_NODE, 'kp') == [2.5]
+    wait_until(lambda: page.evaluate('window.robotView.servos.pan.kp') == 2.5, 5, 'the page showing kp 2.5')
+    assert math.isclose(float(page.input_value(f'{servo_row("pan")} input.kp')), 2.5)
+
+
+def test_gains_set_elsewhere_show_on_the_page(ros, page):
+    open_page(ros, page)
+    # `ros2 param set /olive_servo_pan_dcm_srv kp 7.5`, as section 4.4 does it
+    assert all(result.successful for result in ros.probe.set_parameters(PAN_NODE, kp=7.5, kd=1.0))
+    wait_until(lambda: page.evaluate('[window.robotView.servos.pan.kp, window.robotView.servos.pan.kd]')
+               == [7.5, 1.0], 10, 'the page showing kp 7.5 and kd 1.0')
+    assert page.input_value(f'{servo_row("pan")} input.kp') == '7.5'
