@@ -15,8 +15,10 @@ from typing import Any
 
 import owl_common.probe
 from owl_common.processes import RosSandbox
-from rcl_interfaces.msg import Parameter, ParameterType, ParameterValue, SetParametersResult
+from rcl_interfaces.msg import SetParametersResult
 from rcl_interfaces.srv import GetParameters, SetParameters
+from rclpy.parameter import Parameter as RclpyParameter
+from rclpy.parameter import parameter_value_to_python
 
 # Seconds before a parameter request is sent again (see Probe.call).
 PARAMETER_RESEND = 2.0
@@ -62,7 +64,7 @@ class Probe(owl_common.probe.Probe):
     def set_parameters(self, node: str, timeout: float = 10.0, **values: Any) -> list[SetParametersResult]:
         """Set parameters of another node through its set_parameters service, one result each."""
         request = SetParameters.Request(
-            parameters=[Parameter(name=k, value=parameter_value(v)) for k, v in values.items()])
+            parameters=[RclpyParameter(k, value=v).to_parameter_msg() for k, v in values.items()])
         return list(self.call(SetParameters, f'{node}/set_parameters', request, timeout,
                               resend_every=PARAMETER_RESEND).results)
 
@@ -71,32 +73,7 @@ class Probe(owl_common.probe.Probe):
         response = self.call(GetParameters, f'{node}/get_parameters',
                              GetParameters.Request(names=list(names)), timeout,
                              resend_every=PARAMETER_RESEND)
-        return [python_value(v) for v in response.values]
-
-
-def parameter_value(value: Any) -> ParameterValue:
-    """A Python value as an rcl_interfaces ParameterValue (bool, int, float, str)."""
-    if isinstance(value, bool):
-        return ParameterValue(type=ParameterType.PARAMETER_BOOL, bool_value=value)
-    if isinstance(value, int):
-        return ParameterValue(type=ParameterType.PARAMETER_INTEGER, integer_value=value)
-    if isinstance(value, float):
-        return ParameterValue(type=ParameterType.PARAMETER_DOUBLE, double_value=value)
-    if isinstance(value, str):
-        return ParameterValue(type=ParameterType.PARAMETER_STRING, string_value=value)
-    raise TypeError(f'no parameter type for {value!r}')
-
-
-def python_value(value: ParameterValue) -> Any:
-    fields = {
-        ParameterType.PARAMETER_NOT_SET: None,
-        ParameterType.PARAMETER_BOOL: 'bool_value',
-        ParameterType.PARAMETER_INTEGER: 'integer_value',
-        ParameterType.PARAMETER_DOUBLE: 'double_value',
-        ParameterType.PARAMETER_STRING: 'string_value',
-    }
-    field = fields.get(value.type)
-    return getattr(value, field) if field else None
+        return [parameter_value_to_python(v) for v in response.values]
 
 
 def wait_until(condition: Callable[[], bool], timeout: float, what: str) -> None:

@@ -18,6 +18,7 @@ SHRUNK = {
     'launch_timings.py': ['--repeat', '1'],
     'olive_sim_cpu.py': ['--seconds', '1', '--warmup', '1'],
     'robot_view_latency.py': ['--samples', '3'],
+    'ros2_help.py': ['--runs', '1'],
     'ros2cli_graph.py': ['--runs', '1', '--seconds', '2.5', '--messages', '200'],
     'service_roundtrip.py': ['--calls', '20'],
     'stop_stress.py': ['--stops', '1', '--hogs', '0', '--kinds', 'temp_server ALL'],

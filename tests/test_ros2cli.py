@@ -88,16 +88,18 @@ def cli(ros):
 def test_help_at_every_level(graph):
     top = ros2(graph, '-h')
     assert top.returncode == 0 and 'ros2 is an extensible command-line tool for ROS 2.' in top.stdout
-    assert top.stdout.endswith('Commands:\n  action     Various action related sub-commands\n'
-                               '  daemon     Various daemon related sub-commands\n'
-                               '  interface  Show information about ROS interfaces\n'
-                               '  launch     Run a launch file\n'
-                               '  node       Various node related sub-commands\n'
-                               '  param      Various param related sub-commands\n'
-                               '  pkg        Various package related sub-commands\n'
-                               '  run        Run a package specific executable\n'
-                               '  service    Various service related sub-commands\n'
-                               '  topic      Various topic related sub-commands\n\n'
+    assert top.stdout.endswith('Commands:\n  action            Various action related sub-commands\n'
+                               '  daemon            Various daemon related sub-commands\n'
+                               '  extension_points  List extension points\n'
+                               '  extensions        List extensions\n'
+                               '  interface         Show information about ROS interfaces\n'
+                               '  launch            Run a launch file\n'
+                               '  node              Various node related sub-commands\n'
+                               '  param             Various param related sub-commands\n'
+                               '  pkg               Various package related sub-commands\n'
+                               '  run               Run a package specific executable\n'
+                               '  service           Various service related sub-commands\n'
+                               '  topic             Various topic related sub-commands\n\n'
                                '  Call `ros2 <command> -h` for more detailed usage.\n')
     bare = ros2(graph)
     assert bare.returncode == 0 and bare.stdout == top.stdout
@@ -779,11 +781,14 @@ def test_param_load_bad_files(graph, tmp_path):
     flat = tmp_path / 'flat.yaml'
     flat.write_text('/mutable_params:\n  int_param: 1\n')
     assert_one_line_error(ros2(graph, 'param', 'load', '/mutable_params', str(flat)),
-                          "the entry '/mutable_params' of the file has no 'ros__parameters' mapping")
+                          'YAML file is not a valid ROS parameter file for node /mutable_params')
+    # rclpy's parameter_dict_from_yaml_file (as upstream) makes a string of a mixed list; the node
+    # refuses it for its integer parameter, on one line.
     mixed = tmp_path / 'mixed.yaml'
     mixed.write_text('/mutable_params:\n  ros__parameters:\n    int_param: [1, a]\n')
-    assert_one_line_error(ros2(graph, 'param', 'load', '/mutable_params', str(mixed)),
-                          "parameter 'int_param' has a value of no parameter type")
+    result = ros2(graph, 'param', 'load', '/mutable_params', str(mixed))
+    assert result.returncode == 0 and 'Traceback' not in result.stderr
+    assert result.stderr.startswith('Set parameter int_param failed: ') and result.stderr.count('\n') == 1
 
 
 # ---- ros2 action ------------------------------------------------------------------------------

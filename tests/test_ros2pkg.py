@@ -7,7 +7,7 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import pytest
-from ros2pkg.command import add_arguments
+from ros2pkg.command import PkgCommand
 
 TIMEOUT = 60
 
@@ -185,18 +185,24 @@ def test_pkg_without_a_verb_prints_its_help():
     result = ros2('pkg')
     assert result.returncode == 0
     for verb in ('create', 'executables', 'list', 'prefix', 'xml'):
-        assert f'    {verb} ' in result.stdout
+        assert f'\n  {verb} ' in result.stdout
 
 
-def test_shell_completion_offers_package_names_build_types_and_licenses():
+def test_shell_completion_offers_package_names_build_types_and_licenses(monkeypatch):
+    import ros2cli.command
 
-    parser = argparse.ArgumentParser(prog='ros2 pkg')
-    add_arguments(parser, 'ros2 pkg')
-    verbs = next(action for action in parser._actions if isinstance(action, argparse._SubParsersAction))
-    completers = {option: action.completer for action in verbs.choices['create']._actions
+    def verb_parser(verb):
+        """The sub-parser of `ros2 pkg <verb>` as shell completion builds it (only that verb's options)."""
+        monkeypatch.setattr(ros2cli.command, 'ARGV', ['pkg', verb])
+        parser = argparse.ArgumentParser(prog='ros2 pkg')
+        PkgCommand().add_arguments(parser, 'ros2 pkg')
+        verbs = next(action for action in parser._actions if isinstance(action, argparse._SubParsersAction))
+        return verbs.choices[verb]
+
+    completers = {option: action.completer for action in verb_parser('create')._actions
                   for option in action.option_strings if hasattr(action, 'completer')}
     assert completers['--build-type']() == ['ament_cmake', 'ament_python']
     assert 'Apache-2.0' in completers['--license']()
-    prefix_package = next(action for action in verbs.choices['prefix']._actions
+    prefix_package = next(action for action in verb_parser('prefix')._actions
                           if action.dest == 'package_name')
     assert 'ros2cli' in prefix_package.completer()

@@ -18,9 +18,80 @@ setup(
     license='Apache-2.0',
     tests_require=['pytest'],
     # `ros2` goes to <prefix>/bin, which the workspace setup puts on PATH.
+    # Commands and verbs are found through these groups (ros2cli.entry_points); other packages
+    # add theirs the same way. Group names are upstream's.
     entry_points={
         'console_scripts': [
             'ros2 = ros2cli.cli:main',
+        ],
+        'ros2cli.command': [
+            'action = ros2cli.command.action:ActionCommand',
+            'daemon = ros2cli.command.daemon:DaemonCommand',
+            'extension_points = ros2cli.command.extensions:ExtensionPointsCommand',
+            'extensions = ros2cli.command.extensions:ExtensionsCommand',
+            'interface = ros2cli.command.interface:InterfaceCommand',
+            'node = ros2cli.command.node:NodeCommand',
+            'param = ros2cli.command.param:ParamCommand',
+            'run = ros2cli.command.run:RunCommand',
+            'service = ros2cli.command.service:ServiceCommand',
+            'topic = ros2cli.command.topic:TopicCommand',
+        ],
+        'ros2cli.extension_point': [
+            'ros2cli.command = ros2cli.command:CommandExtension',
+            'ros2action.verb = ros2cli.verb:VerbExtension',
+            'ros2cli.daemon.verb = ros2cli.verb:VerbExtension',
+            'ros2interface.verb = ros2cli.verb:VerbExtension',
+            'ros2node.verb = ros2cli.verb:VerbExtension',
+            'ros2param.verb = ros2cli.verb:VerbExtension',
+            'ros2service.verb = ros2cli.verb:VerbExtension',
+            'ros2topic.verb = ros2cli.verb:VerbExtension',
+        ],
+        'ros2action.verb': [
+            'info = ros2cli.command.action:InfoVerb',
+            'list = ros2cli.command.action:ListVerb',
+            'send_goal = ros2cli.command.action:SendGoalVerb',
+            'type = ros2cli.command.action:TypeVerb',
+        ],
+        'ros2cli.daemon.verb': [
+            'start = ros2cli.command.daemon:StartVerb',
+            'status = ros2cli.command.daemon:StatusVerb',
+            'stop = ros2cli.command.daemon:StopVerb',
+        ],
+        'ros2interface.verb': [
+            'list = ros2cli.command.interface:ListVerb',
+            'package = ros2cli.command.interface:PackageVerb',
+            'packages = ros2cli.command.interface:PackagesVerb',
+            'proto = ros2cli.command.interface:ProtoVerb',
+            'show = ros2cli.command.interface:ShowVerb',
+        ],
+        'ros2node.verb': [
+            'info = ros2cli.command.node:InfoVerb',
+            'list = ros2cli.command.node:ListVerb',
+        ],
+        'ros2param.verb': [
+            'delete = ros2cli.command.param:DeleteVerb',
+            'describe = ros2cli.command.param:DescribeVerb',
+            'dump = ros2cli.command.param:DumpVerb',
+            'get = ros2cli.command.param:GetVerb',
+            'list = ros2cli.command.param:ListVerb',
+            'load = ros2cli.command.param:LoadVerb',
+            'set = ros2cli.command.param:SetVerb',
+        ],
+        'ros2service.verb': [
+            'call = ros2cli.command.service:CallVerb',
+            'find = ros2cli.command.service:FindVerb',
+            'list = ros2cli.command.service:ListVerb',
+            'type = ros2cli.command.service:TypeVerb',
+        ],
+        'ros2topic.verb': [
+            'bw = ros2cli.command.topic_bw:BwVerb',
+            'echo = ros2cli.command.topic_echo:EchoVerb',
+            'find = ros2cli.command.topic:FindVerb',
+            'hz = ros2cli.command.topic_hz:HzVerb',
+            'info = ros2cli.command.topic:InfoVerb',
+            'list = ros2cli.command.topic:ListVerb',
+            'pub = ros2cli.command.topic_pub:PubVerb',
+            'type = ros2cli.command.topic:TypeVerb',
         ],
     },
 )

@@ -17,4 +17,7 @@ setup(
     description='The ros2 launch command.',
     license='Apache-2.0',
     tests_require=['pytest'],
+    entry_points={
+        'ros2cli.command': ['launch = ros2launch.command:LaunchCommand'],
+    },
 )

@@ -19,8 +19,8 @@ import math
 import struct
 from typing import Any
 
-from ros2cli.message_yaml import message_to_plain
-from ros2cli.names import did_you_mean
+from rosidl_runtime_py.convert import message_to_ordereddict
+from rosidl_runtime_py.hints import did_you_mean
 
 MAX_BODY = 1 << 20  # bytes of an HTTP request body
 MAX_CLIENT_MESSAGE = 64 * 1024  # bytes of a WebSocket message from a page (subscriptions are small)
@@ -146,7 +146,7 @@ def json_safe(value: Any) -> Any:
 
 def message_fields(message: Any) -> dict[str, Any]:
     """A ROS message's values as JSON-safe nested dicts and lists, in declaration order."""
-    return json_safe(message_to_plain(message))
+    return json_safe(message_to_ordereddict(message))
 
 
 QUATERNION_KEYS = ('x', 'y', 'z', 'w')

@@ -11,8 +11,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from rclpy.node import Node
-from ros2cli.names import full_node_name, is_hidden_name, is_hidden_node
-from ros2cli.node.graph import GraphQueries
+from rosidl_runtime_py.graph import GraphQueries, full_node_name, is_hidden_name, is_hidden_node
 
 from owl_web import codec
 from owl_web.server import Subscription, WebServer

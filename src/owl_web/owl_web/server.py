@@ -37,7 +37,7 @@ from typing import Any
 from urllib.parse import urlsplit
 
 from aiohttp import WSCloseCode, WSMsgType, web
-from ros2cli.names import did_you_mean
+from rosidl_runtime_py.hints import did_you_mean
 
 from owl_web import codec
 from owl_web.codec import ApiError

@@ -1,57 +1,29 @@
-"""`ros2`: parse `ros2 <command> ...` with argparse and hand over to the command's module.
+"""`ros2`: parse `ros2 <command> ...` with argparse and hand over to the command's extension.
 
-A command's main() returns None/0 (exit 0), an int (that exit code) or a string (printed on
-stderr, exit 1); a RuntimeError's message is printed the same way. Ctrl-C exits with 2 (the
-value of SIGINT), as upstream. Any other exception is a bug or a problem of the environment:
-it is reported in one line, never as a traceback (ROS2CLI_TRACEBACK=1 shows it for debugging).
-A clean-up that hangs (a Fast DDS teardown deadlock) ends the process after 5 s with every
-thread's stack and exit code 1 (owl_common.run.begin_cleanup).
+Commands and their verbs are found through entry points (see ros2cli.entry_points), so any
+installed package can add one. A command's or verb's main() returns None/0 (exit 0), an int
+(that exit code) or a string (printed on stderr, exit 1); a RuntimeError's message is printed
+the same way. Ctrl-C exits with 2 (the value of SIGINT), as upstream. Any other exception is a
+bug or a problem of the environment: it is reported in one line, never as a traceback
+(ROS2CLI_TRACEBACK=1 shows it for debugging). A clean-up that hangs (a Fast DDS teardown
+deadlock) ends the process after 5 s with every thread's stack and exit code 1
+(owl_common.run.begin_cleanup).
 """
 
 import argparse
-import importlib
 import os
 import signal
 import sys
 from collections.abc import Callable
-from types import ModuleType
 from typing import Any
 
-from ros2cli.command_table import COMMANDS
-from ros2cli.verb import add_command_subparsers
-
-# One line per command for `ros2 -h`, without importing every command.
-DESCRIPTIONS = {
-    'action': 'Various action related sub-commands',
-    'daemon': 'Various daemon related sub-commands',
-    'interface': 'Show information about ROS interfaces',
-    'launch': 'Run a launch file',
-    'node': 'Various node related sub-commands',
-    'param': 'Various param related sub-commands',
-    'pkg': 'Various package related sub-commands',
-    'run': 'Run a package specific executable',
-    'service': 'Various service related sub-commands',
-    'topic': 'Various topic related sub-commands',
-}
-
-
-class CommandUnavailable(Exception):
-    """A command whose package is not installed."""
-
-
-def load_command(name: str) -> ModuleType:
-    module_name, package = COMMANDS[name]
-    try:
-        return importlib.import_module(module_name)
-    except ModuleNotFoundError as error:
-        if error.name and module_name.startswith(error.name):
-            raise CommandUnavailable(
-                f"ros2: the '{name}' command needs the package '{package}', which is not "
-                'installed in this environment') from None
-        raise
+import ros2cli.command
+from ros2cli.command import add_subparsers_on_demand
 
 
 def build_parser(argv: list[str]) -> argparse.ArgumentParser:
+    """The `ros2` parser: the commands of the entry point group 'ros2cli.command', of which only the
+    one argv chooses is imported (all of them for `ros2 -h`, whose listing needs their docstrings)."""
     parser = argparse.ArgumentParser(
         prog='ros2', description='ros2 is an extensible command-line tool for ROS 2.',
         formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -60,20 +32,8 @@ def build_parser(argv: list[str]) -> argparse.ArgumentParser:
         help='Do not force line buffering in stdout and instead use the python default buffering, '
              'which might be affected by PYTHONUNBUFFERED/-u and depends on whatever stdout is '
              'interactive or not')
-    summaries = {name: DESCRIPTIONS.get(name, f'`ros2 {name} -h` for its verbs and options')
-                 for name in COMMANDS}
-    subparsers = add_command_subparsers(parser, 'ros2', summaries, '_command')
-    # Only the chosen command is imported; `ros2 -h` lists the rest from DESCRIPTIONS.
-    chosen = next((arg for arg in argv if not arg.startswith('-')), None)
-    for name in sorted(COMMANDS):
-        if name == chosen:
-            module = load_command(name)
-            command_parser = subparsers.add_parser(
-                name, description=module.DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter)
-            module.add_arguments(command_parser, f'ros2 {name}')
-            command_parser.set_defaults(_main=module.main, _parser=command_parser)
-        else:
-            subparsers.add_parser(name)
+    ros2cli.command.ARGV = argv
+    add_subparsers_on_demand(parser, 'ros2', '_command', 'ros2cli.command', required=False, argv=argv)
     return parser
 
 
@@ -114,26 +74,22 @@ def run_command(command_main: Callable[[argparse.Namespace], Any], args: argpars
 def main(argv: list[str] | None = None) -> int | str:
     completing = _completion_argv()
     argv = completing if completing is not None else sys.argv[1:] if argv is None else argv
-    try:
-        parser = build_parser(argv)
-    except CommandUnavailable as error:
-        print(error, file=sys.stderr)
-        return 1
+    parser = build_parser(argv)
     if completing is not None:
         import argcomplete
         argcomplete.autocomplete(parser)  # prints the candidates and exits
     args = parser.parse_args(argv)
     if not args.use_python_default_buffering:
         sys.stdout.reconfigure(line_buffering=True)
-    command_main = getattr(args, '_main', None)
-    if command_main is None:
+    extension = getattr(args, '_command', None)
+    if extension is None:
         parser.print_help()
         return 0
     import warnings
     # rclpy warns while it cleans up after a failed construction; the error itself is reported.
     warnings.filterwarnings('ignore', category=RuntimeWarning, module=r'rclpy(\.|$)')
     try:
-        result = run_command(command_main, args)
+        result = run_command(lambda parsed: extension.main(parser=parser, args=parsed), args)
     except KeyboardInterrupt:
         return signal.SIGINT
     except BrokenPipeError:  # the reader went away (`ros2 topic list | head -1`)

@@ -38,7 +38,7 @@ def _graph_names(query: str, parsed_args: argparse.Namespace | None) -> list[str
 
 
 def _names_from(graph: Any, query: str) -> list[str]:
-    from ros2cli.names import full_node_name
+    from rosidl_runtime_py.graph import full_node_name
     if query == 'nodes':
         return sorted(full_node_name(ns, n) for n, ns in graph.node_names_and_namespaces())
     return [name for name, _ in getattr(graph, f'{query}_names_and_types')()]
@@ -58,7 +58,7 @@ action_completer = _graph_completer('action')
 
 def _type_completer(kind: str) -> Any:
     def complete(prefix: str, **_kwargs: Any) -> list[str]:
-        from ros2cli.interfaces import interface_index
+        from rosidl_runtime_py.get_interfaces import interface_index
         return [f'{package}/{kind}/{name}' for package, kinds in sorted(interface_index().items())
                 for name in kinds[kind] if f'{package}/{kind}/{name}'.startswith(prefix)]
     return complete

@@ -67,15 +67,18 @@ class DaemonServiceCaller:
     def call(self, service: str, srv_class: Any, request: Any, timeout: float) -> Any:
         import xmlrpc.client
 
-        from ros2cli.interfaces import type_name_of
-        from ros2cli.message_yaml import dump_yaml, fill_message, message_to_plain, parse_yaml
+        from rosidl_runtime_py.convert import dump_yaml, message_to_ordereddict
+        from rosidl_runtime_py.set_message import parse_yaml, set_message_fields
+        from rosidl_runtime_py.utilities import type_name_of
 
         try:
             text = self._daemon.call_service(service, type_name_of(srv_class),
-                                             dump_yaml(message_to_plain(request)), timeout)
+                                             dump_yaml(message_to_ordereddict(request)), timeout)
         except xmlrpc.client.Fault as fault:
             raise FAULTS.get(fault.faultCode, ServiceCallError)(fault.faultString) from None
-        return fill_message(srv_class.Response(), parse_yaml(text))
+        response = srv_class.Response()
+        set_message_fields(response, parse_yaml(text))
+        return response
 
 
 def serve_call(caller: ServiceCaller, service: str, type_name: str, request_yaml: str, timeout: float) -> str:
@@ -86,12 +89,14 @@ def serve_call(caller: ServiceCaller, service: str, type_name: str, request_yaml
     """
     import xmlrpc.client
 
-    from ros2cli.interfaces import InvalidType, import_type
-    from ros2cli.message_yaml import FieldError, dump_yaml, fill_message, message_to_plain, parse_yaml
+    from rosidl_runtime_py.convert import dump_yaml, message_to_ordereddict
+    from rosidl_runtime_py.set_message import FieldError, parse_yaml, set_message_fields
+    from rosidl_runtime_py.utilities import InvalidType, import_type
 
     try:
         srv_class = import_type(type_name, 'srv')
-        request = fill_message(srv_class.Request(), parse_yaml(request_yaml))
+        request = srv_class.Request()
+        set_message_fields(request, parse_yaml(request_yaml))
     except (InvalidType, FieldError) as error:
         raise xmlrpc.client.Fault(3, str(error)) from None
     try:
@@ -99,4 +104,4 @@ def serve_call(caller: ServiceCaller, service: str, type_name: str, request_yaml
     except ServiceCallError as error:
         code = next(c for c, kind in FAULTS.items() if isinstance(error, kind))
         raise xmlrpc.client.Fault(code, str(error)) from None
-    return dump_yaml(message_to_plain(response))
+    return dump_yaml(message_to_ordereddict(response))

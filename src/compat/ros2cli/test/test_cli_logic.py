@@ -1,35 +1,10 @@
-"""Node-free logic of the verbs: names, interface definitions, rate statistics, parameter files."""
+"""Node-free logic of the verbs: interface definitions, rate statistics, parameter files."""
 
 import pytest
 from ros2cli.command.interface import nested_type, render_definition, split_comment
-from ros2cli.command.param import flatten, nested_parameters, parameters_for_node
+from ros2cli.command.param import nested_parameters, parameters_for_node
 from ros2cli.command.topic_bw import BandwidthStatistics, size_text
 from ros2cli.command.topic_hz import RateStatistics
-from ros2cli.interfaces import InvalidType, canonical_type, import_type, split_type
-from ros2cli.names import did_you_mean, full_node_name, is_hidden_name, is_hidden_node, split_node_name
-
-
-def test_names():
-    assert full_node_name('/', 'talker') == '/talker'
-    assert full_node_name('/ns', 'talker') == '/ns/talker'
-    assert split_node_name('ns/talker') == ('/ns', 'talker')
-    assert split_node_name('/talker') == ('/', 'talker')
-    assert is_hidden_node('/ns/_hidden') and not is_hidden_node('/_ns/visible')
-    assert is_hidden_name('/fibonacci/_action/status') and not is_hidden_name('/chatter')
-    assert did_you_mean('/chatt', ['/chatter', '/rosout']) == " (did you mean '/chatter'?)"
-    assert did_you_mean('/xyz', ['/chatter']) == ''
-
-
-def test_type_names():
-    assert split_type('std_msgs/String', 'msg') == ('std_msgs', 'msg', 'String')
-    assert canonical_type('std_srvs/SetBool', 'srv') == 'std_srvs/srv/SetBool'
-    with pytest.raises(InvalidType, match="'std_msgs/srv/String' is not a message type name"):
-        split_type('std_msgs/srv/String', 'msg')
-    with pytest.raises(InvalidType, match="package 'std_msgs' has no message 'Strin' "
-                                          r"\(did you mean 'String'\?\)"):
-        import_type('std_msgs/msg/Strin', 'msg')
-    with pytest.raises(InvalidType, match=r"it is 'std_srvs/srv/SetBool'"):
-        import_type('std_srvs/msg/SetBool', 'msg')
 
 
 def test_interface_lines():
@@ -71,19 +46,29 @@ def test_bandwidth_statistics():
     assert size_text(12) == '12 B' and size_text(3_500_000) == '3.50 MB'
 
 
-def test_parameter_file_shapes():
-    assert flatten({'a': {'b': 1, 'c': {'d': 'x'}}}) == {'a.b': 1, 'a.c.d': 'x'}
+def test_parameter_file_shapes(tmp_path):
+    import yaml
+
+    def parameter_file(document):
+        path = tmp_path / 'parameters.yaml'
+        path.write_text(yaml.safe_dump(document))
+        return str(path)
+
     document = {'/**': {'ros__parameters': {'x': 1, 'y': 'w'}},
                 '/node': {'ros__parameters': {'y': 'n', 'z': {'k': [1.5, 2.5]}}},
                 '/other': {'ros__parameters': {'x': 9}}}
-    parameters = {p.name: p for p in parameters_for_node(document, '/node', True)}
+    parameters = {p.name: p for p in parameters_for_node(parameter_file(document), '/node', True)}
     assert sorted(parameters) == ['x', 'y', 'z.k']
     assert parameters['y'].value.string_value == 'n'
     assert list(parameters['z.k'].value.double_array_value) == [1.5, 2.5]
-    assert [p.name for p in parameters_for_node({'node': {'ros__parameters': {'a': True}}}, '/node', False)] \
-        == ['a']
+    only_base_name = parameter_file({'node': {'ros__parameters': {'a': True}}})
+    assert [p.name for p in parameters_for_node(only_base_name, '/node', False)] == ['a']
     with pytest.raises(RuntimeError, match="nothing for /node \\(did you mean '/nod'\\?\\); it has: /nod"):
-        parameters_for_node({'/nod': {'ros__parameters': {}}}, '/node', True)
+        parameters_for_node(parameter_file({'/nod': {'ros__parameters': {}}}), '/node', True)
+    with pytest.raises(RuntimeError, match='not a valid ROS parameter file for node /node'):
+        parameters_for_node(parameter_file({'/node': {'x': 1}}), '/node', True)
+    with pytest.raises(RuntimeError, match='not a ROS parameter file'):
+        parameters_for_node(parameter_file([1, 2]), '/node', True)
 
 
 def test_nested_parameters_for_dump():

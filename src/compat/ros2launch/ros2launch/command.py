@@ -1,4 +1,5 @@
-"""`ros2 launch [options] <package_name> <launch_file_name> [name:=value ...]` or `<path>`."""
+"""`ros2 launch [options] <package_name> <launch_file_name> [name:=value ...]` or `<path>`; `ros2` finds
+the command through this package's entry point ('ros2cli.command' in setup.py)."""
 
 from __future__ import annotations
 
@@ -6,18 +7,20 @@ import argparse
 import os
 import sys
 
-from ros2launch.api import (
-    format_arguments_of_launch_file,
-    format_launch_description,
-    get_share_file_path_from_package,
-    launch_a_launch_file,
-    parse_launch_arguments,
-)
-
-DESCRIPTION = 'Run a launch file'
+from ros2cli.command import CommandExtension
 
 
-def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:
+class LaunchCommand(CommandExtension):
+    """Run a launch file."""
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        add_launch_arguments(parser)
+
+    def main(self, *, parser: argparse.ArgumentParser, args: argparse.Namespace) -> int | str:
+        return launch(args)
+
+
+def add_launch_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('-n', '--noninteractive', action='store_true', default=not sys.stdin.isatty(),
                         help='Run the launch system non-interactively, with no terminal associated')
     parser.add_argument('-d', '--debug', action='store_true',
@@ -48,6 +51,8 @@ def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:
 
 def resolve_launch_file(args: argparse.Namespace) -> tuple[str, list[str]]:
     """(path of the launch file, the name:=value arguments) from the positionals."""
+    from ros2launch.api import get_share_file_path_from_package
+
     arguments = list(args.launch_arguments)
     if os.path.isfile(args.package_name):
         if args.launch_file_name is not None:
@@ -59,7 +64,15 @@ def resolve_launch_file(args: argparse.Namespace) -> tuple[str, list[str]]:
     return get_share_file_path_from_package(args.package_name, args.launch_file_name), arguments
 
 
-def main(args: argparse.Namespace) -> int | str:
+def launch(args: argparse.Namespace) -> int | str:
+    # Imported here: `launch` takes a while to import, and `ros2 -h` imports this module.
+    from ros2launch.api import (
+        format_arguments_of_launch_file,
+        format_launch_description,
+        launch_a_launch_file,
+        parse_launch_arguments,
+    )
+
     if args.launch_prefix_filter is not None and args.launch_prefix is None:
         return "'--launch-prefix-filter' must be used together with '--launch-prefix'"
     path, raw_arguments = resolve_launch_file(args)

@@ -1,36 +1,23 @@
-"""`ros2 pkg <verb>`: the command module that ros2cli's command table names for 'pkg'."""
+"""`ros2 pkg <verb>`: the command and its verbs, found by `ros2` through this package's entry points
+('ros2cli.command' and 'ros2pkg.verb' in setup.py)."""
 
 from __future__ import annotations
 
 import argparse
-import getpass
 import os
-import shutil
-import subprocess
 import sys
-import xml.etree.ElementTree as ET
-from collections.abc import Callable
 
-from ros2pkg import api
-from ros2pkg.create import (
-    BUILD_TYPES,
-    DEFAULT_LICENSE,
-    EMAIL,
-    CreateError,
-    check_settings,
-    plan,
-    summary,
-    unknown_license_warning,
-    write_package,
-)
-from ros2pkg.templates import LICENSES
+from ros2cli.command import VerbCommand
+from ros2cli.verb import VerbExtension
 
-DESCRIPTION = 'Various package related sub-commands'
+# Everything else is imported where it is used: `ros2 -h` imports this module for its docstrings.
+
 PACKAGE_NOT_FOUND = 'Package not found'
 
 
 def package_name_completer(**_: object) -> list[str]:
     """Shell completion of package names (argcomplete calls completers with keyword arguments)."""
+    from ros2pkg import api
     return api.get_package_names()
 
 
@@ -39,73 +26,98 @@ def _package_argument(parser: argparse.ArgumentParser, **kwargs: object) -> None
     argument.completer = package_name_completer  # type: ignore[attr-defined]
 
 
-def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:
-    verbs = parser.add_subparsers(title='Commands', dest='verb',
-                                  metavar=f'Call `{cli_name} <command> -h` for more detailed usage.')
+class PkgCommand(VerbCommand):
+    """Various package related sub-commands."""
 
-    def verb(name: str, main: Callable[[argparse.Namespace], int | str | None],
-             help_text: str) -> argparse.ArgumentParser:
-        verb_parser = verbs.add_parser(name, help=help_text, description=help_text)
-        verb_parser.set_defaults(_verb_main=main)
-        return verb_parser
-
-    create = verb('create', main_create, 'Create a new ROS 2 package')
-    create.add_argument('package_name', help='The package name')
-    create.add_argument('--package-format', '--package_format', type=int, default=3, choices=[2, 3],
-                        help='The package.xml format.')
-    create.add_argument('--description', default='TODO: Package description',
-                        help='The description given in the package.xml')
-    license_argument = create.add_argument('--license', default=DEFAULT_LICENSE,
-                        help='The license attached to this package; this can be an arbitrary string, but '
-                             'a LICENSE file will only be generated if it is one of the supported '
-                             "licenses (pass '?' to get a list)")
-    license_argument.completer = lambda **_: list(LICENSES)  # type: ignore[attr-defined]
-    create.add_argument('--destination-directory', default=os.curdir,
-                        help='Directory where to create the package directory')
-    # Checked in main_create rather than with `choices`, to answer typos with a suggestion.
-    build_type = create.add_argument('--build-type', default='ament_cmake',
-                                     metavar='{' + ','.join(BUILD_TYPES) + '}',
-                                     help='The build type to process the package with')
-    build_type.completer = lambda **_: list(BUILD_TYPES)  # type: ignore[attr-defined]
-    create.add_argument('--dependencies', nargs='+', default=[], help='list of dependencies')
-    create.add_argument('--maintainer-email', help='email address of the maintainer of this package')
-    create.add_argument('--maintainer-name', default=_login_name(),
-                        help='name of the maintainer of this package')
-    create.add_argument('--node-name', help='name of the empty executable')
-    create.add_argument('--library-name', help='name of the empty library')
-
-    executables = verb('executables', main_executables, 'Output a list of package specific executables')
-    _package_argument(executables, nargs='?')
-    executables.add_argument('--full-path', action='store_true', default=False,
-                             help='Show full path of each executable')
-
-    verb('list', main_list, 'Output a list of available packages')
-
-    prefix = verb('prefix', main_prefix, 'Output the prefix path of a package')
-    _package_argument(prefix)
-    prefix.add_argument('--share', action='store_true',
-                        help='Show share directory for the package')
-
-    xml = verb('xml', main_xml, 'Output the XML of the package manifest or a specific tag')
-    _package_argument(xml)
-    xml.add_argument('-t', '--tag', help="The package's xml's tag to print")
+    VERB_GROUP = 'ros2pkg.verb'
 
 
-def main(args: argparse.Namespace) -> int | str | None:
-    verb_main = getattr(args, '_verb_main', None)
-    if verb_main is None:
-        args._parser.print_help()
-        return 0
-    return verb_main(args)
+class CreateVerb(VerbExtension):
+    """Create a new ROS 2 package."""
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        from ros2pkg.create import BUILD_TYPES, DEFAULT_LICENSE
+        from ros2pkg.templates import LICENSES
+
+        parser.add_argument('package_name', help='The package name')
+        parser.add_argument('--package-format', '--package_format', type=int, default=3, choices=[2, 3],
+                            help='The package.xml format.')
+        parser.add_argument('--description', default='TODO: Package description',
+                            help='The description given in the package.xml')
+        license_argument = parser.add_argument(
+            '--license', default=DEFAULT_LICENSE,
+            help='The license attached to this package; this can be an arbitrary string, but a LICENSE '
+                 "file will only be generated if it is one of the supported licenses (pass '?' to get a "
+                 'list)')
+        license_argument.completer = lambda **_: list(LICENSES)  # type: ignore[attr-defined]
+        parser.add_argument('--destination-directory', default=os.curdir,
+                            help='Directory where to create the package directory')
+        # Checked in main rather than with `choices`, to answer typos with a suggestion.
+        build_type = parser.add_argument('--build-type', default='ament_cmake',
+                                         metavar='{' + ','.join(BUILD_TYPES) + '}',
+                                         help='The build type to process the package with')
+        build_type.completer = lambda **_: list(BUILD_TYPES)  # type: ignore[attr-defined]
+        parser.add_argument('--dependencies', nargs='+', default=[], help='list of dependencies')
+        parser.add_argument('--maintainer-email', help='email address of the maintainer of this package')
+        parser.add_argument('--maintainer-name', default=_login_name(),
+                            help='name of the maintainer of this package')
+        parser.add_argument('--node-name', help='name of the empty executable')
+        parser.add_argument('--library-name', help='name of the empty library')
+
+    def main(self, *, args: argparse.Namespace) -> int | str:
+        return main_create(args)
+
+
+class ExecutablesVerb(VerbExtension):
+    """Output a list of package specific executables."""
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        _package_argument(parser, nargs='?')
+        parser.add_argument('--full-path', action='store_true', default=False,
+                            help='Show full path of each executable')
+
+    def main(self, *, args: argparse.Namespace) -> int | str:
+        return main_executables(args)
+
+
+class ListVerb(VerbExtension):
+    """Output a list of available packages."""
+
+    def main(self, *, args: argparse.Namespace) -> int:
+        return main_list(args)
+
+
+class PrefixVerb(VerbExtension):
+    """Output the prefix path of a package."""
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        _package_argument(parser)
+        parser.add_argument('--share', action='store_true', help='Show share directory for the package')
+
+    def main(self, *, args: argparse.Namespace) -> int | str:
+        return main_prefix(args)
+
+
+class XmlVerb(VerbExtension):
+    """Output the XML of the package manifest or a specific tag."""
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        _package_argument(parser)
+        parser.add_argument('-t', '--tag', help="The package's xml's tag to print")
+
+    def main(self, *, args: argparse.Namespace) -> int | str:
+        return main_xml(args)
 
 
 def main_list(args: argparse.Namespace) -> int:
+    from ros2pkg import api
     for name in api.get_package_names():
         print(name)
     return 0
 
 
 def main_executables(args: argparse.Namespace) -> int | str:
+    from ros2pkg import api
     names = [args.package_name] if args.package_name else api.get_package_names()
     for name in names:
         try:
@@ -118,6 +130,7 @@ def main_executables(args: argparse.Namespace) -> int | str:
 
 
 def main_prefix(args: argparse.Namespace) -> int | str:
+    from ros2pkg import api
     lookup = api.get_share_directory if args.share else api.get_prefix_path
     path = lookup(args.package_name)
     if path is None:
@@ -127,6 +140,9 @@ def main_prefix(args: argparse.Namespace) -> int | str:
 
 
 def main_xml(args: argparse.Namespace) -> int | str:
+    import xml.etree.ElementTree as ET
+
+    from ros2pkg import api
     share = api.get_share_directory(args.package_name)
     if share is None:
         return PACKAGE_NOT_FOUND
@@ -152,6 +168,17 @@ def main_xml(args: argparse.Namespace) -> int | str:
 
 
 def main_create(args: argparse.Namespace) -> int | str:
+    from ros2pkg.create import (
+        EMAIL,
+        CreateError,
+        check_settings,
+        plan,
+        summary,
+        unknown_license_warning,
+        write_package,
+    )
+    from ros2pkg.templates import LICENSES
+
     if args.license == '?':
         print('Supported licenses:\n' + '\n'.join(LICENSES))
         return 0
@@ -181,6 +208,7 @@ def main_create(args: argparse.Namespace) -> int | str:
 
 
 def _login_name() -> str:
+    import getpass
     try:
         return getpass.getuser()
     except (KeyError, OSError):  # no passwd entry and no LOGNAME/USER: e.g. some containers
@@ -189,6 +217,8 @@ def _login_name() -> str:
 
 def _git_email() -> str | None:
     """`git config user.email`, as upstream uses when --maintainer-email is not given."""
+    import shutil
+    import subprocess
     git = shutil.which('git')
     if git is None:
         return None

@@ -6,7 +6,8 @@ import math
 from typing import Any
 
 from owl_web.codec import ApiError
-from ros2cli.names import did_you_mean, expand_topic_name
+from rosidl_runtime_py.graph import expand_topic_name
+from rosidl_runtime_py.hints import did_you_mean
 
 MAX_RATE = 1000.0  # Hz
 MAX_TIMEOUT = 300.0  # s

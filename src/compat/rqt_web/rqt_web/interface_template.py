@@ -3,8 +3,9 @@
 from typing import Any
 
 from owl_web.codec import json_safe
-from ros2cli.message_yaml import fields_of, is_message, message_to_plain
 from rosidl_parser.definition import AbstractNestedType, NamespacedType
+from rosidl_runtime_py.convert import fields_of, message_to_ordereddict
+from rosidl_runtime_py.utilities import is_message
 
 
 def field_template(message: Any) -> list[dict[str, Any]]:
@@ -14,7 +15,7 @@ def field_template(message: Any) -> list[dict[str, Any]]:
     arrays included, is one cell whose default is the value of a fresh message.
     """
     template = []
-    defaults = message_to_plain(message)
+    defaults = message_to_ordereddict(message)
     for (name, type_text), (_, slot_type) in zip(message.get_fields_and_field_types().items(),
                                                  fields_of(message), strict=True):
         value = getattr(message, name)

@@ -17,10 +17,10 @@ from owl_web.server import Request, Subscription, WebServer
 from rclpy.exceptions import InvalidServiceNameException, InvalidTopicNameException
 from rclpy.node import Node
 from rclpy.qos import qos_profile_sensor_data
-from ros2cli.interfaces import InvalidType, canonical_type, import_type, interface_index, type_name_of
-from ros2cli.message_yaml import FieldError, fill_message
-from ros2cli.names import is_hidden_name
-from ros2cli.node.graph import GraphQueries
+from rosidl_runtime_py.get_interfaces import interface_index
+from rosidl_runtime_py.graph import GraphQueries, is_hidden_name
+from rosidl_runtime_py.set_message import FieldError, set_message_fields
+from rosidl_runtime_py.utilities import InvalidType, canonical_type, import_type, type_name_of
 
 from rqt_web import api_input
 from rqt_web.images import ImageError, compressed_for_browser, raw_to_png
@@ -77,11 +77,14 @@ def _message_type(type_name: str, kind: str) -> Any:
         raise ApiError(404, f"unknown {'message' if kind == 'msg' else 'service'} type: {error}") from None
 
 
-def _filled(message: Any, values: Any, stamps: list[Any] | None = None) -> Any:
+def _filled(message: Any, values: Any, expand_stamps: bool = False) -> tuple[Any, list[Any]]:
+    """(the message with the values set, the setters of its `header: auto`/`stamp: now` fields)."""
     try:
-        return fill_message(message, values, stamps)
+        stamps = set_message_fields(message, values, expand_header_auto=expand_stamps,
+                                    expand_time_now=expand_stamps)
     except FieldError as error:
         raise ApiError(400, str(error)) from None
+    return message, stamps
 
 
 class RqtWebNode(Node):
@@ -191,8 +194,7 @@ class RqtWebNode(Node):
         type_name = type_name_of(message_class)
         if existing and type_name not in existing:
             raise ApiError(400, f"topic '{topic}' has type {', '.join(existing)}, not {type_name}")
-        stamps: list[Any] = []
-        message = _filled(message_class(), values, stamps)
+        message, stamps = _filled(message_class(), values, expand_stamps=True)
         try:
             publisher = self.create_publisher(message_class, topic, 10)
         except InvalidTopicNameException as error:
@@ -214,7 +216,7 @@ class RqtWebNode(Node):
         stamps: list[Any] = []
         if 'fields' in body:
             values = api_input.fields(body['fields'], 'fields')
-            message = _filled(type(entry.message)(), values, stamps)
+            message, stamps = _filled(type(entry.message)(), values, expand_stamps=True)
         with self._state_lock:
             if self._message_publishers.get(publisher_id) is not entry:
                 raise self._unknown_publisher(publisher_id)  # removed meanwhile
@@ -273,7 +275,7 @@ class RqtWebNode(Node):
         if type_name_of(service_class) not in known:
             raise ApiError(400, f"service '{service}' has type {', '.join(known)}, "
                                 f'not {type_name_of(service_class)}')
-        request = _filled(service_class.Request(), values)
+        request, _ = _filled(service_class.Request(), values)
         started = time.monotonic()
         response = self._call(service, service_class, request, timeout)
         return {'service': service, 'type': type_name_of(service_class),

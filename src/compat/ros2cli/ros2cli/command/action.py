@@ -4,9 +4,9 @@ import argparse
 import sys
 from typing import Any
 
-from ros2cli.verb import Verb, add_verbs, run_verb
+from ros2cli.command import VerbCommand
+from ros2cli.verb import VerbExtension
 
-DESCRIPTION = 'Various action related sub-commands'
 STATUS_NAMES = {0: 'UNKNOWN', 1: 'ACCEPTED', 2: 'EXECUTING', 3: 'CANCELING', 4: 'SUCCEEDED', 5: 'CANCELED',
                 6: 'ABORTED'}
 
@@ -21,8 +21,8 @@ def _action_argument(parser: argparse.ArgumentParser, help_text: str) -> None:
     parser.add_argument('action_name', help=help_text).completer = action_completer
 
 
-class ListVerb(Verb):
-    DESCRIPTION = 'Output a list of action names'
+class ListVerb(VerbExtension):
+    """Output a list of action names."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.node.strategy import add_strategy_arguments
@@ -32,7 +32,7 @@ class ListVerb(Verb):
                             help='Only display the number of actions discovered')
         add_strategy_arguments(parser)
 
-    def main(self, args: argparse.Namespace) -> int:
+    def main(self, *, args: argparse.Namespace) -> int:
         from ros2cli.graph_listing import print_listing
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
@@ -40,8 +40,8 @@ class ListVerb(Verb):
         return print_listing(actions, args.show_types, args.count_actions)
 
 
-class InfoVerb(Verb):
-    DESCRIPTION = 'Print information about an action'
+class InfoVerb(VerbExtension):
+    """Print information about an action."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.node.strategy import add_strategy_arguments
@@ -52,8 +52,10 @@ class InfoVerb(Verb):
                             'clients and action servers')
         add_strategy_arguments(parser)
 
-    def main(self, args: argparse.Namespace) -> int | str:
-        from ros2cli.names import did_you_mean, full_node_name
+    def main(self, *, args: argparse.Namespace) -> int | str:
+        from rosidl_runtime_py.graph import full_node_name
+        from rosidl_runtime_py.hints import did_you_mean
+
         from ros2cli.node.strategy import NodeStrategy
 
         if not args.action_name.startswith('/') or args.action_name.endswith('/') or '//' in args.action_name:
@@ -83,15 +85,15 @@ class InfoVerb(Verb):
         return 0
 
 
-class TypeVerb(Verb):
-    DESCRIPTION = 'Print a action\'s type'
+class TypeVerb(VerbExtension):
+    """Print a action's type."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.node.strategy import add_strategy_arguments
         _action_argument(parser, "Name of the ROS action to get type (e.g. '/fibonacci')")
         add_strategy_arguments(parser)
 
-    def main(self, args: argparse.Namespace) -> int:
+    def main(self, *, args: argparse.Namespace) -> int:
         from ros2cli.graph_listing import print_types
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
@@ -100,12 +102,12 @@ class TypeVerb(Verb):
 
 def indented_yaml(message: Any, first_line_indent: str) -> str:
     """Upstream's shape: the indent before the first YAML line only."""
-    from ros2cli.message_yaml import message_to_yaml
+    from rosidl_runtime_py.convert import message_to_yaml
     return first_line_indent + message_to_yaml(message)
 
 
-class SendGoalVerb(Verb):
-    DESCRIPTION = 'Send an action goal'
+class SendGoalVerb(VerbExtension):
+    """Send an action goal."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.command.topic_pub import add_values_arguments
@@ -117,10 +119,11 @@ class SendGoalVerb(Verb):
         parser.add_argument('-f', '--feedback', action='store_true',
                             help='Echo feedback messages for the goal')
 
-    def main(self, args: argparse.Namespace) -> int | str:
+    def main(self, *, args: argparse.Namespace) -> int | str:
+        from rosidl_runtime_py.set_message import FieldError, set_message_fields
+        from rosidl_runtime_py.utilities import InvalidType, canonical_type, import_type
+
         from ros2cli.command.topic_pub import read_values
-        from ros2cli.interfaces import InvalidType, canonical_type, import_type
-        from ros2cli.message_yaml import FieldError, fill_message
 
         try:
             action_class = import_type(args.action_type, 'action')
@@ -128,7 +131,8 @@ class SendGoalVerb(Verb):
             return f'The passed action type is invalid: {error}'
         values = read_values(args, 'message fields')
         try:
-            goal = fill_message(action_class.Goal(), values)
+            goal = action_class.Goal()
+            set_message_fields(goal, values)
         except FieldError as error:
             return f'Failed to populate message fields: {error}'
         node_name = '_ros2cli_send_goal_' + canonical_type(args.action_type, 'action').replace('/', '_')
@@ -138,9 +142,10 @@ class SendGoalVerb(Verb):
         import rclpy
         from rclpy.action import ActionClient, get_action_names_and_types
         from rclpy.node import Node
+        from rosidl_runtime_py.convert import message_to_yaml
+        from rosidl_runtime_py.graph import expand_topic_name
 
-        from ros2cli.message_yaml import message_to_yaml
-        from ros2cli.names import WaitingHint, expand_topic_name
+        from ros2cli.names import WaitingHint
         from ros2cli.node.direct import NAMED_LOOKUP_GRACE, tear_down
 
         rclpy.init(args=[])
@@ -201,10 +206,7 @@ class SendGoalVerb(Verb):
             tear_down(node, client)
 
 
-def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:
-    add_verbs(parser, cli_name, {'info': InfoVerb, 'list': ListVerb,
-                                 'send_goal': SendGoalVerb, 'type': TypeVerb})
+class ActionCommand(VerbCommand):
+    """Various action related sub-commands."""
 
-
-def main(args: argparse.Namespace) -> Any:
-    return run_verb(args)
+    VERB_GROUP = 'ros2action.verb'

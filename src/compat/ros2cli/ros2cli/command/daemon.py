@@ -1,20 +1,18 @@
 """`ros2 daemon start | stop | status`: the per-domain background process with the warm graph cache."""
 
 import argparse
-from typing import Any
 
-from ros2cli.verb import Verb, add_verbs, run_verb
-
-DESCRIPTION = 'Various daemon related sub-commands'
+from ros2cli.command import VerbCommand
+from ros2cli.verb import VerbExtension
 
 
-class StartVerb(Verb):
-    DESCRIPTION = 'Start the daemon if it isn\'t running'
+class StartVerb(VerbExtension):
+    """Start the daemon if it isn't running."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         parser.add_argument('-d', '--debug', action='store_true', help='Print debug messages')
 
-    def main(self, args: argparse.Namespace) -> int | str:
+    def main(self, *, args: argparse.Namespace) -> int | str:
         from ros2cli.daemon.client import is_daemon_running, spawn_daemon, wait_until
         if is_daemon_running() or not spawn_daemon():
             print('The daemon is already running')
@@ -25,10 +23,10 @@ class StartVerb(Verb):
         return 0
 
 
-class StopVerb(Verb):
-    DESCRIPTION = 'Stop the daemon if it is running'
+class StopVerb(VerbExtension):
+    """Stop the daemon if it is running."""
 
-    def main(self, args: argparse.Namespace) -> int | str:
+    def main(self, *, args: argparse.Namespace) -> int | str:
         from ros2cli.daemon.client import is_daemon_running, shutdown_daemon
         if not is_daemon_running():
             print('The daemon is not running')
@@ -39,18 +37,16 @@ class StopVerb(Verb):
         return 0
 
 
-class StatusVerb(Verb):
-    DESCRIPTION = 'Output the status of the daemon'
+class StatusVerb(VerbExtension):
+    """Output the status of the daemon."""
 
-    def main(self, args: argparse.Namespace) -> int:
+    def main(self, *, args: argparse.Namespace) -> int:
         from ros2cli.daemon.client import is_daemon_running
         print('The daemon is running' if is_daemon_running() else 'The daemon is not running')
         return 0
 
 
-def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:
-    add_verbs(parser, cli_name, {'start': StartVerb, 'status': StatusVerb, 'stop': StopVerb})
+class DaemonCommand(VerbCommand):
+    """Various daemon related sub-commands."""
 
-
-def main(args: argparse.Namespace) -> Any:
-    return run_verb(args)
+    VERB_GROUP = 'ros2cli.daemon.verb'

@@ -5,9 +5,9 @@ import os
 import sys
 from typing import Any
 
-from ros2cli.verb import Verb, add_verbs, run_verb
+from ros2cli.command import VerbCommand
+from ros2cli.verb import VerbExtension
 
-DESCRIPTION = 'Show information about ROS interfaces'
 PRIMITIVES = {'bool', 'byte', 'char', 'float32', 'float64', 'int8', 'uint8', 'int16', 'uint16', 'int32',
               'uint32', 'int64', 'uint64', 'string', 'wstring'}
 SECTION_TITLES = (('msg', 'Messages:'), ('srv', 'Services:'), ('action', 'Actions:'))
@@ -27,8 +27,8 @@ def _wanted_kinds(args: argparse.Namespace) -> list[str]:
 
 
 def _unknown_package(package: str) -> str:
-    from ros2cli.interfaces import interface_index
-    from ros2cli.names import did_you_mean
+    from rosidl_runtime_py.get_interfaces import interface_index
+    from rosidl_runtime_py.hints import did_you_mean
     return f"Unknown package '{package}'{did_you_mean(package, interface_index())}"
 
 
@@ -69,8 +69,8 @@ def definition_lines(package: str, kind: str, name: str) -> list[str]:
         with open(path, encoding='utf-8') as definition:
             return definition.read().splitlines()
     except OSError:
-        from ros2cli.interfaces import interface_index
-        from ros2cli.names import did_you_mean
+        from rosidl_runtime_py.get_interfaces import interface_index
+        from rosidl_runtime_py.hints import did_you_mean
         known = interface_index().get(package, {}).get(kind, [])
         idl = os.path.join(share, kind, f'{name}.idl')
         raise RuntimeError(f"Could not find the interface '{idl}'{did_you_mean(name, known)}") from None
@@ -98,8 +98,8 @@ def render_definition(lines: list[str], package: str, comments: str, level: int 
     return output
 
 
-class ShowVerb(Verb):
-    DESCRIPTION = 'Output the interface definition'
+class ShowVerb(VerbExtension):
+    """Output the interface definition."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.completion import any_type_completer
@@ -113,7 +113,7 @@ class ShowVerb(Verb):
         group.add_argument('--no-comments', action='store_true', help='Show no comments or whitespace')
         self._parser = parser
 
-    def main(self, args: argparse.Namespace) -> int | str:
+    def main(self, *, args: argparse.Namespace) -> int | str:
         type_name = args.type
         if type_name == '-':
             if sys.stdin.isatty():
@@ -133,14 +133,14 @@ class ShowVerb(Verb):
         return 0
 
 
-class ListVerb(Verb):
-    DESCRIPTION = 'List all interface types available'
+class ListVerb(VerbExtension):
+    """List all interface types available."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         _add_kind_filters(parser)
 
-    def main(self, args: argparse.Namespace) -> int:
-        from ros2cli.interfaces import interface_index
+    def main(self, *, args: argparse.Namespace) -> int:
+        from rosidl_runtime_py.get_interfaces import interface_index
         index = interface_index()
         wanted = _wanted_kinds(args)
         for kind, title in SECTION_TITLES:
@@ -152,16 +152,16 @@ class ListVerb(Verb):
         return 0
 
 
-class PackageVerb(Verb):
-    DESCRIPTION = 'Output a list of available interface types within one package'
+class PackageVerb(VerbExtension):
+    """Output a list of available interface types within one package."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.completion import package_completer
         parser.add_argument('package_name', help='Name of the ROS package').completer = package_completer
         _add_kind_filters(parser)
 
-    def main(self, args: argparse.Namespace) -> int | str:
-        from ros2cli.interfaces import interface_index
+    def main(self, *, args: argparse.Namespace) -> int | str:
+        from rosidl_runtime_py.get_interfaces import interface_index
         index = interface_index()
         if args.package_name not in index:
             return _unknown_package(args.package_name)
@@ -171,14 +171,14 @@ class PackageVerb(Verb):
         return 0
 
 
-class PackagesVerb(Verb):
-    DESCRIPTION = 'Output a list of packages that provide interfaces'
+class PackagesVerb(VerbExtension):
+    """Output a list of packages that provide interfaces."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         _add_kind_filters(parser)
 
-    def main(self, args: argparse.Namespace) -> int:
-        from ros2cli.interfaces import interface_index
+    def main(self, *, args: argparse.Namespace) -> int:
+        from rosidl_runtime_py.get_interfaces import interface_index
         wanted = _wanted_kinds(args)
         for package, kinds in sorted(interface_index().items()):
             if any(kinds[kind] for kind in wanted):
@@ -188,7 +188,7 @@ class PackagesVerb(Verb):
 
 def default_instance(type_name: str) -> Any:
     """A default message, service request or action goal for an interface name."""
-    from ros2cli.interfaces import InvalidType, import_type
+    from rosidl_runtime_py.utilities import InvalidType, import_type
     parts = type_name.split('/')
     kind = parts[1] if len(parts) == 3 else 'msg'
     if kind not in ('msg', 'srv', 'action'):
@@ -201,8 +201,8 @@ def default_instance(type_name: str) -> Any:
             'action': getattr(type_class, 'Goal', None)}[kind]()
 
 
-class ProtoVerb(Verb):
-    DESCRIPTION = 'Output an interface prototype'
+class ProtoVerb(VerbExtension):
+    """Output an interface prototype."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.completion import any_type_completer
@@ -211,17 +211,14 @@ class ProtoVerb(Verb):
         ).completer = any_type_completer
         parser.add_argument('--no-quotes', action='store_true', help='if true output has no outer quotes.')
 
-    def main(self, args: argparse.Namespace) -> int:
-        from ros2cli.message_yaml import message_to_yaml
+    def main(self, *, args: argparse.Namespace) -> int:
+        from rosidl_runtime_py.convert import message_to_yaml
         text = message_to_yaml(default_instance(args.type))
         print(text if args.no_quotes else f'"{text}"')
         return 0
 
 
-def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:
-    add_verbs(parser, cli_name, {'list': ListVerb, 'package': PackageVerb, 'packages': PackagesVerb,
-                                 'proto': ProtoVerb, 'show': ShowVerb})
+class InterfaceCommand(VerbCommand):
+    """Show information about ROS interfaces."""
 
-
-def main(args: argparse.Namespace) -> Any:
-    return run_verb(args)
+    VERB_GROUP = 'ros2interface.verb'

@@ -4,22 +4,22 @@ import argparse
 import sys
 from typing import Any
 
-from ros2cli.verb import Verb, add_verbs, run_verb
+from ros2cli.command import VerbCommand
+from ros2cli.verb import VerbExtension
 
-DESCRIPTION = 'Various node related sub-commands'
 DUPLICATE_WARNING = ('WARNING: Be aware that there are nodes in the graph that share an exact name, '
                      'which can have unintended side effects.')
 
 
 def node_names(graph: Any, include_hidden: bool = False) -> list[str]:
     """Full names of the nodes in the graph, sorted, duplicates kept."""
-    from ros2cli.names import full_node_name, is_hidden_node
+    from rosidl_runtime_py.graph import full_node_name, is_hidden_node
     names = [full_node_name(ns, name) for name, ns in graph.node_names_and_namespaces()]
     return sorted(n for n in names if include_hidden or not is_hidden_node(n))
 
 
-class ListVerb(Verb):
-    DESCRIPTION = 'Output a list of available nodes'
+class ListVerb(VerbExtension):
+    """Output a list of available nodes."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.node.strategy import add_strategy_arguments
@@ -28,7 +28,7 @@ class ListVerb(Verb):
         parser.add_argument('-c', '--count-nodes', action='store_true',
                             help='Only display the number of nodes discovered')
 
-    def main(self, args: argparse.Namespace) -> int:
+    def main(self, *, args: argparse.Namespace) -> int:
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
             names = node_names(strategy.graph, args.all)
@@ -43,7 +43,7 @@ class ListVerb(Verb):
 
 
 def print_section(title: str, names_and_types: list[list[Any]], include_hidden: bool) -> None:
-    from ros2cli.names import is_hidden_name
+    from rosidl_runtime_py.graph import is_hidden_name
     print(f'  {title}:')
     lines = [f"    {name}: {', '.join(types)}" for name, types in names_and_types
              if include_hidden or not is_hidden_name(name)]
@@ -51,8 +51,8 @@ def print_section(title: str, names_and_types: list[list[Any]], include_hidden: 
     print('\n'.join(lines))
 
 
-class InfoVerb(Verb):
-    DESCRIPTION = 'Output information about a node'
+class InfoVerb(VerbExtension):
+    """Output information about a node."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.completion import node_completer
@@ -62,8 +62,10 @@ class InfoVerb(Verb):
         parser.add_argument('--include-hidden', action='store_true', help='Display hidden topics, '
                             'services, and actions as well')
 
-    def main(self, args: argparse.Namespace) -> int | str:
-        from ros2cli.names import did_you_mean, split_node_name
+    def main(self, *, args: argparse.Namespace) -> int | str:
+        from rosidl_runtime_py.graph import split_node_name
+        from rosidl_runtime_py.hints import did_you_mean
+
         from ros2cli.node.strategy import NodeStrategy
 
         with NodeStrategy(args) as strategy:
@@ -91,12 +93,8 @@ class InfoVerb(Verb):
         return 0
 
 
-VERBS = {'info': InfoVerb, 'list': ListVerb}
 
+class NodeCommand(VerbCommand):
+    """Various node related sub-commands."""
 
-def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:
-    add_verbs(parser, cli_name, VERBS)
-
-
-def main(args: argparse.Namespace) -> Any:
-    return run_verb(args)
+    VERB_GROUP = 'ros2node.verb'

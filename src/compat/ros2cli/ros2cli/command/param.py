@@ -4,9 +4,9 @@ import argparse
 import sys
 from typing import Any
 
-from ros2cli.verb import Verb, add_verbs, run_verb
+from ros2cli.command import VerbCommand
+from ros2cli.verb import VerbExtension
 
-DESCRIPTION = 'Various param related sub-commands'
 SERVICE_TIMEOUT = 5.0
 TYPE_NAMES = {0: 'not set', 1: 'boolean', 2: 'integer', 3: 'double', 4: 'string', 5: 'byte array',
               6: 'boolean array', 7: 'integer array', 8: 'double array', 9: 'string array'}
@@ -19,22 +19,10 @@ def full_name(node_name: str) -> str:
     return node_name if node_name.startswith('/') else '/' + node_name
 
 
-VALUE_FIELDS = {1: 'bool_value', 2: 'integer_value', 3: 'double_value', 4: 'string_value',
-                5: 'byte_array_value', 6: 'bool_array_value', 7: 'integer_array_value',
-                8: 'double_array_value', 9: 'string_array_value'}
-
-
-def python_value(value: Any) -> Any:
-    """A ParameterValue as a plain Python value (arrays as lists, not set as None)."""
-    if value.type not in VALUE_FIELDS:
-        return None
-    result = getattr(value, VALUE_FIELDS[value.type])
-    return list(result) if value.type >= 5 else result
-
-
 def value_text(value: Any) -> str:
     """What `param get` prints after the label (Python's str of the value)."""
-    return str(python_value(value))
+    from rclpy.parameter import parameter_value_to_python
+    return str(parameter_value_to_python(value))
 
 
 class ParameterSession:
@@ -53,8 +41,9 @@ class ParameterSession:
         self._caller: Any = None
 
     def __enter__(self) -> 'ParameterSession':
+        from rosidl_runtime_py.hints import did_you_mean
+
         from ros2cli.command.node import node_names
-        from ros2cli.names import did_you_mean
         from ros2cli.node.direct import NAMED_LOOKUP_GRACE
         from ros2cli.node.strategy import NodeStrategy
         from ros2cli.service_call import DaemonServiceCaller, ServiceCaller
@@ -106,7 +95,7 @@ class ParameterSession:
 
     def unknown(self, name: str) -> str:
         """' (did you mean ...)' for an undeclared parameter name."""
-        from ros2cli.names import did_you_mean
+        from rosidl_runtime_py.hints import did_you_mean
         return did_you_mean(name, self.names())
 
     def close(self) -> None:
@@ -130,8 +119,8 @@ def _add_common(parser: argparse.ArgumentParser, node_required: bool = True, tim
     add_strategy_arguments(parser)
 
 
-class ListVerb(Verb):
-    DESCRIPTION = 'Output a list of available parameters'
+class ListVerb(VerbExtension):
+    """Output a list of available parameters."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         _add_common(parser, node_required=False, timeout=False)
@@ -141,7 +130,7 @@ class ListVerb(Verb):
                             help='Print parameter types with parameter names')
         parser.add_argument('--filter', metavar='REGEX', help='Only list parameters matching this regex')
 
-    def main(self, args: argparse.Namespace) -> int | str:
+    def main(self, *, args: argparse.Namespace) -> int | str:
         import re
 
         from ros2cli.command.node import node_names
@@ -181,15 +170,15 @@ class ListVerb(Verb):
             print(f'  {name} (type: {TYPE_NAMES[types[name]]})' if args.param_type else f'  {name}')
 
 
-class GetVerb(Verb):
-    DESCRIPTION = 'Get parameter'
+class GetVerb(VerbExtension):
+    """Get parameter."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         _add_common(parser)
         parser.add_argument('parameter_name', help='Name of the parameter')
         parser.add_argument('--hide-type', action='store_true', help='Hide the type information')
 
-    def main(self, args: argparse.Namespace) -> int | str:
+    def main(self, *, args: argparse.Namespace) -> int | str:
         with ParameterSession(args, args.node_name) as session:
             values = session.values([args.parameter_name])
             if not values:
@@ -231,15 +220,15 @@ def failure_reason(reason: str, name: str, session: ParameterSession) -> str:
     return reason or 'no reason given'
 
 
-class SetVerb(Verb):
-    DESCRIPTION = 'Set parameter'
+class SetVerb(VerbExtension):
+    """Set parameter."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         _add_common(parser)
         parser.add_argument('parameter_name', help='Name of the parameter')
         parser.add_argument('value', help='Value of the parameter')
 
-    def main(self, args: argparse.Namespace) -> int:
+    def main(self, *, args: argparse.Namespace) -> int:
         from rclpy.parameter import get_parameter_value
         with ParameterSession(args, args.node_name) as session:
             _set_one(args, session, get_parameter_value(args.value),
@@ -247,14 +236,14 @@ class SetVerb(Verb):
         return 0
 
 
-class DeleteVerb(Verb):
-    DESCRIPTION = 'Delete parameter'
+class DeleteVerb(VerbExtension):
+    """Delete parameter."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         _add_common(parser)
         parser.add_argument('parameter_name', help='Name of the parameter')
 
-    def main(self, args: argparse.Namespace) -> int:
+    def main(self, *, args: argparse.Namespace) -> int:
         from rcl_interfaces.msg import ParameterValue
         with ParameterSession(args, args.node_name) as session:
             _set_one(args, session, ParameterValue(type=0),
@@ -262,14 +251,14 @@ class DeleteVerb(Verb):
         return 0
 
 
-class DescribeVerb(Verb):
-    DESCRIPTION = 'Show descriptive information about declared parameters'
+class DescribeVerb(VerbExtension):
+    """Show descriptive information about declared parameters."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         _add_common(parser)
         parser.add_argument('parameter_names', nargs='+', help='Names of the parameters')
 
-    def main(self, args: argparse.Namespace) -> int:
+    def main(self, *, args: argparse.Namespace) -> int:
         with ParameterSession(args, args.node_name) as session:
             # One request per name: a node answers nothing at all when any name is undeclared.
             descriptors, hints = [], {}
@@ -301,23 +290,24 @@ class DescribeVerb(Verb):
 
 def nested_parameters(names: list[str], values: list[Any]) -> dict[str, Any]:
     """{'a.b': 1} -> {'a': {'b': 1}}, the shape of a parameter file."""
+    from rclpy.parameter import parameter_value_to_python
     tree: dict[str, Any] = {}
     for name, value in zip(names, values, strict=True):
         *path, leaf = name.split('.')
         branch = tree
         for part in path:
             branch = branch.setdefault(part, {})
-        branch[leaf] = python_value(value)
+        branch[leaf] = parameter_value_to_python(value)
     return tree
 
 
-class DumpVerb(Verb):
-    DESCRIPTION = 'Show all of the parameters of a node in a YAML file format'
+class DumpVerb(VerbExtension):
+    """Show all of the parameters of a node in a YAML file format."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         _add_common(parser)
 
-    def main(self, args: argparse.Namespace) -> int:
+    def main(self, *, args: argparse.Namespace) -> int:
         import yaml
         with ParameterSession(args, args.node_name) as session:
             names = session.names()
@@ -327,56 +317,34 @@ class DumpVerb(Verb):
         return 0
 
 
-def parameters_for_node(document: Any, node_name: str, use_wildcard: bool) -> list[Any]:
+def parameters_for_node(path: str, node_name: str, use_wildcard: bool) -> list[Any]:
     """The Parameter messages a parameter file holds for one node: the '/**' entry (when used) first,
-    then the node's own entry, which overrides it. RuntimeError with one line when nothing fits.
+    then the node's own entry, which overrides it (rclpy's parameter_dict_from_yaml_file reads
+    them). RuntimeError with one line when the file cannot be read or nothing in it fits.
     """
-    from rclpy.parameter import Parameter
+    from rclpy.parameter import parameter_dict_from_yaml_file
+    from rosidl_runtime_py.hints import did_you_mean
 
-    from ros2cli.names import did_you_mean
-
+    document = read_parameter_file(path)  # its YAML errors and shape, said in one line
     if not isinstance(document, dict):
         raise RuntimeError('the file is not a ROS parameter file (expected '
                            "'<node>: ros__parameters: ...' as written by `ros2 param dump`)")
     namespace, _, base = node_name.rpartition('/')
     keys = (['/**'] if use_wildcard else []) + [node_name] + ([base] if not namespace else [])
-    values: dict[str, Any] = {}
-    for key in keys:
-        entry = document.get(key)
-        if entry is None:
-            continue
-        if not isinstance(entry, dict) or not isinstance(entry.get('ros__parameters'), dict):
-            raise RuntimeError(f"the entry '{key}' of the file has no 'ros__parameters' mapping")
-        values.update(flatten(entry['ros__parameters']))
-    if not values:
+    present = [key for key in dict.fromkeys(keys) if key in document]
+    if not present:
         nodes = [str(k) for k in document]
         raise RuntimeError(f'Param file does not contain selected parameters: nothing for {node_name}'
                            f"{did_you_mean(node_name, nodes)}; it has: {', '.join(nodes) or 'no nodes'}")
-    parameters = []
-    for name, value in values.items():
-        try:
-            parameters.append(Parameter(name, value=value).to_parameter_msg())
-        except (TypeError, ValueError):
-            raise RuntimeError(f"parameter '{name}' has a value of no parameter type: {value!r} "
-                               '(lists must hold values of one type)') from None
-    return parameters
-
-
-def flatten(tree: dict[str, Any], prefix: str = '') -> dict[str, Any]:
-    """{'a': {'b': 1}} -> {'a.b': 1}."""
-    flat: dict[str, Any] = {}
-    for key, value in tree.items():
-        name = f'{prefix}{key}'
-        if isinstance(value, dict):
-            flat.update(flatten(value, name + '.'))
-        else:
-            flat[name] = value
-    return flat
+    try:
+        return list(parameter_dict_from_yaml_file(path, target_nodes=present).values())
+    except (TypeError, ValueError) as error:  # a value rclpy cannot make a parameter of
+        raise RuntimeError(f"'{path}': {' '.join(str(error).split())}") from None
 
 
 def read_parameter_file(path: str) -> Any:
     """The parsed YAML of a parameter file; RuntimeError with one line when it cannot be read."""
-    from ros2cli.message_yaml import FieldError, parse_yaml
+    from rosidl_runtime_py.set_message import FieldError, parse_yaml
     try:
         with open(path, encoding='utf-8') as parameter_file:
             text = parameter_file.read()
@@ -390,8 +358,8 @@ def read_parameter_file(path: str) -> Any:
         raise RuntimeError(f"'{path}': {str(error).split(': ' + repr(text))[0]}") from None
 
 
-class LoadVerb(Verb):
-    DESCRIPTION = 'Load parameter file for a node'
+class LoadVerb(VerbExtension):
+    """Load parameter file for a node."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         _add_common(parser)
@@ -399,8 +367,8 @@ class LoadVerb(Verb):
         parser.add_argument('--no-use-wildcard', action='store_true',
                             help="Do not load parameters in the '/**' namespace into the node")
 
-    def main(self, args: argparse.Namespace) -> int:
-        parameters = parameters_for_node(read_parameter_file(args.parameter_file), full_name(args.node_name),
+    def main(self, *, args: argparse.Namespace) -> int:
+        parameters = parameters_for_node(args.parameter_file, full_name(args.node_name),
                                          not args.no_use_wildcard)
         with ParameterSession(args, args.node_name) as session:
             results = session.set(parameters)
@@ -413,11 +381,7 @@ class LoadVerb(Verb):
         return 0
 
 
-def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:
-    add_verbs(parser, cli_name, {
-        'delete': DeleteVerb, 'describe': DescribeVerb, 'dump': DumpVerb, 'get': GetVerb, 'list': ListVerb,
-        'load': LoadVerb, 'set': SetVerb})
+class ParamCommand(VerbCommand):
+    """Various param related sub-commands."""
 
-
-def main(args: argparse.Namespace) -> Any:
-    return run_verb(args)
+    VERB_GROUP = 'ros2param.verb'

@@ -7,16 +7,25 @@ terminal, from `kill <pid of ros2>` or from a signal to the whole group of `ros2
 
 import argparse
 import os
-import shlex
 import signal
-import subprocess
 import sys
 
-DESCRIPTION = 'Run a package specific executable'
+from ros2cli.command import CommandExtension
+
 FORWARDED_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGQUIT)
 
 
-def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:
+class RunCommand(CommandExtension):
+    """Run a package specific executable."""
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        add_run_arguments(parser)
+
+    def main(self, *, parser: argparse.ArgumentParser, args: argparse.Namespace) -> int | str:
+        return run(args)
+
+
+def add_run_arguments(parser: argparse.ArgumentParser) -> None:
     from ros2cli.completion import executable_completer, package_completer
 
     parser.add_argument('--prefix', help='Prefix command, which should go before the executable. '
@@ -54,6 +63,8 @@ def _child_setup(take_terminal: bool) -> None:
 
 
 def run_executable(command: list[str]) -> int:
+    import subprocess  # here: `ros2 -h` imports this module for its docstring
+
     """Run command with signals forwarded; its exit code (128 + N when killed by signal N)."""
     take_terminal = False
     try:
@@ -91,14 +102,13 @@ def run_executable(command: list[str]) -> int:
     return code
 
 
-def main(args: argparse.Namespace) -> int | str:
+def run(args: argparse.Namespace) -> int | str:
     from ament_index_python.packages import (
         PackageNotFoundError,
         get_package_prefix,
         get_packages_with_prefixes,
     )
-
-    from ros2cli.names import did_you_mean
+    from rosidl_runtime_py.hints import did_you_mean
 
     try:
         prefix = get_package_prefix(args.package_name)
@@ -118,6 +128,7 @@ def main(args: argparse.Namespace) -> int | str:
         return 'Multiple executables found:' + ''.join(f'\n- {path}' for path in matches)
     command = [matches[0], *args.argv]
     if args.prefix:
+        import shlex
         command = [*shlex.split(args.prefix), *command]
     sys.stdout.flush()
     return run_executable(command)

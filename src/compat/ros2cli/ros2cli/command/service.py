@@ -4,9 +4,8 @@ import argparse
 import time
 from typing import Any
 
-from ros2cli.verb import Verb, add_verbs, run_verb
-
-DESCRIPTION = 'Various service related sub-commands'
+from ros2cli.command import VerbCommand
+from ros2cli.verb import VerbExtension
 
 
 def _include_hidden(args: argparse.Namespace) -> bool:
@@ -20,7 +19,7 @@ def _add_hidden_argument(parser: argparse.ArgumentParser) -> None:
 
 
 def visible_services(graph: Any, include_hidden: bool) -> list[list[Any]]:
-    from ros2cli.names import is_hidden_name
+    from rosidl_runtime_py.graph import is_hidden_name
     return [[name, types] for name, types in graph.service_names_and_types()
             if include_hidden or not is_hidden_name(name)]
 
@@ -30,8 +29,8 @@ def _service_argument(parser: argparse.ArgumentParser, help_text: str) -> None:
     parser.add_argument('service_name', help=help_text).completer = service_completer
 
 
-class ListVerb(Verb):
-    DESCRIPTION = 'Output a list of available services'
+class ListVerb(VerbExtension):
+    """Output a list of available services."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.node.strategy import add_strategy_arguments
@@ -42,7 +41,7 @@ class ListVerb(Verb):
                             help='Only display the number of services discovered')
         _add_hidden_argument(parser)
 
-    def main(self, args: argparse.Namespace) -> int:
+    def main(self, *, args: argparse.Namespace) -> int:
         from ros2cli.graph_listing import print_listing
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
@@ -50,23 +49,23 @@ class ListVerb(Verb):
         return print_listing(services, args.show_types, args.count_services)
 
 
-class TypeVerb(Verb):
-    DESCRIPTION = 'Output a service\'s type'
+class TypeVerb(VerbExtension):
+    """Output a service's type."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.node.strategy import add_strategy_arguments
         _service_argument(parser, "Name of the ROS service to get type (e.g. '/add_two_ints')")
         add_strategy_arguments(parser)
 
-    def main(self, args: argparse.Namespace) -> int:
+    def main(self, *, args: argparse.Namespace) -> int:
         from ros2cli.graph_listing import print_types
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
             return print_types(strategy, lambda graph: graph.service_names_and_types(), args.service_name)
 
 
-class FindVerb(Verb):
-    DESCRIPTION = 'Output a list of available services of a given type'
+class FindVerb(VerbExtension):
+    """Output a list of available services of a given type."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.completion import service_type_completer
@@ -78,7 +77,7 @@ class FindVerb(Verb):
                             help='Only display the number of services discovered')
         _add_hidden_argument(parser)
 
-    def main(self, args: argparse.Namespace) -> int:
+    def main(self, *, args: argparse.Namespace) -> int:
         from ros2cli.graph_listing import print_names_of_type
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
@@ -86,8 +85,8 @@ class FindVerb(Verb):
         return print_names_of_type(services, args.service_type, args.count_services)
 
 
-class CallVerb(Verb):
-    DESCRIPTION = 'Call a service'
+class CallVerb(VerbExtension):
+    """Call a service."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.command.topic_pub import add_values_arguments
@@ -99,14 +98,14 @@ class CallVerb(Verb):
         parser.add_argument('-r', '--rate', metavar='N', type=float,
                             help='Repeat the call at a specific rate in Hz')
 
-    def main(self, args: argparse.Namespace) -> int | str:
+    def main(self, *, args: argparse.Namespace) -> int | str:
         import rclpy
         from rclpy.node import Node
+        from rosidl_runtime_py.graph import expand_topic_name
+        from rosidl_runtime_py.set_message import FieldError, set_message_fields
+        from rosidl_runtime_py.utilities import InvalidType, import_type, split_type
 
         from ros2cli.command.topic_pub import read_values
-        from ros2cli.interfaces import InvalidType, import_type, split_type
-        from ros2cli.message_yaml import FieldError, fill_message
-        from ros2cli.names import expand_topic_name
         from ros2cli.node.direct import tear_down
 
         if args.rate is not None and args.rate <= 0:
@@ -117,7 +116,8 @@ class CallVerb(Verb):
             return f'The passed service type is invalid: {error}'
         values = read_values(args, 'field')
         try:
-            request = fill_message(service_class.Request(), values)
+            request = service_class.Request()
+            set_message_fields(request, values)
         except FieldError as error:
             return f'Failed to populate field: {error}'
         package, _, name = split_type(args.service_type, 'srv')
@@ -155,11 +155,7 @@ def wait_for_server(node: Any, client: Any, service: str) -> None:
         hint.update(lambda: [name for name, _ in node.get_service_names_and_types()])
 
 
-def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:
-    parser.add_argument('--include-hidden-services', dest='command_include_hidden', action='store_true',
-                        help='Consider hidden services as well')
-    add_verbs(parser, cli_name, {'call': CallVerb, 'find': FindVerb, 'list': ListVerb, 'type': TypeVerb})
+class ServiceCommand(VerbCommand):
+    """Various service related sub-commands."""
 
-
-def main(args: argparse.Namespace) -> Any:
-    return run_verb(args)
+    VERB_GROUP = 'ros2service.verb'

@@ -3,9 +3,8 @@
 import argparse
 from typing import Any
 
-from ros2cli.verb import Verb, add_verbs, run_verb
-
-DESCRIPTION = 'Various topic related sub-commands'
+from ros2cli.command import VerbCommand
+from ros2cli.verb import VerbExtension
 
 
 def _include_hidden(args: argparse.Namespace) -> bool:
@@ -18,7 +17,7 @@ def _add_hidden_argument(parser: argparse.ArgumentParser) -> None:
 
 
 def visible_topics(graph: Any, include_hidden: bool) -> list[list[Any]]:
-    from ros2cli.names import is_hidden_name
+    from rosidl_runtime_py.graph import is_hidden_name
     return [[name, types] for name, types in graph.topic_names_and_types()
             if include_hidden or not is_hidden_name(name)]
 
@@ -41,12 +40,12 @@ def topic_types(graph: Any, topic: str) -> list[str] | None:
 
 
 def unknown_topic(graph: Any, topic: str) -> str:
-    from ros2cli.names import did_you_mean
+    from rosidl_runtime_py.hints import did_you_mean
     return f"Unknown topic '{topic}'{did_you_mean(topic, [n for n, _ in graph.topic_names_and_types()])}"
 
 
-class ListVerb(Verb):
-    DESCRIPTION = 'Output a list of available topics'
+class ListVerb(VerbExtension):
+    """Output a list of available topics."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.node.strategy import add_strategy_arguments
@@ -59,7 +58,7 @@ class ListVerb(Verb):
         parser.add_argument('-v', '--verbose', action='store_true',
                             help='List full details about each topic')
 
-    def main(self, args: argparse.Namespace) -> int:
+    def main(self, *, args: argparse.Namespace) -> int:
         from ros2cli.graph_listing import print_listing
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
@@ -108,8 +107,8 @@ def endpoint_text(endpoint: dict[str, Any]) -> str:
     ])
 
 
-class InfoVerb(Verb):
-    DESCRIPTION = 'Print information about a topic'
+class InfoVerb(VerbExtension):
+    """Print information about a topic."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.node.strategy import add_strategy_arguments
@@ -120,7 +119,7 @@ class InfoVerb(Verb):
                                  'subscribers to this topic')
         add_strategy_arguments(parser)
 
-    def main(self, args: argparse.Namespace) -> int | str:
+    def main(self, *, args: argparse.Namespace) -> int | str:
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
             graph = strategy.graph
@@ -141,8 +140,8 @@ class InfoVerb(Verb):
         return 0
 
 
-class TypeVerb(Verb):
-    DESCRIPTION = 'Print a topic\'s type'
+class TypeVerb(VerbExtension):
+    """Print a topic's type."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.node.strategy import add_strategy_arguments
@@ -150,7 +149,7 @@ class TypeVerb(Verb):
         _add_hidden_argument(parser)
         add_strategy_arguments(parser)
 
-    def main(self, args: argparse.Namespace) -> int:
+    def main(self, *, args: argparse.Namespace) -> int:
         from ros2cli.graph_listing import print_types
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
@@ -158,8 +157,8 @@ class TypeVerb(Verb):
                                args.topic_name)
 
 
-class FindVerb(Verb):
-    DESCRIPTION = 'Output a list of available topics of a given type'
+class FindVerb(VerbExtension):
+    """Output a list of available topics of a given type."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.node.strategy import add_strategy_arguments
@@ -170,7 +169,7 @@ class FindVerb(Verb):
                             help='Only display the number of topics discovered')
         _add_hidden_argument(parser)
 
-    def main(self, args: argparse.Namespace) -> int:
+    def main(self, *, args: argparse.Namespace) -> int:
         from ros2cli.graph_listing import print_names_of_type
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
@@ -178,23 +177,15 @@ class FindVerb(Verb):
         return print_names_of_type(topics, args.message_type, args.count_topics)
 
 
-def add_arguments(parser: argparse.ArgumentParser, cli_name: str) -> None:
-    parser.add_argument('--include-hidden-topics', dest='command_include_hidden', action='store_true',
-                        help='Consider hidden topics as well')
-    # Imported here: those modules use this one's helpers.
-    from ros2cli.command.topic_bw import BwVerb
-    from ros2cli.command.topic_echo import EchoVerb
-    from ros2cli.command.topic_hz import HzVerb
-    from ros2cli.command.topic_pub import PubVerb
+class TopicCommand(VerbCommand):
+    """Various topic related sub-commands."""
 
-    add_verbs(parser, cli_name, {
-        'bw': BwVerb, 'echo': EchoVerb, 'find': FindVerb, 'hz': HzVerb, 'info': InfoVerb,
-        'list': ListVerb, 'pub': PubVerb, 'type': TypeVerb})
+    VERB_GROUP = 'ros2topic.verb'
 
-
-def main(args: argparse.Namespace) -> Any:
-    return run_verb(args)
-
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        parser.add_argument('--include-hidden-topics', dest='command_include_hidden', action='store_true',
+                            help='Consider hidden topics as well')
+        super().add_arguments(parser, cli_name)
 
 
 def wait_for_topic_type(direct: Any, topic: str) -> list[str]:

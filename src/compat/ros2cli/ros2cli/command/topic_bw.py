@@ -7,7 +7,7 @@ from typing import Any
 
 from ros2cli.command.topic import _topic_argument, wait_for_topic_type
 from ros2cli.command.topic_hz import positive_int, receive_profile
-from ros2cli.verb import Verb
+from ros2cli.verb import VerbExtension
 
 
 def size_text(size: float) -> str:
@@ -38,8 +38,8 @@ class BandwidthStatistics:
                 f'min: {size_text(min(sizes))} max: {size_text(max(sizes))}')
 
 
-class BwVerb(Verb):
-    DESCRIPTION = 'Display bandwidth used by topic'
+class BwVerb(VerbExtension):
+    """Display bandwidth used by topic."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.node.direct import add_direct_node_arguments
@@ -48,11 +48,11 @@ class BwVerb(Verb):
                             help='maximum window size, in # of messages, for calculating rate (default: 100)')
         add_direct_node_arguments(parser)
 
-    def main(self, args: argparse.Namespace) -> int | str:
+    def main(self, *, args: argparse.Namespace) -> int | str:
         from rclpy.executors import SingleThreadedExecutor
+        from rosidl_runtime_py.graph import expand_topic_name
+        from rosidl_runtime_py.utilities import InvalidType, import_type
 
-        from ros2cli.interfaces import InvalidType, import_type
-        from ros2cli.names import expand_topic_name
         from ros2cli.node.direct import DirectNode
 
         topic = expand_topic_name(args.topic_name)

@@ -5,7 +5,7 @@ import sys
 from typing import Any
 
 from ros2cli.command.topic import _topic_argument, _type_argument, topic_types
-from ros2cli.verb import Verb
+from ros2cli.verb import VerbExtension
 
 RECEIVE_DEPTH = 1000
 # What upstream (Jazzy) shows of a message's receive information (printed with sorted keys).
@@ -114,19 +114,22 @@ class MessagePrinter:
         return value
 
     def format(self, message: Any) -> str:
-        from ros2cli.message_yaml import is_message, message_to_csv, message_to_yaml
+        from rosidl_runtime_py.convert import message_to_csv, message_to_yaml
+        from rosidl_runtime_py.utilities import is_message
 
         value = self.select(message)
         args = self.args
         if not is_message(value):
             return f'{value}\n---' if not args.csv else str(value)
         if args.csv:
-            return message_to_csv(value, self.truncate, args.no_arr, args.no_str)
-        return message_to_yaml(value, self.truncate, args.no_arr, args.no_str, args.flow_style) + '---'
+            return message_to_csv(value, truncate_length=self.truncate, no_arr=args.no_arr,
+                                  no_str=args.no_str)
+        return message_to_yaml(value, truncate_length=self.truncate, no_arr=args.no_arr, no_str=args.no_str,
+                               flow_style=args.flow_style) + '---'
 
 
-class EchoVerb(Verb):
-    DESCRIPTION = 'Output messages from a topic'
+class EchoVerb(VerbExtension):
+    """Output messages from a topic."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.node.strategy import add_strategy_arguments
@@ -148,9 +151,10 @@ class EchoVerb(Verb):
         parser.add_argument('--include-message-info', '-i', action='store_true',
                             help='Shows the associated message info.')
 
-    def main(self, args: argparse.Namespace) -> int | str:
-        from ros2cli.interfaces import InvalidType, import_type
-        from ros2cli.names import expand_topic_name
+    def main(self, *, args: argparse.Namespace) -> int | str:
+        from rosidl_runtime_py.graph import expand_topic_name
+        from rosidl_runtime_py.utilities import InvalidType, import_type
+
         from ros2cli.node.direct import NAMED_LOOKUP_GRACE, DirectNode
 
         printer = MessagePrinter(args)
@@ -201,7 +205,7 @@ class EchoVerb(Verb):
                         return
                     text = printer.format(message)
                 if args.include_message_info and info is not None:
-                    from ros2cli.message_yaml import dump_yaml
+                    from rosidl_runtime_py.convert import dump_yaml
                     details = {key: info[key] for key in MESSAGE_INFO_KEYS if key in info}
                     text = (','.join(str(v) for v in details.values()) + ',' + text if args.csv
                             else dump_yaml(details) + '---\n' + text)

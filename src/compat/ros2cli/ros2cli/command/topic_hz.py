@@ -7,7 +7,7 @@ from collections import deque
 from typing import Any
 
 from ros2cli.command.topic import _topic_argument, wait_for_topic_type
-from ros2cli.verb import Verb
+from ros2cli.verb import VerbExtension
 
 
 def positive_int(text: str) -> int:
@@ -65,8 +65,8 @@ def receive_profile() -> Any:
                       durability=qos_profile_sensor_data.durability)
 
 
-class HzVerb(Verb):
-    DESCRIPTION = 'Print the average publishing rate to screen'
+class HzVerb(VerbExtension):
+    """Print the average publishing rate to screen."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.node.direct import add_direct_node_arguments
@@ -80,12 +80,12 @@ class HzVerb(Verb):
                                  'published during simulation')
         add_direct_node_arguments(parser)
 
-    def main(self, args: argparse.Namespace) -> int | str:
+    def main(self, *, args: argparse.Namespace) -> int | str:
         from rclpy.clock import Clock, ClockType
         from rclpy.executors import SingleThreadedExecutor
+        from rosidl_runtime_py.graph import expand_topic_name
+        from rosidl_runtime_py.utilities import InvalidType, import_type
 
-        from ros2cli.interfaces import InvalidType, import_type
-        from ros2cli.names import expand_topic_name
         from ros2cli.node.direct import DirectNode
 
         topic = expand_topic_name(args.topic_name)

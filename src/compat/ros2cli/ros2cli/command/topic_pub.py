@@ -7,7 +7,7 @@ from typing import Any
 
 from ros2cli.command.topic import _topic_argument, _type_argument
 from ros2cli.command.topic_echo import positive_float
-from ros2cli.verb import Verb
+from ros2cli.verb import VerbExtension
 
 # A subscriber that our writer has matched may not yet have matched our writer (each side learns of
 # the other from its own discovery message) and drops what it receives until it has; a pause after
@@ -24,7 +24,7 @@ def nonnegative_int(text: str) -> int:
 
 def read_values(args: argparse.Namespace, kind: str) -> Any:
     """The YAML values of the positional argument or --stdin, parsed; RuntimeError when malformed."""
-    from ros2cli.message_yaml import FieldError, parse_yaml
+    from rosidl_runtime_py.set_message import FieldError, parse_yaml
     text = sys.stdin.read() if getattr(args, 'stdin', False) else (args.values or '{}')
     try:
         return parse_yaml(text)
@@ -40,8 +40,8 @@ def add_values_arguments(parser: argparse.ArgumentParser, what: str, example: st
     group.add_argument('--stdin', action='store_true', help=f'Read {what} values from stdin.')
 
 
-class PubVerb(Verb):
-    DESCRIPTION = 'Publish a message to a topic'
+class PubVerb(VerbExtension):
+    """Publish a message to a topic."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.node.direct import add_direct_node_arguments
@@ -70,10 +70,11 @@ class PubVerb(Verb):
         add_qos_arguments(parser, 'publish', 'default')
         add_direct_node_arguments(parser)
 
-    def main(self, args: argparse.Namespace) -> int | str:
-        from ros2cli.interfaces import InvalidType, import_type
-        from ros2cli.message_yaml import FieldError, fill_message
-        from ros2cli.names import expand_topic_name
+    def main(self, *, args: argparse.Namespace) -> int | str:
+        from rosidl_runtime_py.graph import expand_topic_name
+        from rosidl_runtime_py.set_message import FieldError, set_message_fields
+        from rosidl_runtime_py.utilities import InvalidType, import_type
+
         from ros2cli.node.direct import DirectNode
         from ros2cli.qos import profile_from_args
 
@@ -91,9 +92,10 @@ class PubVerb(Verb):
         values = read_values(args, 'field')
         if not isinstance(values, dict) and values is not None:
             return 'The passed value needs to be a dictionary in YAML format'
-        stamps: list[Any] = []
+        message = message_class()
         try:
-            message = fill_message(message_class(), values, stamps)
+            # `header: auto` and `stamp: now` are filled in before each publish.
+            stamps = set_message_fields(message, values, expand_header_auto=True, expand_time_now=True)
         except FieldError as error:
             return f'Failed to populate field: {error}'
 

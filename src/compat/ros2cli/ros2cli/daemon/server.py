@@ -34,9 +34,9 @@ class _Server(SimpleXMLRPCServer):
 def serve(domain: int, listener: socket.socket, idle_timeout: float, alone_timeout: float | None) -> None:
     import rclpy
     from rclpy.node import Node
+    from rosidl_runtime_py.graph import GraphQueries
 
     from ros2cli.node.direct import tear_down
-    from ros2cli.node.graph import GraphQueries
     from ros2cli.service_call import ServiceCaller, serve_call
 
     server = _Server(

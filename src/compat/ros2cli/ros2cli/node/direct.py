@@ -74,7 +74,7 @@ class DirectNode:
     @property
     def graph(self) -> Any:
         if self._graph is None:
-            from ros2cli.node.graph import GraphQueries
+            from rosidl_runtime_py.graph import GraphQueries
             self._graph = GraphQueries(self.node)
         return self._graph
 

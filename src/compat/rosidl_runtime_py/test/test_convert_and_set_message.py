@@ -1,17 +1,19 @@
-"""The message codec without ROS communication: YAML/CSV output as upstream, input with clear errors."""
+"""The message library without ROS communication: YAML/CSV/dicts as upstream, input with clear errors."""
+
+from collections import OrderedDict
 
 import pytest
 from geometry_msgs.msg import PoseArray, Twist, Vector3
 from rcl_interfaces.msg import ParameterDescriptor
-from ros2cli.message_yaml import (
-    FieldError,
-    fill_message,
-    message_to_csv,
-    message_to_yaml,
-    parse_yaml,
-)
+from rosidl_runtime_py import message_to_csv, message_to_ordereddict, message_to_yaml, set_message_fields
+from rosidl_runtime_py.set_message import FieldError, parse_yaml
 from sensor_msgs.msg import Imu
 from std_msgs.msg import Bool, ByteMultiArray, Header, String, UInt8
+
+
+def filled(message, values):
+    set_message_fields(message, values)
+    return message
 
 
 def test_yaml_keeps_declaration_order_and_block_style():
@@ -23,11 +25,11 @@ def test_yaml_keeps_declaration_order_and_block_style():
 def test_yaml_scalars_and_sequences():
     assert message_to_yaml(String(data='Hello World: 1')) == "data: 'Hello World: 1'\n"
     assert message_to_yaml(String(data='')) == "data: ''\n"
-    poses = fill_message(PoseArray(), {'poses': [{'position': {'x': 1}}]})
+    poses = filled(PoseArray(), {'poses': [{'position': {'x': 1}}]})
     text = message_to_yaml(poses)
     assert 'poses:\n- position:\n    x: 1.0\n' in text
     assert message_to_yaml(PoseArray()).endswith('poses: []\n')
-    two_bytes = fill_message(ByteMultiArray(), {'data': [1, 2]})
+    two_bytes = filled(ByteMultiArray(), {'data': [1, 2]})
     assert message_to_yaml(two_bytes).endswith('data:\n- "\\x01"\n- "\\x02"\n')
 
 
@@ -46,8 +48,26 @@ def test_placeholders_and_truncation():
         "poses: '<sequence type: geometry_msgs/msg/Pose, length: 0>'\n")
     assert message_to_yaml(String(data='hello'), no_str=True) == "data: '<string length: <5>>'\n"
     assert message_to_yaml(String(data='Hello World'), truncate_length=5) == 'data: Hello...\n'
-    numbers = fill_message(ByteMultiArray(), {'data': [1, 2, 3]})
+    numbers = filled(ByteMultiArray(), {'data': [1, 2, 3]})
     assert message_to_yaml(numbers, truncate_length=2).endswith("- '...'\n")
+
+
+def test_header_auto_is_expanded_only_when_asked_for():
+    from builtin_interfaces.msg import Time
+    from geometry_msgs.msg import PointStamped
+    point = PointStamped()
+    stamps = set_message_fields(point, {'header': 'auto'}, expand_header_auto=True)
+    stamps[0](Time(sec=7))
+    assert point.header.stamp.sec == 7
+    with pytest.raises(FieldError, match="field 'header' must be a mapping"):
+        set_message_fields(PointStamped(), {'header': 'auto'}, expand_time_now=True)
+
+
+def test_ordereddict_is_in_declaration_order_and_nested():
+    values = message_to_ordereddict(Twist(linear=Vector3(x=1.0)))
+    assert isinstance(values, OrderedDict) and list(values) == ['linear', 'angular']
+    assert values['linear'] == {'x': 1.0, 'y': 0.0, 'z': 0.0}
+    assert message_to_ordereddict(String(data='abcdef'), truncate_length=3) == {'data': 'abc...'}
 
 
 def test_csv_flattens_leaves():
@@ -56,22 +76,22 @@ def test_csv_flattens_leaves():
 
 
 def test_fill_converts_ints_to_floats_and_nested_messages():
-    twist = fill_message(Twist(), parse_yaml('{linear: {x: 2}, angular: {z: 1}}'))
+    twist = filled(Twist(), parse_yaml('{linear: {x: 2}, angular: {z: 1}}'))
     assert twist.linear.x == 2.0 and twist.angular.z == 1.0
-    assert fill_message(UInt8(), {'data': 255.0}).data == 255
-    assert fill_message(String(), {'data': 5}).data == '5'
-    assert fill_message(Twist(), None) == Twist()
+    assert filled(UInt8(), {'data': 255.0}).data == 255
+    assert filled(String(), {'data': 5}).data == '5'
+    assert filled(Twist(), None) == Twist()
 
 
 def test_header_auto_and_stamp_now_are_refreshed_before_each_publish():
     from builtin_interfaces.msg import Time
-    stamps = []
-    header = fill_message(Header(), {'stamp': 'now', 'frame_id': 'map'}, stamps)
+    header = Header()
+    stamps = set_message_fields(header, {'stamp': 'now', 'frame_id': 'map'}, expand_time_now=True)
     assert len(stamps) == 1
     stamps[0](Time(sec=3, nanosec=4))
     assert (header.stamp.sec, header.stamp.nanosec, header.frame_id) == (3, 4, 'map')
     with pytest.raises(FieldError, match="field 'stamp' must be a mapping"):
-        fill_message(Header(), {'stamp': 'now'})  # only topic pub passes `stamps`
+        set_message_fields(Header(), {'stamp': 'now'})  # only when asked for, as upstream
 
 
 @pytest.mark.parametrize(('message', 'values', 'error'), [
@@ -91,7 +111,7 @@ def test_header_auto_and_stamp_now_are_refreshed_before_each_publish():
 ])
 def test_fill_errors_name_the_field(message, values, error):
     with pytest.raises(FieldError) as caught:
-        fill_message(message, values)
+        filled(message, values)
     assert error in str(caught.value)
     assert '\n' not in str(caught.value)
 

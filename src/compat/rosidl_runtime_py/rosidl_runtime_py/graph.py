@@ -1,12 +1,16 @@
-"""Graph queries answered from an rclpy node, as plain data (lists, dicts, strings).
+"""Graph queries answered from an rclpy node, as plain data (lists, dicts, strings), and the rules of
+node and topic names (an Owl Kit Lab addition, not upstream's: ros2cli, rqt_web and owl_web share it).
 
 The same class serves a verb's own DirectNode and the daemon, whose XML-RPC server exports
 it: plain data is what XML-RPC can carry, so both modes give exactly the same answers.
 """
 
-from typing import Any
+from __future__ import annotations
 
-from rclpy.node import Node
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # the name rules below are used where rclpy need not be imported
+    from rclpy.node import Node
 
 NamesAndTypes = list[list[Any]]  # [[name, [type, ...]], ...]
 
@@ -88,3 +92,29 @@ class GraphQueries:
 
     def count_subscribers(self, topic: str) -> int:
         return self._node.count_subscribers(topic)
+
+
+def full_node_name(namespace: str, name: str) -> str:
+    """'/' + 'talker' -> '/talker'; '/ns' + 'talker' -> '/ns/talker'."""
+    return f"{namespace.rstrip('/')}/{name}"
+
+
+def split_node_name(node_name: str) -> tuple[str, str]:
+    """A node name (leading '/' optional) as (namespace, base name)."""
+    full = node_name if node_name.startswith('/') else '/' + node_name
+    namespace, _, name = full.rpartition('/')
+    return namespace or '/', name
+
+
+def is_hidden_node(full_name: str) -> bool:
+    return full_name.rpartition('/')[2].startswith('_')
+
+
+def is_hidden_name(name: str) -> bool:
+    """A topic or service is hidden when any of its tokens starts with '_'."""
+    return any(token.startswith('_') for token in name.split('/'))
+
+
+def expand_topic_name(name: str) -> str:
+    """Relative names resolve against the CLI node's namespace, the root."""
+    return name if name.startswith('/') else '/' + name
