@@ -9,7 +9,7 @@ from launch.substitutions import LaunchConfiguration
 from launch_ros.actions import Node
 
 
-def generate_launch_description():
+def generate_launch_description() -> LaunchDescription:
     return LaunchDescription([
         DeclareLaunchArgument('imu_topic', default_value='/olive/imu/x1684267976913/imu',
                               description='sensor_msgs/msg/Imu topic of the IMU'),

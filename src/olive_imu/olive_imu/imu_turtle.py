@@ -45,7 +45,7 @@ class ImuTurtle(Node):
             'Turn rate per radian of yaw (turning the IMU left), rad/s per rad.'))
         self.imu_topic = self.get_parameter('imu_topic').value
         self.orientation = Quaternion()
-        self.last_imu_time = None  # time.monotonic() of the last usable IMU message
+        self.last_imu_time: float | None = None  # time.monotonic() of the last usable IMU message
         self.driving = False
         # Best effort matches an IMU publishing either best effort or reliable (QoS: section 4.5).
         try:

@@ -6,7 +6,7 @@ from launch.launch_description_sources import PythonLaunchDescriptionSource
 from launch.substitutions import PathJoinSubstitution, ThisLaunchFileDir
 
 
-def generate_launch_description():
+def generate_launch_description() -> LaunchDescription:
     return LaunchDescription([
         IncludeLaunchDescription(PythonLaunchDescriptionSource(
             PathJoinSubstitution([ThisLaunchFileDir(), 'turtle.launch.py']))),

@@ -10,6 +10,7 @@ from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from rclpy.signals import SignalHandlerOptions
+from rclpy.timer import Timer
 from std_msgs.msg import Float32
 
 from olive_servo.goals import PAN_BOUNDS, SineGoal
@@ -34,7 +35,7 @@ class ControlServo(Node):
         self.torque = ServoTorque(self, [SERVO])
         self.publisher_ = self.create_publisher(Float32, GOAL_TOPIC, 10)
         self.sine = SineGoal(STEP)
-        self.timer = None  # created once the torque is on: the servo ignores goals before
+        self.timer: Timer | None = None  # created once the torque is on: the servo ignores goals before
         self.add_post_set_parameters_callback(self.parameters_changed)
 
     def period(self) -> float:
@@ -71,6 +72,7 @@ def main(args: list[str] | None = None) -> None:
     except (KeyboardInterrupt, ExternalShutdownException):
         pass  # Ctrl-C is how the course stops a node
     except TorqueError as error:
+        assert control_servo is not None  # only enable_torque() raises it
         control_servo.get_logger().error(str(error))
         sys.exit(1)
     except (ParameterException, ValueError) as error:

@@ -14,6 +14,7 @@ from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import qos_profile_sensor_data
 from rclpy.signals import SignalHandlerOptions
+from rclpy.timer import Timer
 from sensor_msgs.msg import Imu
 from std_msgs.msg import Float32
 
@@ -38,7 +39,7 @@ class ImuControlRobot(Node):
         self.bounds = BoundParameters(self, SERVOS)  # pan_min .. tilt_max, each pair checked
         self.imu_topic = self.get_parameter('imu_topic').value
         self.orientation = Quaternion()
-        self.last_imu_time = None  # time.monotonic() of the last usable IMU message
+        self.last_imu_time: float | None = None  # time.monotonic() of the last usable IMU message
         self.steering = False
         self.torque = ServoTorque(self, SERVOS)
         self.publishers_ = {servo: self.create_publisher(Float32, f'/olive/servo/{servo}/goal/position', 10)
@@ -49,7 +50,7 @@ class ImuControlRobot(Node):
                 Imu, self.imu_topic, self.imu_callback, qos_profile_sensor_data)
         except InvalidTopicNameException:
             raise ValueError(f"imu_topic '{self.imu_topic}' is not a valid topic name") from None
-        self.timer = None  # created once the torque is on: the servos ignore goals before
+        self.timer: Timer | None = None  # created once the torque is on: the servos ignore goals before
 
     def enable_torque(self) -> None:
         self.torque.enable()
@@ -106,6 +107,7 @@ def main(args: list[str] | None = None) -> None:
     except (KeyboardInterrupt, ExternalShutdownException):
         pass  # Ctrl-C is how the course stops a node
     except TorqueError as error:
+        assert imu_control_robot is not None  # only enable_torque() raises it
         imu_control_robot.get_logger().error(str(error))
         sys.exit(1)
     except (ParameterException, ValueError) as error:

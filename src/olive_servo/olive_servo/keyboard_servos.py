@@ -23,6 +23,7 @@ from rclpy.exceptions import ParameterException
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.signals import SignalHandlerOptions
+from rclpy.timer import Timer
 from std_msgs.msg import Float32
 
 from olive_servo.bound_parameters import BoundParameters
@@ -56,7 +57,7 @@ class KeyboardServos(Node):
         self.goals = KeyboardGoals()
         self.held: set[str] = set()  # names of the arrow keys held down now
         self.last_step = time.monotonic()
-        self.timer = None  # created once the torque is on: the servos ignore goals before
+        self.timer: Timer | None = None  # created once the torque is on: the servos ignore goals before
 
         # pygame reads the keyboard through a window of its own: keys count while it has the focus.
         # Only the display and fonts: pygame.init() would also open the sound card, which a machine
@@ -130,6 +131,7 @@ def main(args: list[str] | None = None) -> None:
     except (KeyboardInterrupt, ExternalShutdownException, WindowClosed):
         pass  # Ctrl-C is how the course stops a node; closing the window too
     except TorqueError as error:
+        assert keyboard_servos is not None  # only enable_torque() raises it
         keyboard_servos.get_logger().error(str(error))
         sys.exit(1)
     except (ParameterException, ValueError) as error:

@@ -1,15 +1,16 @@
 """The whole Owl Kit: IMU, servos pan and tilt, camera eye, each module its own process with its
 own web page (http://127.42.0.N:<web_port>/ for the module at 10.42.0.N)."""
 
-from launch import LaunchDescription
+from launch import LaunchContext, LaunchDescription
 from launch.actions import DeclareLaunchArgument, LogInfo, OpaqueFunction
+from launch.launch_description_entity import LaunchDescriptionEntity
 from launch.substitutions import LaunchConfiguration
 from launch_ros.actions import Node
 from olive_sim.kit import OWL_KIT, address_table, topic_table
 from olive_sim.module_node import WEB_PORT
 
 
-def modules(context):
+def modules(context: LaunchContext) -> list[LaunchDescriptionEntity]:
     port = LaunchConfiguration('web_port').perform(context)
     if not port.isdigit() or int(port) > 65535:
         raise ValueError(f"web_port must be a TCP port number 0..65535 (0: no pages), got '{port}'")
@@ -22,7 +23,7 @@ def modules(context):
             *nodes]
 
 
-def generate_launch_description():
+def generate_launch_description() -> LaunchDescription:
     return LaunchDescription([
         DeclareLaunchArgument('web_port', default_value=str(WEB_PORT),
                               description="TCP port of every module's web page (0: no pages)"),

@@ -22,6 +22,8 @@ CAPTION_AT = (6, 4)     # px: top-left corner of the caption text
 CAPTION_MARGIN = (3, 2)  # px of black box around it
 BLOCK_ROWS = 16         # px: height of a JPEG block row with 4:2:0 chroma subsampling
 _RESTART = re.compile(rb'\xff[\xd0-\xd7]')  # RST0..RST7; a 0xFF in coded data is followed by 0x00
+# ImageFont.load_default gives a FreeType font, or Pillow's bitmap font where FreeType is missing.
+Font = ImageFont.FreeTypeFont | ImageFont.ImageFont
 
 # (azimuth deg, colour, label): colours differ in hue so a test can find each one.
 LANDMARKS = (
@@ -44,7 +46,7 @@ def focal_length(width: int, horizontal_fov: float) -> float:
     return (width / 2) / math.tan(horizontal_fov / 2)
 
 
-def _font(size: int) -> ImageFont.ImageFont:
+def _font(size: int) -> Font:
     try:
         return ImageFont.load_default(size=size)
     except TypeError:  # Pillow without FreeType: the fixed bitmap font
@@ -95,10 +97,13 @@ class CaptionWriter:
     caption through ImageDraw on every frame cost about a third of the time of a whole frame.
     """
 
-    def __init__(self, font: ImageFont.ImageFont) -> None:
+    def __init__(self, font: Font) -> None:
         self._font = font
-        ascent, descent = font.getmetrics()
-        self.line_height = ascent + descent
+        if isinstance(font, ImageFont.FreeTypeFont):
+            ascent, descent = font.getmetrics()
+            self.line_height = ascent + descent
+        else:  # Pillow's bitmap font (Pillow without FreeType) has no metrics: its tallest box
+            self.line_height = int(font.getbbox('Ày')[3])
         self._glyphs: dict[str, tuple[np.ndarray, int]] = {}
 
     def _glyph(self, character: str) -> tuple[np.ndarray, int]:
@@ -106,7 +111,7 @@ class CaptionWriter:
         if character not in self._glyphs:
             advance = round(self._font.getlength(character))
             _, _, right, _ = self._font.getbbox(character)
-            image = Image.new('L', (max(1, advance, right), self.line_height), 0)
+            image = Image.new('L', (max(1, advance, math.ceil(right)), self.line_height), 0)
             ImageDraw.Draw(image).text((0, 0), character, fill=255, font=self._font)
             coverage = np.asarray(image)
             # The same byte in R, G, B and X: grey, whatever the byte order of uint32.

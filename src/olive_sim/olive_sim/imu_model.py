@@ -11,6 +11,7 @@ import math
 from collections import deque
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Protocol
 
 import numpy as np
 
@@ -21,6 +22,12 @@ GRAVITY = 9.81                                 # m/s^2
 EARTH_FIELD: Vector = (0.0, 19.5e-6, -44.5e-6)  # T in ENU: about central Europe (48 uT, 66 deg dip)
 BIAS_WINDOW = 0.5                               # s of gyro samples averaged by setBias
 MOTION_SOURCES = ('scripted', 'command', 'file')
+
+
+class Motion(Protocol):
+    """Where the IMU's true orientation comes from."""
+
+    def orientation(self, t: float) -> Quaternion: ...
 
 
 class ScriptedMotion:
@@ -91,7 +98,7 @@ class RecordedMotion:
                 if len(values) == 4:
                     orientation = quat.from_euler(*values[1:])
                 elif len(values) == 5:
-                    orientation = quat.normalize(tuple(values[1:]))
+                    orientation = quat.normalize((values[1], values[2], values[3], values[4]))
                 else:
                     raise ValueError('expected 4 or 5 numbers')
                 if not all(math.isfinite(v) for v in values):
@@ -168,7 +175,8 @@ class ImuSensor:
         """The reading at time t; the angular velocity is the mean rate since the last sample."""
         if self._last is not None and t > self._last[0]:
             turn = quat.to_rotation_vector(quat.multiply(quat.conjugate(self._last[1]), true_orientation))
-            rate = tuple(c / (t - self._last[0]) for c in turn)
+            dt = t - self._last[0]
+            rate = (turn[0] / dt, turn[1] / dt, turn[2] / dt)
         else:
             rate = (0.0, 0.0, 0.0)
         self._last = (t, true_orientation)
@@ -178,7 +186,7 @@ class ImuSensor:
         z = self.random.standard_normal(12).tolist()
         gyro = _add(_add(rate, self.bias), _scaled(z[0:3], n.gyro_noise))
         self._remember(t, gyro)
-        gyro = tuple(g - c for g, c in zip(gyro, self.bias_correction, strict=True))
+        gyro = _add(gyro, _scaled(list(self.bias_correction), -1.0))
         world_to_body = quat.conjugate(true_orientation)
         accel = _add(quat.rotate(world_to_body, (0.0, 0.0, GRAVITY)), _scaled(z[3:6], n.accel_noise))
         mag = _add(quat.rotate(world_to_body, EARTH_FIELD), _scaled(z[6:9], n.mag_noise))
@@ -196,7 +204,8 @@ class ImuSensor:
         samples = [g for _, g in self._gyro_history]
         if len(samples) < 10:
             return False, 'not enough gyro samples yet: wait half a second and retry'
-        mean = tuple(sum(s[i] for s in samples) / len(samples) for i in range(3))
+        sums = [sum(s[i] for s in samples) for i in range(3)]
+        mean = (sums[0] / len(samples), sums[1] / len(samples), sums[2] / len(samples))
         spread = max(math.sqrt(sum((s[i] - mean[i]) ** 2 for s in samples) / len(samples))
                      for i in range(3))
         if spread > 3 * self.noise.gyro_noise + 0.01 or max(abs(m) for m in mean) > 0.1:

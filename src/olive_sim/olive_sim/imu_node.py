@@ -8,7 +8,7 @@ from geometry_msgs.msg import Quaternion as QuaternionMsg
 from rcl_interfaces.msg import FloatingPointRange
 from std_srvs.srv import Trigger
 
-from olive_sim.imu_model import MOTION_SOURCES, CommandedMotion, RecordedMotion, ScriptedMotion
+from olive_sim.imu_model import MOTION_SOURCES, CommandedMotion, Motion, RecordedMotion, ScriptedMotion
 from olive_sim.imu_output import ImuOutput
 from olive_sim.module_node import OliveModule, describe, run_module
 from olive_sim.quaternion import Quaternion
@@ -32,15 +32,17 @@ class ImuModule(OliveModule):
         source = self.get_parameter('motion').value
         if source not in MOTION_SOURCES:
             raise ValueError(f"unknown motion '{source}' (expected one of {', '.join(MOTION_SOURCES)})")
+        self.motion: Motion
         if source == 'scripted':
             self.motion = ScriptedMotion()
         elif source == 'file':
             self.motion = RecordedMotion(self.get_parameter('motion_file').value)
         else:
-            self.motion = CommandedMotion(self.get_parameter('command_max_rate').value)
+            commanded = CommandedMotion(self.get_parameter('command_max_rate').value)
             held = self.handover.get('held')  # the hand still holds the IMU after a restart
             if isinstance(held, list) and len(held) == 4:
-                self.motion.hold(tuple(held))
+                commanded.hold((held[0], held[1], held[2], held[3]))
+            self.motion = commanded
             # A simulator control, so it lives under the node's name, not in the module's topics.
             self.create_subscription(QuaternionMsg, '~/true_orientation', self._on_command, 10)
         self.output = ImuOutput(self, self.topic, f'{namespace}_base_link', self.motion.orientation)
@@ -53,7 +55,8 @@ class ImuModule(OliveModule):
         q: Quaternion = (msg.x, msg.y, msg.z, msg.w)
         try:
             with self.output.lock:
-                self.motion.command(q)
+                if isinstance(self.motion, CommandedMotion):  # always: only motion:=command subscribes
+                    self.motion.command(q)
         except ValueError as error:
             self.get_logger().warning(f'true_orientation ignored: {error}')
 

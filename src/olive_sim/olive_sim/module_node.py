@@ -22,6 +22,7 @@ from owl_common.periodic import PeriodicThread
 from owl_common.run import spin_node
 from rcl_interfaces.msg import IntegerRange, ParameterDescriptor
 from rclpy.callback_groups import CallbackGroup
+from rclpy.clock import ROSClock
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from rclpy.qos import QoSProfile
@@ -230,7 +231,9 @@ class OliveModule(Node):
         """The node's ROS time in ns, for stamps. Clock.now() costs as much as a publication, so
         the system clock (which ROS time is without sim time) is read directly when it is the same."""
         clock = self.get_clock()
-        return clock.now().nanoseconds if clock.ros_time_is_active else time.time_ns()
+        if isinstance(clock, ROSClock) and clock.ros_time_is_active:  # a node's clock is a ROSClock
+            return clock.now().nanoseconds
+        return time.time_ns()
 
     def create_polled_subscription(self, msg_type: type, topic: str, callback: Callable[[Any], None],
                                    qos: QoSProfile | int, raw: bool = False) -> PolledSubscription:

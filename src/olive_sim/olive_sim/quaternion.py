@@ -84,4 +84,4 @@ def angle_between(a: Quaternion, b: Quaternion) -> float:
 def slerp(a: Quaternion, b: Quaternion, fraction: float) -> Quaternion:
     """The rotation `fraction` of the way from a to b along the shortest arc."""
     step = to_rotation_vector(multiply(conjugate(a), b))
-    return multiply(a, from_rotation_vector(tuple(c * fraction for c in step)))
+    return multiply(a, from_rotation_vector((step[0] * fraction, step[1] * fraction, step[2] * fraction)))

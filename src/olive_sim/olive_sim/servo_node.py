@@ -16,6 +16,7 @@ from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
 from rcl_interfaces.msg import FloatingPointRange, IntegerRange, SetParametersResult
 from rclpy.parameter import Parameter
 from rclpy.serialization import serialize_message
+from rclpy.subscription import Subscription
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float32
 from std_srvs.srv import Trigger
@@ -98,7 +99,7 @@ class ServoModule(OliveModule):
         self.joint_publisher = self.create_publisher(JointState, self.topic('joint'), 10)
         self.diagnostics_publisher = self.create_publisher(
             DiagnosticStatus, self.topic('joint/diagnostics'), 10)
-        self.goal_subscription = None
+        self.goal_subscription: Subscription | None = None
         self._subscribe_for_mode(mode)
         self.create_service(Trigger, self.topic('setTorqueEnable'), self._on_torque_enable)
         self.create_service(Trigger, self.topic('setTorqueDisable'), self._on_torque_disable)

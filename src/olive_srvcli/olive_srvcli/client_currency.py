@@ -12,21 +12,21 @@ from olive_srvcli.command_line import argument_or_exit, euros_argument
 
 class CurrencyClient(Node):
 
-    def __init__(self):
+    def __init__(self) -> None:
         super().__init__('currency_client')
         self.cli = self.create_client(CurrencyConv, 'currency_conversion')
         while not self.cli.wait_for_service(timeout_sec=1.0):
             self.get_logger().info('service not available, waiting again..')
         self.req = CurrencyConv.Request()
 
-    def send_request(self, euros):
+    def send_request(self, euros: float) -> CurrencyConv.Response:
         self.req.euros = euros
         self.future = self.cli.call_async(self.req)
         rclpy.spin_until_future_complete(self, self.future)
         return self.future.result()
 
 
-def main(args=None):
+def main(args: list[str] | None = None) -> None:
     euros = argument_or_exit(euros_argument, '<euros>', args)  # a bad one: one line, exit code 2
     rclpy.init(args=args)
     currency_client = None

@@ -12,21 +12,21 @@ from olive_srvcli.command_line import argument_or_exit, integer_argument
 
 class FactorialClient(Node):
 
-    def __init__(self):
+    def __init__(self) -> None:
         super().__init__('factorial_client')
         self.cli = self.create_client(Factorial, 'factorial')
         while not self.cli.wait_for_service(timeout_sec=1.0):
             self.get_logger().info('service not available, waiting again..')
         self.req = Factorial.Request()
 
-    def send_request(self, n):
+    def send_request(self, n: int) -> Factorial.Response:
         self.req.n = n
         self.future = self.cli.call_async(self.req)
         rclpy.spin_until_future_complete(self, self.future)
         return self.future.result()
 
 
-def main(args=None):
+def main(args: list[str] | None = None) -> None:
     n = argument_or_exit(integer_argument, '<n>', args)  # a bad one: one line, exit code 2
     rclpy.init(args=args)
     factorial_client = None

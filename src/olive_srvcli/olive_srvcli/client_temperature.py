@@ -10,21 +10,21 @@ from olive_srvcli.command_line import argument_or_exit, celsius_argument
 
 class TempClient(Node):
 
-    def __init__(self):
+    def __init__(self) -> None:
         super().__init__('temp_client')
         self.cli = self.create_client(TempConv, 'temp_conversion')
         while not self.cli.wait_for_service(timeout_sec=1.0):
             self.get_logger().info('service not available, waiting again..')
         self.req = TempConv.Request()
 
-    def send_request(self, temp_c):
+    def send_request(self, temp_c: float) -> TempConv.Response:
         self.req.temp_c = temp_c
         self.future = self.cli.call_async(self.req)
         rclpy.spin_until_future_complete(self, self.future)
         return self.future.result()
 
 
-def main(args=None):
+def main(args: list[str] | None = None) -> None:
     # The course's float(sys.argv[1]), checked: a bad command line ends here with one line, code 2.
     temp_c = argument_or_exit(celsius_argument, '<celsius>', args)
     rclpy.init(args=args)

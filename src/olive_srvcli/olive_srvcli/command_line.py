@@ -14,13 +14,14 @@ from rclpy.utilities import remove_ros_args
 from olive_srvcli.conversions import check_celsius
 
 Value = TypeVar('Value')
+Number = TypeVar('Number', int, float)
 
 
 class UsageError(Exception):
     """The command line cannot become a request; the message says why."""
 
 
-def number_argument(argv: list[str], what: str, kind: type = float) -> float | int:
+def number_argument(argv: list[str], what: str, kind: type[Number]) -> Number:
     """The single command-line argument as a number of the given kind (a float must be finite)."""
     if len(argv) != 1:
         raise UsageError(f'expected exactly one argument, {what}; got {len(argv)}')
@@ -36,7 +37,7 @@ def number_argument(argv: list[str], what: str, kind: type = float) -> float | i
 
 
 def celsius_argument(argv: list[str]) -> float:
-    temp_c = number_argument(argv, 'a temperature in Celsius')
+    temp_c = number_argument(argv, 'a temperature in Celsius', kind=float)
     problem = check_celsius(temp_c)
     if problem:
         raise UsageError(problem)
@@ -44,7 +45,7 @@ def celsius_argument(argv: list[str]) -> float:
 
 
 def euros_argument(argv: list[str]) -> float:
-    euros = number_argument(argv, 'an amount in euros')
+    euros = number_argument(argv, 'an amount in euros', kind=float)
     if euros < 0:
         raise UsageError(f'the amount must not be negative, got {euros}')
     return euros

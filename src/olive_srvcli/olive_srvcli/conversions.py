@@ -2,6 +2,7 @@
 
 import math
 from dataclasses import dataclass
+from typing import Generic, TypeVar
 
 ABSOLUTE_ZERO_C = -273.15
 MAX_FACTORIAL_INPUT = 20  # 21! no longer fits the uint64 in Factorial.srv
@@ -16,11 +17,14 @@ def celsius_to_fahrenheit(temp_c: float) -> float:
     return temp_c * 9 / 5 + 32
 
 
+Value = TypeVar('Value')
+
+
 @dataclass(frozen=True)
-class Outcome:
+class Outcome(Generic[Value]):
     """A computed value, or the reason there is none."""
 
-    value: object = None
+    value: Value | None = None
     error: str = ''
 
     @property
@@ -37,7 +41,7 @@ def check_celsius(temp_c: float) -> str:
     return ''
 
 
-def convert_euros(euros: float, rates: dict[str, float]) -> Outcome:
+def convert_euros(euros: float, rates: dict[str, float]) -> Outcome[dict[str, float]]:
     """euros in each currency of rates (currency -> units per euro), rounded to cents."""
     if not math.isfinite(euros):
         return Outcome(error=f'{euros} is not a finite amount')
@@ -46,7 +50,7 @@ def convert_euros(euros: float, rates: dict[str, float]) -> Outcome:
     return Outcome(value={name: round(euros * rate, 2) for name, rate in rates.items()})
 
 
-def factorial(n: int) -> Outcome:
+def factorial(n: int) -> Outcome[int]:
     """n! for 0 <= n <= 20, exact."""
     if n < 0:
         return Outcome(error=f'the factorial of a negative number ({n}) is not defined')

@@ -22,7 +22,7 @@ RATE_RANGE = FloatingPointRange(from_value=0.0001, to_value=10000.0)
 
 class CurrencyService(Node):
 
-    def __init__(self):
+    def __init__(self) -> None:
         super().__init__('currency_service')
         for name, default in DEFAULT_RATES.items():
             currency = name.split('_')[0].upper()
@@ -30,12 +30,13 @@ class CurrencyService(Node):
                 description=f'{currency} for one euro.', floating_point_range=[RATE_RANGE]))
         self.srv = self.create_service(CurrencyConv, 'currency_conversion', self.convert_callback)
 
-    def convert_callback(self, request, response):
+    def convert_callback(self, request: CurrencyConv.Request,
+                         response: CurrencyConv.Response) -> CurrencyConv.Response:
         self.get_logger().info(f'Incoming request: {request.euros} euros')
         rates = {name: self.get_parameter(name).value for name in DEFAULT_RATES}
         outcome = convert_euros(request.euros, rates)
         response.success = outcome.ok
-        if not outcome.ok:
+        if outcome.value is None:  # not ok: error says why
             response.message = outcome.error
             self.get_logger().warn(f'Refusing request: {outcome.error}')
             return response
@@ -45,7 +46,7 @@ class CurrencyService(Node):
         return response
 
 
-def main(args=None):
+def main(args: list[str] | None = None) -> None:
     rclpy.init(args=args)
     currency_service = None
     try:

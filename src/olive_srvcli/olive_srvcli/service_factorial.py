@@ -12,11 +12,12 @@ from olive_srvcli.conversions import factorial
 
 class FactorialService(Node):
 
-    def __init__(self):
+    def __init__(self) -> None:
         super().__init__('factorial_service')
         self.srv = self.create_service(Factorial, 'factorial', self.factorial_callback)
 
-    def factorial_callback(self, request, response):
+    def factorial_callback(self, request: Factorial.Request,
+                           response: Factorial.Response) -> Factorial.Response:
         self.get_logger().info(f'Incoming request: {request.n}!')
         outcome = factorial(request.n)
         response.success = outcome.ok
@@ -28,7 +29,7 @@ class FactorialService(Node):
         return response
 
 
-def main(args=None):
+def main(args: list[str] | None = None) -> None:
     rclpy.init(args=args)
     factorial_service = None
     try:

@@ -12,11 +12,12 @@ from olive_srvcli.conversions import celsius_to_fahrenheit, celsius_to_kelvin, c
 
 class TempService(Node):
 
-    def __init__(self):
+    def __init__(self) -> None:
         super().__init__('temp_service')
         self.srv = self.create_service(TempConv, 'temp_conversion', self.temp_conversion_callback)
 
-    def temp_conversion_callback(self, request, response):
+    def temp_conversion_callback(self, request: TempConv.Request,
+                                 response: TempConv.Response) -> TempConv.Response:
         self.get_logger().info(f'Incoming request\nTemperature in Celsius: {request.temp_c}')
         problem = check_celsius(request.temp_c)
         if problem:
@@ -29,7 +30,7 @@ class TempService(Node):
         return response
 
 
-def main(args=None):
+def main(args: list[str] | None = None) -> None:
     rclpy.init(args=args)
     temp_service = None
     try:

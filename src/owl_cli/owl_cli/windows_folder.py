@@ -72,7 +72,7 @@ def window_of(path: Path, program: str, pid: int) -> Window | None:
 def scan(root: Path) -> list[Window]:
     """Every window of a running program under root, ordered by program, pid and name. Folders of
     programs that ended without removing them (killed) are left out."""
-    windows = []
+    windows: list[Window] = []
     try:
         folders = list(root.iterdir())
     except OSError:

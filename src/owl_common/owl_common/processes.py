@@ -18,6 +18,7 @@ import threading
 import time
 from collections.abc import Iterable
 from pathlib import Path
+from typing import IO
 
 # `ros2` verbs start a graph daemon per domain that outlives them, listening on this port + N.
 ROS2_DAEMON_BASE_PORT = 11511
@@ -42,7 +43,7 @@ class DomainLease:
                 handle.close()
                 continue
             self.domain_id = domain_id
-            self._handle = handle
+            self._handle: IO[str] | None = handle
             return
         raise RuntimeError(f'all ROS domains {DOMAIN_IDS.start}..{DOMAIN_IDS.stop - 1} are in use')
 
@@ -177,6 +178,7 @@ class RosProcess:
     def stop_cleanly(self, timeout: float = 5.0) -> None:
         """stop(), and fail with the output's tail unless Ctrl-C alone ended it with exit code 0."""
         code = self.stop(timeout)
+        assert self.last_signal is not None  # stop() sends SIGINT at least
         if code != 0:
             raise AssertionError(
                 f'{self.label}: exit code {code} after {signal.Signals(self.last_signal).name}; '

@@ -62,6 +62,8 @@ def web_dir() -> Path | None:
 
 def library_packages(web: Path | None) -> list[str]:
     """The npm packages the pages may load: web/package.json's dependencies."""
+    if web is None:
+        return []
     try:
         return sorted(json.loads((web / 'package.json').read_text())['dependencies'])
     except (TypeError, OSError, ValueError, KeyError):
@@ -471,7 +473,7 @@ class WebServer:
     def _library_file(self, rest: str) -> Path | None:
         """web/node_modules/<package>/<path> for a package of web/package.json, never outside it."""
         package = next((p for p in self.libraries if rest.startswith(p + '/')), None)
-        if package is None or not rest.endswith(LIBRARY_SUFFIXES):
+        if package is None or self.web is None or not rest.endswith(LIBRARY_SUFFIXES):
             return None
         base = (self.web / 'node_modules' / package).resolve()
         file = (base / rest.removeprefix(package + '/')).resolve()

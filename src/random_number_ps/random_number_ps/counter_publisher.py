@@ -10,19 +10,19 @@ from std_msgs.msg import Int32
 
 class CounterPublisher(Node):
 
-    def __init__(self):
+    def __init__(self) -> None:
         super().__init__('counter_publisher')
         self.publisher_ = self.create_publisher(Int32, 'random_numbers', 10)
         self.count = 0
         self.timer = self.create_timer(1.0, self.publish_next)
 
-    def publish_next(self):
+    def publish_next(self) -> None:
         self.count += 1
         self.get_logger().info(f'Publishing: {self.count}')
         self.publisher_.publish(Int32(data=self.count))
 
 
-def main(args=None):
+def main(args: list[str] | None = None) -> None:
     rclpy.init(args=args)
     counter_publisher = None
     try:

@@ -17,7 +17,7 @@ from random_number_ps.limits import check_limits
 
 class RandomNumberPublisher(Node):
 
-    def __init__(self):
+    def __init__(self) -> None:
         super().__init__('random_number_publisher')
         self.declare_parameter(
             'upper_limit', 100,
@@ -43,7 +43,7 @@ class RandomNumberPublisher(Node):
         reason = check_limits(lower, upper)
         return SetParametersResult(successful=reason is None, reason=reason or '')
 
-    def publish_random_number(self):
+    def publish_random_number(self) -> None:
         random_number = random.randint(self._limit('lower_limit'), self._limit('upper_limit'))
         self.get_logger().info(f'Publishing: {random_number}')
         msg = Int32()
@@ -51,7 +51,7 @@ class RandomNumberPublisher(Node):
         self.publisher_.publish(msg)
 
 
-def main(args=None):
+def main(args: list[str] | None = None) -> None:
     rclpy.init(args=args)
     random_number_publisher = None
     try:

@@ -10,16 +10,16 @@ from std_msgs.msg import Int32
 
 class RandomNumberSubscriber(Node):
 
-    def __init__(self):
+    def __init__(self) -> None:
         super().__init__('random_number_subscriber')
         self.subscription = self.create_subscription(
             Int32, 'random_numbers', self.random_number_callback, 10)
 
-    def random_number_callback(self, msg: Int32):
+    def random_number_callback(self, msg: Int32) -> None:
         self.get_logger().info(f'Received: {msg.data}')
 
 
-def main(args=None):
+def main(args: list[str] | None = None) -> None:
     rclpy.init(args=args)
     random_number_subscriber = None
     try:

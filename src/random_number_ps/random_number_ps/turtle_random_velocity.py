@@ -28,7 +28,7 @@ def _speed_limit(description: str) -> ParameterDescriptor:
 
 class TurtleRandomVelocity(Node):
 
-    def __init__(self):
+    def __init__(self) -> None:
         super().__init__('turtle_random_velocity')
         self.declare_parameter('max_linear', 2.0, _speed_limit('Largest forward speed, m/s.'))
         self.declare_parameter('max_angular', 2.0, _speed_limit('Largest turn rate, rad/s.'))
@@ -42,7 +42,7 @@ class TurtleRandomVelocity(Node):
         self.rng = random.Random()
         self.timer = self.create_timer(self.get_parameter('period').value, self.publish_velocity)
 
-    def publish_velocity(self):
+    def publish_velocity(self) -> None:
         twist = random_twist(
             self.rng, self.get_parameter('max_linear').value, self.get_parameter('max_angular').value)
         self.get_logger().info(
@@ -50,7 +50,7 @@ class TurtleRandomVelocity(Node):
         self.publisher_.publish(twist)
 
 
-def main(args=None):
+def main(args: list[str] | None = None) -> None:
     rclpy.init(args=args)
     turtle_random_velocity = None
     try:

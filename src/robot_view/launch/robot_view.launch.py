@@ -7,7 +7,7 @@ from launch_ros.actions import Node
 from olive_sim.kit import OWL_KIT
 
 
-def generate_launch_description():
+def generate_launch_description() -> LaunchDescription:
     modules = []
     for module in OWL_KIT:
         parameters = dict(module.parameters)

@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 import threading
 import time
+from functools import partial
 from typing import Any
 
 from diagnostic_msgs.msg import DiagnosticStatus
@@ -71,7 +72,7 @@ class RobotViewNode(Node):
         self._get_parameters: dict[str, Client] = {}
         for servo in SERVOS:
             self.create_subscription(JointState, f'/olive/servo/{servo}/joint',
-                                     lambda message, servo=servo: self._on_joint(servo, message), 10)
+                                     partial(self._on_joint, servo), 10)
             goal_topic = f'/olive/servo/{servo}/goal/position'
             # Every goal on the topic is plotted, the page's and any other node's. Taken just before
             # each joint message is handled, not by executor callbacks: imu_control_robot sends
@@ -79,9 +80,9 @@ class RobotViewNode(Node):
             # a core (29 % instead of 23 %, with a page open); a goal is at most one joint period
             # (10 ms) late in the plot, within its 20 ms bucket.
             self._goals[servo] = PolledSubscription(
-                self, Float32, goal_topic, lambda message, servo=servo: self._on_goal(servo, message), 10)
+                self, Float32, goal_topic, partial(self._on_goal, servo), 10)
             self.create_subscription(DiagnosticStatus, f'/olive/servo/{servo}/joint/diagnostics',
-                                     lambda message, servo=servo: self._on_diagnostics(servo, message), 10)
+                                     partial(self._on_diagnostics, servo), 10)
             self._goal_publishers[servo] = self.create_publisher(Float32, goal_topic, 10)
             for enabled, service in ((True, 'setTorqueEnable'), (False, 'setTorqueDisable')):
                 self._torque_clients[servo, enabled] = self.create_client(

@@ -13,7 +13,8 @@ from .error import CvBridgeError
 def byte_array(data: object) -> np.ndarray:
     """A message's uint8[] field (array.array in rclpy, or bytes) as uint8, without a copy."""
     try:
-        return np.frombuffer(data, dtype=np.uint8)
+        # object, not a buffer type: a message field can hold anything, and the error says what.
+        return np.frombuffer(data, dtype=np.uint8)  # type: ignore[call-overload]
     except (TypeError, ValueError):
         raise CvBridgeError(f'image data must be bytes, not {type(data).__name__}') from None
 

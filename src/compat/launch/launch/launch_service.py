@@ -116,7 +116,7 @@ class LaunchService:
             self.__logger.error('make sure no processes launched are still running')
             main_task.cancel()
 
-        installed = []
+        installed: list[int] = []
         for sig, handler, args in ((signal.SIGINT, on_sigint, ()),
                                    (signal.SIGTERM, on_terminate, ('SIGTERM',)),
                                    (signal.SIGQUIT, on_terminate, ('SIGQUIT',))):

@@ -12,6 +12,7 @@ import os
 import socket
 import sys
 from pathlib import Path
+from typing import TextIO
 
 SCREEN_FORMAT = '[{levelname}] [{name}]: {msg}'
 LOG_FILE_FORMAT = '{created:.7f} [{levelname}] [{name}]: {msg}'
@@ -36,12 +37,12 @@ class _StdoutHandler(logging.StreamHandler):
     def __init__(self) -> None:
         super().__init__(sys.stdout)
 
-    @property  # type: ignore[override]
-    def stream(self):
+    @property
+    def stream(self) -> TextIO:
         return sys.stdout
 
     @stream.setter
-    def stream(self, _value) -> None:
+    def stream(self, _value: TextIO) -> None:
         pass
 
 

@@ -65,9 +65,9 @@ class ParameterFile:
         except yaml.YAMLError as error:
             raise ValueError(f"parameter file '{path}' is not valid YAML after substitution: "
                              f'{error}') from None
-        with tempfile.NamedTemporaryFile('w', prefix='launch_params_', delete=False) as handle:
-            handle.write(text)
-        return handle.name
+        with tempfile.NamedTemporaryFile('w', prefix='launch_params_', delete=False) as substituted:
+            substituted.write(text)
+        return substituted.name
 
 
 class Parameter:

@@ -86,7 +86,7 @@ def load_pins(requirements: Path | None) -> dict[str, str]:
 
 
 def load_wheel_table(path: Path = WHEEL_TABLE) -> dict[str, str]:
-    table = {}
+    table: dict[str, str] = {}
     for line in path.read_text(encoding='utf-8').splitlines():
         if line and not line.startswith('#'):
             name, version = line.split('\t')

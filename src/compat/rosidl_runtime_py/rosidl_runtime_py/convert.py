@@ -21,7 +21,7 @@ from rosidl_parser.definition import (
 from rosidl_runtime_py.utilities import is_message
 
 
-class _Fields(OrderedDict):  # type: ignore[type-arg]
+class _Fields(OrderedDict[str, Any]):
     """A message's fields in declaration order (dumped as a block mapping, never sorted)."""
 
 

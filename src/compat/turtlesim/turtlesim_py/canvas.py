@@ -12,6 +12,7 @@ import math
 from collections.abc import Iterable
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import cast
 
 from PIL import Image, ImageDraw
 
@@ -69,7 +70,7 @@ class Canvas:
         x, y = pixel
         if not (0 <= x < self.size and 0 <= y < self.size):
             return (0, 0, 0)
-        r, g, b, _ = self.path.getpixel((x, y))
+        r, g, b, _ = cast(tuple[int, int, int, int], self.path.getpixel((x, y)))  # an RGBA layer
         return (r, g, b)
 
     def render(self, background: tuple[int, int, int], turtles: Iterable[SpriteView]) -> Image.Image:
@@ -120,7 +121,7 @@ def _sprite_degrees(theta: float) -> int:
 def rotated_sprite(look: int, degrees: int) -> Image.Image:
     """The sprite turned to face `degrees` counter-clockwise from +x (screen right)."""
     # The drawing faces up (90 degrees); PIL rotates counter-clockwise.
-    return turtle_sprite(look).rotate(degrees - 90, resample=Image.BICUBIC, expand=True)
+    return turtle_sprite(look).rotate(degrees - 90, resample=Image.Resampling.BICUBIC, expand=True)
 
 
 @lru_cache(maxsize=len(SHELL_COLORS))

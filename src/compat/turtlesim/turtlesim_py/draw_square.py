@@ -14,6 +14,7 @@ from dataclasses import dataclass
 from geometry_msgs.msg import Twist
 from owl_common.run import spin_node
 from rclpy.node import Node
+from rclpy.task import Future
 from std_srvs.srv import Empty
 from turtlesim.msg import Pose
 
@@ -91,7 +92,7 @@ class DrawSquare(Node):
         self._ready = False  # poses count only once the reset has been answered
         self.create_timer(0.016, self._tick)
 
-    def _on_reset_done(self, _future) -> None:
+    def _on_reset_done(self, _future: Future) -> None:
         self._ready = True
 
     def _on_pose(self, pose: Pose) -> None:
@@ -100,7 +101,7 @@ class DrawSquare(Node):
         self._pose = pose
         if self._goal is None:
             self._goal = goal_ahead(pose)
-            self._log_goal()
+            self._log_goal(self._goal)
 
     def _tick(self) -> None:
         if not self._reset_sent:
@@ -118,10 +119,9 @@ class DrawSquare(Node):
         self._cmd.publish(twist)
         if goal is not self._goal:
             self._goal = goal
-            self._log_goal()
+            self._log_goal(goal)
 
-    def _log_goal(self) -> None:
-        g = self._goal
+    def _log_goal(self, g: Goal) -> None:
         self.get_logger().info(f'New goal [{g.x:f} {g.y:f}, {g.theta:f}]')
 
 

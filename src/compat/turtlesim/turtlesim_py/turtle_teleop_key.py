@@ -22,6 +22,7 @@ from rclpy.action import ActionClient
 from rclpy.action.client import ClientGoalHandle
 from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.node import Node
+from rclpy.task import Future
 from turtlesim.action import RotateAbsolute
 
 from turtlesim_py.rclcpp_parameters import declare_parameter_events_qos
@@ -161,7 +162,7 @@ class TeleopTurtle(Node):
         future = self._rotate.send_goal_async(RotateAbsolute.Goal(theta=theta))
         future.add_done_callback(self._on_goal_response)
 
-    def _on_goal_response(self, future) -> None:
+    def _on_goal_response(self, future: Future) -> None:
         self.get_logger().debug('Goal response received')
         handle = future.result()
         if handle is not None and handle.accepted:

@@ -363,7 +363,7 @@ class TurtlesimNode(Node):
             self._mark_changed()
 
     def background(self) -> tuple[int, int, int]:
-        return tuple(self.get_parameter(f'background_{c}').value for c in 'rgb')  # type: ignore[return-value]
+        return tuple(self.get_parameter(f'background_{c}').value for c in 'rgb')
 
     def render(self) -> Image.Image:
         views = [SpriteView(name, *world.to_pixels(e.turtle.x, e.turtle.y_down), e.turtle.theta,
@@ -428,9 +428,9 @@ class TurtlesimNode(Node):
         self._stale -= due
         for consumer in due:
             self._last_frame[consumer] = now
-        if 'window' in due:
+        if 'window' in due and self.window is not None:  # closed since it was marked: no frame
             self.window.show(frame)
-        if 'image' in due:
+        if 'image' in due and self._image_pub is not None:
             message = CompressedImage(format='png', data=encode_png(frame))
             message.header.stamp = self.get_clock().now().to_msg()
             message.header.frame_id = 'turtlesim'

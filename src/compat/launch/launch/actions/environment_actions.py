@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+from collections.abc import MutableMapping
 from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
@@ -23,14 +24,14 @@ if TYPE_CHECKING:
 @expose_action('set_env')
 class SetEnvironmentVariable(SetNamedValue):
     @staticmethod
-    def entries(context: LaunchContext) -> dict[str, str]:
+    def entries(context: LaunchContext) -> MutableMapping[str, str]:
         return context.environment
 
 
 @expose_action('unset_env')
 class UnsetEnvironmentVariable(UnsetNamedValue):
     @staticmethod
-    def entries(context: LaunchContext) -> dict[str, str]:
+    def entries(context: LaunchContext) -> MutableMapping[str, str]:
         return context.environment
 
 

@@ -72,8 +72,9 @@ class GroupAction(Action):
         if self.forwarding:
             return [PushLaunchConfigurations(), PushEnvironment(), *settings, *self.actions,
                     PopEnvironment(), PopLaunchConfigurations()]
-        kept = {perform_substitutions(context, k): perform_substitutions(context, v)
-                for k, v in self.launch_configurations}
+        kept: dict[SomeSubstitutionsType, SomeSubstitutionsType] = {
+            perform_substitutions(context, k): perform_substitutions(context, v)
+            for k, v in self.launch_configurations}
         return [PushLaunchConfigurations(), PushEnvironment(), ResetEnvironment(),
                 ResetLaunchConfigurations(kept), *self.actions,
                 PopEnvironment(), PopLaunchConfigurations()]

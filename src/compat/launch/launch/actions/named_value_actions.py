@@ -6,6 +6,7 @@ Set/Unset actions differ only in which map they change (`entries`).
 
 from __future__ import annotations
 
+from collections.abc import MutableMapping
 from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
@@ -28,7 +29,7 @@ class NamedValueAction(Action):
         self.name = normalize_to_list_of_substitutions(name)
 
     @staticmethod
-    def entries(context: LaunchContext) -> dict[str, str]:
+    def entries(context: LaunchContext) -> MutableMapping[str, str]:
         raise NotImplementedError
 
 

@@ -2,16 +2,17 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
-from typing import TYPE_CHECKING, Any
+from collections.abc import Callable
+from typing import TYPE_CHECKING, TypeAlias
 
-from launch.event_handler import BaseEventHandler, EventHandler
+from launch.event_handler import BaseEventHandler, EventHandler, SomeEntitiesType
 from launch.events import ExecutionComplete, Shutdown
 from launch.events import IncludeLaunchDescription as IncludeLaunchDescriptionEvent
-from launch.events.process import ProcessExited, ProcessIO, ProcessStarted
+from launch.events.process import ProcessExited, ProcessIO, ProcessStarted, RunningProcessEvent
 from launch.launch_description_entity import LaunchDescriptionEntity
 
 if TYPE_CHECKING:
+    from launch.action import Action
     from launch.event import Event
     from launch.launch_context import LaunchContext
 
@@ -28,10 +29,16 @@ __all__ = [
 ]
 
 # A reaction: entities, or a callable (event, context) -> entities | None.
-SomeActionsOrCallable = Any
+SomeActionsOrCallable: TypeAlias = (
+    'SomeEntitiesType | Callable[[Event, LaunchContext], SomeEntitiesType | None]')
+# Whose events a handler takes: any action's (None), one action's, or those a callable accepts.
+TargetAction: TypeAlias = 'LaunchDescriptionEntity | Callable[[Action], object] | None'
+# The events that carry the action they are about.
+ActionEventType: TypeAlias = 'type[ExecutionComplete] | type[RunningProcessEvent]'
 
 
-def _entities_or_callable(on_event: SomeActionsOrCallable) -> Callable[[Event, LaunchContext], Any]:
+def _entities_or_callable(on_event: SomeActionsOrCallable
+                          ) -> Callable[[Event, LaunchContext], SomeEntitiesType | None]:
     """Check a reaction once, at construction, and turn it into a callable."""
     if callable(on_event) and not isinstance(on_event, LaunchDescriptionEntity):
         return on_event
@@ -42,7 +49,8 @@ def _entities_or_callable(on_event: SomeActionsOrCallable) -> Callable[[Event, L
     return lambda _event, _context: entities
 
 
-def _action_matcher(target_action: Any, *, processes_only: bool = False) -> Callable[[Any], bool]:
+def _action_matcher(target_action: TargetAction, *, processes_only: bool = False
+                    ) -> Callable[[Action], bool]:
     """Which actions' events a handler takes: all (None), one action, or those a callable accepts.
 
     For process events (processes_only) an action target must be a process action
@@ -67,10 +75,8 @@ def _action_matcher(target_action: Any, *, processes_only: bool = False) -> Call
 class OnActionEventBase(BaseEventHandler):
     """Reacts to events of one class that belong to the target action(s)."""
 
-    def __init__(self, *, event_type: type, on_event: SomeActionsOrCallable,
-                 target_action: Any = None, handle_once: bool = False) -> None:
-        from launch.events.process import RunningProcessEvent
-
+    def __init__(self, *, event_type: ActionEventType, on_event: SomeActionsOrCallable,
+                 target_action: TargetAction = None, handle_once: bool = False) -> None:
         action_matches = _action_matcher(target_action,
                                          processes_only=issubclass(event_type, RunningProcessEvent))
         super().__init__(
@@ -78,27 +84,27 @@ class OnActionEventBase(BaseEventHandler):
             handle_once=handle_once)
         self._on_event = _entities_or_callable(on_event)
 
-    def handle(self, event: Event, context: LaunchContext) -> Iterable[LaunchDescriptionEntity] | None:
+    def handle(self, event: Event, context: LaunchContext) -> SomeEntitiesType | None:
         super().handle(event, context)
         return self._on_event(event, context)
 
 
 class OnProcessStart(OnActionEventBase):
-    def __init__(self, *, target_action: Any = None, on_start: SomeActionsOrCallable,
+    def __init__(self, *, target_action: TargetAction = None, on_start: SomeActionsOrCallable,
                  handle_once: bool = False) -> None:
         super().__init__(event_type=ProcessStarted, on_event=on_start, target_action=target_action,
                          handle_once=handle_once)
 
 
 class OnProcessExit(OnActionEventBase):
-    def __init__(self, *, target_action: Any = None, on_exit: SomeActionsOrCallable,
+    def __init__(self, *, target_action: TargetAction = None, on_exit: SomeActionsOrCallable,
                  handle_once: bool = False) -> None:
         super().__init__(event_type=ProcessExited, on_event=on_exit, target_action=target_action,
                          handle_once=handle_once)
 
 
 class OnExecutionComplete(OnActionEventBase):
-    def __init__(self, *, target_action: Any = None, on_completion: SomeActionsOrCallable,
+    def __init__(self, *, target_action: TargetAction = None, on_completion: SomeActionsOrCallable,
                  handle_once: bool = False) -> None:
         super().__init__(event_type=ExecutionComplete, on_event=on_completion,
                          target_action=target_action, handle_once=handle_once)
@@ -107,10 +113,10 @@ class OnExecutionComplete(OnActionEventBase):
 class OnProcessIO(BaseEventHandler):
     """Callbacks get the ProcessIO event only (text is bytes)."""
 
-    def __init__(self, *, target_action: Any = None,
-                 on_stdin: Callable[[ProcessIO], Any] | None = None,
-                 on_stdout: Callable[[ProcessIO], Any] | None = None,
-                 on_stderr: Callable[[ProcessIO], Any] | None = None,
+    def __init__(self, *, target_action: TargetAction = None,
+                 on_stdin: Callable[[ProcessIO], SomeEntitiesType | None] | None = None,
+                 on_stdout: Callable[[ProcessIO], SomeEntitiesType | None] | None = None,
+                 on_stderr: Callable[[ProcessIO], SomeEntitiesType | None] | None = None,
                  handle_once: bool = False) -> None:
         action_matches = _action_matcher(target_action, processes_only=True)
         self._callbacks = {0: on_stdin, 1: on_stdout, 2: on_stderr}
@@ -119,13 +125,15 @@ class OnProcessIO(BaseEventHandler):
                                    and self._callback(event) is not None),
             handle_once=handle_once)
 
-    def _callback(self, event: ProcessIO) -> Callable[[ProcessIO], Any] | None:
+    def _callback(self, event: ProcessIO) -> Callable[[ProcessIO], SomeEntitiesType | None] | None:
         fd = 1 if event.from_stdout else 2 if event.from_stderr else 0
         return self._callbacks[fd]
 
-    def handle(self, event: Event, context: LaunchContext) -> Iterable[LaunchDescriptionEntity] | None:
+    def handle(self, event: Event, context: LaunchContext) -> SomeEntitiesType | None:
         super().handle(event, context)
-        callback = self._callback(event)  # type: ignore[arg-type]
+        if not isinstance(event, ProcessIO):  # the matcher lets only ProcessIO through
+            return None
+        callback = self._callback(event)
         return callback(event) if callback is not None else None
 
 
@@ -134,7 +142,7 @@ class OnShutdown(BaseEventHandler):
         super().__init__(matcher=lambda event: isinstance(event, Shutdown), handle_once=handle_once)
         self._on_shutdown = _entities_or_callable(on_shutdown)
 
-    def handle(self, event: Event, context: LaunchContext) -> Iterable[LaunchDescriptionEntity] | None:
+    def handle(self, event: Event, context: LaunchContext) -> SomeEntitiesType | None:
         super().handle(event, context)
         return self._on_shutdown(event, context)
 
@@ -145,7 +153,7 @@ class OnIncludeLaunchDescription(EventHandler):
     def __init__(self) -> None:
         super().__init__(matcher=lambda event: isinstance(event, IncludeLaunchDescriptionEvent))
 
-    def handle(self, event: Event, context: LaunchContext) -> Iterable[LaunchDescriptionEntity] | None:
+    def handle(self, event: Event, context: LaunchContext) -> SomeEntitiesType | None:
         super().handle(event, context)
         return [event.launch_description]  # type: ignore[attr-defined]
 

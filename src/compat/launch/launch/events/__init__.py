@@ -3,14 +3,16 @@
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from launch.event import Event
 from launch.events import process
 
 if TYPE_CHECKING:
     from launch.action import Action
+    from launch.actions.timer_action import TimerAction
     from launch.launch_description import LaunchDescription
+    from launch.launch_description_entity import LaunchDescriptionEntity
 
 __all__ = [
     'ExecutionComplete', 'IncludeLaunchDescription', 'Shutdown', 'TimerEvent', 'matches_action',
@@ -31,7 +33,7 @@ class Shutdown(Event):
 class TimerEvent(Event):
     name = 'launch.events.TimerEvent'
 
-    def __init__(self, *, timer_action: Any, actions: list[Any]) -> None:
+    def __init__(self, *, timer_action: TimerAction, actions: list[LaunchDescriptionEntity]) -> None:
         self.timer_action = timer_action
         self.actions = actions
 
@@ -50,6 +52,6 @@ class IncludeLaunchDescription(Event):
         self.launch_description = launch_description
 
 
-def matches_action(target_action: Action) -> Callable[[Any], bool]:
+def matches_action(target_action: Action) -> Callable[[Action], bool]:
     """A matcher for process events and process-targeting events of exactly this action."""
     return lambda action: action is target_action

@@ -6,7 +6,7 @@ import importlib
 import importlib.util
 import os
 import tempfile
-from typing import TYPE_CHECKING, Any, TextIO
+from typing import TYPE_CHECKING, TextIO, overload
 
 from launch.frontend import substitution_parser, type_utils
 from launch.frontend.entity import Entity, LaunchFileError, load_xml_root, load_yaml_root
@@ -113,7 +113,13 @@ class Parser:
     def parse_substitution(self, text: str) -> list[Substitution]:
         return substitution_parser.parse_substitution(text)
 
-    def substitutions(self, value: Any) -> list[Substitution] | None:
+    @overload
+    def substitutions(self, value: None) -> None: ...
+
+    @overload
+    def substitutions(self, value: str | float) -> list[Substitution]: ...
+
+    def substitutions(self, value: object) -> list[Substitution] | None:
         """An attribute value as substitutions (YAML scalars become their text); None stays None."""
         if value is None:
             return None

@@ -3,27 +3,47 @@
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any, Protocol, TypeVar
+
+if TYPE_CHECKING:
+    from launch.frontend.entity import Entity
+    from launch.frontend.parser import Parser
+    from launch.substitution import Substitution
+
+
+class ParsesEntity(Protocol):
+    """An action class a tag builds: its parse classmethod reads the tag into the class to make and
+    that class's constructor arguments (whose types only that class knows)."""
+
+    def parse(self, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]: ...
+
+
+ActionClass = TypeVar('ActionClass', bound=ParsesEntity)
+# One `$(name arg ...)`: each argument is the substitutions of its text.
+SubstitutionArguments = list[list['Substitution']]
 
 # tag -> class with parse(entity, parser) -> (class, constructor kwargs)
-action_parse_methods: dict[str, type] = {}
+action_parse_methods: dict[str, ParsesEntity] = {}
 # name -> function(list of argument substitution lists) -> Substitution
-substitution_parse_methods: dict[str, Callable[[list[list[Any]]], Any]] = {}
+substitution_parse_methods: dict[str, Callable[[SubstitutionArguments], Substitution]] = {}
 
 
-def expose_action(tag: str) -> Callable[[type], type]:
+def expose_action(tag: str) -> Callable[[ActionClass], ActionClass]:
     """Class decorator: the frontend tag `tag` builds this action through its parse classmethod."""
-    def register(cls: type) -> type:
+    def register(cls: ActionClass) -> ActionClass:
         action_parse_methods[tag] = cls
         return cls
     return register
 
 
+SubstitutionMaker = TypeVar('SubstitutionMaker', bound=Callable[..., 'Substitution'])
+
+
 def expose_substitution(name: str, min_args: int = 0, max_args: int | None = None
-                        ) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+                        ) -> Callable[[SubstitutionMaker], SubstitutionMaker]:
     """Function decorator: `$(name arg...)` calls it with the arguments' substitution lists."""
-    def register(function: Callable[..., Any]) -> Callable[..., Any]:
-        def checked(args: list[list[Any]]) -> Any:
+    def register(function: SubstitutionMaker) -> SubstitutionMaker:
+        def checked(args: SubstitutionArguments) -> Substitution:
             upper = min_args if max_args is None else max_args
             if not min_args <= len(args) <= upper:
                 expected = str(min_args) if upper == min_args else f'{min_args} to {upper}'

@@ -9,7 +9,8 @@ integer 1 and so not a bool.
 from __future__ import annotations
 
 from collections.abc import Iterable
-from typing import TYPE_CHECKING, Any, get_args, get_origin
+from types import GenericAlias
+from typing import TYPE_CHECKING, Any, cast, get_args, get_origin
 
 import yaml
 
@@ -33,30 +34,31 @@ __all__ = [
 ScalarTypesTuple = (int, float, bool, str)
 ListTypesTuple = (list[int], list[float], list[bool], list[str])
 AllowedTypesTuple = ScalarTypesTuple + ListTypesTuple
-AllowedTypesType = Any  # one of AllowedTypesTuple
+# One of AllowedTypesTuple (list[int] and the other list types are generic aliases, not classes).
+AllowedTypesType = type | GenericAlias
 AllowedValueType = int | float | bool | str | list[int] | list[float] | list[bool] | list[str]
 SomeValueType = AllowedValueType | SomeSubstitutionsType
 
 
-def is_typing_list(data_type: Any) -> bool:
+def is_typing_list(data_type: object) -> bool:
     """list, typing.List or a subscription of either (list[int], List[str])."""
     return data_type is list or get_origin(data_type) is list
 
 
-def is_valid_scalar_type(data_type: Any) -> bool:
+def is_valid_scalar_type(data_type: object) -> bool:
     return data_type in ScalarTypesTuple
 
 
-def extract_type(data_type: Any) -> tuple[type, bool]:
+def extract_type(data_type: object) -> tuple[type, bool]:
     """(item type, is it a list) of an allowed type; anything else is a ValueError."""
     is_list = is_typing_list(data_type)
     scalar = (get_args(data_type) or (None,))[0] if is_list else data_type
     if not is_valid_scalar_type(scalar):
         raise ValueError(f'Unrecognized data type: {data_type}')
-    return scalar, is_list
+    return cast(type, scalar), is_list  # one of ScalarTypesTuple, checked above
 
 
-def is_instance_of_valid_type(value: Any, can_be_str: bool = False) -> bool:
+def is_instance_of_valid_type(value: object, can_be_str: bool = False) -> bool:
     """A scalar of an allowed type, or a list of one such type (strings mixed in if can_be_str)."""
     if not isinstance(value, list):
         return isinstance(value, ScalarTypesTuple)
@@ -66,13 +68,14 @@ def is_instance_of_valid_type(value: Any, can_be_str: bool = False) -> bool:
     return len(kinds) <= 1 and all(kind in ScalarTypesTuple for kind in kinds)
 
 
-def is_instance_of(value: Any, data_type: Any = None, can_be_str: bool = False) -> bool:
+def is_instance_of(value: object, data_type: AllowedTypesType | None = None,
+                   can_be_str: bool = False) -> bool:
     if data_type is None:
         return is_instance_of_valid_type(value, can_be_str)
     item_type, is_list = extract_type(data_type)
     accepted: tuple[type, ...] = (str, item_type) if can_be_str else (item_type,)
 
-    def matches(item: Any) -> bool:
+    def matches(item: object) -> bool:
         # bool is an int subclass in Python, but not an int here
         return isinstance(item, accepted) and not (item_type in (int, float)
                                                    and isinstance(item, bool))
@@ -87,7 +90,7 @@ def _yaml_reading(text: str, what: str, can_be_str: bool) -> Any:
     except yaml.YAMLError as error:
         if can_be_str:
             return text
-        raise ValueError(f'{what}: it is not valid YAML ({error.problem})') from None
+        raise ValueError(f'{what}: it is not valid YAML ({getattr(error, "problem", error)})') from None
     if value is None:
         return text
     if not is_instance_of_valid_type(value, can_be_str):
@@ -95,7 +98,8 @@ def _yaml_reading(text: str, what: str, can_be_str: bool) -> Any:
     return value
 
 
-def coerce_to_type(value: str, data_type: Any = None, can_be_str: bool = False) -> Any:
+def coerce_to_type(value: str, data_type: AllowedTypesType | None = None, can_be_str: bool = False
+                   ) -> Any:
     """The text `value` as data_type (None: whatever YAML makes of it)."""
     if not isinstance(value, str):
         raise TypeError(f"coerce_to_type expects a str value, got '{type(value).__name__}'")
@@ -123,7 +127,8 @@ def coerce_to_type(value: str, data_type: Any = None, can_be_str: bool = False) 
     raise ValueError(f"cannot convert '{value}' to bool: expected true/false, yes/no or on/off")
 
 
-def coerce_list(value: list[str], data_type: Any = None, can_be_str: bool = False) -> list[Any]:
+def coerce_list(value: list[str], data_type: AllowedTypesType | None = None, can_be_str: bool = False
+                ) -> list[Any]:
     if not isinstance(value, list):
         raise TypeError(f"coerce_list expects a list, got '{type(value).__name__}'")
     result = [coerce_to_type(item, data_type, can_be_str) for item in value]
@@ -132,7 +137,8 @@ def coerce_list(value: list[str], data_type: Any = None, can_be_str: bool = Fals
     return result
 
 
-def get_typed_value(value: str | list[str], data_type: Any, can_be_str: bool = False) -> Any:
+def get_typed_value(value: str | list[str], data_type: AllowedTypesType | None, can_be_str: bool = False
+                    ) -> Any:
     """A str or a list of str converted to data_type."""
     if isinstance(value, list):
         item_type = None
@@ -144,7 +150,7 @@ def get_typed_value(value: str | list[str], data_type: Any, can_be_str: bool = F
     return coerce_to_type(value, data_type, can_be_str)
 
 
-def is_substitution(value: Any) -> bool:
+def is_substitution(value: object) -> bool:
     """A Substitution, or a non-empty iterable of str and Substitution with at least one of the latter."""
     if isinstance(value, Substitution):
         return True
@@ -155,7 +161,7 @@ def is_substitution(value: Any) -> bool:
             and any(isinstance(item, Substitution) for item in items))
 
 
-def normalize_typed_substitution(value: Any, data_type: Any) -> Any:
+def normalize_typed_substitution(value: Any, data_type: AllowedTypesType | None) -> Any:
     """A value of data_type stays as it is; text and substitutions become a substitution list.
 
     Text is kept for later (it is converted when performed); a value of another type is a
@@ -172,7 +178,8 @@ def normalize_typed_substitution(value: Any, data_type: Any) -> Any:
     return value
 
 
-def perform_typed_substitution(context: LaunchContext, value: Any, data_type: Any) -> Any:
+def perform_typed_substitution(context: LaunchContext, value: Any, data_type: AllowedTypesType | None
+                               ) -> Any:
     """Perform what normalize_typed_substitution kept, then convert it to data_type."""
     if isinstance(value, list) and all(isinstance(item, Substitution) for item in value):
         return coerce_to_type(perform_substitutions(context, value), data_type)

@@ -3,9 +3,12 @@
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 from launch.event import Event
+
+if TYPE_CHECKING:
+    from launch.actions.execute_process import ExecuteProcess
 
 __all__ = [
     'ProcessExited', 'ProcessIO', 'ProcessStarted', 'ProcessStderr', 'ProcessStdin', 'ProcessStdout',
@@ -13,11 +16,14 @@ __all__ = [
     'matches_name', 'matches_pid',
 ]
 
+# Which process actions (ExecuteProcess, Node...) a ShutdownProcess or SignalProcess is for.
+ProcessMatcher: TypeAlias = 'Callable[[ExecuteProcess], bool]'
+
 
 class RunningProcessEvent(Event):
     """Something about one running process; says which action, label, argv, cwd, env and pid."""
 
-    def __init__(self, *, action: Any, name: str, cmd: list[str], cwd: str | None,
+    def __init__(self, *, action: ExecuteProcess, name: str, cmd: list[str], cwd: str | None,
                  env: dict[str, str] | None, pid: int) -> None:
         self.action = action
         self.execute_process_action = action
@@ -68,7 +74,7 @@ class ProcessStdin(ProcessIO):
 class ProcessTargetedEvent(Event):
     """An event for the process actions that process_matcher(action) accepts."""
 
-    def __init__(self, *, process_matcher: Callable[[Any], bool]) -> None:
+    def __init__(self, *, process_matcher: ProcessMatcher) -> None:
         self.process_matcher = process_matcher
 
 
@@ -79,25 +85,25 @@ class ShutdownProcess(ProcessTargetedEvent):
 class SignalProcess(ProcessTargetedEvent):
     """Send a signal to the matching processes."""
 
-    def __init__(self, *, signal_number: int, process_matcher: Callable[[Any], bool]) -> None:
+    def __init__(self, *, signal_number: int, process_matcher: ProcessMatcher) -> None:
         super().__init__(process_matcher=process_matcher)
         self.signal = signal_number
 
 
 # Matchers for ShutdownProcess / SignalProcess: which process actions an event is for.
-def matches_pid(*pids: int) -> Callable[[Any], bool]:
+def matches_pid(*pids: int) -> ProcessMatcher:
     """Process actions whose process has one of these pids right now."""
-    def match(action: Any) -> bool:
+    def match(action: ExecuteProcess) -> bool:
         process = getattr(action, '_process', None)
         return process is not None and process.pid in pids
     return match
 
 
-def matches_name(*names: str) -> Callable[[Any], bool]:
+def matches_name(*names: str) -> ProcessMatcher:
     """Process actions whose label (e.g. 'talker-1') is one of names."""
     return lambda action: action.process_description.final_name in names
 
 
-def matches_executable(*executables: Any) -> Callable[[Any], bool]:
+def matches_executable(*executables: ExecuteProcess) -> ProcessMatcher:
     """Exactly these process actions."""
     return lambda action: any(action is executable for executable in executables)
