@@ -5,8 +5,19 @@ Graph names come from the daemon when it runs (instant), else from a short-lived
 
 import argparse
 import os
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from typing import Any
+
+# argcomplete calls a completer with the prefix and keyword arguments (parsed_args, action, parser);
+# each completer takes the ones it needs.
+Completer = Callable[..., Iterable[str]]
+
+
+def with_completer(argument: argparse.Action, completer: Completer) -> argparse.Action:
+    """Attach shell completion to an argument: argcomplete reads the `completer` attribute of the
+    Action that add_argument returned (argparse's own Action has no such field, hence setattr)."""
+    setattr(argument, 'completer', completer)  # noqa: B010
+    return argument
 
 
 def package_completer(prefix: str, **_kwargs: Any) -> Iterable[str]:
