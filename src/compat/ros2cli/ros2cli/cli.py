@@ -11,11 +11,12 @@ deadlock) ends the process after 5 s with every thread's stack and exit code 1
 """
 
 import argparse
+import io
 import os
 import signal
 import sys
 from collections.abc import Callable
-from typing import Any
+from typing import Any, cast
 
 import ros2cli.command
 from ros2cli.command import add_subparsers_on_demand
@@ -80,7 +81,8 @@ def main(argv: list[str] | None = None) -> int | str:
         argcomplete.autocomplete(parser)  # prints the candidates and exits
     args = parser.parse_args(argv)
     if not args.use_python_default_buffering:
-        sys.stdout.reconfigure(line_buffering=True)
+        # typeshed types sys.stdout as TextIO; at run time it is a TextIOWrapper
+        cast(io.TextIOWrapper, sys.stdout).reconfigure(line_buffering=True)
     extension = getattr(args, '_command', None)
     if extension is None:
         parser.print_help()

@@ -17,8 +17,8 @@ def action_types(graph: Any, action: str) -> list[str] | None:
 
 
 def _action_argument(parser: argparse.ArgumentParser, help_text: str) -> None:
-    from ros2cli.completion import action_completer
-    parser.add_argument('action_name', help=help_text).completer = action_completer
+    from ros2cli.completion import action_completer, with_completer
+    with_completer(parser.add_argument('action_name', help=help_text), action_completer)
 
 
 class ListVerb(VerbExtension):
@@ -63,7 +63,9 @@ class InfoVerb(VerbExtension):
         with NodeStrategy(args) as strategy:
             graph = strategy.graph
             strategy.wait_until(lambda: action_types(graph, args.action_name) is not None)
-            clients, servers = [], []
+            # (node's full name, the action's types) for each client and server of the action
+            clients: list[tuple[str, list[str]]] = []
+            servers: list[tuple[str, list[str]]] = []
             for name, namespace in graph.node_names_and_namespaces():
                 node = full_node_name(namespace, name)
                 for found, query in ((clients, graph.action_clients_by_node),
@@ -111,10 +113,10 @@ class SendGoalVerb(VerbExtension):
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.command.topic_pub import add_values_arguments
-        from ros2cli.completion import action_type_completer
+        from ros2cli.completion import action_type_completer, with_completer
         _action_argument(parser, "Name of the ROS action (e.g. '/fibonacci')")
-        parser.add_argument('action_type', help="Type of the ROS action (e.g. 'example_interfaces/action/"
-                            "Fibonacci')").completer = action_type_completer
+        with_completer(parser.add_argument('action_type', help="Type of the ROS action (e.g. "
+                                           "'example_interfaces/action/Fibonacci')"), action_type_completer)
         add_values_arguments(parser, 'goal', 'order: 5')
         parser.add_argument('-f', '--feedback', action='store_true',
                             help='Echo feedback messages for the goal')

@@ -55,9 +55,10 @@ class InfoVerb(VerbExtension):
     """Output information about a node."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
-        from ros2cli.completion import node_completer
+        from ros2cli.completion import node_completer, with_completer
         from ros2cli.node.strategy import add_strategy_arguments
-        parser.add_argument('node_name', help='Node name to request information').completer = node_completer
+        with_completer(parser.add_argument('node_name', help='Node name to request information'),
+                       node_completer)
         add_strategy_arguments(parser)
         parser.add_argument('--include-hidden', action='store_true', help='Display hidden topics, '
                             'services, and actions as well')

@@ -108,10 +108,10 @@ class ParameterSession:
 
 
 def _add_common(parser: argparse.ArgumentParser, node_required: bool = True, timeout: bool = True) -> None:
-    from ros2cli.completion import node_completer
+    from ros2cli.completion import node_completer, with_completer
     from ros2cli.node.strategy import add_strategy_arguments
-    parser.add_argument('node_name', nargs=None if node_required else '?',
-                        help='Name of the ROS node').completer = node_completer
+    with_completer(parser.add_argument('node_name', nargs=None if node_required else '?',
+                        help='Name of the ROS node'), node_completer)
     parser.add_argument('--include-hidden-nodes', action='store_true', help='Consider hidden nodes as well')
     if timeout:
         parser.add_argument('--timeout', metavar='N', type=int, default=1,

@@ -25,8 +25,8 @@ def visible_services(graph: Any, include_hidden: bool) -> list[list[Any]]:
 
 
 def _service_argument(parser: argparse.ArgumentParser, help_text: str) -> None:
-    from ros2cli.completion import service_completer
-    parser.add_argument('service_name', help=help_text).completer = service_completer
+    from ros2cli.completion import service_completer, with_completer
+    with_completer(parser.add_argument('service_name', help=help_text), service_completer)
 
 
 class ListVerb(VerbExtension):
@@ -68,10 +68,11 @@ class FindVerb(VerbExtension):
     """Output a list of available services of a given type."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
-        from ros2cli.completion import service_type_completer
+        from ros2cli.completion import service_type_completer, with_completer
         from ros2cli.node.strategy import add_strategy_arguments
-        parser.add_argument('service_type', help="Name of the ROS service type to filter for "
-                            "(e.g. 'rcl_interfaces/srv/ListParameters')").completer = service_type_completer
+        with_completer(parser.add_argument('service_type', help="Name of the ROS service type to filter for "
+                                           "(e.g. 'rcl_interfaces/srv/ListParameters')"),
+                       service_type_completer)
         add_strategy_arguments(parser)
         parser.add_argument('-c', '--count-services', action='store_true',
                             help='Only display the number of services discovered')
@@ -90,10 +91,11 @@ class CallVerb(VerbExtension):
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.command.topic_pub import add_values_arguments
-        from ros2cli.completion import service_type_completer
+        from ros2cli.completion import service_type_completer, with_completer
         _service_argument(parser, "Name of the ROS service to call to (e.g. '/add_two_ints')")
-        parser.add_argument('service_type', help="Type of the ROS service (e.g. 'std_srvs/srv/Empty')"
-                            ).completer = service_type_completer
+        with_completer(parser.add_argument('service_type',
+                                           help="Type of the ROS service (e.g. 'std_srvs/srv/Empty')"),
+                       service_type_completer)
         add_values_arguments(parser, 'service request', 'a: 1, b: 2')
         parser.add_argument('-r', '--rate', metavar='N', type=float,
                             help='Repeat the call at a specific rate in Hz')

@@ -23,15 +23,15 @@ def visible_topics(graph: Any, include_hidden: bool) -> list[list[Any]]:
 
 
 def _topic_argument(parser: argparse.ArgumentParser, help_text: str = 'Name of the ROS topic') -> None:
-    from ros2cli.completion import topic_completer
-    parser.add_argument('topic_name', help=help_text).completer = topic_completer
+    from ros2cli.completion import topic_completer, with_completer
+    with_completer(parser.add_argument('topic_name', help=help_text), topic_completer)
 
 
 def _type_argument(parser: argparse.ArgumentParser, nargs: str | None = None, help_text: str = '') -> None:
-    from ros2cli.completion import message_type_completer
-    parser.add_argument(
+    from ros2cli.completion import message_type_completer, with_completer
+    with_completer(parser.add_argument(
         'message_type', nargs=nargs, help=help_text or "Type of the ROS message (e.g. 'std_msgs/msg/String')"
-    ).completer = message_type_completer
+    ), message_type_completer)
 
 
 def topic_types(graph: Any, topic: str) -> list[str] | None:
