@@ -5,13 +5,14 @@ import sys
 from typing import Any
 
 from ros2cli.command import VerbCommand
+from ros2cli.node.graph import Graph
 from ros2cli.verb import VerbExtension
 
 STATUS_NAMES = {0: 'UNKNOWN', 1: 'ACCEPTED', 2: 'EXECUTING', 3: 'CANCELING', 4: 'SUCCEEDED', 5: 'CANCELED',
                 6: 'ABORTED'}
 
 
-def action_types(graph: Any, action: str) -> list[str] | None:
+def action_types(graph: Graph, action: str) -> list[str] | None:
     from ros2cli.graph_listing import types_of
     return types_of(graph.action_names_and_types(), action)
 

@@ -5,13 +5,14 @@ import sys
 from typing import Any
 
 from ros2cli.command import VerbCommand
+from ros2cli.node.graph import Graph
 from ros2cli.verb import VerbExtension
 
 DUPLICATE_WARNING = ('WARNING: Be aware that there are nodes in the graph that share an exact name, '
                      'which can have unintended side effects.')
 
 
-def node_names(graph: Any, include_hidden: bool = False) -> list[str]:
+def node_names(graph: Graph, include_hidden: bool = False) -> list[str]:
     """Full names of the nodes in the graph, sorted, duplicates kept."""
     from rosidl_runtime_py.graph import full_node_name, is_hidden_node
     names = [full_node_name(ns, name) for name, ns in graph.node_names_and_namespaces()]

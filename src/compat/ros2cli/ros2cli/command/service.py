@@ -5,6 +5,7 @@ import time
 from typing import Any
 
 from ros2cli.command import VerbCommand
+from ros2cli.node.graph import Graph
 from ros2cli.verb import VerbExtension
 
 
@@ -18,7 +19,7 @@ def _add_hidden_argument(parser: argparse.ArgumentParser) -> None:
                         help='Consider hidden services as well')
 
 
-def visible_services(graph: Any, include_hidden: bool) -> list[list[Any]]:
+def visible_services(graph: Graph, include_hidden: bool) -> list[list[Any]]:
     from rosidl_runtime_py.graph import is_hidden_name
     return [[name, types] for name, types in graph.service_names_and_types()
             if include_hidden or not is_hidden_name(name)]
