@@ -2,11 +2,15 @@
 
 import argparse
 import time
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ros2cli.command import VerbCommand
 from ros2cli.node.graph import Graph
 from ros2cli.verb import VerbExtension
+
+if TYPE_CHECKING:  # rclpy is imported where it is used: `ros2 -h` imports this module
+    from rclpy.client import Client
+    from rclpy.node import Node
 
 
 def _include_hidden(args: argparse.Namespace) -> bool:
@@ -148,7 +152,7 @@ class CallVerb(VerbExtension):
             tear_down(node)
 
 
-def wait_for_server(node: Any, client: Any, service: str) -> None:
+def wait_for_server(node: 'Node', client: 'Client', service: str) -> None:
     """Wait as upstream does (forever), but say when the name looks mistyped."""
     from ros2cli.names import WaitingHint
     from ros2cli.node.direct import NAMED_LOOKUP_GRACE
