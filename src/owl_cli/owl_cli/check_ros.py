@@ -497,6 +497,23 @@ def check_turtle_random_velocity(s: Session) -> None:
     s.stop_student()
 
 
+def client_ended(s: Session, process: RosProcess) -> None:
+    """A service client's last criterion: it ends by itself once it has its answer (else it is stopped)."""
+    code = process.popen.poll()
+    s.add(
+        Criterion(
+            'ends by itself with exit code 0 after the answer',
+            code == 0,
+            'after the answer: destroy_node() and rclpy.shutdown(), so main() returns'
+            if code is None
+            else f'exit code {code}: {judge.tail_lines(process.output)}',
+            f'exit code {code}',
+        )
+    )
+    if process.running():
+        s.stop_student()
+
+
 def check_temp_client(s: Session) -> None:
     from olive_interfaces.srv import TempConv
 
@@ -527,19 +544,7 @@ def check_temp_client(s: Session) -> None:
             judge.tail_lines(process.output, 1),
         )
     )
-    code = process.popen.poll()
-    s.add(
-        Criterion(
-            'ends by itself with exit code 0 after the answer',
-            code == 0,
-            'after the answer: destroy_node() and rclpy.shutdown(), so main() returns'
-            if code is None
-            else f'exit code {code}: {judge.tail_lines(process.output)}',
-            f'exit code {code}',
-        )
-    )
-    if process.running():
-        s.stop_student()
+    client_ended(s, process)
 
 
 def check_lower_limit(s: Session) -> None:
@@ -1452,19 +1457,7 @@ def check_service_client(s: Session, subject: str) -> None:
             judge.tail_lines(process.output, 1),
         )
     )
-    code = process.popen.poll()
-    s.add(
-        Criterion(
-            'ends by itself with exit code 0 after the answer',
-            code == 0,
-            'after the answer: destroy_node() and rclpy.shutdown(), so main() returns'
-            if code is None
-            else f'exit code {code}: {judge.tail_lines(process.output)}',
-            f'exit code {code}',
-        )
-    )
-    if process.running():
-        s.stop_student()
+    client_ended(s, process)
 
 
 def check_currency_client(s: Session) -> None:
