@@ -16,7 +16,7 @@ import os
 import signal
 import sys
 from collections.abc import Callable
-from typing import Any, cast
+from typing import cast
 
 import ros2cli.command
 from ros2cli.command import add_subparsers_on_demand
@@ -58,7 +58,8 @@ def _completion_argv() -> list[str] | None:
         return line.split()[1:]
 
 
-def run_command(command_main: Callable[[argparse.Namespace], Any], args: argparse.Namespace) -> Any:
+def run_command(command_main: Callable[[argparse.Namespace], int | str | None],
+                args: argparse.Namespace) -> int | str | None:
     """command_main(args), after which whatever ROS state the command left is under owl_common's
     clean-up watchdog: a command cut short (Ctrl-C during discovery, an error) leaves its node to
     interpreter exit, where a Fast DDS teardown deadlock would otherwise hang the process."""
