@@ -20,7 +20,7 @@ import tempfile
 import time
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 # Discovery stays on this machine whatever the student's shell says (set before rclpy starts).
 os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
@@ -34,6 +34,11 @@ from rosidl_runtime_py.utilities import get_service
 from owl_cli import check_criteria as judge
 from owl_cli import check_workspace as ws
 from owl_cli.check_report import RESULT_PREFIX, WORKSPACE_VARIABLE, Criterion
+
+if TYPE_CHECKING:
+    from rclpy.publisher import Publisher
+    from rclpy.qos import QoSProfile
+    from rclpy.topic_endpoint_info import TopicEndpointInfo
 
 IMU_TOPIC = '/olive/imu/x1684267976913/imu'
 IMU_COMMAND_TOPIC = '/olive_imu_x1684267976913_dcm_srv/true_orientation'
@@ -66,6 +71,7 @@ class Session:
         self.probe = Probe(self.sandbox.domain_id, PROBE_NODE)
         self.node = self.probe.node
         self.student_process: RosProcess | None = None
+        self.imu_command_publisher: Publisher | None = None  # hold_imu's, made on its first call
         self.helpers: dict[str, RosProcess] = {}
         self.decided = 0
         self.stopped = False  # set at our Ctrl-C: an exit after it is no crash
@@ -139,7 +145,11 @@ class Session:
             self.helper('olive_sim', 'camera_sim', '--ros-args', *NO_WEB_PAGE)
             nodes.append('olive_camera_eye_dcm_srv')
         for name in nodes:
-            if not self.wait(lambda n=name: n in self.node.get_node_names(), 30.0):
+
+            def started(n: str = name) -> bool:
+                return n in self.node.get_node_names()
+
+            if not self.wait(started, 30.0):
                 raise RuntimeError(f'the simulated kit did not start ({name})')
 
     def student(self, package: str, executable: str, *args: str, env: dict | None = None) -> RosProcess:
@@ -220,7 +230,7 @@ class Session:
             time.sleep(0.05)
         return True
 
-    def endpoints(self, topic: str, kind: str) -> list[Any]:
+    def endpoints(self, topic: str, kind: str) -> list[TopicEndpointInfo]:
         lookup = (
             self.node.get_publishers_info_by_topic
             if kind == 'publishers'
@@ -235,7 +245,7 @@ class Session:
 
     def expect_endpoint(
         self, topic: str, kind: str, type_name: str, hint: str, timeout: float = START_TIMEOUT
-    ) -> Any | None:
+    ) -> TopicEndpointInfo | None:
         verb = 'publishes' if kind == 'publishers' else 'subscribes to'
         text = f'{verb} {type_name} on {topic}'
         self.wait(lambda: bool(self.endpoints(topic, kind)), timeout)
@@ -254,7 +264,7 @@ class Session:
             else None
         )
 
-    def collect(self, msg_type: Any, topic: str, qos: Any = 10) -> list[tuple[float, Any]]:
+    def collect(self, msg_type: Any, topic: str, qos: QoSProfile | int = 10) -> list[tuple[float, Any]]:
         """(monotonic arrival time, message) of every message from now on."""
         received: list[tuple[float, Any]] = []
         self.node.create_subscription(msg_type, topic, lambda m: received.append((time.monotonic(), m)), qos)
@@ -395,7 +405,7 @@ def check_upper_limit(s: Session) -> None:
 def check_random_number_subscriber(s: Session) -> None:
     from std_msgs.msg import Int32
 
-    s.student('random_number_ps', 'random_number_subscriber')
+    process = s.student('random_number_ps', 'random_number_subscriber')
     s.expect_endpoint(
         '/random_numbers',
         'subscriptions',
@@ -406,11 +416,11 @@ def check_random_number_subscriber(s: Session) -> None:
     sent = (17, 42, 93)
 
     def printed() -> bool:
-        words = set(s.student_process.output.replace(':', ' ').split())
+        words = set(process.output.replace(':', ' ').split())
         return all(str(n) in words for n in sent)
 
     deadline = time.monotonic() + 10.0
-    while not printed() and time.monotonic() < deadline and s.student_process.running():
+    while not printed() and time.monotonic() < deadline and process.running():
         for number in sent:
             publisher.publish(Int32(data=number))
         time.sleep(0.5)
@@ -419,7 +429,7 @@ def check_random_number_subscriber(s: Session) -> None:
             'prints every number it receives (17, 42, 93 were published)',
             printed(),
             "log each message in the callback: self.get_logger().info(f'Received: {msg.data}')",
-            judge.tail_lines(s.student_process.output, 2),
+            judge.tail_lines(process.output, 2),
         )
     )
     s.stop_student()
@@ -598,7 +608,7 @@ def check_turtle_launch(s: Session) -> None:
             "add (os.path.join('share', package_name, 'launch'), glob(...)) to data_files in setup.py",
             ', '.join(names),
         )
-    ):
+    ) or chosen is None:  # (add() is False when chosen is None; the test tells mypy so)
         return
     s.student_launch('olive_launch', chosen)
     s.wait(lambda: {'turtle1', 'turtle2'} <= set(s.node.get_node_names()), 20.0)
@@ -735,9 +745,9 @@ def hold_imu(s: Session, roll: float, pitch: float, yaw: float) -> None:
     from olive_sim.quaternion import from_euler
 
     x, y, z, w = from_euler(roll, pitch, yaw)
-    publisher = getattr(s, '_imu_command', None)
+    publisher = s.imu_command_publisher
     if publisher is None:
-        publisher = s._imu_command = s.node.create_publisher(Quaternion, IMU_COMMAND_TOPIC, 10)
+        publisher = s.imu_command_publisher = s.node.create_publisher(Quaternion, IMU_COMMAND_TOPIC, 10)
     publisher.publish(Quaternion(x=x, y=y, z=z, w=w))
 
 
@@ -1085,7 +1095,7 @@ def check_imu_control_robot(s: Session) -> None:
         results[name] = (last('pan', start + 0.6), last('tilt', start + 0.6))
     pan_yaw, tilt_yaw = results['yaw']
     pan_pitch, tilt_pitch = results['pitch']
-    if None in (pan_yaw, tilt_yaw, pan_pitch, tilt_pitch):
+    if pan_yaw is None or tilt_yaw is None or pan_pitch is None or tilt_pitch is None:
         s.add(
             Criterion(
                 'sends pan and tilt goals while the IMU turns',
@@ -1525,7 +1535,7 @@ def check_params_file(s: Session) -> None:
             ', '.join(f'{k} {v}' for k, v in values.items()),
         )
     )
-    env = {'DISPLAY': None, 'WAYLAND_DISPLAY': None}
+    env: dict[str, str | None] = {'DISPLAY': None, 'WAYLAND_DISPLAY': None}
     process = s.sandbox.command(
         ['ros2', 'run', package, executable, '--ros-args', '--params-file', str(chosen)],
         label=executable,

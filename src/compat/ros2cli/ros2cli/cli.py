@@ -11,11 +11,12 @@ deadlock) ends the process after 5 s with every thread's stack and exit code 1
 """
 
 import argparse
+import io
 import os
 import signal
 import sys
 from collections.abc import Callable
-from typing import Any
+from typing import cast
 
 import ros2cli.command
 from ros2cli.command import add_subparsers_on_demand
@@ -57,7 +58,8 @@ def _completion_argv() -> list[str] | None:
         return line.split()[1:]
 
 
-def run_command(command_main: Callable[[argparse.Namespace], Any], args: argparse.Namespace) -> Any:
+def run_command(command_main: Callable[[argparse.Namespace], int | str | None],
+                args: argparse.Namespace) -> int | str | None:
     """command_main(args), after which whatever ROS state the command left is under owl_common's
     clean-up watchdog: a command cut short (Ctrl-C during discovery, an error) leaves its node to
     interpreter exit, where a Fast DDS teardown deadlock would otherwise hang the process."""
@@ -80,7 +82,8 @@ def main(argv: list[str] | None = None) -> int | str:
         argcomplete.autocomplete(parser)  # prints the candidates and exits
     args = parser.parse_args(argv)
     if not args.use_python_default_buffering:
-        sys.stdout.reconfigure(line_buffering=True)
+        # typeshed types sys.stdout as TextIO; at run time it is a TextIOWrapper
+        cast(io.TextIOWrapper, sys.stdout).reconfigure(line_buffering=True)
     extension = getattr(args, '_command', None)
     if extension is None:
         parser.print_help()

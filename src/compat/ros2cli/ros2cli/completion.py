@@ -5,16 +5,28 @@ Graph names come from the daemon when it runs (instant), else from a short-lived
 
 import argparse
 import os
-from collections.abc import Iterable
-from typing import Any
+from collections.abc import Callable, Iterable
+
+from ros2cli.node.graph import Graph
+
+# argcomplete calls a completer with the prefix and keyword arguments (parsed_args, action, parser);
+# each completer takes the ones it needs.
+Completer = Callable[..., Iterable[str]]
 
 
-def package_completer(prefix: str, **_kwargs: Any) -> Iterable[str]:
+def with_completer(argument: argparse.Action, completer: Completer) -> argparse.Action:
+    """Attach shell completion to an argument: argcomplete reads the `completer` attribute of the
+    Action that add_argument returned (argparse's own Action has no such field, hence setattr)."""
+    setattr(argument, 'completer', completer)  # noqa: B010
+    return argument
+
+
+def package_completer(prefix: str, **_kwargs: object) -> Iterable[str]:
     from ament_index_python.packages import get_packages_with_prefixes
     return sorted(p for p in get_packages_with_prefixes() if p.startswith(prefix))
 
 
-def executable_completer(prefix: str, parsed_args: argparse.Namespace, **_kwargs: Any) -> Iterable[str]:
+def executable_completer(prefix: str, parsed_args: argparse.Namespace, **_kwargs: object) -> Iterable[str]:
     from ament_index_python.packages import get_package_prefix
 
     from ros2cli.command.run import package_executables
@@ -31,21 +43,21 @@ def _graph_names(query: str, parsed_args: argparse.Namespace | None) -> list[str
     from ros2cli.node.direct import DirectNode
 
     if is_daemon_running(timeout=1.0) and not getattr(parsed_args, 'no_daemon', False):
-        graph: Any = DaemonGraph()
+        graph: Graph = DaemonGraph()
         return _names_from(graph, query)
     with DirectNode(parsed_args) as direct:
         return _names_from(direct.graph, query)
 
 
-def _names_from(graph: Any, query: str) -> list[str]:
+def _names_from(graph: Graph, query: str) -> list[str]:
     from rosidl_runtime_py.graph import full_node_name
     if query == 'nodes':
         return sorted(full_node_name(ns, n) for n, ns in graph.node_names_and_namespaces())
     return [name for name, _ in getattr(graph, f'{query}_names_and_types')()]
 
 
-def _graph_completer(query: str) -> Any:
-    def complete(prefix: str, parsed_args: argparse.Namespace | None = None, **_kwargs: Any) -> list[str]:
+def _graph_completer(query: str) -> Completer:
+    def complete(prefix: str, parsed_args: argparse.Namespace | None = None, **_kwargs: object) -> list[str]:
         return [n for n in _graph_names(query, parsed_args) if n.startswith(prefix)]
     return complete
 
@@ -56,8 +68,8 @@ service_completer = _graph_completer('service')
 action_completer = _graph_completer('action')
 
 
-def _type_completer(kind: str) -> Any:
-    def complete(prefix: str, **_kwargs: Any) -> list[str]:
+def _type_completer(kind: str) -> Completer:
+    def complete(prefix: str, **_kwargs: object) -> list[str]:
         from rosidl_runtime_py.get_interfaces import interface_index
         return [f'{package}/{kind}/{name}' for package, kinds in sorted(interface_index().items())
                 for name in kinds[kind] if f'{package}/{kind}/{name}'.startswith(prefix)]
@@ -69,6 +81,6 @@ service_type_completer = _type_completer('srv')
 action_type_completer = _type_completer('action')
 
 
-def any_type_completer(prefix: str, **kwargs: Any) -> list[str]:
+def any_type_completer(prefix: str, **kwargs: object) -> list[str]:
     return [*message_type_completer(prefix), *service_type_completer(prefix),
             *action_type_completer(prefix)]

@@ -4,7 +4,12 @@ Entries are the graph's [name, [type, ...]] pairs, sorted by name as rmw returns
 """
 
 from collections.abc import Callable, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+from ros2cli.node.graph import Graph
+
+if TYPE_CHECKING:  # the verbs import the strategy (and rclpy) only when they run
+    from ros2cli.node.strategy import NodeStrategy
 
 Entries = Sequence[Sequence[Any]]
 
@@ -35,7 +40,7 @@ def print_names_of_type(entries: Entries, type_name: str, count_only: bool) -> i
     return 0
 
 
-def print_types(strategy: Any, entries_of: Callable[[Any], Entries], name: str) -> int:
+def print_types(strategy: 'NodeStrategy', entries_of: Callable[[Graph], Entries], name: str) -> int:
     """`type`: wait (within the strategy's grace) for name in the graph, print its types one a line;
     exit code 1, printing nothing, when it never shows up (as upstream)."""
     strategy.wait_until(lambda: types_of(entries_of(strategy.graph), name) is not None)

@@ -1,7 +1,10 @@
 """QoS from the command line: preset profiles and policy overrides by their short names."""
 
 import argparse
-from typing import Any
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # rclpy is imported where it is used: `ros2 -h` imports this module
+    from rclpy.qos import QoSProfile
 
 PROFILES = ('system_default', 'sensor_data', 'services_default', 'parameters', 'parameter_events',
             'action_status_default', 'default', 'unknown', 'best_available')
@@ -43,7 +46,7 @@ def has_overrides(args: argparse.Namespace) -> bool:
         for name in OVERRIDES)
 
 
-def profile_from_args(args: argparse.Namespace) -> Any:
+def profile_from_args(args: argparse.Namespace) -> 'QoSProfile':
     """The --qos-profile preset with every explicitly given policy applied."""
     from rclpy.duration import Duration
     from rclpy.qos import (

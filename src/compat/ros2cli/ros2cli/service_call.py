@@ -6,7 +6,13 @@ services), so the remedy is to ask again. Used by `ros2 param` directly and by t
 which makes the calls for a verb from its warm node.
 """
 
-from typing import Any
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # rclpy is imported where it is used: the daemon's client side never needs it
+    from rclpy.client import Client
+    from rclpy.node import Node
 
 CALL_ATTEMPTS = 3
 
@@ -26,9 +32,10 @@ class NoResponse(ServiceCallError):
 class ServiceCaller:
     """Calls services from one rclpy node, keeping a client per service for later calls."""
 
-    def __init__(self, node: Any) -> None:
+    def __init__(self, node: Node) -> None:
         self._node = node
-        self._clients: dict[tuple[str, Any], Any] = {}
+        # srv_class: the generated service class, found by its name at run time
+        self._clients: dict[tuple[str, Any], Client] = {}
 
     def call(self, service: str, srv_class: Any, request: Any, timeout: float) -> Any:
         import rclpy
@@ -38,7 +45,6 @@ class ServiceCaller:
             client = self._clients[(service, srv_class)] = self._node.create_client(srv_class, service)
         if not client.wait_for_service(timeout_sec=timeout):
             raise ServiceUnavailable(f'service {service} is not available')
-        future = None
         for attempt in range(1, CALL_ATTEMPTS + 1):
             future = client.call_async(request)
             wait = timeout * attempt / CALL_ATTEMPTS

@@ -27,7 +27,7 @@ class VerbExtension:
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         pass
 
-    def main(self, *, args: argparse.Namespace) -> Any:
+    def main(self, *, args: argparse.Namespace) -> int | str | None:
         raise NotImplementedError
 
 

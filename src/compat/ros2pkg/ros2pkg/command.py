@@ -21,9 +21,10 @@ def package_name_completer(**_: object) -> list[str]:
     return api.get_package_names()
 
 
-def _package_argument(parser: argparse.ArgumentParser, **kwargs: object) -> None:
-    argument = parser.add_argument('package_name', help='The package name', **kwargs)
-    argument.completer = package_name_completer  # type: ignore[attr-defined]
+def _package_argument(parser: argparse.ArgumentParser, nargs: str | None = None) -> None:
+    from ros2cli.completion import with_completer
+    with_completer(parser.add_argument('package_name', help='The package name', nargs=nargs),
+                   package_name_completer)
 
 
 class PkgCommand(VerbCommand):

@@ -13,8 +13,10 @@ MAX_RATE = 1000.0  # Hz
 MAX_TIMEOUT = 300.0  # s
 
 
-def positive_number(value: Any, what: str, maximum: float, unit: str) -> float:
-    """A finite number in (0, maximum]; JSON numbers or numeric text (a query string)."""
+def positive_number(value: object, what: str, maximum: float, unit: str) -> float:
+    """A finite number in (0, maximum]; JSON numbers or numeric text (a query string).
+
+    The checks here take `object`: parsed JSON may be anything, and they find out what it is."""
     if isinstance(value, str):
         try:
             value = float(value)
@@ -27,22 +29,22 @@ def positive_number(value: Any, what: str, maximum: float, unit: str) -> float:
     return float(value)
 
 
-def rate(value: Any) -> float:
+def rate(value: object) -> float:
     return positive_number(value, 'rate', MAX_RATE, 'Hz')
 
 
-def timeout(value: Any) -> float:
+def timeout(value: object) -> float:
     return positive_number(value, 'timeout', MAX_TIMEOUT, 's')
 
 
-def name(value: Any, what: str) -> str:
+def name(value: object, what: str) -> str:
     """A topic or service name as given (relative names resolve against '/')."""
     if not isinstance(value, str) or not value.strip():
         raise ApiError(400, f'{what} must be a non-empty string, got {json.dumps(value)}')
     return expand_topic_name(value.strip())
 
 
-def optional_text(value: Any, what: str) -> str | None:
+def optional_text(value: object, what: str) -> str | None:
     if value is None or value == '':
         return None
     if not isinstance(value, str):
@@ -66,7 +68,7 @@ def single_type(wanted: str, types: list[str], what: str) -> str:
     return types[0]
 
 
-def fields(value: Any, what: str) -> dict[str, Any]:
+def fields(value: object, what: str) -> dict[str, Any]:
     if value is None:
         return {}
     if not isinstance(value, dict):

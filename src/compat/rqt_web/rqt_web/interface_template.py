@@ -1,6 +1,6 @@
 """The forms of Message Publisher and Service Caller: a message type's fields with defaults (node-free)."""
 
-from typing import Any
+from typing import Any, Protocol
 
 from owl_web.codec import json_safe
 from rosidl_parser.definition import AbstractNestedType, NamespacedType
@@ -8,7 +8,14 @@ from rosidl_runtime_py.convert import fields_of, message_to_ordereddict
 from rosidl_runtime_py.utilities import is_message
 
 
-def field_template(message: Any) -> list[dict[str, Any]]:
+class RosMessage(Protocol):
+    """A generated ROS message (rosidl), as far as the forms and publishers here use it."""
+
+    @classmethod
+    def get_fields_and_field_types(cls) -> dict[str, str]: ...
+
+
+def field_template(message: RosMessage) -> list[dict[str, Any]]:
     """[{name, type, default} or {name, type, fields: [...]}, ...] in declaration order.
 
     A nested message (not in a sequence) gets its own fields; everything else, sequences and

@@ -14,17 +14,19 @@ from typing import Any
 from owl_web.codec import ApiError, boolean, check_keys, message_fields
 from owl_web.graph import GraphChannel
 from owl_web.server import Request, Subscription, WebServer
+from rclpy.client import Client
 from rclpy.exceptions import InvalidServiceNameException, InvalidTopicNameException
 from rclpy.node import Node
+from rclpy.publisher import Publisher
 from rclpy.qos import qos_profile_sensor_data
 from rosidl_runtime_py.get_interfaces import interface_index
 from rosidl_runtime_py.graph import GraphQueries, is_hidden_name
-from rosidl_runtime_py.set_message import FieldError, set_message_fields
+from rosidl_runtime_py.set_message import FieldError, StampSetter, set_message_fields
 from rosidl_runtime_py.utilities import InvalidType, canonical_type, import_type, type_name_of
 
 from rqt_web import api_input
 from rqt_web.images import ImageError, compressed_for_browser, raw_to_png
-from rqt_web.interface_template import field_template
+from rqt_web.interface_template import RosMessage, field_template
 
 IMAGE_TYPES = ('sensor_msgs/msg/Image', 'sensor_msgs/msg/CompressedImage')
 PUBLISHER_KEYS = ('topic', 'type', 'rate', 'fields', 'enabled')
@@ -44,9 +46,9 @@ class MessagePublisher:
     rate: float
     enabled: bool
     fields: dict[str, Any]
-    message: Any
-    stamps: list[Any]
-    publisher: Any
+    message: RosMessage
+    stamps: list[StampSetter]
+    publisher: Publisher
     timer: Any = None
     published: int = 0
 
@@ -96,7 +98,7 @@ class RqtWebNode(Node):
         self._state_lock = threading.Lock()
         self._message_publishers: dict[int, MessagePublisher] = {}
         self._next_publisher_id = 1
-        self._service_clients: dict[tuple[str, Any], Any] = {}
+        self._service_clients: dict[tuple[str, Any], Client] = {}  # key: (name, service class)
         self._image_feeds: dict[str, ImageFeed] = {}
         self._silence_check = self.create_timer(1.0, self._report_silent_feeds)
         self._server = server
@@ -213,7 +215,7 @@ class RqtWebNode(Node):
         entry = self._message_publisher(publisher_id)
         rate = api_input.rate(body['rate']) if 'rate' in body else entry.rate
         enabled = boolean(body['enabled'], 'enabled') if 'enabled' in body else entry.enabled
-        stamps: list[Any] = []
+        stamps: list[StampSetter] = []
         if 'fields' in body:
             values = api_input.fields(body['fields'], 'fields')
             message, stamps = _filled(type(entry.message)(), values, expand_stamps=True)

@@ -34,7 +34,7 @@ class CommandExtension:
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         pass
 
-    def main(self, *, parser: argparse.ArgumentParser, args: argparse.Namespace) -> Any:
+    def main(self, *, parser: argparse.ArgumentParser, args: argparse.Namespace) -> int | str | None:
         raise NotImplementedError
 
 
@@ -107,7 +107,7 @@ class VerbCommand(CommandExtension):
         self._subparser = parser
         add_subparsers_on_demand(parser, cli_name, '_verb', self.VERB_GROUP, required=False)
 
-    def main(self, *, parser: argparse.ArgumentParser, args: argparse.Namespace) -> Any:
+    def main(self, *, parser: argparse.ArgumentParser, args: argparse.Namespace) -> int | str | None:
         if not hasattr(args, '_verb'):
             self._subparser.print_help()
             return 0

@@ -5,20 +5,21 @@ import sys
 from typing import Any
 
 from ros2cli.command import VerbCommand
+from ros2cli.node.graph import Graph
 from ros2cli.verb import VerbExtension
 
 STATUS_NAMES = {0: 'UNKNOWN', 1: 'ACCEPTED', 2: 'EXECUTING', 3: 'CANCELING', 4: 'SUCCEEDED', 5: 'CANCELED',
                 6: 'ABORTED'}
 
 
-def action_types(graph: Any, action: str) -> list[str] | None:
+def action_types(graph: Graph, action: str) -> list[str] | None:
     from ros2cli.graph_listing import types_of
     return types_of(graph.action_names_and_types(), action)
 
 
 def _action_argument(parser: argparse.ArgumentParser, help_text: str) -> None:
-    from ros2cli.completion import action_completer
-    parser.add_argument('action_name', help=help_text).completer = action_completer
+    from ros2cli.completion import action_completer, with_completer
+    with_completer(parser.add_argument('action_name', help=help_text), action_completer)
 
 
 class ListVerb(VerbExtension):
@@ -63,7 +64,9 @@ class InfoVerb(VerbExtension):
         with NodeStrategy(args) as strategy:
             graph = strategy.graph
             strategy.wait_until(lambda: action_types(graph, args.action_name) is not None)
-            clients, servers = [], []
+            # (node's full name, the action's types) for each client and server of the action
+            clients: list[tuple[str, list[str]]] = []
+            servers: list[tuple[str, list[str]]] = []
             for name, namespace in graph.node_names_and_namespaces():
                 node = full_node_name(namespace, name)
                 for found, query in ((clients, graph.action_clients_by_node),
@@ -111,10 +114,10 @@ class SendGoalVerb(VerbExtension):
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.command.topic_pub import add_values_arguments
-        from ros2cli.completion import action_type_completer
+        from ros2cli.completion import action_type_completer, with_completer
         _action_argument(parser, "Name of the ROS action (e.g. '/fibonacci')")
-        parser.add_argument('action_type', help="Type of the ROS action (e.g. 'example_interfaces/action/"
-                            "Fibonacci')").completer = action_type_completer
+        with_completer(parser.add_argument('action_type', help="Type of the ROS action (e.g. "
+                                           "'example_interfaces/action/Fibonacci')"), action_type_completer)
         add_values_arguments(parser, 'goal', 'order: 5')
         parser.add_argument('-f', '--feedback', action='store_true',
                             help='Echo feedback messages for the goal')

@@ -102,11 +102,11 @@ class ShowVerb(VerbExtension):
     """Output the interface definition."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
-        from ros2cli.completion import any_type_completer
-        parser.add_argument(
+        from ros2cli.completion import any_type_completer, with_completer
+        with_completer(parser.add_argument(
             'type', help="Show an interface definition (e.g. 'example_interfaces/msg/String'). Passing '-' "
             "reads the argument from stdin (e.g. 'ros2 topic type /chatter | ros2 interface show -')."
-        ).completer = any_type_completer
+        ), any_type_completer)
         group = parser.add_mutually_exclusive_group()
         group.add_argument('--all-comments', action='store_true',
                            help='Show all comments, including for nested interface definitions')
@@ -156,8 +156,8 @@ class PackageVerb(VerbExtension):
     """Output a list of available interface types within one package."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
-        from ros2cli.completion import package_completer
-        parser.add_argument('package_name', help='Name of the ROS package').completer = package_completer
+        from ros2cli.completion import package_completer, with_completer
+        with_completer(parser.add_argument('package_name', help='Name of the ROS package'), package_completer)
         _add_kind_filters(parser)
 
     def main(self, *, args: argparse.Namespace) -> int | str:
@@ -205,10 +205,10 @@ class ProtoVerb(VerbExtension):
     """Output an interface prototype."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
-        from ros2cli.completion import any_type_completer
-        parser.add_argument(
+        from ros2cli.completion import any_type_completer, with_completer
+        with_completer(parser.add_argument(
             'type', help="Show an interface definition (e.g. 'std_msgs/msg/String')"
-        ).completer = any_type_completer
+        ), any_type_completer)
         parser.add_argument('--no-quotes', action='store_true', help='if true output has no outer quotes.')
 
     def main(self, *, args: argparse.Namespace) -> int:

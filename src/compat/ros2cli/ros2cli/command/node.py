@@ -5,13 +5,14 @@ import sys
 from typing import Any
 
 from ros2cli.command import VerbCommand
+from ros2cli.node.graph import Graph
 from ros2cli.verb import VerbExtension
 
 DUPLICATE_WARNING = ('WARNING: Be aware that there are nodes in the graph that share an exact name, '
                      'which can have unintended side effects.')
 
 
-def node_names(graph: Any, include_hidden: bool = False) -> list[str]:
+def node_names(graph: Graph, include_hidden: bool = False) -> list[str]:
     """Full names of the nodes in the graph, sorted, duplicates kept."""
     from rosidl_runtime_py.graph import full_node_name, is_hidden_node
     names = [full_node_name(ns, name) for name, ns in graph.node_names_and_namespaces()]
@@ -55,9 +56,10 @@ class InfoVerb(VerbExtension):
     """Output information about a node."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
-        from ros2cli.completion import node_completer
+        from ros2cli.completion import node_completer, with_completer
         from ros2cli.node.strategy import add_strategy_arguments
-        parser.add_argument('node_name', help='Node name to request information').completer = node_completer
+        with_completer(parser.add_argument('node_name', help='Node name to request information'),
+                       node_completer)
         add_strategy_arguments(parser)
         parser.add_argument('--include-hidden', action='store_true', help='Display hidden topics, '
                             'services, and actions as well')

@@ -2,10 +2,14 @@
 
 import argparse
 import sys
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ros2cli.command import VerbCommand
 from ros2cli.verb import VerbExtension
+
+if TYPE_CHECKING:  # the messages are imported where they are used: `ros2 -h` imports this module
+    from rcl_interfaces.msg import Parameter as ParameterMsg
+    from rcl_interfaces.msg import ParameterDescriptor, ParameterValue, SetParametersResult
 
 SERVICE_TIMEOUT = 5.0
 TYPE_NAMES = {0: 'not set', 1: 'boolean', 2: 'integer', 3: 'double', 4: 'string', 5: 'byte array',
@@ -19,7 +23,7 @@ def full_name(node_name: str) -> str:
     return node_name if node_name.startswith('/') else '/' + node_name
 
 
-def value_text(value: Any) -> str:
+def value_text(value: 'ParameterValue') -> str:
     """What `param get` prints after the label (Python's str of the value)."""
     from rclpy.parameter import parameter_value_to_python
     return str(parameter_value_to_python(value))
@@ -79,16 +83,16 @@ class ParameterSession:
         request = ListParameters.Request(prefixes=prefixes or [], depth=0)
         return sorted(self.call('list_parameters', ListParameters, request).result.names)
 
-    def values(self, names: list[str]) -> list[Any]:
+    def values(self, names: list[str]) -> list['ParameterValue']:
         from rcl_interfaces.srv import GetParameters
         return list(self.call('get_parameters', GetParameters, GetParameters.Request(names=names)).values)
 
-    def set(self, parameters: list[Any]) -> list[Any]:
+    def set(self, parameters: list['ParameterMsg']) -> list['SetParametersResult']:
         from rcl_interfaces.srv import SetParameters
         request = SetParameters.Request(parameters=parameters)
         return list(self.call('set_parameters', SetParameters, request).results)
 
-    def describe(self, name: str) -> list[Any]:
+    def describe(self, name: str) -> list['ParameterDescriptor']:
         from rcl_interfaces.srv import DescribeParameters
         request = DescribeParameters.Request(names=[name])
         return list(self.call('describe_parameters', DescribeParameters, request).descriptors)
@@ -108,10 +112,10 @@ class ParameterSession:
 
 
 def _add_common(parser: argparse.ArgumentParser, node_required: bool = True, timeout: bool = True) -> None:
-    from ros2cli.completion import node_completer
+    from ros2cli.completion import node_completer, with_completer
     from ros2cli.node.strategy import add_strategy_arguments
-    parser.add_argument('node_name', nargs=None if node_required else '?',
-                        help='Name of the ROS node').completer = node_completer
+    with_completer(parser.add_argument('node_name', nargs=None if node_required else '?',
+                        help='Name of the ROS node'), node_completer)
     parser.add_argument('--include-hidden-nodes', action='store_true', help='Consider hidden nodes as well')
     if timeout:
         parser.add_argument('--timeout', metavar='N', type=int, default=1,
@@ -288,7 +292,7 @@ class DescribeVerb(VerbExtension):
         return 0
 
 
-def nested_parameters(names: list[str], values: list[Any]) -> dict[str, Any]:
+def nested_parameters(names: list[str], values: list['ParameterValue']) -> dict[str, Any]:
     """{'a.b': 1} -> {'a': {'b': 1}}, the shape of a parameter file."""
     from rclpy.parameter import parameter_value_to_python
     tree: dict[str, Any] = {}
@@ -317,7 +321,7 @@ class DumpVerb(VerbExtension):
         return 0
 
 
-def parameters_for_node(path: str, node_name: str, use_wildcard: bool) -> list[Any]:
+def parameters_for_node(path: str, node_name: str, use_wildcard: bool) -> list['ParameterMsg']:
     """The Parameter messages a parameter file holds for one node: the '/**' entry (when used) first,
     then the node's own entry, which overrides it (rclpy's parameter_dict_from_yaml_file reads
     them). RuntimeError with one line when the file cannot be read or nothing in it fits.

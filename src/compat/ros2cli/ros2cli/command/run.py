@@ -26,14 +26,14 @@ class RunCommand(CommandExtension):
 
 
 def add_run_arguments(parser: argparse.ArgumentParser) -> None:
-    from ros2cli.completion import executable_completer, package_completer
+    from ros2cli.completion import executable_completer, package_completer, with_completer
 
     parser.add_argument('--prefix', help='Prefix command, which should go before the executable. '
                                          'Command must be wrapped in quotes if it contains spaces '
                                          "(e.g. --prefix 'gdb -ex run --args').")
-    parser.add_argument('package_name', help='Name of the ROS package').completer = package_completer
-    parser.add_argument('executable_name', help='Name of the executable').completer = \
-        executable_completer
+    with_completer(parser.add_argument('package_name', help='Name of the ROS package'), package_completer)
+    with_completer(parser.add_argument('executable_name', help='Name of the executable'),
+                   executable_completer)
     parser.add_argument('argv', nargs=argparse.REMAINDER, help='Pass arbitrary arguments to the executable')
 
 

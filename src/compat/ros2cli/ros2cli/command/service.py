@@ -2,10 +2,15 @@
 
 import argparse
 import time
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ros2cli.command import VerbCommand
+from ros2cli.node.graph import Graph
 from ros2cli.verb import VerbExtension
+
+if TYPE_CHECKING:  # rclpy is imported where it is used: `ros2 -h` imports this module
+    from rclpy.client import Client
+    from rclpy.node import Node
 
 
 def _include_hidden(args: argparse.Namespace) -> bool:
@@ -18,15 +23,15 @@ def _add_hidden_argument(parser: argparse.ArgumentParser) -> None:
                         help='Consider hidden services as well')
 
 
-def visible_services(graph: Any, include_hidden: bool) -> list[list[Any]]:
+def visible_services(graph: Graph, include_hidden: bool) -> list[list[Any]]:
     from rosidl_runtime_py.graph import is_hidden_name
     return [[name, types] for name, types in graph.service_names_and_types()
             if include_hidden or not is_hidden_name(name)]
 
 
 def _service_argument(parser: argparse.ArgumentParser, help_text: str) -> None:
-    from ros2cli.completion import service_completer
-    parser.add_argument('service_name', help=help_text).completer = service_completer
+    from ros2cli.completion import service_completer, with_completer
+    with_completer(parser.add_argument('service_name', help=help_text), service_completer)
 
 
 class ListVerb(VerbExtension):
@@ -68,10 +73,11 @@ class FindVerb(VerbExtension):
     """Output a list of available services of a given type."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
-        from ros2cli.completion import service_type_completer
+        from ros2cli.completion import service_type_completer, with_completer
         from ros2cli.node.strategy import add_strategy_arguments
-        parser.add_argument('service_type', help="Name of the ROS service type to filter for "
-                            "(e.g. 'rcl_interfaces/srv/ListParameters')").completer = service_type_completer
+        with_completer(parser.add_argument('service_type', help="Name of the ROS service type to filter for "
+                                           "(e.g. 'rcl_interfaces/srv/ListParameters')"),
+                       service_type_completer)
         add_strategy_arguments(parser)
         parser.add_argument('-c', '--count-services', action='store_true',
                             help='Only display the number of services discovered')
@@ -90,10 +96,11 @@ class CallVerb(VerbExtension):
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         from ros2cli.command.topic_pub import add_values_arguments
-        from ros2cli.completion import service_type_completer
+        from ros2cli.completion import service_type_completer, with_completer
         _service_argument(parser, "Name of the ROS service to call to (e.g. '/add_two_ints')")
-        parser.add_argument('service_type', help="Type of the ROS service (e.g. 'std_srvs/srv/Empty')"
-                            ).completer = service_type_completer
+        with_completer(parser.add_argument('service_type',
+                                           help="Type of the ROS service (e.g. 'std_srvs/srv/Empty')"),
+                       service_type_completer)
         add_values_arguments(parser, 'service request', 'a: 1, b: 2')
         parser.add_argument('-r', '--rate', metavar='N', type=float,
                             help='Repeat the call at a specific rate in Hz')
@@ -145,7 +152,7 @@ class CallVerb(VerbExtension):
             tear_down(node)
 
 
-def wait_for_server(node: Any, client: Any, service: str) -> None:
+def wait_for_server(node: 'Node', client: 'Client', service: str) -> None:
     """Wait as upstream does (forever), but say when the name looks mistyped."""
     from ros2cli.names import WaitingHint
     from ros2cli.node.direct import NAMED_LOOKUP_GRACE

@@ -4,6 +4,7 @@ import argparse
 from typing import Any
 
 from ros2cli.command import VerbCommand
+from ros2cli.node.graph import Graph
 from ros2cli.verb import VerbExtension
 
 
@@ -16,30 +17,30 @@ def _add_hidden_argument(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--include-hidden-topics', action='store_true', help='Consider hidden topics as well')
 
 
-def visible_topics(graph: Any, include_hidden: bool) -> list[list[Any]]:
+def visible_topics(graph: Graph, include_hidden: bool) -> list[list[Any]]:
     from rosidl_runtime_py.graph import is_hidden_name
     return [[name, types] for name, types in graph.topic_names_and_types()
             if include_hidden or not is_hidden_name(name)]
 
 
 def _topic_argument(parser: argparse.ArgumentParser, help_text: str = 'Name of the ROS topic') -> None:
-    from ros2cli.completion import topic_completer
-    parser.add_argument('topic_name', help=help_text).completer = topic_completer
+    from ros2cli.completion import topic_completer, with_completer
+    with_completer(parser.add_argument('topic_name', help=help_text), topic_completer)
 
 
 def _type_argument(parser: argparse.ArgumentParser, nargs: str | None = None, help_text: str = '') -> None:
-    from ros2cli.completion import message_type_completer
-    parser.add_argument(
+    from ros2cli.completion import message_type_completer, with_completer
+    with_completer(parser.add_argument(
         'message_type', nargs=nargs, help=help_text or "Type of the ROS message (e.g. 'std_msgs/msg/String')"
-    ).completer = message_type_completer
+    ), message_type_completer)
 
 
-def topic_types(graph: Any, topic: str) -> list[str] | None:
+def topic_types(graph: Graph, topic: str) -> list[str] | None:
     from ros2cli.graph_listing import types_of
     return types_of(graph.topic_names_and_types(), topic)
 
 
-def unknown_topic(graph: Any, topic: str) -> str:
+def unknown_topic(graph: Graph, topic: str) -> str:
     from rosidl_runtime_py.hints import did_you_mean
     return f"Unknown topic '{topic}'{did_you_mean(topic, [n for n, _ in graph.topic_names_and_types()])}"
 

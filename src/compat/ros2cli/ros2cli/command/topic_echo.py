@@ -2,10 +2,13 @@
 
 import argparse
 import sys
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ros2cli.command.topic import _topic_argument, _type_argument, topic_types
 from ros2cli.verb import VerbExtension
+
+if TYPE_CHECKING:  # rclpy is imported where it is used: `ros2 -h` imports this module
+    from rclpy.qos import QoSProfile
 
 RECEIVE_DEPTH = 1000
 # What upstream (Jazzy) shows of a message's receive information (printed with sorted keys).
@@ -45,7 +48,7 @@ def add_message_output_arguments(parser: argparse.ArgumentParser) -> None:
                         '(not available with csv format)')
 
 
-def choose_qos(args: argparse.Namespace, publishers: list[dict[str, Any]]) -> Any:
+def choose_qos(args: argparse.Namespace, publishers: list[dict[str, Any]]) -> 'QoSProfile':
     """Explicit policies win; otherwise match the publishers (reliable/durable only if all are)."""
     from rclpy.qos import QoSDurabilityPolicy, QoSReliabilityPolicy
 

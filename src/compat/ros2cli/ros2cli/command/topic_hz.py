@@ -4,10 +4,13 @@ import argparse
 import math
 import sys
 from collections import deque
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ros2cli.command.topic import _topic_argument, wait_for_topic_type
 from ros2cli.verb import VerbExtension
+
+if TYPE_CHECKING:  # rclpy is imported where it is used: `ros2 -h` imports this module
+    from rclpy.qos import QoSProfile
 
 
 def positive_int(text: str) -> int:
@@ -55,7 +58,7 @@ class RateStatistics:
                 f'max: {max(self.intervals):.3f}s std dev: {std_dev:.5f}s window: {count}')
 
 
-def receive_profile() -> Any:
+def receive_profile() -> 'QoSProfile':
     """sensor_data's policies (best effort: hears every publisher) with room for bursts."""
     from rclpy.qos import QoSProfile, qos_profile_sensor_data
 

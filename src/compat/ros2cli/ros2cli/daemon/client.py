@@ -6,6 +6,7 @@ import subprocess
 import sys
 import time
 import xmlrpc.client
+from collections.abc import Callable
 from typing import Any
 
 from ros2cli.daemon import RPC_PATH, daemon_port, domain_id
@@ -73,7 +74,7 @@ def spawn_daemon(on_demand: bool = False) -> bool:
         listener.close()
 
 
-def wait_until(condition: Any, timeout: float = READY_TIMEOUT) -> bool:
+def wait_until(condition: Callable[[], object], timeout: float = READY_TIMEOUT) -> bool:
     deadline = time.monotonic() + timeout
     while not condition():
         if time.monotonic() > deadline:

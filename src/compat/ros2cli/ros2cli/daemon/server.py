@@ -48,7 +48,7 @@ def serve(domain: int, listener: socket.socket, idle_timeout: float, alone_timeo
 
     rclpy.init(args=[], domain_id=domain)
     node = Node(f'_ros2cli_daemon_{domain}_{uuid.uuid4().hex}', start_parameter_services=False)
-    stopping = []
+    stopping: list[bool] = []
     server.register_introspection_functions()
     server.register_instance(GraphQueries(node))
     server.register_function(node.get_name, 'get_name')
@@ -60,7 +60,11 @@ def serve(domain: int, listener: socket.socket, idle_timeout: float, alone_timeo
     server.register_function(
         lambda service, type_name, text, timeout: serve_call(caller, service, type_name, text, timeout),
         'call_service')
-    server.register_function(lambda: stopping.append(True) or True, 'system.shutdown')
+
+    def shutdown() -> bool:
+        stopping.append(True)
+        return True
+    server.register_function(shutdown, 'system.shutdown')
 
     last_request = last_company = time.monotonic()
     try:

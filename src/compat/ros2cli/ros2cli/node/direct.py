@@ -4,7 +4,11 @@ import argparse
 import os
 import time
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # rclpy is imported when a node is made: `ros2 -h` does not need it
+    from rclpy.node import Node
+    from rosidl_runtime_py.graph import GraphQueries
 
 DEFAULT_SPIN_TIME = 0.5
 # A verb that looks for one named entity (node, topic, service) keeps looking this much longer
@@ -20,7 +24,7 @@ def add_direct_node_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('-s', '--use-sim-time', action='store_true', help='Enable ROS simulation time')
 
 
-def tear_down(node: Any, *owned: Any) -> None:
+def tear_down(node: 'Node', *owned: Any) -> None:
     """Destroy what a verb owns (owned first, then node) and shut rclpy down: the process ends next.
 
     Under owl_common's clean-up watchdog: Fast DDS can deadlock while it tears the participant down,
@@ -53,7 +57,7 @@ class DirectNode:
         self.node = Node(
             node_name or f'_ros2cli_{os.getpid()}', start_parameter_services=False,
             parameter_overrides=[Parameter('use_sim_time', value=use_sim_time)])
-        self._graph: Any = None
+        self._graph: GraphQueries | None = None
         self.spin_for(spin_time)
 
     def spin_for(self, seconds: float) -> None:
@@ -72,7 +76,7 @@ class DirectNode:
         return True
 
     @property
-    def graph(self) -> Any:
+    def graph(self) -> 'GraphQueries':
         if self._graph is None:
             from rosidl_runtime_py.graph import GraphQueries
             self._graph = GraphQueries(self.node)

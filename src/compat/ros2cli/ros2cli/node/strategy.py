@@ -3,9 +3,9 @@
 import argparse
 import time
 from collections.abc import Callable
-from typing import Any
 
 from ros2cli.node.direct import NAMED_LOOKUP_GRACE, DirectNode, add_direct_node_arguments
+from ros2cli.node.graph import Graph
 
 # Seconds of discovery a fresh daemon gets before its answers are used.
 DAEMON_WARM_UP = 1.0
@@ -26,16 +26,16 @@ class NodeStrategy:
         self._args = args
         self._spin_time = spin_time
         self._direct: DirectNode | None = None
-        self.graph: Any = None
+        graph: Graph | None = None
         if not getattr(args, 'no_daemon', False):
             if client.is_daemon_running():
-                self.graph = client.DaemonGraph()
+                daemon = client.DaemonGraph()
+                graph = daemon
                 # A daemon started a moment ago (by the previous call) is still discovering.
-                time.sleep(max(0.0, DAEMON_WARM_UP - self.graph.get_uptime()))
+                time.sleep(max(0.0, DAEMON_WARM_UP - daemon.get_uptime()))
             else:
                 client.spawn_daemon(on_demand=True)
-        if self.graph is None:
-            self.graph = self.direct.graph
+        self.graph: Graph = self.direct.graph if graph is None else graph
 
     @property
     def uses_daemon(self) -> bool:
