@@ -12,9 +12,13 @@ setup:
 demo: setup
 	@$(ENV) python scripts/demo.py
 
+# The system tests mostly wait on processes, discovery and timers (the suite alone keeps under one
+# core busy): pytest-xdist runs them in this many workers; `make test TEST_WORKERS=0` runs them in one.
+TEST_WORKERS ?= 3
+
 test: setup
 	@bash scripts/test_prereqs.sh
-	@$(ENV) python -m pytest
+	@$(ENV) python -m pytest -n $(TEST_WORKERS)
 
 lint: setup
 	@$(ENV) ruff check .

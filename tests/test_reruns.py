@@ -81,3 +81,18 @@ def test_a_system_test_failing_twice_fails_and_a_unit_test_is_never_rerun(tmp_pa
     assert lines[-1].startswith('2 failed, 2 passed, 2 rerun in'), session.stdout
     assert 'FAILED src/pkg/test/test_unit.py::test_flaky_unit' in session.stdout
     assert not [line for line in lines if line.startswith('rerun: src/')], session.stdout
+
+
+def test_reruns_in_parallel_workers_are_reported_by_the_controller(tmp_path):
+    """`make test` runs the suite in pytest-xdist workers: the reruns happen there, the report at the end."""
+    session = run_session(tmp_path, '-n', '2', 'tests', 'src')
+    lines = session.stdout.splitlines()
+    assert session.returncode == 1, session.stdout
+    assert sorted(lines[-3:-1]) == [
+        'rerun: tests/test_system.py::test_broken failed again on its second run; '
+        'first failure: AssertionError: broken for good',
+        'rerun: tests/test_system.py::test_flaky passed on its second run; '
+        'first failure: AssertionError: a discovery delay',
+    ], session.stdout
+    assert lines[-1].startswith('2 failed, 2 passed, 2 rerun in'), session.stdout
+    assert not [line for line in lines if line.startswith('rerun: src/')], session.stdout
