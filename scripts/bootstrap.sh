@@ -60,8 +60,11 @@ if [ "$(cat "$REQ_STAMP" 2>/dev/null)" != "$req_hash" ]; then
   run_logged uv env _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/python" -m pip install \
     --disable-pip-version-check --no-input "$uv_pin"
   # The bootstrapper hook re-executes every venv Python; this marker skips that during the install.
+  # --compile-bytecode: where PYTHONDONTWRITEBYTECODE is set (CI machines, ours too) no process
+  # would keep what it compiled, and each node's start compiled rclpy and its messages again
+  # (0.5 s of CPU per node instead of 0.16 s).
   run_logged wheels env _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/uv" pip install --no-progress \
-    --python "$VENV/bin/python" -r requirements.txt
+    --compile-bytecode --python "$VENV/bin/python" -r requirements.txt
   run_logged cmake-repair "$VENV/bin/python" scripts/repair_cmake_paths.py
   # colcon warns about an underlay prefix with no local_setup file; the venv is one.
   for shell_ext in sh bash zsh; do
@@ -85,7 +88,7 @@ if [ "$(cat "$CV_STAMP" 2>/dev/null)" != "$cv_hash" ]; then
     echo "setup: installing OpenCV's headless build $cv_version as a fallback ..."
     rm -rf "$VENV/opencv-headless"
     run_logged opencv-headless "$VENV/bin/uv" pip install --no-progress --python "$VENV/bin/python" \
-      --no-deps --target "$VENV/opencv-headless" "opencv-python-headless==$cv_version"
+      --no-deps --compile-bytecode --target "$VENV/opencv-headless" "opencv-python-headless==$cv_version"
   fi
   rm -f "$site_packages/owl_cv2_fallback.py" "$site_packages/owl_cv2_fallback.pth"  # its old name
   cp scripts/owl_gui_hook.py "$site_packages/"
@@ -122,6 +125,8 @@ if [ "$(cat "$BUILD_STAMP" 2>/dev/null)" != "$src_hash" ]; then
   echo "setup: building the workspace (colcon build --symlink-install) ..."
   run_logged colcon colcon build --symlink-install --event-handlers console_direct- \
     --cmake-args -DBUILD_TESTING=OFF -DPython3_EXECUTABLE="$VENV/bin/python"
+  # The workspace's modules compiled once, for the same reason as the wheels' (--compile-bytecode).
+  run_logged bytecode python -m compileall -q -j 0 src install
   echo "$src_hash" >"$BUILD_STAMP"
 fi
 

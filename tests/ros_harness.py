@@ -34,6 +34,14 @@ class Probe(owl_common.probe.Probe):
         """Wait until a node of that name (no namespace) is in the graph."""
         wait_until(lambda: name in self.node.get_node_names(), timeout, f'node {name}')
 
+    def wait_until_spinning(self, name: str, timeout: float = 10.0) -> None:
+        """Wait until the node (no namespace) answers on its parameter services. A node is in the
+        graph from the first line of its constructor, and a Ctrl-C there fails the rest of it
+        ("rcl node's context is invalid"); a node that answers has been built and spins, which is
+        where a user's Ctrl-C lands."""
+        self.wait_for_node(name, timeout)
+        self.get_parameters(f'/{name}', 'use_sim_time', timeout=timeout)
+
     def call(self, srv_type: Any, service: str, request: Any, timeout: float = 10.0,
              resend_every: float | None = None) -> Any:
         """Call a service and return the response (waits for the server first).

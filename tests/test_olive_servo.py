@@ -32,12 +32,18 @@ def test_control_servo_waits_for_the_servo_enables_its_torque_before_any_goal_an
     diagnostics = collect(ros, 'pan', 'joint/diagnostics')
     servo = start_servo(ros, 'pan')
     control_servo.wait_for(r'torque enabled: pan', timeout=30)
-    wait_for_messages(goals, 150, timeout=30, what='goals')
+    wait_for_messages(goals, 100, timeout=30, what='goals')
     # The course's sine: the input grows by 0.01 rad per goal, amplitude 1 rad; it starts at 0 and
     # goes positive, which turns the pan servo to the left (counter-clockwise seen from above).
-    values = [g.data for g in goals[:150]]
+    # The probe may miss a goal when a busy machine stalls it for longer than the publisher's
+    # history lasts (10 goals, 0.1 s), so each goal is matched to its own step k: sin is one-to-one
+    # below pi/2, i.e. for k < 157 with up to 57 goals missed.
+    values = [g.data for g in goals[:100]]
+    steps = [round(math.asin(value) / 0.01) for value in values]
     assert values[0] == 0.0
-    assert values == pytest.approx([math.sin(0.01 * k) for k in range(150)], abs=1e-6)
+    assert values == pytest.approx([math.sin(0.01 * k) for k in steps], abs=1e-6)
+    gaps = [later - earlier for earlier, later in zip(steps, steps[1:])]
+    assert min(gaps) >= 1 and gaps.count(1) >= 0.9 * len(gaps), steps  # 0.01 rad per goal, in order
     wait_until(lambda: joints and joints[-1].position[0] > 0.5, 20, 'the pan joint turning left past 0.5 rad')
     wait_until(lambda: diagnostics and torque_enabled(diagnostics), 10, 'torque_enabled true')
     assert all(abs(g.data) <= 1.0 for g in goals)

@@ -117,7 +117,7 @@ def test_every_node_stops_cleanly_on_ctrl_c(ros):
         'turtle_random_velocity')]
     for name in ('random_number_publisher', 'random_number_subscriber', 'counter_publisher',
                  'turtle_random_velocity'):
-        ros.probe.wait_for_node(name)
+        ros.probe.wait_until_spinning(name)
     for node in nodes:
         node.stop_cleanly()
         assert 'Traceback' not in node.output
@@ -126,7 +126,7 @@ def test_every_node_stops_cleanly_on_ctrl_c(ros):
 def test_a_second_ctrl_c_during_shutdown_is_still_clean(ros):
     # A launcher forwarding SIGINT on top of the terminal's own gives a node two in a row.
     subscriber = ros.run('random_number_ps', 'random_number_subscriber')
-    ros.probe.wait_for_node('random_number_subscriber')
+    ros.probe.wait_until_spinning('random_number_subscriber')
     subscriber.send_signal(signal.SIGINT)
     time.sleep(0.05)  # the second one lands while the node is cleaning up
     subscriber.send_signal(signal.SIGINT)

@@ -106,6 +106,6 @@ def test_factorial_round_trip_and_refusals(ros):
 @pytest.mark.parametrize('server', ['temp_server', 'currency_server', 'factorial_server'])
 def test_servers_stop_cleanly_on_ctrl_c(ros, server):
     process = ros.run('olive_srvcli', server)
-    ros.probe.wait_for_node(server.replace('_server', '_service'))
+    ros.probe.wait_until_spinning(server.replace('_server', '_service'))
     process.stop_cleanly()
     assert 'Traceback' not in process.output
