@@ -2,6 +2,7 @@
 pid_testing, imu_control_robot; torque on before any goal and off after Ctrl-C, signs, bounds,
 bad input."""
 
+import itertools
 import math
 import time
 
@@ -42,7 +43,7 @@ def test_control_servo_waits_for_the_servo_enables_its_torque_before_any_goal_an
     steps = [round(math.asin(value) / 0.01) for value in values]
     assert values[0] == 0.0
     assert values == pytest.approx([math.sin(0.01 * k) for k in steps], abs=1e-6)
-    gaps = [later - earlier for earlier, later in zip(steps, steps[1:])]
+    gaps = [later - earlier for earlier, later in itertools.pairwise(steps)]
     assert min(gaps) >= 1 and gaps.count(1) >= 0.9 * len(gaps), steps  # 0.01 rad per goal, in order
     wait_until(lambda: joints and joints[-1].position[0] > 0.5, 20, 'the pan joint turning left past 0.5 rad')
     wait_until(lambda: diagnostics and torque_enabled(diagnostics), 10, 'torque_enabled true')
