@@ -1,4 +1,5 @@
 import os
+import time
 from collections.abc import Generator
 from dataclasses import dataclass
 from pathlib import Path
@@ -8,6 +9,7 @@ import pytest
 # Set before any rclpy context exists in this process.
 os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
 
+from owl_common.processes import LEASE_DIR, try_lock_file
 from ros_harness import RosHarness
 from web_harness import Browser, BrowserPage, chromium_missing
 
@@ -85,6 +87,28 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
     for item in items:
         if item.path.is_relative_to(SYSTEM_TESTS):
             item.add_marker(pytest.mark.flaky(reruns=SYSTEM_TEST_RERUNS))
+
+
+# Machine-wide, at most this many system tests run at once, whichever suite they belong to: one
+# suite's workers (make test) fill the slots, and a second suite beside it waits for a free one
+# instead of running six robots on two cores, where tests miss deadlines no user would meet.
+SYSTEM_TEST_SLOTS = range((os.cpu_count() or 1) + 1)
+SLOT_DIR = Path(os.environ.get('OWL_TEST_SLOT_DIR', LEASE_DIR.parent / 'owl-kit-lab-test-slots'))
+
+
+@pytest.hookimpl(wrapper=True, tryfirst=True)
+def pytest_runtest_protocol(item: pytest.Item,
+                            nextitem: pytest.Item | None) -> Generator[None, object, object]:
+    """A system test runs (with its rerun, fixtures and timeout) only while it holds a slot; the
+    wait is outside its timeout."""
+    if not item.path.is_relative_to(SYSTEM_TESTS):
+        return (yield)
+    while (slot := try_lock_file(SLOT_DIR, SYSTEM_TEST_SLOTS, os.getpid())) is None:
+        time.sleep(0.1)
+    try:
+        return (yield)
+    finally:
+        slot[1].close()
 
 
 @dataclass

@@ -1,9 +1,13 @@
-"""A failed system test gets exactly one more run, a unit test none, and every rerun is reported.
+"""How make test runs tests: a failed system test gets exactly one more run, a unit test none, and
+every rerun is reported; suites on one machine share its system-test slots.
 
-Each case runs a small pytest session in a subprocess with the project's own configuration and a
-copy of tests/conftest.py, laid out like the repository (tests/ and src/<pkg>/test/).
+Each case runs small pytest sessions in subprocesses with the project's own configuration and a
+copy of tests/conftest.py, laid out like the repository (tests/ and src/<pkg>/test/), with a slot
+folder of their own (the suite running them holds the machine's slots).
 """
 
+import json
+import os
 import shutil
 import subprocess
 import sys
@@ -47,16 +51,27 @@ def test_flaky_unit():
 '''
 
 
-def run_session(root: Path, *args: str) -> subprocess.CompletedProcess:
-    (root / 'tests').mkdir()
+def lay_out(root: Path, system_tests: str) -> None:
+    (root / 'tests').mkdir(parents=True)
     shutil.copy(REPOSITORY / 'tests' / 'conftest.py', root / 'tests' / 'conftest.py')
-    (root / 'tests' / 'test_system.py').write_text(SYSTEM_TESTS)
+    (root / 'tests' / 'test_system.py').write_text(system_tests)
     (root / 'src' / 'pkg' / 'test').mkdir(parents=True)
     (root / 'src' / 'pkg' / 'test' / 'test_unit.py').write_text(UNIT_TEST)
-    return subprocess.run(
+
+
+def start_session(root: Path, slots: Path, *args: str) -> subprocess.Popen:
+    return subprocess.Popen(
         [sys.executable, '-m', 'pytest', '-c', str(REPOSITORY / 'pyproject.toml'), '--rootdir', str(root),
          '--confcutdir', str(root), *args],
-        cwd=root, capture_output=True, text=True, timeout=120)
+        cwd=root, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+        env={**os.environ, 'OWL_TEST_SLOT_DIR': str(slots)})
+
+
+def run_session(root: Path, *args: str) -> subprocess.CompletedProcess:
+    lay_out(root, SYSTEM_TESTS)
+    process = start_session(root, root / 'slots', *args)
+    stdout, _ = process.communicate(timeout=120)
+    return subprocess.CompletedProcess(process.args, process.returncode, stdout)
 
 
 def test_a_system_test_that_fails_once_passes_and_its_first_failure_is_reported_last(tmp_path):
@@ -96,3 +111,35 @@ def test_reruns_in_parallel_workers_are_reported_by_the_controller(tmp_path):
     ], session.stdout
     assert lines[-1].startswith('2 failed, 2 passed, 2 rerun in'), session.stdout
     assert not [line for line in lines if line.startswith('rerun: src/')], session.stdout
+
+
+# Each test appends when it ran to a file of its session's.
+TIMED_TESTS = '''
+import json
+import time
+from pathlib import Path
+
+
+def test_{n}():
+    started = time.time()
+    time.sleep(3)
+    with open(Path(__file__).parents[1] / 'ran.jsonl', 'a') as ran:
+        ran.write(json.dumps([started, time.time()]) + '\\n')
+'''
+
+
+def test_suites_side_by_side_run_no_more_system_tests_at_once_than_the_machine_has_slots(tmp_path):
+    slots = (os.cpu_count() or 1) + 1
+    sessions = []
+    for suite in range(2):  # two suites of `slots` workers, each test 3 s long
+        root = tmp_path / f'suite{suite}'
+        lay_out(root, ''.join(TIMED_TESTS.format(n=n) for n in range(slots)))
+        sessions.append(start_session(root, tmp_path / 'slots', '-n', str(slots), 'tests'))
+    for process in sessions:
+        stdout, _ = process.communicate(timeout=120)
+        assert process.returncode == 0, stdout
+    runs = [json.loads(line) for suite in range(2)
+            for line in (tmp_path / f'suite{suite}' / 'ran.jsonl').read_text().splitlines()]
+    assert len(runs) == 2 * slots
+    at_once = max(sum(start <= moment < end for start, end in runs) for moment, _ in runs)
+    assert at_once <= slots, runs  # without slots, up to twice as many

@@ -16,7 +16,7 @@ import socket
 import subprocess
 import threading
 import time
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from pathlib import Path
 from typing import IO
 
@@ -28,24 +28,32 @@ DOMAIN_IDS = range(1, 102)
 LEASE_DIR = Path(os.environ.get('OWL_DOMAIN_LEASE_DIR', '/tmp/owl-kit-lab-domains'))
 
 
+def try_lock_file(directory: Path, ids: Sequence[int], start: int = 0) -> tuple[int, IO[str]] | None:
+    """The first of ids, counting from index start and wrapping, whose lock file in directory no
+    process holds, locked until the returned handle is closed (or the process ends); None when all
+    are held. How concurrent runs on one machine share domains and test slots."""
+    directory.mkdir(parents=True, exist_ok=True)
+    for offset in range(len(ids)):
+        chosen = ids[(start + offset) % len(ids)]
+        handle = open(directory / f'{chosen}.lock', 'w')
+        try:
+            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            handle.close()
+            continue
+        return chosen, handle
+    return None
+
+
 class DomainLease:
     """Exclusive use of one ROS_DOMAIN_ID on this machine until release()."""
 
     def __init__(self) -> None:
-        LEASE_DIR.mkdir(parents=True, exist_ok=True)
-        start = os.getpid() % len(DOMAIN_IDS)
-        for offset in range(len(DOMAIN_IDS)):
-            domain_id = DOMAIN_IDS[(start + offset) % len(DOMAIN_IDS)]
-            handle = open(LEASE_DIR / f'{domain_id}.lock', 'w')
-            try:
-                fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
-            except BlockingIOError:
-                handle.close()
-                continue
-            self.domain_id = domain_id
-            self._handle: IO[str] | None = handle
-            return
-        raise RuntimeError(f'all ROS domains {DOMAIN_IDS.start}..{DOMAIN_IDS.stop - 1} are in use')
+        leased = try_lock_file(LEASE_DIR, DOMAIN_IDS, os.getpid() % len(DOMAIN_IDS))
+        if leased is None:
+            raise RuntimeError(f'all ROS domains {DOMAIN_IDS.start}..{DOMAIN_IDS.stop - 1} are in use')
+        self.domain_id, handle = leased
+        self._handle: IO[str] | None = handle
 
     def release(self) -> None:
         if self._handle is not None:
