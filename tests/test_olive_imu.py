@@ -142,7 +142,8 @@ def test_it_names_the_topic_it_waits_for_and_ignores_unusable_orientations_with_
 
     publish_for(imu, imu_message(x=math.nan), 1.0)
     imu_turtle.wait_for(r'IMU message ignored: the orientation quaternion \(nan, 0.0, 0.0, 1.0\) is not fin')
-    assert len([line for line in imu_turtle.lines if 'IMU message ignored' in line]) == 1  # not 100
+    # throttled: one line (two when a busy machine spread their handling past the 2 s), not 100
+    assert len([line for line in imu_turtle.lines if 'IMU message ignored' in line]) in (1, 2)
     time.sleep(2.1)  # the warning's throttle
     publish_for(imu, imu_message(w=0.0), 0.5)
     imu_turtle.wait_for(r'IMU message ignored: the orientation quaternion is zero, not a rotation')

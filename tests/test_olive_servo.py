@@ -211,7 +211,9 @@ def test_imu_control_robot_names_the_topic_it_waits_for_and_ignores_unusable_ori
         imu.publish(bad)
         time.sleep(0.01)
     robot.wait_for(r'IMU message ignored: the orientation quaternion is zero, not a rotation')
-    assert len([line for line in robot.lines if 'IMU message ignored' in line]) == 1
+    # Throttled to one line per 2 s: one for the 50 (two when a busy machine spread their handling
+    # past 2 s), never one each.
+    assert len([line for line in robot.lines if 'IMU message ignored' in line]) in (1, 2)
     assert goals == []
     good = Imu()
     x, y, z, w = quat.from_euler(0.0, 0.0, 0.3)

@@ -12,7 +12,7 @@ from rclpy.serialization import serialize_message
 from sensor_msgs.msg import Imu, MagneticField
 
 from olive_sim.imu_model import ImuNoise, ImuSensor
-from olive_sim.module_node import OliveModule, describe
+from olive_sim.module_node import SENSOR_CATCH_UP, OliveModule, describe
 from olive_sim.quaternion import Quaternion
 from olive_sim.serialized import STAMP_MARKER, SerializedTemplate, markers
 
@@ -66,7 +66,8 @@ class ImuOutput:
         self._epoch = time.monotonic() - float(node.handover.get('imu_time', 0.0))
         self.latest: Quaternion | None = None  # the last orientation published, for the web page
         self.traffic = node.traffic.counter()
-        self.thread = node.create_periodic(value('imu_rate').value, self.publish, 'imu')
+        self.thread = node.create_periodic(value('imu_rate').value, self.publish, 'imu',
+                                           catch_up=SENSOR_CATCH_UP)
 
     def _templates(self) -> tuple[SerializedTemplate, SerializedTemplate]:
         """Serialized imu and magnetometer messages to fill: orientation, angular velocity and

@@ -38,6 +38,9 @@ from olive_sim.restart import start_again, take_handover
 FIRMWARE_VERSION = 'olive_sim 0.1.0'
 NAMESPACE_PATTERN = re.compile(r'^[A-Za-z][A-Za-z0-9_]*$')
 STATUS_PERIOD = 1.0  # s: status, temperature and switch are published at 1 Hz
+# s: how late a sensor's samples (IMU, servo joint) may be made up after the machine held the
+# module up, as a real module's own processor would have sent them (PeriodicThread's catch_up)
+SENSOR_CATCH_UP = 0.2
 WARN_EVERY = 2.0     # s between repeats of one kind of warning
 WEB_PORT = 8042      # of every module's page (a real module's is 80, which needs root)
 
@@ -240,9 +243,12 @@ class OliveModule(Node):
         """A subscription the executor never wakes up for: see PolledSubscription."""
         return PolledSubscription(self, msg_type, topic, callback, qos, raw)
 
-    def create_periodic(self, rate: float, callback: Callable[[], None], name: str) -> PeriodicThread:
-        """Run callback at rate Hz on a thread of its own until the node is destroyed."""
-        periodic = PeriodicThread(rate, callback, f'{self.get_name()}.{name}', self.context.ok)
+    def create_periodic(self, rate: float, callback: Callable[[], None], name: str,
+                        catch_up: float = 0.0) -> PeriodicThread:
+        """Run callback at rate Hz on a thread of its own until the node is destroyed (catch_up:
+        see PeriodicThread)."""
+        periodic = PeriodicThread(rate, callback, f'{self.get_name()}.{name}', self.context.ok,
+                                  catch_up=catch_up)
         self._periodic.append(periodic)
         return periodic
 

@@ -21,7 +21,7 @@ from sensor_msgs.msg import JointState
 from std_msgs.msg import Float32
 from std_srvs.srv import Trigger
 
-from olive_sim.module_node import OliveModule, describe, run_module
+from olive_sim.module_node import SENSOR_CATCH_UP, OliveModule, describe, run_module
 from olive_sim.serialized import STAMP_MARKER, SerializedTemplate, markers
 from olive_sim.servo_model import CONTROL_MODES, PidGains, ServoParams, ServoSim
 
@@ -104,7 +104,7 @@ class ServoModule(OliveModule):
         self.create_service(Trigger, self.topic('setTorqueEnable'), self._on_torque_enable)
         self.create_service(Trigger, self.topic('setTorqueDisable'), self._on_torque_disable)
         self.joint_thread = self.create_periodic(self.get_parameter('joint_rate').value,
-                                                 self._publish_joint, 'joint')
+                                                 self._publish_joint, 'joint', catch_up=SENSOR_CATCH_UP)
         self.diagnostics_timer = self.create_timer(1.0, self._publish_diagnostics)
 
     def _take_over(self, state: Any) -> None:

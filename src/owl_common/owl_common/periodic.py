@@ -11,6 +11,17 @@ from collections.abc import Callable
 SLEEP_LIMIT = 0.1
 
 
+def next_call(last_due: float, now: float, period: float, catch_up: float) -> tuple[float, float]:
+    """The next call's due time after the one due at last_due, and how long to wait for it (<= 0:
+    call at once). The schedule does not drift; calls the thread missed while the machine held it
+    up are made up back to back while they are at most catch_up (and always one period) late, so a
+    100 Hz sensor still gives 100 samples a second; further behind, the schedule restarts now."""
+    due = last_due + period
+    if now - due > max(period, catch_up):
+        return now, 0.0
+    return due, due - now
+
+
 class PeriodicThread:
     """Calls `callback` at a fixed rate on its own thread, on a schedule that does not drift.
 
@@ -21,8 +32,10 @@ class PeriodicThread:
     """
 
     def __init__(self, rate: float, callback: Callable[[], None], name: str,
-                 alive: Callable[[], bool], finish: Callable[[], None] | None = None) -> None:
+                 alive: Callable[[], bool], finish: Callable[[], None] | None = None,
+                 catch_up: float = 0.0) -> None:
         self.period = 1.0 / rate
+        self.catch_up = catch_up
         self.callback = callback
         self.alive = alive
         self.finish = finish
@@ -40,11 +53,8 @@ class PeriodicThread:
     def _loop(self) -> None:
         due = time.monotonic()
         while not self._stop.is_set():
-            due += self.period
-            delay = due - time.monotonic()
-            if delay < -self.period:
-                due = time.monotonic()  # fell more than a period behind: restart the schedule
-            elif 0 < delay <= SLEEP_LIMIT:
+            due, delay = next_call(due, time.monotonic(), self.period, self.catch_up)
+            if 0 < delay <= SLEEP_LIMIT:
                 time.sleep(delay)
                 if self._stop.is_set():
                     return

@@ -2,7 +2,7 @@ import threading
 import time
 
 import pytest
-from owl_common.periodic import PeriodicThread
+from owl_common.periodic import PeriodicThread, next_call
 
 
 def test_calls_at_its_rate_until_stopped_then_finishes_on_its_own_thread():
@@ -37,3 +37,19 @@ def test_stop_does_not_wait_for_the_next_call(rate):
     started = time.monotonic()
     periodic.stop()
     assert time.monotonic() - started < 5.0  # the 0.1 Hz thread's next call is 10 s away
+
+
+def test_the_schedule_does_not_drift_and_waits_for_the_next_call():
+    assert next_call(10.0, 10.004, 0.01, 0.0) == pytest.approx((10.01, 0.006))
+
+
+def test_calls_held_up_are_made_up_back_to_back_within_catch_up():
+    # A 100 Hz sensor held up 0.15 s: its missed samples go out at once, one by one.
+    assert next_call(10.0, 10.15, 0.01, 0.2) == pytest.approx((10.01, -0.14))
+    assert next_call(10.01, 10.15, 0.01, 0.2) == pytest.approx((10.02, -0.13))
+
+
+def test_further_behind_than_catch_up_or_one_period_the_schedule_restarts():
+    assert next_call(10.0, 10.35, 0.01, 0.2) == (10.35, 0.0)
+    assert next_call(10.0, 10.025, 0.01, 0.0) == (10.025, 0.0)  # no catch_up: one period late at most
+    assert next_call(10.0, 10.019, 0.01, 0.0) == pytest.approx((10.01, -0.009))
