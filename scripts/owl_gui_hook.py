@@ -118,12 +118,12 @@ class GuiImportHook:
         return spec
 
 
-def find_spec_after(finder: object, fullname: str, target: object) -> object:
+def find_spec_after(finder: object, fullname: str, target: object, path: object = None) -> object:
     """The spec the other finders on sys.meta_path give, as the import would find it without us."""
     for other in list(sys.meta_path):
         if other is finder or not hasattr(other, 'find_spec'):
             continue
-        spec = other.find_spec(fullname, None, target)
+        spec = other.find_spec(fullname, path, target)
         if spec is not None:
             return spec
     return None

@@ -1,0 +1,113 @@
+"""The venv's repair of Ctrl-C that lands while rclpy builds a message (a defect of the rclpy wheel).
+
+Python raises KeyboardInterrupt at the next point where the main thread runs Python code. When the
+Ctrl-C arrives while rclpy's executor takes a message, request or response from DDS, that point is
+the Python constructor of the message that rclpy's C++ code is building, and pybind11 replaces the
+KeyboardInterrupt with "RuntimeError: Unable to convert call argument '0' to Python object" (a
+message, a response) or with "SystemError: ... returned a result with an exception set" whose cause
+is the KeyboardInterrupt (a service's request). A node
+written as the course writes it (`except KeyboardInterrupt:` around rclpy.spin) then ends with a
+traceback and exit code 1: about 1 stop in 3 under a flood of messages, 1-3 % at the IMU's 100 Hz,
+with rclpy's own Ctrl-C handler and with SignalHandlerOptions.NO alike. Upstream rclpy has it too.
+
+scripts/bootstrap.sh copies this module into the venv's site-packages with a .pth line that calls
+install() at every start of the venv's Python; nothing happens until rclpy.executors is imported.
+Then the executor's take methods (TAKES: a message, a service's request or response, an action's
+data; a few microseconds each, never the callback that follows) are wrapped, for calls in the main
+thread (the only one where Python raises KeyboardInterrupt) while SIGINT has Python's default handler:
+- SignalHandlerOptions.NO (Python's handler alone): a Ctrl-C during the take is held and raised as
+  KeyboardInterrupt as the take returns, never inside it.
+- rclpy's handler (a plain rclpy.init): it cannot be swapped for a while, as signal.signal would
+  also replace rclpy's handler in the kernel. The SystemError carries the KeyboardInterrupt as its
+  cause and is turned back into it. rclpy's handler shuts the context down and then calls Python's,
+  so the RuntimeError, which carries nothing, is turned back into a KeyboardInterrupt when the
+  context goes down within SHUTDOWN_GRACE; otherwise it is a real error and stays as it is.
+A program with a SIGINT handler of its own, and executors spinning in other threads, are untouched.
+"""
+
+import signal
+import sys
+import threading
+import time
+from collections.abc import Callable
+from functools import wraps
+from typing import Any
+
+from owl_gui_hook import PatchingLoader, find_spec_after
+
+TAKES = ('_take_subscription', '_take_client', '_take_service', '_take_waitable')
+CONVERSION_ERROR = 'Unable to convert call argument'
+SHUTDOWN_GRACE = 0.5  # s for rclpy's signal thread to shut the context down after its handler ran
+
+
+class RclpyImportHook:
+    """A sys.meta_path entry that acts on the first `import rclpy.executors`."""
+
+    @classmethod
+    def find_spec(cls, fullname: str, path: object = None, target: object = None) -> object:
+        if fullname != 'rclpy.executors':
+            return None
+        sys.meta_path.remove(cls)
+        spec = find_spec_after(cls, fullname, target, path)
+        if spec is None or spec.loader is None:
+            return None
+        spec.loader = PatchingLoader(spec.loader, patch_executors)
+        return spec
+
+
+def install() -> None:
+    """Called by the .pth line at every start of the venv's Python; costs nothing until rclpy."""
+    if RclpyImportHook not in sys.meta_path:
+        sys.meta_path.insert(0, RclpyImportHook)
+
+
+def patch_executors(executors: Any) -> None:
+    for name in TAKES:
+        setattr(executors.Executor, name, keep_ctrl_c_out(getattr(executors.Executor, name)))
+
+
+def keep_ctrl_c_out(take: Callable[..., Any]) -> Callable[..., Any]:
+    """take, with a Ctrl-C that lands inside it raised as KeyboardInterrupt (see the module's text)."""
+    from rclpy.signals import SignalHandlerOptions, get_current_signal_handlers_options
+
+    rclpy_handles = (SignalHandlerOptions.ALL, SignalHandlerOptions.SIGINT)
+
+    @wraps(take)
+    def take_keeping_ctrl_c_out(executor: Any, entity: Any) -> Any:
+        if (threading.current_thread() is not threading.main_thread()
+                or signal.getsignal(signal.SIGINT) is not signal.default_int_handler):
+            return take(executor, entity)
+        if get_current_signal_handlers_options() in rclpy_handles:
+            try:
+                return take(executor, entity)
+            except Exception as error:
+                if was_ctrl_c(error, executor.context):
+                    raise KeyboardInterrupt from None
+                raise
+        held: list[int] = []
+        signal.signal(signal.SIGINT, lambda signum, frame: held.append(signum))
+        try:
+            result = take(executor, entity)
+        finally:
+            signal.signal(signal.SIGINT, signal.default_int_handler)
+        if held:
+            raise KeyboardInterrupt
+        return result
+
+    return take_keeping_ctrl_c_out
+
+
+def was_ctrl_c(error: Exception, context: Any) -> bool:
+    """Whether pybind11 made error of a KeyboardInterrupt raised inside a take."""
+    if isinstance(error.__cause__, KeyboardInterrupt):
+        return True
+    return isinstance(error, RuntimeError) and CONVERSION_ERROR in str(error) and shut_down_soon(context)
+
+
+def shut_down_soon(context: Any) -> bool:
+    deadline = time.monotonic() + SHUTDOWN_GRACE
+    while context.ok():
+        if time.monotonic() > deadline:
+            return False
+        time.sleep(0.01)
+    return True

@@ -1,0 +1,100 @@
+"""Ctrl-C while rclpy builds a message ends a course-shaped node cleanly (scripts/owl_rclpy_repair.py).
+
+Without the venv's repair, pybind11 turns the KeyboardInterrupt raised inside the message's Python
+constructor into "RuntimeError: Unable to convert call argument ..." and the node ends with a
+traceback. By chance that is 1 stop in 3 under a flood of messages; here the Ctrl-C is raised from
+inside the constructor every time, so the test does not depend on luck.
+"""
+
+import sys
+from pathlib import Path
+
+import pytest
+from std_msgs.msg import String
+from std_srvs.srv import SetBool
+
+# A node as the course writes one, except that the first message (or request) built after the
+# first callback raises SIGINT from inside its constructor, i.e. inside rclpy's take.
+STUDENT_NODE = """
+import signal
+import sys
+
+import rclpy
+from std_srvs.srv import SetBool
+from rclpy.node import Node
+from rclpy.signals import SignalHandlerOptions
+from std_msgs.msg import String
+
+entity, handlers = sys.argv[1:3]
+built_in_take = String if entity == 'subscription' else SetBool.Request
+plain_init = built_in_take.__init__
+armed = False
+
+
+def init_raising_ctrl_c(self, *args, **kwargs):
+    global armed
+    plain_init(self, *args, **kwargs)
+    if armed:
+        armed = False
+        signal.raise_signal(signal.SIGINT)
+
+
+built_in_take.__init__ = init_raising_ctrl_c
+
+
+class Listener(Node):
+    def __init__(self):
+        super().__init__('listener')
+        self.create_subscription(String, 'chatter', self.listener_callback, 10)
+        self.create_service(SetBool, 'enable', self.enable_callback)
+
+    def listener_callback(self, msg):
+        global armed
+        self.get_logger().info('I heard: "%s"' % msg.data)
+        armed = entity == 'subscription'
+
+    def enable_callback(self, request, response):
+        global armed
+        response.success = request.data
+        armed = entity == 'service'
+        return response
+
+
+def main():
+    if handlers == 'rclpy':
+        rclpy.init()
+    else:
+        rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
+    node = Listener()
+    try:
+        rclpy.spin(node)
+    except KeyboardInterrupt:
+        print('stopped by Ctrl-C', flush=True)
+    node.destroy_node()
+    rclpy.try_shutdown()
+
+
+main()
+"""
+
+
+@pytest.mark.parametrize('entity', ['subscription', 'service'])
+@pytest.mark.parametrize('handlers', ['rclpy', 'python'])
+def test_ctrl_c_inside_a_take_ends_the_node_cleanly(ros, tmp_path: Path, entity: str, handlers: str):
+    script = tmp_path / 'listener.py'
+    script.write_text(STUDENT_NODE)
+    listener = ros.command([sys.executable, str(script), entity, handlers], label='listener')
+    ros.probe.wait_until_spinning('listener')
+    node = ros.probe.node
+    if entity == 'subscription':
+        publisher = node.create_publisher(String, 'chatter', 10)
+        timer = node.create_timer(0.05, lambda: publisher.publish(String(data='hello')))
+    else:
+        client = node.create_client(SetBool, 'enable')
+        timer = node.create_timer(0.05, lambda: client.call_async(SetBool.Request(data=True)))
+    try:
+        code = listener.wait(15)
+    finally:
+        node.destroy_timer(timer)
+    assert 'Traceback' not in listener.output, f'the listener ended with a traceback:\n{listener.output}'
+    assert 'stopped by Ctrl-C' in listener.output and code == 0, f'exit code {code}:\n{listener.output}'
