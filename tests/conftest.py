@@ -1,4 +1,5 @@
 import os
+import re
 import time
 from collections.abc import Generator
 from dataclasses import dataclass
@@ -128,11 +129,22 @@ def pytest_runtest_logreport(report: pytest.TestReport) -> None:
         RERUNS[report.nodeid].outcome = report.outcome
 
 
+# A line naming a raised exception, as a traceback ends: "RuntimeError: ...", "[node-1] SystemError: ..."
+RAISED = re.compile(r'\b[A-Z]\w*(Error|Exception|Interrupt): ')
+
+
 def first_line(report: pytest.TestReport) -> str:
-    """A failure report's exception in one line, as in pytest's short test summary."""
+    """A failure report's exception in one line, as in pytest's short test summary. When the
+    assertion's message is a process's output (a launch's starts with its log folder), the last
+    exception that output names says more than its first line, so that one is shown."""
     crash = getattr(report.longrepr, 'reprcrash', None)
     text = crash.message if crash is not None else report.longreprtext
-    line = next((line.strip() for line in text.splitlines() if line.strip()), '(no message)')
+    lines = [line.strip() for line in text.splitlines() if line.strip()] or ['(no message)']
+    line = lines[0]
+    raised = [later for later in lines[1:] if RAISED.search(later)]
+    if raised:
+        kind = re.match(r'[\w.]+: ', line)
+        line = f'{kind.group(0) if kind else ""}... {raised[-1]}'
     return line if len(line) <= 300 else line[:297] + '...'
 
 

@@ -113,6 +113,24 @@ def test_reruns_in_parallel_workers_are_reported_by_the_controller(tmp_path):
     assert not [line for line in lines if line.startswith('rerun: src/')], session.stdout
 
 
+PROCESS_OUTPUT_FAILURE = '''
+def test_node_output():
+    output = '[INFO] [launch]: All log files can be found below /root/.ros/log/x\\n' \\
+        '[node-1] Traceback (most recent call last):\\n' \\
+        '[node-1] RuntimeError: the real reason\\n' \\
+        '[INFO] [node-1]: process has died'
+    assert 'Traceback' not in output, output
+'''
+
+
+def test_a_failure_showing_a_process_output_is_reported_by_the_exception_it_names(tmp_path):
+    lay_out(tmp_path, PROCESS_OUTPUT_FAILURE)
+    process = start_session(tmp_path, tmp_path / 'slots', 'tests')
+    stdout, _ = process.communicate(timeout=120)
+    assert ('rerun: tests/test_system.py::test_node_output failed again on its second run; '
+            'first failure: AssertionError: ... [node-1] RuntimeError: the real reason') in stdout, stdout
+
+
 # Each test appends when it ran to a file of its session's.
 TIMED_TESTS = '''
 import json
