@@ -122,14 +122,17 @@ class PolledSubscription:
     For inputs that matter only at the moment an output is made (the camera's view of the servo
     joints): every executor wake-up costs the node's whole wait set, which at 100 Hz per servo was
     the largest part of the camera's CPU after the rendering. poll() may be called from any thread.
-    With raw=True the callback gets the serialized bytes, as with rclpy's raw subscriptions.
+    With raw=True the callback gets the serialized bytes, as with rclpy's raw subscriptions; with
+    info=True it also gets the message's info from DDS (a dict: 'source_timestamp', when it was
+    sent, in ns since the epoch; 'received_timestamp'; ...).
     """
 
-    def __init__(self, node: Node, msg_type: type, topic: str, callback: Callable[[Any], None],
-                 qos: QoSProfile | int, raw: bool = False) -> None:
+    def __init__(self, node: Node, msg_type: type, topic: str, callback: Callable[..., None],
+                 qos: QoSProfile | int, raw: bool = False, info: bool = False) -> None:
         self._subscription = node.create_subscription(msg_type, topic, callback, qos,
                                                       callback_group=_PolledGroup(), raw=raw)
         self._lock = threading.Lock()
+        self._info = info
 
     def poll(self) -> None:
         """Pass every message received since the last poll to the callback, oldest first."""
@@ -137,7 +140,7 @@ class PolledSubscription:
         with self._lock, subscription.handle:
             while (taken := subscription.handle.take_message(subscription.msg_type,
                                                              subscription.raw)) is not None:
-                subscription.callback(taken[0])
+                subscription.callback(*taken) if self._info else subscription.callback(taken[0])
 
 
 class OliveModule(Node):

@@ -23,6 +23,7 @@ from rcl_interfaces.srv import GetParameters, SetParameters
 from rclpy.client import Client
 from rclpy.node import Node
 from rclpy.qos import qos_profile_sensor_data
+from rclpy.time import Time
 from sensor_msgs.msg import CompressedImage, Imu, JointState
 from std_msgs.msg import Float32
 from std_srvs.srv import Trigger
@@ -37,7 +38,7 @@ from robot_view.controls import (
     torque_request,
 )
 from robot_view.kit_state import hold_imu_orientation, joint_position, level_orientation
-from robot_view.plot_window import PlotWindow, PushCursor
+from robot_view.plot_window import PlotWindow, PushCursor, sample_time
 
 IMU_TOPIC = f'/olive/imu/{IMU_NAMESPACE}/imu'
 TRUE_ORIENTATION_TOPIC = f"/{node_name('imu', IMU_NAMESPACE)}/true_orientation"
@@ -80,7 +81,7 @@ class RobotViewNode(Node):
             # a core (29 % instead of 23 %, with a page open); a goal is at most one joint period
             # (10 ms) late in the plot, within its 20 ms bucket.
             self._goals[servo] = PolledSubscription(
-                self, Float32, goal_topic, partial(self._on_goal, servo), 10)
+                self, Float32, goal_topic, partial(self._on_goal, servo), 10, info=True)
             self.create_subscription(DiagnosticStatus, f'/olive/servo/{servo}/joint/diagnostics',
                                      partial(self._on_diagnostics, servo), 10)
             self._goal_publishers[servo] = self.create_publisher(Float32, goal_topic, 10)
@@ -242,11 +243,12 @@ class RobotViewNode(Node):
         for watcher in watchers:
             watcher.send(state)
 
-    def _plot(self, values: dict[str, float]) -> None:
+    def _plot(self, values: dict[str, float], stamp_ns: int | None) -> None:
+        """Plot samples at the time they were measured or sent (see plot_window's text)."""
         if not values:
             return
         with self._lock:
-            self._plots.add(time.monotonic(), values)
+            self._plots.add(sample_time(stamp_ns, time.time()), values)
 
     # ---- ROS callbacks ------------------------------------------------------------------------
 
@@ -262,11 +264,11 @@ class RobotViewNode(Node):
             samples[f'{servo}_effort'] = effort
         with self._lock:
             self._state[servo] = position
-        self._plot(finite(samples))
+        self._plot(finite(samples), Time.from_msg(message.header.stamp).nanoseconds)
         self._push_state()
 
-    def _on_goal(self, servo: str, message: Float32) -> None:
-        self._plot(finite({f'{servo}_goal': float(message.data)}))
+    def _on_goal(self, servo: str, message: Float32, info: dict[str, Any]) -> None:
+        self._plot(finite({f'{servo}_goal': float(message.data)}), info.get('source_timestamp'))
 
     def _on_diagnostics(self, servo: str, message: DiagnosticStatus) -> None:
         torque = next((value.value for value in message.values if value.key == 'torque_enabled'), None)
@@ -288,7 +290,8 @@ class RobotViewNode(Node):
             self._state['imu'] = [q.x, q.y, q.z, q.w]
         if orientation_problem(q) is None:
             roll, pitch, yaw = quaternion_to_euler(q)
-            self._plot({'roll': roll, 'pitch': pitch, 'yaw': yaw})
+            self._plot({'roll': roll, 'pitch': pitch, 'yaw': yaw},
+                       Time.from_msg(message.header.stamp).nanoseconds)
         self._push_state()
 
     def _on_frame(self, message: CompressedImage) -> None:

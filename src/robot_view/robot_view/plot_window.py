@@ -12,6 +12,12 @@ Why overlap: owl_web replaces an update not yet sent to a slow page by a newer o
 state, not a backlog). So each push repeats the last OVERLAP seconds already pushed, and the page
 replaces what it has from the batch's first time on (plot_data.js, mergeBatch): one replaced
 update loses nothing, and the bucket still filling when a batch was made is sent again complete.
+
+Why sample times: the node times each sample by when it was measured (its message's stamp), not
+by when the node got round to it. On a busy machine a node handles several messages of a topic
+at once after a delay, and timed on arrival a servo's 0.36 s rise to a goal was plotted as 0.2 s.
+A sample up to LATE behind the newest bucket therefore goes in its own bucket (still within what
+the next push repeats); a stamp from a clock far from the node's is not trusted (sample_time).
 """
 
 from __future__ import annotations
@@ -24,7 +30,19 @@ from dataclasses import dataclass, field
 BUCKET = 0.02   # s: 50 points a second in the plot
 WINDOW = 10.0   # s a page shows and a new page is sent at once
 OVERLAP = 0.5   # s each push repeats of the previous one
+LATE = OVERLAP / 2  # s behind the newest bucket a sample may be and still go in its own bucket
+STAMP_TRUSTED = 1.0  # s: an older stamp, or one from the future, says the clocks differ
 DECIMALS = 4    # of a value sent (0.1 mrad, 0.1 mN*m: finer than any plot shows)
+
+
+def sample_time(stamp_ns: int | None, now: float) -> float:
+    """The time (s) to plot a sample at: its stamp (ns since the epoch), or `now` (time.time())
+    when it has none or when the stamp is more than STAMP_TRUSTED away from now (another machine's
+    clock, a module that was never set)."""
+    if stamp_ns is None:
+        return now
+    stamp = stamp_ns / 1e9
+    return stamp if now - STAMP_TRUSTED <= stamp <= now + 0.01 else now
 
 
 @dataclass
@@ -33,6 +51,7 @@ class Bucket:
     sums: dict[str, float] = field(default_factory=dict)
     counts: dict[str, int] = field(default_factory=dict)
     held: dict[str, float] = field(default_factory=dict)
+    held_here: set[str] = field(default_factory=set)  # held series whose value changed in this bucket
 
     def value(self, series: str) -> float | None:
         if series in self.held:
@@ -60,31 +79,52 @@ class PlotWindow:
         self._held: dict[str, float] = {}  # the last value of each held series
 
     def add(self, time: float, values: dict[str, float]) -> None:
-        """Samples taken at `time` (seconds). A time before the newest bucket counts in the newest
-        (callbacks of different topics may be handled a little out of order); non-finite values and
-        unknown series are refused with ValueError (the node checks what it takes from ROS)."""
+        """Samples taken at `time` (seconds). Samples may come a little out of order (each topic's
+        own messages are in order, different topics' are not): one up to LATE behind the newest
+        bucket goes in its own bucket, an older one in the newest. Non-finite values and unknown
+        series are refused with ValueError (the node checks what it takes from ROS)."""
         for name, value in values.items():
             if name not in self.series:
                 raise ValueError(f"unknown series '{name}'; known: {', '.join(self.series)}")
             if not math.isfinite(value):
                 raise ValueError(f'{name}: {value} is not a finite number')
         # the small nudge keeps a time on a bucket's edge (5.00 s / 0.02 s) in the bucket it starts
-        bucket = self._bucket_at(math.floor(time / self.bucket + 1e-6))
+        position = self._bucket_at(math.floor(time / self.bucket + 1e-6))
+        bucket = self._buckets[position]
         for name, value in values.items():
             if name in self.held_series:
-                self._held[name] = value
-                bucket.held[name] = value
+                self._hold(position, name, value)
             else:
                 bucket.sums[name] = bucket.sums.get(name, 0.0) + value
                 bucket.counts[name] = bucket.counts.get(name, 0) + 1
         self._trim()
 
-    def _bucket_at(self, index: int) -> Bucket:
-        if self._buckets and index <= self._buckets[-1].index:
-            return self._buckets[-1]
-        bucket = Bucket(index, held=dict(self._held))
-        self._buckets.append(bucket)
-        return bucket
+    def _bucket_at(self, index: int) -> int:
+        """The position in self._buckets of the bucket a sample of bucket index `index` goes in."""
+        buckets = self._buckets
+        if not buckets or index > buckets[-1].index:
+            buckets.append(Bucket(index, held=dict(self._held)))
+            return len(buckets) - 1
+        if index < buckets[-1].index - round(LATE / self.bucket):
+            return len(buckets) - 1
+        position = len(buckets) - 1
+        while position > 0 and buckets[position - 1].index >= index:
+            position -= 1
+        if buckets[position].index != index:  # no sample in that bucket yet: begin it in between
+            before = buckets[position - 1].held if position > 0 else {}
+            buckets.insert(position, Bucket(index, held=dict(before)))
+        return position
+
+    def _hold(self, position: int, name: str, value: float) -> None:
+        """A held series changes to value in the bucket at `position` and in every later one up to
+        the next change of it."""
+        buckets = self._buckets
+        buckets[position].held_here.add(name)
+        for later in range(position, len(buckets)):
+            if later > position and name in buckets[later].held_here:
+                return
+            buckets[later].held[name] = value
+        self._held[name] = value
 
     def _trim(self) -> None:
         oldest = self._buckets[-1].index - math.ceil((self.window + OVERLAP) / self.bucket)

@@ -3,7 +3,7 @@
 import math
 
 import pytest
-from robot_view.plot_window import OVERLAP, PlotWindow, PushCursor
+from robot_view.plot_window import LATE, OVERLAP, PlotWindow, PushCursor, sample_time
 
 
 def window(**kwargs):
@@ -50,11 +50,39 @@ def test_only_the_window_and_the_overlap_are_kept():
     assert times[0] == pytest.approx(9.9 - 2.0 - OVERLAP)
 
 
-def test_late_samples_count_in_the_newest_bucket():
+def test_a_late_sample_goes_in_its_own_bucket_and_a_very_late_one_in_the_newest():
     plot = window(bucket=0.02)
     plot.add(1.0, {'position': 1.0})
-    plot.add(0.99, {'position': 3.0})  # handled after a newer callback
-    assert plot.columns() == {'t': [1.0], 'goal': [None], 'position': [2.0], 'effort': [None]}
+    plot.add(1.1, {'position': 2.0})
+    # handled after a newer message of another topic: in its place, a bucket begun in between
+    plot.add(1.04, {'position': 3.0, 'effort': 0.5})
+    plot.add(1.0, {'position': 5.0})
+    assert plot.columns() == {'t': [1.0, 1.04, 1.1], 'goal': [None] * 3, 'position': [3.0, 3.0, 2.0],
+                              'effort': [None, 0.5, None]}
+    plot.add(1.1 - LATE - 0.02, {'position': 4.0})  # further behind than a push repeats
+    assert plot.columns()['position'] == [3.0, 3.0, 3.0]
+
+
+def test_a_late_goal_is_held_from_its_own_bucket_up_to_the_next_goal():
+    plot = window(bucket=0.02)
+    for step in range(10):
+        plot.add(step * 0.02, {'position': 0.0})
+    plot.add(0.16, {'goal': 2.0})
+    plot.add(0.05, {'goal': 1.0})  # sent before the goal of 0.16, handled after it
+    assert plot.columns()['goal'] == [None, None, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 2.0, 2.0]
+    plot.add(0.2, {'position': 0.0})
+    assert plot.columns(since=0.2)['goal'] == [2.0]  # a new bucket holds the newest goal
+    plot.add(0.19, {'goal': 3.0})  # late, and the newest goal: held on in the buckets to come
+    plot.add(0.22, {'position': 0.0})
+    assert plot.columns(since=0.15)['goal'] == [2.0, 3.0, 3.0, 3.0]
+
+
+def test_a_stamp_is_the_sample_time_unless_it_is_from_another_clock():
+    now = 1_800_000_000.0
+    assert sample_time(None, now) == now
+    assert sample_time(int((now - 0.3) * 1e9), now) == pytest.approx(now - 0.3)
+    assert sample_time(int((now - 5.0) * 1e9), now) == now  # a module whose clock was never set
+    assert sample_time(int((now + 2.0) * 1e9), now) == now  # a clock ahead of this machine's
 
 
 def test_bad_samples_and_bad_windows_are_refused():
