@@ -23,6 +23,12 @@ thread (the only one where Python raises KeyboardInterrupt) while SIGINT has Pyt
   so the RuntimeError, which carries nothing, is turned back into a KeyboardInterrupt when the
   context goes down within SHUTDOWN_GRACE; otherwise it is a real error and stays as it is.
 A program with a SIGINT handler of its own, and executors spinning in other threads, are untouched.
+
+The same Ctrl-C can land inside the constructor of one of the Tasks the executor makes for each
+callback, before the attribute its __del__ reads is set: the node still stops as it should, but
+Python prints "Exception ignored in: <function Future.__del__ ...> ... AttributeError: 'Task'
+object has no attribute '_exception'" on the way out. Future.__del__ is made to skip a future
+whose construction was interrupted (it has no exception to report).
 """
 
 import signal
@@ -64,6 +70,18 @@ def install() -> None:
 def patch_executors(executors: Any) -> None:
     for name in TAKES:
         setattr(executors.Executor, name, keep_ctrl_c_out(getattr(executors.Executor, name)))
+    from rclpy.task import Future
+    Future.__del__ = skip_half_built(Future.__del__)
+
+
+def skip_half_built(delete: Callable[[Any], None]) -> Callable[[Any], None]:
+    """Future.__del__, doing nothing for a future whose __init__ a Ctrl-C cut short."""
+    @wraps(delete)
+    def delete_when_built(future: Any) -> None:
+        if hasattr(future, '_exception_fetched'):  # set after _exception: __init__ got past both
+            delete(future)
+
+    return delete_when_built
 
 
 def keep_ctrl_c_out(take: Callable[..., Any]) -> Callable[..., Any]:

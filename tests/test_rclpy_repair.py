@@ -6,6 +6,7 @@ traceback. By chance that is 1 stop in 3 under a flood of messages; here the Ctr
 inside the constructor every time, so the test does not depend on luck.
 """
 
+import subprocess
 import sys
 from pathlib import Path
 
@@ -17,6 +18,7 @@ from std_srvs.srv import SetBool
 # first callback raises SIGINT from inside its constructor, i.e. inside rclpy's take.
 STUDENT_NODE = """
 import signal
+import subprocess
 import sys
 
 import rclpy
@@ -98,3 +100,17 @@ def test_ctrl_c_inside_a_take_ends_the_node_cleanly(ros, tmp_path: Path, entity:
         node.destroy_timer(timer)
     assert 'Traceback' not in listener.output, f'the listener ended with a traceback:\n{listener.output}'
     assert 'stopped by Ctrl-C' in listener.output and code == 0, f'exit code {code}:\n{listener.output}'
+
+
+def test_a_task_whose_construction_ctrl_c_cut_short_is_deleted_quietly():
+    """A Ctrl-C inside a Task's constructor (before its attributes are set) stops the node, and its
+    __del__ must not then print "Exception ignored ... has no attribute '_exception'"."""
+    deleted = subprocess.run(
+        [sys.executable, '-c', 'import gc, rclpy.executors\n'
+         'from rclpy.task import Task\n'
+         'half_built = Task.__new__(Task)\n'
+         'del half_built\n'
+         'gc.collect()\n'
+         'print("deleted")'],
+        capture_output=True, text=True, timeout=60)
+    assert (deleted.returncode, deleted.stdout, deleted.stderr) == (0, 'deleted\n', '')

@@ -550,10 +550,14 @@ def test_first_call_starts_a_daemon_that_leaves_when_alone(cli):
     cli.env['ROS2CLI_DAEMON_ALONE_TIMEOUT'] = '3'
     talker = cli.run(FIXTURES, 'talker')
     assert ros2(cli, 'node', 'list').returncode == 0
-    assert eventually(lambda: lines(ros2(cli, 'daemon', 'status')) == ['The daemon is running'], 10)
-    assert eventually(lambda: lines(ros2(cli, 'node', 'list')) == ['/talker'])
-    talker.stop()
-    assert eventually(lambda: lines(ros2(cli, 'daemon', 'status')) == ['The daemon is not running'], 20)
+    assert eventually(lambda: lines(ros2(cli, 'daemon', 'status')) == ['The daemon is running'], 10), \
+        'no daemon answered within 10 s of the first `ros2 node list`'
+    assert eventually(lambda: lines(ros2(cli, 'node', 'list')) == ['/talker']), \
+        f"the node list is {lines(ros2(cli, 'node', 'list'))}, not the talker"
+    talker_code = talker.stop()
+    assert eventually(lambda: lines(ros2(cli, 'daemon', 'status')) == ['The daemon is not running'], 20), (
+        f'the daemon still runs 20 s after the talker stopped (its exit code {talker_code}); '
+        f"the node list is {lines(ros2(cli, 'node', 'list'))}")
     explicit = ros2(cli, 'daemon', 'start')
     assert lines(explicit) == ['The daemon has been started']
     time.sleep(5)  # `ros2 daemon start` means: stay, even alone

@@ -244,7 +244,7 @@ class TurtlesimNode(Node):
             # Closing the window shuts ROS down from the executor's thread, not from the tick's.
             self._window_closed = self.create_guard_condition(self._on_window_closed)
         self._ticks = PeriodicThread(1.0 / world.TICK_DT, self._tick, 'turtlesim.tick', self.context.ok,
-                                     finish=self._close_window)
+                                     finish=self._close_window, catch_up=world.TICK_CATCH_UP)
 
     def between_ticks(self, callback: Callback) -> Callback:
         """callback, made to run under the tick lock (never during a tick)."""
@@ -398,7 +398,7 @@ class TurtlesimNode(Node):
             if now != 0.0:
                 self._last_tick = now
             return
-        self._last_tick = now
+        now = self._last_tick = world.tick_time(self._last_tick, now)
         debug = self.get_logger().is_enabled_for(LoggingSeverity.DEBUG)
         for endpoints in list(self.turtles.values()):
             result = endpoints.turtle.update(world.TICK_DT, now, self.canvas)

@@ -18,6 +18,17 @@ METER_PX = 45  # the turtle images' height: one metre on the canvas
 TICK_MS = 16
 TICK_DT = 0.001 * TICK_MS
 COMMAND_TIMEOUT = 1.0
+# s: ticks a busy machine held back are made up, each at its own time, while they are at most this
+# late, so one velocity command moves a turtle its 62-63 ticks (upstream's C++ node is rarely late)
+TICK_CATCH_UP = 0.2
+
+
+def tick_time(last_tick: float, now: float) -> float:
+    """The time of the tick after the one at last_tick, when the clock reads now: its due time
+    while it is at most TICK_CATCH_UP late (a made-up tick), else now (the clock jumped, stopped
+    under sim time, or the ticks fell too far behind)."""
+    due = last_tick + TICK_DT
+    return due if due <= now <= due + TICK_CATCH_UP else now
 
 
 def float32(value: float) -> float:
