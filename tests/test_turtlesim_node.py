@@ -158,11 +158,12 @@ def test_spawn_naming_kill_clear_reset(ros, tmp_path):
     sim.wait_for(r'\[INFO\].*Resetting turtlesim\.')
     sim.wait_for(r'Spawning turtle \[turtle1\] at x=\[5.544445\], y=\[5.544445\], theta=\[0.000000\]',
                  count=2)
-    topics = dict(ros.probe.node.get_topic_names_and_types())
+    # the new turtle1's topics reach the probe by discovery, some time after the log line
+    wait_until(lambda: '/turtle1/pose' in dict(ros.probe.node.get_topic_names_and_types()),
+               10, 'the new turtle1 publishing its pose')
     wait_until(lambda: not any(t.startswith(('/turtle2/', '/turtle3/'))
                                for t in dict(ros.probe.node.get_topic_names_and_types())),
                10, 'all but turtle1 gone')
-    assert '/turtle1/pose' in topics
     image = snapshot(ros, png)
     assert image.getpixel(pixel(3.0, 1.0)) == (69, 0, 255)  # trails gone, background kept
     assert ros.probe.get_parameters('turtlesim', 'background_g') == [0]
