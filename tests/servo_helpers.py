@@ -22,10 +22,15 @@ def start_servo(ros: RosHarness, name: str) -> Any:
     return ros.run('olive_sim', 'servo_sim', '--ros-args', *args, label=f'servo_sim {name}')
 
 
+COLLECT_DEPTH = 1000
+
+
 def collect(ros: RosHarness, name: str, topic: str) -> list[Any]:
     """Every message from now on of a servo's goal/position, joint or joint/diagnostics topic."""
     msg_type = {'goal/position': Float32, 'joint': JointState, 'joint/diagnostics': DiagnosticStatus}[topic]
-    return ros.probe.collect(msg_type, f'/olive/servo/{name}/{topic}')
+    # A deep history: DDS keeps receiving while a busy machine holds the probe's Python back, and
+    # with the default 10 a stall of 0.1 s at 100 Hz lost messages (a test missed more than 57 goals in a row).
+    return ros.probe.collect(msg_type, f'/olive/servo/{name}/{topic}', COLLECT_DEPTH)
 
 
 def torque_enabled(diagnostics: list[DiagnosticStatus]) -> bool:

@@ -36,9 +36,8 @@ def test_control_servo_waits_for_the_servo_enables_its_torque_before_any_goal_an
     wait_for_messages(goals, 100, timeout=30, what='goals')
     # The course's sine: the input grows by 0.01 rad per goal, amplitude 1 rad; it starts at 0 and
     # goes positive, which turns the pan servo to the left (counter-clockwise seen from above).
-    # The probe may miss a goal when a busy machine stalls it for longer than the publisher's
-    # history lasts (10 goals, 0.1 s), so each goal is matched to its own step k: sin is one-to-one
-    # below pi/2, i.e. for k < 157 with up to 57 goals missed.
+    # Should the probe still miss goals (collect keeps 1000), each goal is matched to its own step
+    # k: sin is one-to-one below pi/2, i.e. for k < 157 with up to 57 goals missed.
     values = [g.data for g in goals[:100]]
     steps = [round(math.asin(value) / 0.01) for value in values]
     assert values[0] == 0.0

@@ -101,7 +101,9 @@ def test_cmd_vel_drives_the_turtle_and_times_out(ros):
     # One message keeps it going for 1 s (62 or 63 ticks), then it stops: a 2 m arc.
     stopped = settled(poses, lambda p: p.linear_velocity == 0.0, 'turtle1 stopped by the timeout')
     assert stopped.angular_velocity == 0.0
-    assert 61 * 0.016 <= stopped.theta <= 64 * 0.016
+    moving_ticks = sum(p.linear_velocity == 2.0 for p in poses)
+    assert 61 * 0.016 <= stopped.theta <= 64 * 0.016, (
+        f'turned {stopped.theta:.3f} rad; the probe saw {moving_ticks} poses of the moving turtle')
     assert math.hypot(stopped.x - CENTER, stopped.y - CENTER) == pytest.approx(
         2 * 2.0 * math.sin(stopped.theta / 2), abs=0.04)  # chord of a radius-2 arc
 

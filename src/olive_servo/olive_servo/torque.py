@@ -5,11 +5,13 @@ from collections.abc import Sequence
 
 import rclpy
 from rclpy.client import Client
+from rclpy.duration import Duration
 from rclpy.node import Node
 from std_srvs.srv import Trigger
 
 ANSWER_TIMEOUT = 5.0    # s for a servo to answer a torque request once its service is there
 DISABLE_TIMEOUT = 2.0   # s at shutdown: well within the 5 s ros2 launch waits before it escalates to SIGTERM
+GOALS_ARRIVED_TIMEOUT = 0.5  # s at shutdown for the servos to have every goal sent before it
 WAITING_EVERY = 5.0     # s between two "waiting for service" lines
 
 
@@ -47,7 +49,15 @@ class ServoTorque:
         self.node.get_logger().info(f"torque enabled: {', '.join(self.enabled)}")
 
     def disable(self) -> None:
-        """Disable the torque this node enabled; warn about a servo that does not answer."""
+        """Disable the torque this node enabled; warn about a servo that does not answer.
+
+        First the servos get every goal this node sent them: DDS keeps a topic's messages in order,
+        not a topic's against a service's, so on a busy machine a goal sent just before could reach
+        a servo after its torque went off, and the servo warns that it ignored it.
+        """
+        for publisher in self.node.publishers:
+            if any(publisher.topic_name.startswith(f'/olive/servo/{servo}/') for servo in self.enabled):
+                publisher.wait_for_all_acked(Duration(seconds=GOALS_ARRIVED_TIMEOUT))
         clients = {servo: self.disable_clients[servo] for servo in self.enabled}
         for servo, response in self._call(clients, DISABLE_TIMEOUT).items():
             if response is not None and response.success:

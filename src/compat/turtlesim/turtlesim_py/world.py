@@ -19,8 +19,9 @@ TICK_MS = 16
 TICK_DT = 0.001 * TICK_MS
 COMMAND_TIMEOUT = 1.0
 # s: ticks a busy machine held back are made up, each at its own time, while they are at most this
-# late, so one velocity command moves a turtle its 62-63 ticks (upstream's C++ node is rarely late)
-TICK_CATCH_UP = 0.2
+# late, so one velocity command moves a turtle its 62-63 ticks (upstream's C++ node is rarely late;
+# suite runs on two busy cores held ours back 0.3 s, twice)
+TICK_CATCH_UP = 0.5
 
 
 def tick_time(last_tick: float, now: float) -> float:
