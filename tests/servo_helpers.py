@@ -28,8 +28,8 @@ COLLECT_DEPTH = 1000
 def collect(ros: RosHarness, name: str, topic: str) -> list[Any]:
     """Every message from now on of a servo's goal/position, joint or joint/diagnostics topic."""
     msg_type = {'goal/position': Float32, 'joint': JointState, 'joint/diagnostics': DiagnosticStatus}[topic]
-    # A deep history: DDS keeps receiving while a busy machine holds the probe's Python back, and
-    # with the default 10 a stall of 0.1 s at 100 Hz lost messages (a test missed more than 57 goals in a row).
+    # A deep history: DDS keeps receiving while a busy machine holds the probe's Python back; with
+    # the default 10, a stall of 0.1 s at 100 Hz lost messages (a test missed 57+ goals in a row).
     return ros.probe.collect(msg_type, f'/olive/servo/{name}/{topic}', COLLECT_DEPTH)
 
 
@@ -44,5 +44,6 @@ def joint_near(joints: list[JointState], value: float, tolerance: float = 0.05) 
 def assert_clean_servo(servo: Any) -> None:
     """The servo never saw a goal before its torque was on, nor one outside its bounds."""
     assert 'torque enabled' in servo.output
-    assert TORQUE_OFF_WARNING not in servo.output, servo.output
-    assert CLAMP_WARNING not in servo.output, servo.output
+    assert TORQUE_OFF_WARNING not in servo.output, (
+        f'a goal reached the servo with its torque off:\n{servo.output}')
+    assert CLAMP_WARNING not in servo.output, f'a goal out of bounds reached the servo:\n{servo.output}'
