@@ -336,7 +336,13 @@ def run_module(make_node: Any, default_namespace: str, args: list[str] | None = 
     def build() -> Node:
         node = make_node(read_namespace(default_namespace, sys.argv if args is None else args))
         built.append(node)
-        node.start_page()
+        try:
+            node.start_page()
+        except BaseException:
+            # A bad address parameter ends the process with code 2; the node's 100 Hz threads must
+            # not still be publishing while rclpy shuts down (a segfault at exit, seen once).
+            node.destroy_node()
+            raise
         return node
 
     spin_node(build, args)
