@@ -11,18 +11,14 @@ from typing import Any
 
 from geometry_msgs.msg import Quaternion
 from olive_sim.imu_node import DEFAULT_NAMESPACE
-from rclpy.qos import QoSProfile, ReliabilityPolicy
-from rclpy.time import Time
 from ros_harness import wait_until
-from sensor_msgs.msg import CompressedImage, Imu, JointState
+from sensor_msgs.msg import Imu, JointState
 from web_harness import PageSocket, free_port
 
 URL_LINE = r'robot_view: open (http://127\.0\.0\.1:\d+/) in a browser \(Ctrl-C to quit\)'
 IMU_TOPIC = f'/olive/imu/{DEFAULT_NAMESPACE}/imu'
 TRUE_ORIENTATION = f'/olive_imu_{DEFAULT_NAMESPACE}_dcm_srv/true_orientation'
 MIN_FPS = 25.0  # the camera publishes 30 frames/s
-KEEPS_UP = 0.9  # of the frames the camera sent: what the page must draw when the camera itself is starved
-CAMERA_TOPIC = '/olive/camera/eye/image/compressed'
 LATENCY_SAMPLES = 6
 
 
@@ -106,23 +102,15 @@ def test_the_model_follows_the_kit_and_the_mouse_turns_the_head(ros, page):
         print(f'{what}: p50 {statistics.median(values) * 1000:.0f} ms, max {max(values) * 1000:.0f} ms '
               f'({len(values)} drags)')
 
-    # The camera, pushed: frames per second counted in the page.
-    # On a machine busy with a second suite the camera itself may send fewer than MIN_FPS; then
-    # the page must draw what it sent: the frames stamped within the same 4 s (a deep history, as
-    # DDS receives for a probe that is held back).
-    sent = ros.probe.collect(CompressedImage, CAMERA_TOPIC,
-                             QoSProfile(depth=200, reliability=ReliabilityPolicy.BEST_EFFORT))
+    # The camera, pushed: frames per second counted in the page. (No probe subscribes to the
+    # camera here: a second subscriber of 30 images/s in this process cost the page 5-10 frames/s
+    # on a busy machine.)
     page.wait_for_function('() => window.robotView.frames > 10', timeout=20_000)
-    frames_before, window_start = page.evaluate('window.robotView.frames'), time.time()
+    frames_before = page.evaluate('window.robotView.frames')
     time.sleep(4.0)
-    frames_after, window_end = page.evaluate('window.robotView.frames'), time.time()
-    fps = (frames_after - frames_before) / (window_end - window_start)
-    time.sleep(0.5)  # the last frames of the window reach the probe
-    stamps = [Time.from_msg(frame.header.stamp).nanoseconds / 1e9 for frame in list(sent)]
-    camera_fps = sum(window_start <= stamp < window_end for stamp in stamps) / (window_end - window_start)
-    print(f'camera in the page: {fps:.1f} frames/s (the camera sent {camera_fps:.1f})')
-    assert fps >= min(MIN_FPS, KEEPS_UP * camera_fps), (
-        f'{fps:.1f} frames/s in the page; the camera sent {camera_fps:.1f}')
+    fps = (page.evaluate('window.robotView.frames') - frames_before) / 4.0
+    print(f'camera in the page: {fps:.1f} frames/s')
+    assert fps >= MIN_FPS
 
     drag(page, 30, 25)  # a pose worth a picture
     time.sleep(2.0)
