@@ -121,8 +121,8 @@ function eulerOf(q) {
 
 // A render costs a whole WebGL frame (in software where there is no GPU, as in a headless
 // browser), and the IMU's jitter (0.002 rad) changes the orientation with every message: only a
-// change a student could see, measured from what the last render drew, is rendered. Under a busy
-// machine's load the renders of every message took the page from 30 camera frames/s to 20-23.
+// change a student could see, measured from what the last render drew, is rendered (less CPU for a
+// page left open; the camera's frame rate under load measured the same either way).
 const VISIBLE = 0.005;  // rad: half a pixel at the model's edge
 let drawn = { pan: null, tilt: null, imu: null };
 
