@@ -76,7 +76,6 @@ class PlotWindow:
         self.bucket = bucket
         self.window = window
         self._buckets: deque[Bucket] = deque()
-        self._held: dict[str, float] = {}  # the last value of each held series
 
     def add(self, time: float, values: dict[str, float]) -> None:
         """Samples taken at `time` (seconds). Samples may come a little out of order (each topic's
@@ -102,8 +101,8 @@ class PlotWindow:
     def _bucket_at(self, index: int) -> int:
         """The position in self._buckets of the bucket a sample of bucket index `index` goes in."""
         buckets = self._buckets
-        if not buckets or index > buckets[-1].index:
-            buckets.append(Bucket(index, held=dict(self._held)))
+        if not buckets or index > buckets[-1].index:  # a new bucket holds what the newest held
+            buckets.append(Bucket(index, held=dict(buckets[-1].held) if buckets else {}))
             return len(buckets) - 1
         if index < buckets[-1].index - round(LATE / self.bucket):
             return len(buckets) - 1
@@ -124,7 +123,6 @@ class PlotWindow:
             if later > position and name in buckets[later].held_here:
                 return
             buckets[later].held[name] = value
-        self._held[name] = value
 
     def _trim(self) -> None:
         oldest = self._buckets[-1].index - math.ceil((self.window + OVERLAP) / self.bucket)
