@@ -1,5 +1,6 @@
 import os
 import re
+import shutil
 import time
 from collections.abc import Generator
 from dataclasses import dataclass
@@ -122,9 +123,36 @@ class Rerun:
 RERUNS: dict[str, Rerun] = {}
 
 
+# Where the controller writes each rerun test's whole first failure (traceback and the tails of its
+# processes), one file per test: the summary line alone rarely tells a race's cause.
+RERUN_REPORTS = SYSTEM_TESTS.parent / 'log' / 'reruns'
+IN_WORKER = False  # True in a pytest-xdist worker, whose reports reach the controller
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    global IN_WORKER
+    IN_WORKER = hasattr(config, 'workerinput')
+    if not IN_WORKER:
+        shutil.rmtree(RERUN_REPORTS, ignore_errors=True)  # this run's reports only
+
+
+def rerun_report_path(nodeid: str) -> Path:
+    return RERUN_REPORTS / (re.sub(r'[^\w.-]+', '_', nodeid) + '.txt')
+
+
+def write_rerun_report(report: pytest.TestReport) -> None:
+    sections = ''.join(f'\n----- {title} -----\n{content}\n' for title, content in report.sections)
+    path = rerun_report_path(report.nodeid)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(f'{report.nodeid} ({report.when})\n\n{report.longreprtext}\n{sections}')
+
+
 def pytest_runtest_logreport(report: pytest.TestReport) -> None:
-    if report.outcome == 'rerun':  # the call's report, then a failed teardown's: keep the first
-        RERUNS.setdefault(report.nodeid, Rerun(first_line(report)))
+    if report.outcome == 'rerun' and report.nodeid not in RERUNS:
+        # The call's report, then a failed teardown's: keep the first.
+        RERUNS[report.nodeid] = Rerun(first_line(report))
+        if not IN_WORKER:
+            write_rerun_report(report)
     elif report.nodeid in RERUNS and (report.when == 'call' or not report.passed):
         RERUNS[report.nodeid].outcome = report.outcome
 
@@ -153,6 +181,9 @@ def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> Genera
     """A flake is never silent: after every other summary, just above the final counts line (which
     CI reads), one line per test that needed its second run."""
     result = yield
+    if RERUNS:
+        terminalreporter.write_line(
+            f'first failures of rerun tests, in full: {os.path.relpath(RERUN_REPORTS)}/')
     for nodeid, rerun in RERUNS.items():
         again = ' again' if rerun.outcome == 'failed' else ''
         terminalreporter.write_line(

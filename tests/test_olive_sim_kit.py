@@ -59,4 +59,4 @@ def test_the_kit_launch_brings_up_four_modules_with_the_course_topics(ros):
     kit.send_signal()
     assert kit.wait(30) == 0
     assert 'Traceback' not in kit.output
-    assert kit.output.count('process has finished cleanly') == 4
+    assert kit.output.count('process has finished cleanly') == 4, kit.tail(80)

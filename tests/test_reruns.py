@@ -81,6 +81,9 @@ def test_a_system_test_that_fails_once_passes_and_its_first_failure_is_reported_
     assert lines[-2] == ('rerun: tests/test_system.py::test_flaky passed on its second run; '
                          'first failure: AssertionError: a discovery delay'), session.stdout
     assert lines[-1].startswith('1 passed, 1 rerun in'), session.stdout
+    assert lines[-3] == 'first failures of rerun tests, in full: log/reruns/', session.stdout
+    report = (tmp_path / 'log' / 'reruns' / 'tests_test_system.py_test_flaky.txt').read_text()
+    assert 'a discovery delay\nE         that spans lines' in report, report
 
 
 def test_a_system_test_failing_twice_fails_and_a_unit_test_is_never_rerun(tmp_path):
@@ -111,6 +114,8 @@ def test_reruns_in_parallel_workers_are_reported_by_the_controller(tmp_path):
     ], session.stdout
     assert lines[-1].startswith('2 failed, 2 passed, 2 rerun in'), session.stdout
     assert not [line for line in lines if line.startswith('rerun: src/')], session.stdout
+    reports = sorted(path.name for path in (tmp_path / 'log' / 'reruns').iterdir())
+    assert reports == ['tests_test_system.py_test_broken.txt', 'tests_test_system.py_test_flaky.txt']
 
 
 PROCESS_OUTPUT_FAILURE = '''
