@@ -63,7 +63,8 @@ print(f'{first:.4f} {whole:.4f}')
 '''
 
 
-def measure(profile: str | None, runs: int, nodes: int) -> tuple[list[float], list[float], float]:
+def measure(profile: str | None, runs: int, nodes: int,
+            idle_seconds: float) -> tuple[list[float], list[float], float]:
     """(times to the first topic, times to the whole graph, idle CPU % of all the nodes)."""
     with RosSandbox() as sandbox:
         for variable in (PROFILE_VARIABLE, OTHER_PROFILE_VARIABLE):
@@ -77,7 +78,7 @@ def measure(profile: str | None, runs: int, nodes: int) -> tuple[list[float], li
             publisher.wait_for('^up$', timeout=120)
         time.sleep(2.0)  # past the initial announcements: known to each other before the first watcher
         cpu_before, started = sum(cpu_seconds(p.pid) for p in publishers), time.monotonic()
-        time.sleep(5.0)
+        time.sleep(idle_seconds)
         cpu_used = sum(cpu_seconds(p.pid) for p in publishers) - cpu_before
         idle_cpu = 100 * cpu_used / (time.monotonic() - started)
         first, whole = [], []
@@ -110,6 +111,8 @@ def main() -> int:
     parser.add_argument('--nodes', type=int, default=6, help='idle publisher processes running')
     parser.add_argument('--periods', type=int, nargs='*', default=[200, 100],
                         help='other announcement periods (ms) to measure as variants of our profile')
+    parser.add_argument('--idle-seconds', type=float, default=5.0,
+                        help="window of the running nodes' idle CPU measurement")
     args = parser.parse_args()
     print(f'discovery by a new process ({args.runs} runs, {args.nodes} node processes running; '
           f'whole graph = every node and topic)')
@@ -120,7 +123,7 @@ def main() -> int:
                      for ms in args.periods]
         results = {}
         for label, profile in variants:
-            first, whole, idle_cpu = measure(profile, args.runs, args.nodes)
+            first, whole, idle_cpu = measure(profile, args.runs, args.nodes, args.idle_seconds)
             results[label] = whole
             print(f'{label:<28} {summary(first):<38} {summary(whole):<38} {idle_cpu:.1f} %', flush=True)
     baseline, ours = results['Fast DDS defaults'], results['config/fastdds.xml (500 ms)']

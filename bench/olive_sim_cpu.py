@@ -140,10 +140,11 @@ class PageWatcher:
                     raise
                 await asyncio.sleep(0.5)
         channels = ['system'] + (['orientation'] if module.module_type in ('imu', 'camera') else [])
-        for index, channel in enumerate(channels):
-            await websocket.send_str(json.dumps({'type': 'subscribe', 'id': index, 'channel': channel}))
-        async for _ in websocket:
-            self.updates += 1
+        async with websocket:  # closed when stop() cancels this task
+            for index, channel in enumerate(channels):
+                await websocket.send_str(json.dumps({'type': 'subscribe', 'id': index, 'channel': channel}))
+            async for _ in websocket:
+                self.updates += 1
 
     def stop(self) -> int:
         self.loop.call_soon_threadsafe(self.stopping.set)

@@ -14,7 +14,7 @@ from web_harness import chromium_missing
 BENCH = Path(__file__).resolve().parents[1] / 'bench'
 NEEDS_CHROMIUM = {'robot_view_latency.py'}  # drives the robot view's page as the browser tests do
 SHRUNK = {
-    'dds_discovery.py': ['--runs', '2', '--nodes', '2', '--periods'],
+    'dds_discovery.py': ['--runs', '2', '--nodes', '2', '--periods', '--idle-seconds', '0.5'],
     'launch_timings.py': ['--repeat', '1'],
     'olive_sim_cpu.py': ['--seconds', '1', '--warmup', '1'],
     'robot_view_latency.py': ['--samples', '3'],
