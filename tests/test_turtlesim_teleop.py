@@ -138,6 +138,9 @@ def test_keys_publish_twists_and_goals_and_q_restores_the_terminal(ros, terminal
     assert ros.probe.get_parameters('teleop_turtle', 'scale_angular') == [2.0]
     assert press('\x1b[A', 5).linear.x == 0.5
     assert len(twists) == 5
+    # turtlesim aborts a rotation goal at any velocity command it takes while the goal runs (as
+    # upstream's): the probe had this Twist, turtlesim maybe not yet, so wait until it moves with it.
+    wait_until(lambda: any(pose.linear_velocity == 0.5 for pose in poses), 10, 'turtle1 moving at 0.5')
 
     teleop.type('r')  # rotate to 1.5708
     sim.wait_for(r'Rotation goal completed successfully', timeout=15)
