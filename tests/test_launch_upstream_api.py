@@ -95,3 +95,80 @@ def test_upstream_style_launch_file_drives_a_lifecycle_node_and_reads_a_param(ro
                            resend_every=2.0).current_state
     assert (state.id, state.label) == (State.PRIMARY_STATE_ACTIVE, 'active')
     process.stop_cleanly(timeout=LAUNCH_STOP_TIMEOUT)
+
+
+# A lifecycle node whose change_state service is found before its transition_event publisher: it
+# announces a transition only once, as every lifecycle node does, and says whether anyone could hear.
+LATE_ANNOUNCER = '''
+import rclpy
+from lifecycle_msgs.msg import State, TransitionEvent
+from lifecycle_msgs.srv import ChangeState
+
+rclpy.init()
+node = rclpy.create_node('late', namespace='lab')
+announcer = []
+
+
+def change_state(request, response):
+    heard = bool(announcer) and announcer[0].get_subscription_count() > 0
+    if announcer:
+        announcer[0].publish(TransitionEvent(
+            transition=request.transition,
+            start_state=State(id=State.TRANSITION_STATE_CONFIGURING, label='configuring'),
+            goal_state=State(id=State.PRIMARY_STATE_INACTIVE, label='inactive')))
+    node.get_logger().info('change_state ' + ('announced' if heard else 'unheard'))
+    response.success = True
+    return response
+
+
+def announce_from_now():
+    timer.cancel()
+    announcer.append(node.create_publisher(TransitionEvent, '~/transition_event', 10))
+
+
+node.create_service(ChangeState, '~/change_state', change_state)
+timer = node.create_timer(1.5, announce_from_now)
+try:
+    rclpy.spin(node)
+except KeyboardInterrupt:
+    pass
+finally:
+    node.destroy_node()
+    rclpy.try_shutdown()
+'''
+
+LATE_LAUNCH_FILE = '''
+import lifecycle_msgs.msg
+from launch import LaunchDescription
+from launch.actions import EmitEvent, LogInfo, RegisterEventHandler
+from launch.events import matches_action
+from launch_ros.actions import LifecycleNode
+from launch_ros.event_handlers import OnStateTransition
+from launch_ros.events.lifecycle import ChangeState
+
+
+def generate_launch_description():
+    late = LifecycleNode(executable=PYTHON, arguments=[SCRIPT], name='late', namespace='lab',
+                         output='screen')
+    return LaunchDescription([
+        late,
+        RegisterEventHandler(OnStateTransition(
+            target_lifecycle_node=late, goal_state='inactive',
+            entities=[LogInfo(msg='launch saw the node become inactive')])),
+        EmitEvent(event=ChangeState(lifecycle_node_matcher=matches_action(late),
+                                    transition_id=lifecycle_msgs.msg.Transition.TRANSITION_CONFIGURE)),
+    ])
+'''
+
+
+def test_launch_changes_a_state_only_once_it_can_hear_the_transition(ros, tmp_path):
+    script = tmp_path / 'late.py'
+    script.write_text(LATE_ANNOUNCER)
+    launch_file = tmp_path / 'late_launch.py'
+    launch_file.write_text(textwrap.dedent(LATE_LAUNCH_FILE).replace('PYTHON', repr(sys.executable))
+                           .replace('SCRIPT', repr(str(script))))
+    process = ros.command(['ros2', 'launch', str(launch_file)])
+    process.wait_for(r'\[lab\.late\]: change_state (announced|unheard)', timeout=60)
+    assert 'change_state announced' in process.output, process.output
+    process.wait_for(r'\[INFO\] \[launch\.user\]: launch saw the node become inactive', timeout=15)
+    process.stop_cleanly(timeout=LAUNCH_STOP_TIMEOUT)

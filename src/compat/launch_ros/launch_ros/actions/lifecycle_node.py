@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import asyncio
 import threading
+import time
 from typing import TYPE_CHECKING, Any
 
 import lifecycle_msgs.msg
@@ -24,6 +25,12 @@ if TYPE_CHECKING:
 
 # Seconds between checks for shutdown while waiting for the change_state service or its answer.
 SERVICE_POLL = 0.5
+# The node says each transition once on <node>/transition_event, which keeps no history: before a
+# change, launch waits (at most EVENT_MATCH_TIMEOUT s) until its subscription has matched the node's
+# publisher, then EVENT_MATCH_SETTLE s more for the publisher's side of the match, or the event of
+# that change is lost and OnStateTransition never fires (the node's service can be found first).
+EVENT_MATCH_TIMEOUT = 5.0
+EVENT_MATCH_SETTLE = 0.2
 
 
 @expose_action('lifecycle_node')
@@ -78,6 +85,13 @@ class LifecycleNode(Node):
                 self.__logger.warning(f"Abandoning wait for the '{self.__client.srv_name}' service, "
                                       'due to shutdown.')
                 return
+        matched_by = time.monotonic() + EVENT_MATCH_TIMEOUT
+        if self.__subscription.get_publisher_count() == 0:
+            while self.__subscription.get_publisher_count() == 0 and time.monotonic() < matched_by:
+                if context.is_shutdown:
+                    return
+                time.sleep(0.02)
+            time.sleep(EVENT_MATCH_SETTLE)
         request = lifecycle_msgs.srv.ChangeState.Request()
         request.transition.id = transition_id
         answered = threading.Event()
