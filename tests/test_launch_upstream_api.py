@@ -80,13 +80,18 @@ def generate_launch_description():
 '''
 
 
-def test_upstream_style_launch_file_drives_a_lifecycle_node_and_reads_a_param(ros, tmp_path):
-    script = tmp_path / 'greeter.py'
-    script.write_text(LIFECYCLE_NODE)
-    launch_file = tmp_path / 'lifecycle_launch.py'
-    launch_file.write_text(textwrap.dedent(LAUNCH_FILE).replace('PYTHON', repr(sys.executable))
+def launch_node_script(ros, tmp_path, node_source: str, launch_source: str):
+    """`ros2 launch` of launch_source, whose PYTHON and SCRIPT name this Python and node_source's file."""
+    script = tmp_path / 'node.py'
+    script.write_text(node_source)
+    launch_file = tmp_path / 'node_launch.py'
+    launch_file.write_text(textwrap.dedent(launch_source).replace('PYTHON', repr(sys.executable))
                            .replace('SCRIPT', repr(str(script))))
-    process = ros.command(['ros2', 'launch', str(launch_file)])
+    return ros.command(['ros2', 'launch', str(launch_file)])
+
+
+def test_upstream_style_launch_file_drives_a_lifecycle_node_and_reads_a_param(ros, tmp_path):
+    process = launch_node_script(ros, tmp_path, LIFECYCLE_NODE, LAUNCH_FILE)
     process.wait_for(r'\[lab\.greeter\]: configured with greeting hello_from_launch', timeout=60)
     process.wait_for(r'\[lab\.greeter\]: activated', timeout=30)
     process.wait_for(r'\[echo-\d+\] param says hello_from_launch', timeout=30)
@@ -162,12 +167,7 @@ def generate_launch_description():
 
 
 def test_launch_changes_a_state_only_once_it_can_hear_the_transition(ros, tmp_path):
-    script = tmp_path / 'late.py'
-    script.write_text(LATE_ANNOUNCER)
-    launch_file = tmp_path / 'late_launch.py'
-    launch_file.write_text(textwrap.dedent(LATE_LAUNCH_FILE).replace('PYTHON', repr(sys.executable))
-                           .replace('SCRIPT', repr(str(script))))
-    process = ros.command(['ros2', 'launch', str(launch_file)])
+    process = launch_node_script(ros, tmp_path, LATE_ANNOUNCER, LATE_LAUNCH_FILE)
     process.wait_for(r'\[lab\.late\]: change_state (announced|unheard)', timeout=60)
     assert 'change_state announced' in process.output, process.output
     process.wait_for(r'\[INFO\] \[launch\.user\]: launch saw the node become inactive', timeout=15)
