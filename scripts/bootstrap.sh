@@ -125,11 +125,14 @@ set +u  # colcon's setup scripts read unset variables
 source "$ROOT/env.sh" >/dev/null  # its network-mode line is for interactive shells
 set -u
 BUILD_STAMP="$ROOT/install/.owl-src.sha256"
-src_hash="$( (find src -type f -not -path '*/__pycache__/*' -printf '%p %T@\n' | sort; cat requirements.txt) | sha256sum | cut -d' ' -f1)"
+INTERFACE_GENERATORS="$ROOT/scripts/python_interface_generators.cmake"
+src_hash="$( (find src -type f -not -path '*/__pycache__/*' -printf '%p %T@\n' | sort; cat requirements.txt "$INTERFACE_GENERATORS") \
+  | sha256sum | cut -d' ' -f1)"
 if [ "$(cat "$BUILD_STAMP" 2>/dev/null)" != "$src_hash" ]; then
   echo "setup: building the workspace (colcon build --symlink-install) ..."
   run_logged colcon colcon build --symlink-install --event-handlers console_direct- \
-    --cmake-args -DBUILD_TESTING=OFF -DPython3_EXECUTABLE="$VENV/bin/python"
+    --cmake-args -DBUILD_TESTING=OFF -DPython3_EXECUTABLE="$VENV/bin/python" \
+    -DCMAKE_PROJECT_INCLUDE="$INTERFACE_GENERATORS"
   # The workspace's modules compiled once, for the same reason as the wheels' (--compile-bytecode).
   run_logged bytecode python -m compileall -q -j 0 src install
   echo "$src_hash" >"$BUILD_STAMP"

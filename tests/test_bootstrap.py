@@ -73,3 +73,14 @@ def test_rerun_with_nothing_changed_does_nothing(tmp_path):
     # (about a second on an idle machine, several under a loaded suite).
     [line] = result.stdout.splitlines()
     assert re.fullmatch(r"setup: ready in \d+ s\. Next: .*", line), line
+
+
+@pytest.mark.parametrize('package', ['olive_interfaces', 'turtlesim', 'ros2cli_test_fixtures'])
+def test_interface_packages_are_built_for_python_only(package):
+    # Python's messages use the C type supports; the venv has no rclcpp to use C++'s (not built).
+    libraries = {path.name for path in (ROOT / 'install' / package / 'lib').glob('*.so')}
+    assert {f'lib{package}__rosidl_{part}.so' for part in (
+        'generator_c', 'typesupport_c', 'typesupport_fastrtps_c', 'typesupport_introspection_c',
+        'generator_py')} <= libraries, libraries
+    assert not [name for name in libraries if name.endswith('_cpp.so')], libraries
+    assert not list((ROOT / 'install' / package / 'include').rglob('*.hpp'))
