@@ -208,15 +208,19 @@ def main() -> int:
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument('--seconds', type=float, default=10.0, help='CPU measuring window per case')
     parser.add_argument('--warmup', type=float, default=4.0, help='wait after start before measuring')
+    parser.add_argument('--camera-seconds', type=float, default=5.0,
+                        help='window of the 240 fps camera delivery measurement')
     parser.add_argument('--baseline-node', action='store_true', help=argparse.SUPPRESS)
     args = parser.parse_args()
+    if not (args.seconds > 0 and args.warmup >= 0 and args.camera_seconds > 0):
+        parser.error('--seconds and --camera-seconds must be positive, --warmup not negative')
     if args.baseline_node:
         baseline_node()
         return 0
 
     cpu = measure_cpu(args)
     base = cpu['baseline (rclpy JointState 100 Hz)']
-    print(f'CPU over {args.seconds:.0f} s at default settings (% of one core; {os.cpu_count()} cores)')
+    print(f'CPU over {args.seconds:g} s at default settings (% of one core; {os.cpu_count()} cores)')
     print(f'{"process":<38}{"CPU %":>8}{"x baseline":>12}')
     for name, value in cpu.items():
         print(f'{name:<38}{value:>8.1f}{value / base:>12.2f}')
@@ -227,7 +231,7 @@ def main() -> int:
 
     moving = camera_render_rate(120, moving=True)
     still = camera_render_rate(300, moving=False)
-    delivered = camera_delivered_rate(5.0)
+    delivered = camera_delivered_rate(args.camera_seconds)
     print('\nCamera at 640x480 (jpeg quality 80)')
     print(f'render + encode in process (moving head): {moving:.1f} fps')
     print(f'render + encode in process (still head):  {still:.1f} fps')
