@@ -125,9 +125,16 @@ set +u  # colcon's setup scripts read unset variables
 source "$ROOT/env.sh" >/dev/null  # its network-mode line is for interactive shells
 set -u
 BUILD_STAMP="$ROOT/install/.owl-src.sha256"
+# A build made with other interface generators is removed, not built over: colcon would leave the
+# files of generators no longer run (e.g. the C++ ones of builds before this choice) installed.
 INTERFACE_GENERATORS="$ROOT/scripts/python_interface_generators.cmake"
-src_hash="$( (find src -type f -not -path '*/__pycache__/*' -printf '%p %T@\n' | sort; cat requirements.txt "$INTERFACE_GENERATORS") \
-  | sha256sum | cut -d' ' -f1)"
+GENERATORS_STAMP="$ROOT/install/.owl-interface-generators.sha256"
+generators_hash="$(sha256sum "$INTERFACE_GENERATORS" | cut -d' ' -f1)"
+if [ -d install ] && [ "$(cat "$GENERATORS_STAMP" 2>/dev/null)" != "$generators_hash" ]; then
+  echo "setup: the interface generators changed; removing the old build"
+  rm -rf build install
+fi
+src_hash="$( (find src -type f -not -path '*/__pycache__/*' -printf '%p %T@\n' | sort; cat requirements.txt) | sha256sum | cut -d' ' -f1)"
 if [ "$(cat "$BUILD_STAMP" 2>/dev/null)" != "$src_hash" ]; then
   echo "setup: building the workspace (colcon build --symlink-install) ..."
   run_logged colcon colcon build --symlink-install --event-handlers console_direct- \
@@ -136,6 +143,7 @@ if [ "$(cat "$BUILD_STAMP" 2>/dev/null)" != "$src_hash" ]; then
   # The workspace's modules compiled once, for the same reason as the wheels' (--compile-bytecode).
   run_logged bytecode python -m compileall -q -j 0 src install
   echo "$src_hash" >"$BUILD_STAMP"
+  echo "$generators_hash" >"$GENERATORS_STAMP"
 fi
 
 steps=""

@@ -233,10 +233,19 @@ def test_the_scripted_imu_sweeps_both_servos_through_most_of_their_range(ros):
     robot = ros.run('olive_servo', 'imu_control_robot')
     robot.wait_for(r'IMU data on .*: steering the pan and tilt servos', timeout=30)
     start = {name: len(messages) for name, messages in joints.items()}
-    time.sleep(13.0)  # a period of the yaw (12 s) and more than one of the pitch (10 s)
-    for name, (low, high) in BOUNDS.items():
-        positions = [m.position[0] for m in joints[name][start[name]:]]
-        assert (max(positions) - min(positions)) / (high - low) > 0.75, (name, min(positions), max(positions))
+
+    def swept() -> dict[str, float]:
+        """Share of each servo's range its joint has covered since the robot took over."""
+        spans = {}
+        for name, (low, high) in BOUNDS.items():
+            positions = [m.position[0] for m in joints[name][start[name]:]] or [0.0]
+            spans[name] = (max(positions) - min(positions)) / (high - low)
+        return spans
+
+    deadline = time.monotonic() + 13.0  # a period of the yaw (12 s) and more than one of the pitch (10 s)
+    while min(swept().values()) <= 0.75 and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert min(swept().values()) > 0.75, swept()
     robot.stop_cleanly(timeout=10)
     for servo in servos.values():
         assert 'torque enabled' in servo.output and TORQUE_OFF_WARNING not in servo.output
