@@ -106,11 +106,13 @@ def test_the_model_follows_the_kit_and_the_mouse_turns_the_head(ros, page):
     # camera here: a second subscriber of 30 images/s in this process cost the page 5-10 frames/s
     # on a busy machine.)
     page.wait_for_function('() => window.robotView.frames > 10', timeout=20_000)
-    frames_before = page.evaluate('window.robotView.frames')
+    before = page.evaluate('[window.robotView.frames, window.robotView.lastFrame]')
     time.sleep(4.0)
-    fps = (page.evaluate('window.robotView.frames') - frames_before) / 4.0
-    print(f'camera in the page: {fps:.1f} frames/s')
-    assert fps >= MIN_FPS
+    after = page.evaluate('[window.robotView.frames, window.robotView.lastFrame]')
+    fps, taken = ((end - start) / 4.0 for start, end in zip(before, after, strict=True))
+    print(f'camera in the page: {fps:.1f} frames/s; robot_view took {taken:.1f} frames/s from DDS')
+    # Which side of robot_view a drop is on: DDS and its executor, or the WebSocket and the page.
+    assert fps >= MIN_FPS, f'{fps:.1f} frames/s in the page; robot_view took {taken:.1f}/s from DDS'
 
     drag(page, 30, 25)  # a pose worth a picture
     time.sleep(2.0)

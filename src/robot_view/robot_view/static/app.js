@@ -18,7 +18,9 @@ const socket = new OwlSocket((connected, detail) => {
 });
 
 // What the tests read (page.evaluate) and the page shows.
-const view = { pan: null, tilt: null, imu: null, frames: 0, fps: 0, commandsSent: 0, errors: [] };
+// lastFrame: robot_view's count of the camera frames it took from DDS, sent with each frame: where
+// it grows faster than frames, frames were dropped between robot_view and this page.
+const view = { pan: null, tilt: null, imu: null, frames: 0, lastFrame: 0, fps: 0, commandsSent: 0, errors: [] };
 window.robotView = view;
 
 // ---- scene --------------------------------------------------------------------------------------
@@ -171,6 +173,7 @@ socket.subscribe('camera', {}, (header, payload) => {
   frameTimes.push(now);
   while (frameTimes[0] < now - FPS_WINDOW) frameTimes.shift();
   view.frames += 1;
+  view.lastFrame = header.frame;
   view.fps = frameTimes.length > 1 ? (frameTimes.length - 1) * 1000 / (now - frameTimes[0]) : 0;
   fpsLabel.textContent = `${view.fps.toFixed(1)} fps`;
 }, showError);
