@@ -78,9 +78,12 @@ def spin_until_stopped(node: Node, stop: StopRequest) -> None:
     here and never from inside rclpy, so a node's own clean-up (after `except KeyboardInterrupt`,
     as in the course) still has a working ROS.
     """
+    # From here a stop is only recorded: a KeyboardInterrupt raised inside the executor's
+    # constructor would leave a half-made executor whose __del__ prints a traceback (a Ctrl-C just
+    # after rqt printed its address did, in one make test run).
+    stop.polling = True
     executor = rclpy.get_global_executor()
     executor.add_node(node)
-    stop.polling = True
     try:
         while rclpy.ok() and not stop.requested:
             executor.spin_once(timeout_sec=SIGNAL_POLL)

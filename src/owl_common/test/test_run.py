@@ -2,7 +2,12 @@ import signal
 
 import pytest
 import rclpy
-from owl_common.run import StopRequest, interrupt_between_callbacks
+from owl_common.run import (
+    StopRequest,
+    init_with_stop_request,
+    interrupt_between_callbacks,
+    spin_until_stopped,
+)
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.signals import SignalHandlerOptions
@@ -20,6 +25,28 @@ def test_a_stop_during_the_main_loop_is_only_recorded_for_it():
     stop.polling = True
     stop(signal.SIGTERM, None)
     assert stop.requested
+
+
+def test_a_stop_while_the_loop_makes_its_executor_is_raised_by_the_loop_not_inside_the_executor(monkeypatch):
+    handlers = {signum: signal.getsignal(signum) for signum in (signal.SIGINT, signal.SIGTERM)}
+    stop = init_with_stop_request([])
+    node = Node('spin_until_stopped_test')
+    make_executor = rclpy.get_global_executor
+
+    def ctrl_c_while_making_it():
+        signal.raise_signal(signal.SIGINT)
+        return make_executor()
+
+    monkeypatch.setattr(rclpy, 'get_global_executor', ctrl_c_while_making_it)
+    try:
+        with pytest.raises(KeyboardInterrupt) as raised:
+            spin_until_stopped(node, stop)
+        assert raised.traceback[-1].name == 'spin_until_stopped'
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown()
+        for signum, handler in handlers.items():
+            signal.signal(signum, handler)
 
 
 @pytest.fixture
