@@ -122,6 +122,10 @@ def test_the_model_follows_the_kit_and_the_mouse_turns_the_head(ros, page):
 def test_bad_websocket_input_gets_one_line_and_nothing_reaches_the_imu(ros):
     base = start_kit_and_view(ros)
     held = ros.probe.collect(Quaternion, TRUE_ORIENTATION)
+    # robot_view publishes each command once, on a volatile topic: until the probe knows its
+    # publisher, a command would be lost to it, and "nothing reached" below would prove nothing.
+    wait_until(lambda: ros.probe.node.count_publishers(TRUE_ORIENTATION) > 0, 20,
+               "robot_view's publisher of the IMU's orientation")
     with PageSocket(base) as page_socket:
         for message, error in [
                 ('{"type": "command", "id": 1, "name": "hold_imu", "orientation": {"x": NaN, "y": 0, "z": 0, '
