@@ -10,11 +10,13 @@ from __future__ import annotations
 
 import ipaddress
 import json
+import os
 import socket
 import subprocess
 from dataclasses import dataclass, field
 
 from olive_sim.kit import KIT_SUBNET, OWL_KIT
+from owl_humble.launcher import ensure_discovery_bridge
 
 FACTORY_ADDRESS = '10.42.0.7'  # every module's address out of the box (section 4.3.2)
 # The addresses the course gives the modules, and what it calls them.
@@ -134,6 +136,7 @@ def olive_nodes(domain_id: int, seconds: float) -> list[str]:
     from rclpy.context import Context
     from rclpy.node import Node
 
+    ensure_discovery_bridge({**os.environ, 'ROS_DOMAIN_ID': str(domain_id)})  # Humble modules' nodes
     context = Context()
     rclpy.init(context=context, domain_id=domain_id)
     try:

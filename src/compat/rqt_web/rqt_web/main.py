@@ -8,6 +8,7 @@ import webbrowser
 from pathlib import Path
 
 from owl_common.run import spin_node
+from owl_humble.launcher import ensure_discovery_bridge
 from owl_web.server import WebServer, port_number
 from rclpy.utilities import remove_ros_args
 
@@ -61,6 +62,7 @@ def main(argv: list[str] | None = None) -> None:
     url = server.url + (f'#{PLUGINS[args.standalone]}' if args.standalone else '')
 
     def start() -> RqtWebNode:
+        ensure_discovery_bridge()  # the node graph names Humble modules' nodes too
         node = RqtWebNode(server)
         print(f'rqt: open {url} in a browser (Ctrl-C to quit)', flush=True)
         if not args.no_browser:

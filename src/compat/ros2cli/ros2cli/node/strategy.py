@@ -4,6 +4,8 @@ import argparse
 import time
 from collections.abc import Callable
 
+from owl_humble.launcher import ensure_discovery_bridge
+
 from ros2cli.node.direct import NAMED_LOOKUP_GRACE, DirectNode, add_direct_node_arguments
 from ros2cli.node.graph import Graph
 
@@ -26,6 +28,8 @@ class NodeStrategy:
         self._args = args
         self._spin_time = spin_time
         self._direct: DirectNode | None = None
+        # Not upstream's: the nodes of Humble modules reach our graph through this bridge.
+        ensure_discovery_bridge()
         graph: Graph | None = None
         if not getattr(args, 'no_daemon', False):
             if client.is_daemon_running():

@@ -1,0 +1,46 @@
+"""Start this domain's discovery bridge if it is not running (cheap: imports no DDS library).
+
+Our tools call `ensure_discovery_bridge()` before they read the graph; see owl_humble/bridge.py.
+"""
+
+from __future__ import annotations
+
+import os
+import socket
+import subprocess
+import sys
+
+
+def bridge_address(environ: dict[str, str] | None = None) -> str | None:
+    """The abstract socket name that one bridge per user, domain and discovery range holds, or None
+    where no bridge is wanted (discovery off, another rmw than Fast DDS)."""
+    env = os.environ if environ is None else environ
+    discovery_range = (env.get('ROS_AUTOMATIC_DISCOVERY_RANGE') or 'SUBNET').upper()
+    if discovery_range == 'OFF' or env.get('RMW_IMPLEMENTATION', 'rmw_fastrtps_cpp') != 'rmw_fastrtps_cpp':
+        return None
+    peers = env.get('ROS_STATIC_PEERS', '')
+    return f'\0owl-discovery-bridge-{os.getuid()}-{env.get("ROS_DOMAIN_ID") or 0}-{discovery_range}-{peers}'
+
+
+def ensure_discovery_bridge(environ: dict[str, str] | None = None) -> bool:
+    """Start the bridge in the background unless one holds the address; True if this call started it.
+
+    The address is bound here and handed to the child, so two callers racing cannot both start one.
+    """
+    env = dict(os.environ if environ is None else environ)
+    address = bridge_address(env)
+    if address is None:
+        return False
+    holder = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+    try:
+        try:
+            holder.bind(address)
+        except OSError:
+            return False
+        subprocess.Popen(
+            [sys.executable, '-m', 'owl_humble.bridge', '--fd', str(holder.fileno())],
+            pass_fds=[holder.fileno()], start_new_session=True, stdin=subprocess.DEVNULL,
+            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
+        return True
+    finally:
+        holder.close()

@@ -1,0 +1,157 @@
+"""A DDS participant that speaks to ROS 2 as Humble does, on Eclipse Cyclone DDS (from PyPI).
+
+rclpy cannot be made to send Humble's discovery layout or leave out Jazzy's type hashes, so the
+Humble side of the wire uses a second DDS library. Samples are read and written as serialized
+bytes: rclpy's serializer makes the ROS messages (same layout on both distributions) and
+`discovery_info` the graph messages, so no message is defined twice.
+
+Cyclone sends type information with its endpoints; Fast DDS ignores it and matches on the type
+name, and our Cyclone peers all use the one opaque type per name made here, so they match too.
+Fast DDS sends no type information, and Cyclone then matches on the name as well.
+"""
+
+from __future__ import annotations
+
+import os
+import types
+from collections.abc import Iterator
+from dataclasses import dataclass
+from typing import Any
+
+from cyclonedds._clayer import ddspy_take, ddspy_write
+from cyclonedds.core import InstanceState, Policy, Qos, SampleState, ViewState
+from cyclonedds.domain import Domain, DomainParticipant
+from cyclonedds.idl import IdlStruct
+from cyclonedds.idl.types import uint8
+from cyclonedds.pub import DataWriter, Publisher
+from cyclonedds.sub import DataReader, Subscriber
+from cyclonedds.topic import Topic
+
+DISCOVERY_TOPIC = 'ros_discovery_info'
+DISCOVERY_TYPE = 'rmw_dds_common::msg::dds_::ParticipantEntitiesInfo_'
+# Where our own (Jazzy-layout) processes keep their graph messages: config/fastdds.xml puts every
+# ros_discovery_info reader and writer of ours in this partition, so no Humble participant (which
+# uses the default partition) ever matches them.
+JAZZY_GRAPH_PARTITION = 'owl_kit_lab_jazzy_graph'
+SECOND = 1_000_000_000
+ANY_SAMPLE = SampleState.Any | ViewState.Any | InstanceState.Any
+
+
+def cyclone_config(discovery_range: str, static_peers: list[str]) -> str | None:
+    """Cyclone's configuration for ROS 2's discovery range (None: Cyclone's own defaults)."""
+    peers = ''.join(f'<Peer address="{peer}"/>' for peer in static_peers)
+    if discovery_range == 'LOCALHOST':
+        # As rmw_fastrtps does it: loopback only, unicast to the well-known ports of each index.
+        return ('<CycloneDDS><Domain Id="any"><General><Interfaces><NetworkInterface address="127.0.0.1"/>'
+                '</Interfaces><AllowMulticast>false</AllowMulticast></General><Discovery>'
+                '<ParticipantIndex>auto</ParticipantIndex><MaxAutoParticipantIndex>120</MaxAutoParticipantIndex>'
+                f'<Peers><Peer address="127.0.0.1"/>{peers}</Peers></Discovery></Domain></CycloneDDS>')
+    if peers:
+        return (f'<CycloneDDS><Domain Id="any"><Discovery><Peers>{peers}</Peers></Discovery>'
+                '</Domain></CycloneDDS>')
+    return None
+
+
+def ros_discovery_settings(environ: dict[str, str] | None = None) -> tuple[int, str, list[str]]:
+    """ROS_DOMAIN_ID, ROS_AUTOMATIC_DISCOVERY_RANGE and ROS_STATIC_PEERS as rcl reads them."""
+    env = os.environ if environ is None else environ
+    domain = int(env.get('ROS_DOMAIN_ID') or 0)
+    discovery_range = (env.get('ROS_AUTOMATIC_DISCOVERY_RANGE') or 'SUBNET').upper()
+    if discovery_range == 'SYSTEM_DEFAULT':
+        discovery_range = 'SUBNET'
+    peers = [peer.strip() for peer in (env.get('ROS_STATIC_PEERS') or '').split(';') if peer.strip()]
+    return domain, discovery_range, peers
+
+
+_opaque_types: dict[str, type] = {}
+
+
+def opaque_type(typename: str) -> type:
+    """An IDL type named like the ROS type, whose samples we only ever handle as bytes.
+
+    Cyclone checks a sample against the type's first members when it is written or received and
+    keeps the bytes whole: one octet accepts any ROS message in either layout."""
+    if typename not in _opaque_types:
+        body = types.new_class(
+            typename.replace(':', '_'), (IdlStruct,), {'typename': typename},
+            lambda namespace: namespace.update({'__annotations__': {'first_octet': uint8}}))
+        _opaque_types[typename] = dataclass(body)
+    return _opaque_types[typename]
+
+
+def discovery_writer_qos() -> Qos:
+    return Qos(Policy.Reliability.Reliable(max_blocking_time=SECOND), Policy.Durability.TransientLocal,
+               Policy.History.KeepLast(1))
+
+
+def discovery_reader_qos() -> Qos:
+    return Qos(Policy.Reliability.Reliable(max_blocking_time=SECOND), Policy.Durability.TransientLocal,
+               Policy.History.KeepAll)
+
+
+def topic_qos(depth: int = 10, best_effort: bool = False) -> Qos:
+    """rclpy's QoSProfile(depth) (reliable, volatile), or best effort."""
+    reliability = Policy.Reliability.BestEffort if best_effort else Policy.Reliability.Reliable(
+        max_blocking_time=SECOND)
+    return Qos(reliability, Policy.Durability.Volatile, Policy.History.KeepLast(depth))
+
+
+@dataclass
+class RawSample:
+    data: bytes
+    publication_handle: int
+    alive: bool
+
+
+class Participant:
+    """One DDS participant in the ROS domain and discovery range of the environment."""
+
+    def __init__(self, environ: dict[str, str] | None = None) -> None:
+        domain, discovery_range, peers = ros_discovery_settings(environ)
+        config = cyclone_config(discovery_range, peers)
+        self.domain_id = domain
+        self._domain = Domain(domain, config) if config else None
+        self.dds = DomainParticipant(domain)
+        self._topics: dict[str, Topic] = {}
+
+    @property
+    def gid(self) -> bytes:
+        """The participant's GUID, 16 bytes (prefix and entity id), as rmw makes its gid."""
+        return self.dds.guid.bytes
+
+    def topic(self, name: str, typename: str) -> Topic:
+        if name not in self._topics:
+            self._topics[name] = Topic(self.dds, name, opaque_type(typename))
+        return self._topics[name]
+
+    def writer(self, name: str, typename: str, qos: Qos, partition: str | None = None) -> DataWriter:
+        publisher = Publisher(self.dds, qos=Qos(Policy.Partition([partition]))) if partition else self.dds
+        return DataWriter(publisher, self.topic(name, typename), qos=qos)
+
+    def reader(self, name: str, typename: str, qos: Qos, partition: str | None = None) -> DataReader:
+        subscriber = Subscriber(self.dds, qos=Qos(Policy.Partition([partition]))) if partition else self.dds
+        return DataReader(subscriber, self.topic(name, typename), qos=qos)
+
+    def close(self) -> None:
+        self.dds = None  # type: ignore[assignment]  # the participant is deleted with its last reference
+
+
+def take(reader: DataReader, limit: int = 256) -> Iterator[RawSample]:
+    """The reader's new samples as bytes, none deserialized (a typed read would drop or choke on a
+    sample in the other layout)."""
+    result: Any = ddspy_take(reader._ref, ANY_SAMPLE, limit)
+    if isinstance(result, int):
+        return
+    for data, info in result:
+        yield RawSample(bytes(data), info.publication_handle, bool(info.valid_data))
+
+
+def write(writer: DataWriter, data: bytes) -> None:
+    """Write an already serialized sample (encapsulation header included)."""
+    result = ddspy_write(writer._ref, data)
+    if isinstance(result, int) and result < 0:
+        raise OSError(f'DDS write failed ({result})')
+
+
+def entity_gid(entity: DataReader | DataWriter) -> bytes:
+    return entity.guid.bytes

@@ -1,0 +1,155 @@
+"""A ROS 2 Humble module beside our Jazzy processes, on the wire.
+
+humble_twin (src/owl_humble) is what a Humble Olive module sends: graph messages with 24-byte
+gids, endpoints without type hashes. Beside it run the simulated kit, the course's chapter 4 nodes
+and the `ros2` command, in each network mode. The twin counts every graph message it receives that
+a Humble module would misread; with our Fast DDS profile there is none, and without the profile's
+ros_discovery_info partition there are many (so the count can fail the test).
+"""
+
+import re
+import signal
+import subprocess
+import time
+from pathlib import Path
+
+import pytest
+from owl_common.processes import RosSandbox
+from ros_harness import wait_until
+
+ROOT = Path(__file__).resolve().parent.parent
+PROFILE = ROOT / 'config' / 'fastdds.xml'
+IMU_NODE = '/olive_imu_humble_dcm_srv'
+SERVO_NODE = '/olive_servo_humble_dcm_srv'
+KIT_NODES = ('/olive_imu_x1684267976913_dcm_srv', '/olive_servo_pan_dcm_srv', '/olive_servo_tilt_dcm_srv',
+             '/olive_camera_eye_dcm_srv')
+RANGES = {'private': 'LOCALHOST', 'open': 'SUBNET'}
+NO_DISPLAY = {'DISPLAY': None, 'WAYLAND_DISPLAY': None, 'OWL_HEADLESS': '1'}
+SUMMARY = r"discovery samples received: (\d+), malformed in Humble's layout: (\d+)"
+
+
+def ros2(sandbox, *args, env=None, timeout=30.0):
+    result = subprocess.run(['ros2', *args], env={**sandbox.env, **(env or {})}, capture_output=True,
+                            text=True, timeout=timeout, check=False)
+    assert 'Traceback' not in result.stderr, result.stderr
+    return result
+
+
+def node_list(sandbox):
+    return set(ros2(sandbox, 'node', 'list').stdout.split())
+
+
+def unprotected_profile(tmp_path):
+    """config/fastdds.xml without the ros_discovery_info profiles: a Jazzy graph as upstream's."""
+    text = PROFILE.read_text()
+    stripped = re.sub(r'\s*<data_(writer|reader) profile_name="ros_discovery_info">.*?</data_\1>', '',
+                      text, flags=re.S)
+    assert 'ros_discovery_info"' not in stripped and stripped != text, 'the profile has no graph partition'
+    path = tmp_path / 'unprotected.xml'
+    path.write_text(stripped)
+    return str(path)
+
+
+def stop_twin(twin):
+    """Ctrl-C the twin; (graph messages it received, malformed ones) from its last line."""
+    twin.send_signal(signal.SIGINT)
+    assert twin.wait(10) == 0, twin.tail()
+    received, malformed = twin.wait_for(SUMMARY)[0].groups()
+    return int(received), int(malformed)
+
+
+def turtle_x(sandbox):
+    out = ros2(sandbox, 'topic', 'echo', '/turtle1/pose', '--once').stdout
+    return float(re.search(r'^x: (\S+)', out, re.M).group(1))
+
+
+@pytest.mark.parametrize('network', sorted(RANGES))
+def test_a_humble_module_beside_the_kit_and_chapter_4_nodes_is_safe_listed_and_talked_to(network):
+    with RosSandbox(discovery_range=RANGES[network]) as sandbox:
+        kit = sandbox.command(['ros2', 'launch', 'olive_sim', 'owl_kit.launch.py', 'web_port:=0'],
+                              label='kit')
+        robot = sandbox.command(['ros2', 'launch', 'olive_camera', 'robot_camera.launch.py'], env=NO_DISPLAY,
+                                label='robot_camera')
+        turtlesim = sandbox.run('turtlesim', 'turtlesim_node', '--headless')
+        robot.wait_for(r'\[imu_control_robot-1\].*torque enabled: pan, tilt', timeout=60)
+        turtlesim.wait_for(r'Spawning turtle \[turtle1\]', timeout=30)
+        wait_until(lambda: set(KIT_NODES) <= node_list(sandbox), 30, 'the kit in ros2 node list')
+
+        imu = sandbox.run('owl_humble', 'humble_twin', '--module', 'imu', label='humble imu')
+        servo = sandbox.run('owl_humble', 'humble_twin', '--module', 'servo', label='humble servo')
+        imu.wait_for('ready: node ' + IMU_NODE, timeout=20)
+        servo.wait_for('ready: node ' + SERVO_NODE, timeout=20)
+        started = time.monotonic()
+        wait_until(lambda: {IMU_NODE, SERVO_NODE} <= node_list(sandbox), 10, 'the Humble nodes listed')
+        listed_after = time.monotonic() - started
+        assert listed_after <= 2.0, f'the Humble nodes were listed {listed_after:.2f} s after they started'
+        info = ros2(sandbox, 'topic', 'info', '-v', '/olive/imu/humble/imu').stdout
+        assert f'Node name: {IMU_NODE[1:]}' in info and 'Topic type hash: INVALID' in info, info
+        assert '/olive/imu/humble/imu' in ros2(sandbox, 'node', 'info', IMU_NODE).stdout
+
+        # IMU -> the course's imu_turtle: the twin's fixed 0.3 rad pitch drives the turtle forward.
+        imu_turtle = sandbox.run('olive_imu', 'imu_turtle', '--ros-args',
+                                 '-p', 'imu_topic:=/olive/imu/humble/imu')
+        imu_turtle.wait_for('IMU data on /olive/imu/humble/imu: driving /turtle1/cmd_vel', timeout=20)
+        x = turtle_x(sandbox)
+        wait_until(lambda: turtle_x(sandbox) > x + 0.3, 15, 'the turtle driven forward by the Humble IMU')
+        # Goals -> the twin's servo, which follows them in its joint state.
+        ros2(sandbox, 'topic', 'pub', '-1', '-w', '1', '/olive/servo/humble/goal/position',
+             'std_msgs/msg/Float32', '{data: 0.5}')
+        servo.wait_for(r'goal \+0\.500 rad on /olive/servo/humble/goal/position', timeout=10)
+        joint = ros2(sandbox, 'topic', 'echo', '/olive/servo/humble/joint', '--once').stdout
+        assert re.search(r'position:\n- 0\.5', joint), joint
+
+        assert stop_twin(imu)[1] == 0, imu.output
+        left = time.monotonic()
+        wait_until(lambda: IMU_NODE not in node_list(sandbox), 5, 'the Humble IMU gone from ros2 node list')
+        assert time.monotonic() - left <= 5.0
+        assert SERVO_NODE in node_list(sandbox)
+        assert stop_twin(servo)[1] == 0, servo.output
+        for process in (imu_turtle, robot, kit, turtlesim):
+            process.send_signal(signal.SIGINT)
+        assert robot.wait(30) == 0 and kit.wait(30) == 0, robot.tail() + kit.tail()
+
+
+def test_without_the_graph_partition_a_humble_module_gets_messages_it_misreads(tmp_path):
+    with RosSandbox() as sandbox:
+        twin = sandbox.run('owl_humble', 'humble_twin', '--module', 'servo')
+        twin.wait_for('ready: node ' + SERVO_NODE, timeout=20)
+        unprotected = {'FASTRTPS_DEFAULT_PROFILES_FILE': unprotected_profile(tmp_path)}
+        turtlesim = sandbox.run('turtlesim', 'turtlesim_node', '--headless', env=unprotected)
+        turtlesim.wait_for(r'Spawning turtle \[turtle1\]', timeout=30)
+        ros2(sandbox, 'node', 'list', '--no-daemon', env=unprotected)
+        twin.wait_for('malformed discovery sample #1 .*Jazzy layout', timeout=20)
+        received, malformed = stop_twin(twin)
+        assert malformed > 0 and malformed == received, twin.output
+
+
+def test_a_stock_jazzy_install_beside_ours_sees_our_topics_not_our_node_names_and_we_see_its_nodes(tmp_path):
+    """A student's normal Jazzy (no profile of ours) beside our processes: nothing breaks; it lists
+    our topics but not our nodes (our graph messages are in our partition), and our tools list its
+    node through the discovery bridge."""
+    stock_script = tmp_path / 'stock_jazzy.py'
+    stock_script.write_text(
+        'import time, rclpy\n'
+        'rclpy.init()\n'
+        "node = rclpy.create_node('stock_jazzy_node')\n"
+        'deadline = time.monotonic() + 20\n'
+        'while (time.monotonic() < deadline\n'
+        "       and '/turtle1/pose' not in dict(node.get_topic_names_and_types())):\n"
+        '    rclpy.spin_once(node, timeout_sec=0.1)\n'
+        'time.sleep(2)\n'
+        "print('topics:', sorted(dict(node.get_topic_names_and_types())), flush=True)\n"
+        "print('nodes:', sorted(node.get_node_names()), flush=True)\n"
+        'rclpy.spin(node)\n')
+    with RosSandbox() as sandbox:
+        turtlesim = sandbox.run('turtlesim', 'turtlesim_node', '--headless')
+        turtlesim.wait_for(r'Spawning turtle \[turtle1\]', timeout=30)
+        stock = sandbox.command(['python', str(stock_script)], label='stock jazzy',
+                                env={'FASTRTPS_DEFAULT_PROFILES_FILE': unprotected_profile(tmp_path)})
+        topics = stock.wait_for(r'^topics: (.*)', timeout=30)[0].group(1)
+        nodes = stock.wait_for(r'^nodes: (.*)', timeout=10)[0].group(1)
+        assert "'/turtle1/pose'" in topics
+        assert 'turtlesim' not in nodes and 'stock_jazzy_node' in nodes
+        wait_until(lambda: {'/stock_jazzy_node', '/turtlesim'} <= node_list(sandbox), 10,
+                   'the stock node and ours in our ros2 node list')
+        stock.stop(timeout=5)
