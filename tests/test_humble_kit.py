@@ -58,6 +58,17 @@ def stop_twin(twin):
     return int(received), int(malformed)
 
 
+def seconds_until_listing(sandbox, condition, timeout=10.0):
+    """Seconds from now to the start of the first `ros2 node list` whose answer meets the condition
+    (each call takes a while itself; what counts is when it was asked)."""
+    started = time.monotonic()
+    while time.monotonic() < started + timeout:
+        asked = time.monotonic()
+        if condition(node_list(sandbox)):
+            return asked - started
+    raise AssertionError(f'no ros2 node list within {timeout} s met the condition: {node_list(sandbox)}')
+
+
 def turtle_x(sandbox):
     out = ros2(sandbox, 'topic', 'echo', '/turtle1/pose', '--once').stdout
     return float(re.search(r'^x: (\S+)', out, re.M).group(1))
@@ -79,10 +90,9 @@ def test_a_humble_module_beside_the_kit_and_chapter_4_nodes_is_safe_listed_and_t
         servo = sandbox.run('owl_humble', 'humble_twin', '--module', 'servo', label='humble servo')
         imu.wait_for('ready: node ' + IMU_NODE, timeout=20)
         servo.wait_for('ready: node ' + SERVO_NODE, timeout=20)
-        started = time.monotonic()
-        wait_until(lambda: {IMU_NODE, SERVO_NODE} <= node_list(sandbox), 10, 'the Humble nodes listed')
-        listed_after = time.monotonic() - started
-        assert listed_after <= 2.0, f'the Humble nodes were listed {listed_after:.2f} s after they started'
+        listed_after = seconds_until_listing(sandbox, lambda names: {IMU_NODE, SERVO_NODE} <= names)
+        assert listed_after <= 2.0, f'the first call to list the Humble nodes began {listed_after:.2f} s ' \
+                                    'after they started'
         info = ros2(sandbox, 'topic', 'info', '-v', '/olive/imu/humble/imu').stdout
         assert f'Node name: {IMU_NODE[1:]}' in info and 'Topic type hash: INVALID' in info, info
         assert '/olive/imu/humble/imu' in ros2(sandbox, 'node', 'info', IMU_NODE).stdout
@@ -100,10 +110,24 @@ def test_a_humble_module_beside_the_kit_and_chapter_4_nodes_is_safe_listed_and_t
         joint = ros2(sandbox, 'topic', 'echo', '/olive/servo/humble/joint', '--once').stdout
         assert re.search(r'position:\n- 0\.5', joint), joint
 
+        # owl network --kit: every module with its distribution, one message each way.
+        check = subprocess.run(['owl', 'network', '--kit', '--discovery-time', '2'], env=sandbox.env,
+                               capture_output=True, text=True, timeout=90, check=False)
+        assert 'Traceback' not in check.stderr, check.stderr
+        lines = check.stdout
+        assert (f'ok: imu humble ({IMU_NODE}, ROS 2 Humble): one Imu on /olive/imu/humble/imu from it, '
+                'one Bool (LED on) on /olive/imu/humble/led to it') in lines, lines
+        assert re.search(rf'ok: servo humble \({SERVO_NODE}, ROS 2 Humble\): one JointState on '
+                         r'/olive/servo/humble/joint from it, one goal of \+0\.500 rad \(its position\) on '
+                         '/olive/servo/humble/goal/position to it', lines), lines
+        assert 'ok: servo pan (/olive_servo_pan_dcm_srv, ROS 2 Iron or newer): one JointState' in lines, lines
+        assert 'ok: camera eye (/olive_camera_eye_dcm_srv, ROS 2 Iron or newer): one CompressedImage' in lines
+        assert 'ok: Humble modules are safe beside this shell' in lines
+        imu.wait_for('LED on', timeout=5)
+
         assert stop_twin(imu)[1] == 0, imu.output
-        left = time.monotonic()
-        wait_until(lambda: IMU_NODE not in node_list(sandbox), 5, 'the Humble IMU gone from ros2 node list')
-        assert time.monotonic() - left <= 5.0
+        gone_after = seconds_until_listing(sandbox, lambda names: IMU_NODE not in names)
+        assert gone_after <= 5.0, f'the Humble IMU was listed by calls up to {gone_after:.2f} s after it left'
         assert SERVO_NODE in node_list(sandbox)
         assert stop_twin(servo)[1] == 0, servo.output
         for process in (imu_turtle, robot, kit, turtlesim):

@@ -9,9 +9,10 @@ import threading
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
+from owl_humble.graph_partition import profile_in_effect, profile_protects
 from owl_web.server import port_number
 
-from owl_cli import check, network_check
+from owl_cli import check, kit_check, network_check
 
 
 def positive_seconds(text: str) -> float:
@@ -40,13 +41,20 @@ def network(args: argparse.Namespace) -> int:
         with ThreadPoolExecutor(len(addresses)) as pool:
             answering = dict(zip(addresses, pool.map(lambda a: network_check.answers(a, args.timeout),
                                                      addresses), strict=True))
+    distributions = network_check.olive_nodes(domain_id, args.discovery_time)
+    profile = profile_in_effect()
     facts = network_check.NetworkFacts(
         discovery_range=os.environ.get('ROS_AUTOMATIC_DISCOVERY_RANGE', 'SUBNET') or 'SUBNET',
         domain_id=domain_id, interfaces=interfaces, answering=answering,
-        olive_nodes=network_check.olive_nodes(domain_id, args.discovery_time))
+        olive_nodes=sorted(distributions), distributions=distributions,
+        graph_profile=str(profile) if profile else None,
+        graph_protected=profile is not None and profile_protects(profile))
     if not facts.olive_nodes and domain_id != 0 and any(answering.values()):
-        facts.olive_nodes_in_domain_0 = network_check.olive_nodes(0, args.discovery_time)
+        facts.olive_nodes_in_domain_0 = sorted(network_check.olive_nodes(0, args.discovery_time))
     verdicts = network_check.verdict(facts)
+    if args.kit:
+        reports = kit_check.check_kit(domain_id, args.discovery_time, facts.olive_nodes)
+        verdicts += [network_check.Verdict(ok, text) for ok, text in kit_check.kit_verdicts(reports)]
     for line in verdicts:
         print(f'owl network: {line}')
     return 0 if all(v.ok for v in verdicts) else 1
@@ -100,6 +108,9 @@ def main(argv: list[str] | None = None) -> int:
                                help='how long each module address may take to answer (default 0.5)')
     check_network.add_argument('--discovery-time', type=positive_seconds, default=3.0, metavar='SECONDS',
                                help='how long to listen for the modules\' ROS nodes (default 3)')
+    check_network.add_argument('--kit', action='store_true',
+                               help='then check each Olive module found end to end: its ROS 2 distribution '
+                                    'and one message each way')
     check_network.set_defaults(run=network)
     show_windows = commands.add_parser(
         'windows', help='the windows of programs without a display (cv2.imshow, pygame) on a local page, '

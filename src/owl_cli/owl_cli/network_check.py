@@ -18,6 +18,8 @@ from dataclasses import dataclass, field
 from olive_sim.kit import KIT_SUBNET, OWL_KIT
 from owl_humble.launcher import ensure_discovery_bridge
 
+from owl_cli.kit_check import node_distribution
+
 FACTORY_ADDRESS = '10.42.0.7'  # every module's address out of the box (section 4.3.2)
 # The addresses the course gives the modules, and what it calls them.
 MODULE_ADDRESSES = {m.address: f'{m.module_type} {m.namespace}' for m in OWL_KIT}
@@ -42,6 +44,9 @@ class NetworkFacts:
     answering: dict[str, bool]      # module address -> it answered on the network
     olive_nodes: list[str]          # Olive module nodes DDS discovered in this shell's domain
     olive_nodes_in_domain_0: list[str] = field(default_factory=list)  # looked up when domain != 0
+    distributions: dict[str, str] = field(default_factory=dict)  # node -> its ROS 2 distribution
+    graph_profile: str | None = None  # the Fast DDS profile file in effect
+    graph_protected: bool = True  # that profile keeps our graph messages from Humble modules
 
 
 @dataclass
@@ -90,8 +95,10 @@ def verdict(facts: NetworkFacts) -> list[Verdict]:
                                        'the power module, and that every module link is in the bridge '
                                        '(section 4.4.1)'))
     if facts.olive_nodes:
+        names = ', '.join(f'{n} ({facts.distributions[n]})' if n in facts.distributions else n
+                          for n in sorted(facts.olive_nodes))
         verdicts.append(Verdict(True, f'ROS 2 discovers {len(facts.olive_nodes)} Olive module node(s) in '
-                                      f"domain {facts.domain_id}: {', '.join(sorted(facts.olive_nodes))}"))
+                                      f'domain {facts.domain_id}: {names}'))
     elif facts.olive_nodes_in_domain_0:
         verdicts.append(Verdict(False, f'the modules\' nodes are in ROS domain 0, this shell is in domain '
                                        f'{facts.domain_id}; fix: export ROS_DOMAIN_ID=0'))
@@ -100,6 +107,16 @@ def verdict(facts: NetworkFacts) -> list[Verdict]:
                                        f'nodes in domain {facts.domain_id}: a firewall may block DDS '
                                        f"({DDS_PORTS}); fix: allow it on {local[0].name if local else 'the'} "
                                        f"link, e.g. sudo ufw allow in proto udp to any port 7400:7700"))
+    if facts.graph_protected:
+        verdicts.append(Verdict(True, f'Humble modules are safe beside this shell: {facts.graph_profile} '
+                                      'keeps our graph messages (ros_discovery_info) in a partition of their '
+                                      'own, and the discovery bridge shows their nodes here'))
+    else:
+        verdicts.append(Verdict(False, f'the Fast DDS profile in effect ({facts.graph_profile or "none"}) '
+                                       "does not keep our graph messages from Humble modules, which misread "
+                                       "them (out of memory); fix: unset FASTRTPS_DEFAULT_PROFILES_FILE; "
+                                       "source env.sh (or copy config/fastdds.xml's ros_discovery_info "
+                                       'profiles into yours)'))
     return verdicts
 
 
@@ -128,8 +145,9 @@ def answers(address: str, timeout: float) -> bool:
         return False
 
 
-def olive_nodes(domain_id: int, seconds: float) -> list[str]:
-    """Names of the Olive module nodes (olive_*) DDS discovers in a domain within seconds."""
+def olive_nodes(domain_id: int, seconds: float) -> dict[str, str]:
+    """The Olive module nodes (olive_*) DDS discovers in a domain within seconds, each with its
+    ROS 2 distribution."""
     import time
 
     import rclpy
@@ -142,11 +160,12 @@ def olive_nodes(domain_id: int, seconds: float) -> list[str]:
     try:
         node = Node('owl_network_check', context=context)
         deadline = time.monotonic() + seconds
-        names: set[str] = set()
+        names: set[tuple[str, str]] = set()
         while time.monotonic() < deadline:
-            names.update(n for n in node.get_node_names() if n.startswith('olive_'))
+            names.update(n for n in node.get_node_names_and_namespaces() if n[0].startswith('olive_'))
             time.sleep(0.1)
+        found = {name: node_distribution(node, name, namespace) for name, namespace in sorted(names)}
         node.destroy_node()
-        return sorted(names)
+        return found
     finally:
         rclpy.try_shutdown(context=context)

@@ -56,3 +56,16 @@ def test_modules_answering_without_dds_suggest_a_firewall():
 def test_a_module_at_the_factory_address_is_told_to_move():
     [problem] = problems(facts(answering={**ALL_ANSWER, FACTORY_ADDRESS: True}))
     assert problem.startswith('a module answers at 10.42.0.7, the factory address')
+
+
+def test_the_graph_partition_is_reported_and_its_absence_is_a_problem_with_a_fix():
+    [last] = [v for v in verdict(facts(graph_profile='/x/config/fastdds.xml'))][-1:]
+    assert last.ok and 'Humble modules are safe beside this shell: /x/config/fastdds.xml' in last.text
+    [problem] = problems(facts(graph_profile='/home/me/mine.xml', graph_protected=False))
+    assert '(/home/me/mine.xml) does not keep our graph messages from Humble modules' in problem
+    assert 'fix: unset FASTRTPS_DEFAULT_PROFILES_FILE; source env.sh' in problem
+
+
+def test_each_node_is_named_with_its_distribution_when_known():
+    texts = [v.text for v in verdict(facts(distributions={NODES[0]: 'ROS 2 Humble'}))]
+    assert f'{NODES[0]} (ROS 2 Humble), {NODES[1]}' in texts[3]

@@ -29,6 +29,7 @@ from cyclonedds.pub import DataWriter
 
 from owl_humble import discovery_info as info
 from owl_humble import wire
+from owl_humble.graph_partition import DISCOVERY_TOPIC, JAZZY_GRAPH_PARTITION
 
 ALONE_TIMEOUT = 10.0  # seconds
 POLL_PERIOD = 0.02  # seconds between looks at the graph messages
@@ -38,7 +39,7 @@ class DiscoveryBridge:
     def __init__(self, participant: wire.Participant) -> None:
         self.participant = participant
         self.reader = participant.reader(
-            wire.DISCOVERY_TOPIC, wire.DISCOVERY_TYPE, wire.discovery_reader_qos())
+            DISCOVERY_TOPIC, wire.DISCOVERY_TYPE, wire.discovery_reader_qos())
         self.participants = BuiltinDataReader(participant.dds, BuiltinTopicDcpsParticipant)
         self.publications = BuiltinDataReader(participant.dds, BuiltinTopicDcpsPublication)
         self.writers: dict[bytes, DataWriter] = {}
@@ -56,7 +57,7 @@ class DiscoveryBridge:
         for publication in self.publications.take(256):
             if publication.sample_info.instance_state != InstanceState.Alive:
                 self.ours.discard(publication.key.bytes)
-            elif publication.topic_name == wire.DISCOVERY_TOPIC and self._in_our_partition(publication.qos):
+            elif publication.topic_name == DISCOVERY_TOPIC and self._in_our_partition(publication.qos):
                 self.ours.add(publication.key.bytes)
         if self.ours:
             self.last_seen_ours = time.monotonic()
@@ -64,7 +65,7 @@ class DiscoveryBridge:
     @staticmethod
     def _in_our_partition(qos: Qos) -> bool:
         partition = qos[Policy.Partition] if Policy.Partition in qos else None
-        return partition is not None and wire.JAZZY_GRAPH_PARTITION in partition.partitions
+        return partition is not None and JAZZY_GRAPH_PARTITION in partition.partitions
 
     def forward(self, data: bytes) -> None:
         layout = info.layout_of(data)
@@ -75,8 +76,8 @@ class DiscoveryBridge:
             return
         writer = self.writers.get(entities.gid)
         if writer is None:
-            writer = self.participant.writer(wire.DISCOVERY_TOPIC, wire.DISCOVERY_TYPE,
-                                             wire.discovery_writer_qos(), wire.JAZZY_GRAPH_PARTITION)
+            writer = self.participant.writer(DISCOVERY_TOPIC, wire.DISCOVERY_TYPE,
+                                             wire.discovery_writer_qos(), JAZZY_GRAPH_PARTITION)
             self.writers[entities.gid] = writer
         wire.write(writer, info.encode(entities, info.Layout.JAZZY))
 

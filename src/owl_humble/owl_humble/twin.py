@@ -3,7 +3,8 @@
 A real module runs ROS 2 Humble (Fast DDS). What makes it Humble on the wire, and what the twin
 sends too: its graph message (ros_discovery_info) has 24-byte gids, and its endpoints carry no
 type hash. The twin publishes an IMU's `Imu` (a fixed tilt, so `imu_turtle` drives the turtle) or
-a servo's `JointState` following the goals it takes on `goal/position`, and it checks every graph
+a servo's `JointState` following the goals it takes on `goal/position` (either takes `led`, as the
+simulated modules do, and says when the LED changes), and it checks every graph
 message it receives: one that does not parse in Humble's layout is printed and counted (a Humble
 module would misread it).
 
@@ -25,10 +26,11 @@ from types import FrameType
 
 from rclpy.serialization import deserialize_message, serialize_message
 from sensor_msgs.msg import Imu, JointState
-from std_msgs.msg import Float32
+from std_msgs.msg import Bool, Float32
 
 from owl_humble import discovery_info as info
 from owl_humble import wire
+from owl_humble.graph_partition import DISCOVERY_TOPIC
 
 PREFIX = 'humble_twin'
 MODULE_TYPES = ('imu', 'servo')
@@ -89,10 +91,13 @@ class Twin:
         self.goal: float | None = None
         self.check = DiscoveryCheck()
         self.discovery_reader = self.participant.reader(
-            wire.DISCOVERY_TOPIC, wire.DISCOVERY_TYPE, wire.discovery_reader_qos())
+            DISCOVERY_TOPIC, wire.DISCOVERY_TYPE, wire.discovery_reader_qos())
         self.discovery_writer = self.participant.writer(
-            wire.DISCOVERY_TOPIC, wire.DISCOVERY_TYPE, wire.discovery_writer_qos())
-        readers, writers = [], []
+            DISCOVERY_TOPIC, wire.DISCOVERY_TYPE, wire.discovery_writer_qos())
+        self.led_on = False
+        self.led_reader = self.participant.reader(
+            'rt' + self.prefix + 'led', ros_type('std_msgs/msg/Bool'), wire.topic_qos())
+        readers, writers = [self.led_reader], []
         if module_type == 'imu':
             self.imu_writer = self.participant.writer(
                 'rt' + self.prefix + 'imu', ros_type('sensor_msgs/msg/Imu'), wire.topic_qos())
@@ -115,6 +120,11 @@ class Twin:
         for sample in wire.take(self.discovery_reader):
             if sample.alive:
                 self.check.check(sample.data, self.gid)
+        for sample in wire.take(self.led_reader):
+            led_on = sample.alive and deserialize_message(sample.data, Bool).data
+            if sample.alive and led_on != self.led_on:
+                say(f"LED {'on' if led_on else 'off'}")
+                self.led_on = led_on
         if self.module_type == 'imu':
             self._publish_imu()
         else:

@@ -27,12 +27,7 @@ from cyclonedds.pub import DataWriter, Publisher
 from cyclonedds.sub import DataReader, Subscriber
 from cyclonedds.topic import Topic
 
-DISCOVERY_TOPIC = 'ros_discovery_info'
 DISCOVERY_TYPE = 'rmw_dds_common::msg::dds_::ParticipantEntitiesInfo_'
-# Where our own (Jazzy-layout) processes keep their graph messages: config/fastdds.xml puts every
-# ros_discovery_info reader and writer of ours in this partition, so no Humble participant (which
-# uses the default partition) ever matches them.
-JAZZY_GRAPH_PARTITION = 'owl_kit_lab_jazzy_graph'
 SECOND = 1_000_000_000
 ANY_SAMPLE = SampleState.Any | ViewState.Any | InstanceState.Any
 

@@ -1,0 +1,160 @@
+"""`owl network --kit`: each Olive module found, its ROS 2 distribution, one message each way.
+
+A module is found by its node's name (`olive_<type>_<namespace>_dcm_srv`, the firmware's naming).
+Its distribution is read off its endpoints: Humble's carry no type hash, Iron's and newer ones do.
+From the module: one message on its main topic (the IMU's `imu`, a servo's `joint`, the camera's
+`image/compressed`). To the module: a servo gets a goal equal to the position it reported (so
+nothing moves), the IMU and the camera an `led` message switching their LED on; either counts once
+the module's reader has acknowledged it (reliable DDS delivery), which shows the way in works.
+"""
+
+from __future__ import annotations
+
+import re
+import time
+from dataclasses import dataclass
+from typing import Any
+
+NODE_PATTERN = re.compile(r'olive_(imu|servo|camera)_([A-Za-z0-9_]+?)_dcm_srv')
+MAIN_TOPICS = {'imu': ('imu', 'sensor_msgs/msg/Imu'), 'servo': ('joint', 'sensor_msgs/msg/JointState'),
+               'camera': ('image/compressed', 'sensor_msgs/msg/CompressedImage')}
+HUMBLE = 'ROS 2 Humble'
+ACK_TIMEOUT = 5.0  # seconds for the acknowledgements (Fast DDS asks for them every 3 s)
+NEWER = 'ROS 2 Iron or newer'
+
+
+@dataclass
+class ModuleReport:
+    node: str
+    module_type: str
+    namespace: str
+    distribution: str           # HUMBLE, NEWER, or 'unknown' (no endpoint seen)
+    received: str | None = None  # what came from the module
+    sent: str | None = None      # what the module acknowledged
+
+    @property
+    def prefix(self) -> str:
+        return f'/olive/{self.module_type}/{self.namespace}/'
+
+
+def parse_module(node: str) -> tuple[str, str] | None:
+    """(module type, namespace) of an Olive module's node name, or None for another node."""
+    match = NODE_PATTERN.fullmatch(node.rsplit('/', 1)[-1])
+    return (match.group(1), match.group(2)) if match else None
+
+
+def distribution(type_hash_versions: list[int]) -> str:
+    """Humble's endpoints have no type hash (version 0); from Iron on they carry RIHS01."""
+    if not type_hash_versions:
+        return 'unknown'
+    return NEWER if any(version > 0 for version in type_hash_versions) else HUMBLE
+
+
+def node_distribution(node: Any, name: str, namespace: str) -> str:
+    """The distribution of another node, from the type hashes of its publishers (an rclpy Node asks);
+    'unknown' for a node that has left meanwhile."""
+    from rclpy.node import NodeNameNonExistentError
+
+    try:
+        topics = node.get_publisher_names_and_types_by_node(name, namespace)
+    except NodeNameNonExistentError:
+        return 'unknown'
+    return distribution([info.topic_type_hash.version for topic, _ in topics
+                         for info in node.get_publishers_info_by_topic(topic)
+                         if info.node_name == name and info.node_namespace == namespace])
+
+
+def kit_verdicts(reports: list[ModuleReport]) -> list[tuple[bool, str]]:
+    """(ok, text) per module, then a problem line when no module was found."""
+    if not reports:
+        return [(False, 'no Olive module node found, so nothing to check end to end; fix the problems '
+                        'above first (network open, modules answering, the same ROS domain)')]
+    verdicts = []
+    for report in reports:
+        where = f'{report.module_type} {report.namespace} (/{report.node}, {report.distribution})'
+        missing = [way for way, done in (('nothing came from it', report.received),
+                                         ('nothing sent to it was acknowledged', report.sent)) if not done]
+        if missing:
+            verdicts.append((False, f"{where}: {' and '.join(missing)}; fix: check the module's page "
+                                    '(Log Monitor) and that no firewall blocks UDP 7400-7700'))
+        else:
+            verdicts.append((True, f'{where}: {report.received} from it, {report.sent} to it'))
+    return verdicts
+
+
+def check_kit(domain_id: int, seconds: float, expected: list[str]) -> list[ModuleReport]:
+    """Find the modules in the domain (waiting up to ACK_TIMEOUT more for the expected nodes, which
+    `owl network` found a moment ago) and exchange one message each way with all of them at once."""
+    import rclpy
+    from rclpy.context import Context
+    from rclpy.duration import Duration
+    from rclpy.executors import SingleThreadedExecutor
+    from rclpy.node import Node
+    from rclpy.qos import qos_profile_sensor_data
+    from sensor_msgs.msg import CompressedImage, Imu, JointState
+    from std_msgs.msg import Bool, Float32
+
+    types: dict[str, Any] = {'sensor_msgs/msg/Imu': Imu, 'sensor_msgs/msg/JointState': JointState,
+                             'sensor_msgs/msg/CompressedImage': CompressedImage}
+    context = Context()
+    rclpy.init(context=context, domain_id=domain_id)
+    try:
+        node = Node('owl_network_kit_check', context=context)
+        executor = SingleThreadedExecutor(context=context)
+        executor.add_node(node)
+
+        def spin_until(condition: Any, deadline: float) -> None:
+            while not condition() and time.monotonic() < deadline:
+                executor.spin_once(timeout_sec=0.05)
+
+        started = time.monotonic()
+        spin_until(lambda: time.monotonic() >= started + seconds
+                   and set(expected) <= {name for name, _ in node.get_node_names_and_namespaces()},
+                   started + seconds + ACK_TIMEOUT)
+        reports = sorted((ModuleReport(name, *parsed, node_distribution(node, name, namespace))
+                          for name, namespace in node.get_node_names_and_namespaces()
+                          if (parsed := parse_module(name)) is not None), key=lambda r: r.node)
+        # From each module: one message on its main topic.
+        received: dict[str, list[Any]] = {report.node: [] for report in reports}
+        for report in reports:
+            topic, type_name = MAIN_TOPICS[report.module_type]
+            node.create_subscription(types[type_name], report.prefix + topic, received[report.node].append,
+                                     qos_profile_sensor_data)
+        spin_until(lambda: all(received.values()), time.monotonic() + seconds)
+        # To each module: one message, acknowledged by its reader. Fast DDS asks for
+        # acknowledgements every 3 s (its heartbeat), so all are sent first and then waited for.
+        sent: list[tuple[ModuleReport, Any, Any, str]] = []
+        for report in reports:
+            messages = received[report.node]
+            topic, type_name = MAIN_TOPICS[report.module_type]
+            if messages:
+                report.received = f'one {type_name.rsplit("/", 1)[-1]} on {report.prefix + topic}'
+            message: Any
+            if report.module_type != 'servo':
+                message, topic, what = Bool(data=True), report.prefix + 'led', 'one Bool (LED on)'
+            elif messages and messages[-1].position:
+                position = float(messages[-1].position[0])
+                message, topic = Float32(data=position), report.prefix + 'goal/position'
+                what = f'one goal of {position:+.3f} rad (its position)'
+            else:
+                continue
+            publisher = node.create_publisher(type(message), topic, 10)
+            sent.append((report, publisher, message, f'{what} on {topic}'))
+        spin_until(lambda: all(entry[1].get_subscription_count() for entry in sent),
+                   time.monotonic() + seconds)
+        # Two rounds: a reader only acknowledges once it knows our writer, but a volatile reader that
+        # learns of us after a message was written acknowledges that message without taking it. After
+        # the first acknowledgement it knows us, so the second message is taken when acknowledged.
+        for _ in range(2):
+            for entry in sent:
+                if entry[1].get_subscription_count():
+                    entry[1].publish(entry[2])
+            deadline = time.monotonic() + ACK_TIMEOUT
+            sent = [entry for entry in sent if entry[1].get_subscription_count()
+                    and entry[1].wait_for_all_acked(Duration(seconds=max(0.0, deadline - time.monotonic())))]
+        for report, _, _, what in sent:
+            report.sent = what
+        node.destroy_node()
+        return reports
+    finally:
+        rclpy.try_shutdown(context=context)

@@ -1,0 +1,32 @@
+"""owl network --kit's pure parts: module names, distributions, verdicts."""
+
+from owl_cli.kit_check import HUMBLE, NEWER, ModuleReport, distribution, kit_verdicts, parse_module
+
+
+def test_module_nodes_are_recognised_by_the_firmware_naming():
+    assert parse_module('olive_servo_pan_dcm_srv') == ('servo', 'pan')
+    assert parse_module('/olive_imu_x1684267976913_dcm_srv') == ('imu', 'x1684267976913')
+    assert parse_module('olive_camera_id_01_dcm_srv') == ('camera', 'id_01')
+    for other in ('turtlesim', 'olive_lamp_x_dcm_srv', 'olive_servo__dcm_srv', 'olive_servo_pan'):
+        assert parse_module(other) is None
+
+
+def test_no_type_hash_means_humble():
+    assert distribution([0, 0]) == HUMBLE
+    assert distribution([1, 1]) == NEWER
+    assert distribution([0, 1]) == NEWER  # rmw's own endpoints aside, one hash is enough
+    assert distribution([]) == 'unknown'
+
+
+def test_a_module_passes_with_a_message_each_way_and_fails_naming_the_missing_way():
+    good = ModuleReport('olive_imu_h_dcm_srv', 'imu', 'h', HUMBLE, 'one Imu on /olive/imu/h/imu',
+                        'LED on on /olive/imu/h/led')
+    mute = ModuleReport('olive_servo_pan_dcm_srv', 'servo', 'pan', NEWER, None, None)
+    deaf = ModuleReport('olive_servo_tilt_dcm_srv', 'servo', 'tilt', NEWER, 'a JointState', None)
+    (ok, text), (bad, mute_text), (bad2, deaf_text) = kit_verdicts([good, mute, deaf])
+    assert ok and text.startswith('imu h (/olive_imu_h_dcm_srv, ROS 2 Humble): one Imu on')
+    assert not bad and 'nothing came from it and nothing sent to it was acknowledged' in mute_text
+    assert not bad2 and 'nothing sent to it was acknowledged; fix:' in deaf_text
+    assert good.prefix == '/olive/imu/h/'
+    [(none_ok, none_text)] = kit_verdicts([])
+    assert not none_ok and 'no Olive module node found' in none_text
