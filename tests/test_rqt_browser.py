@@ -109,3 +109,18 @@ def test_rqt_image_view_shows_the_camera_at_its_rate(ros, page):
     assert shown_fps >= MIN_FPS
     assert 'fps shown' in page.inner_text('#img-status')
     page.screenshot_to('rqt_image_view')
+
+
+def test_rqt_node_graph_draws_a_humble_module_and_drops_it_when_it_leaves(ros, page):
+    """A module on ROS 2 Humble (humble_twin: 24-byte gids in its graph messages) is named in the
+    graph through the discovery bridge that rqt starts, with its edge, and goes when it leaves."""
+    twin = ros.run('owl_humble', 'humble_twin', '--module', 'imu')
+    twin.wait_for('ready: node /olive_imu_humble_dcm_srv', timeout=20)
+    rqt = Rqt(ros)
+    page.goto(rqt.base)
+    page.wait_for_selector(drawn('/olive_imu_humble_dcm_srv'), timeout=20_000)
+    edge = '#graph-svg path.edge[data-from="/olive_imu_humble_dcm_srv"][data-to="/olive/imu/humble/imu"]'
+    page.wait_for_selector(edge, state='attached', timeout=10_000)  # a straight edge has no height
+    page.screenshot_to('rqt_graph_humble_module')
+    twin.stop_cleanly()
+    page.wait_for_selector(drawn('/olive_imu_humble_dcm_srv'), state='detached', timeout=10_000)
