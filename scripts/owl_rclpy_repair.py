@@ -24,6 +24,14 @@ thread (the only one where Python raises KeyboardInterrupt) while SIGINT has Pyt
   context goes down within SHUTDOWN_GRACE; otherwise it is a real error and stays as it is.
 A program with a SIGINT handler of its own, and executors spinning in other threads, are untouched.
 
+A service client slowed down with every call (3.6 ms per call over its first 300 calls, 42 ms over
+calls 1200-1500): each spin_until_future_complete (and each of its spin_once_ rounds) gives the
+future a done-callback that wakes the executor, and once the future is done rclpy makes each such
+callback a Task of the executor; the loop returns as soon as the future is done, so the Tasks stay
+in the executor's list (3 more per call) and every later wait walks and copies that list. After
+either method returns, its wake-ups are dropped: removed from a future still pending, or as Tasks
+not yet run (a wake-up only ends a wait, and that wait is over).
+
 The same Ctrl-C can land inside the constructor of one of the Tasks the executor makes for each
 callback, before the attribute its __del__ reads is set: the node still stops as it should, but
 Python prints "Exception ignored in: <function Future.__del__ ...> ... AttributeError: 'Task'
@@ -42,6 +50,7 @@ from typing import Any
 from owl_gui_hook import PatchingLoader, find_spec_after
 
 TAKES = ('_take_subscription', '_take_client', '_take_service', '_take_waitable')
+SPINS_UNTIL_FUTURE = ('spin_until_future_complete', 'spin_once_until_future_complete')
 CONVERSION_ERROR = 'Unable to convert call argument'
 SHUTDOWN_GRACE = 0.5  # s for rclpy's signal thread to shut the context down after its handler ran
 
@@ -72,6 +81,30 @@ def patch_executors(executors: Any) -> None:
         setattr(executors.Executor, name, keep_ctrl_c_out(getattr(executors.Executor, name)))
     from rclpy.task import Future
     Future.__del__ = skip_half_built(Future.__del__)
+    for cls in (executors.Executor, executors.SingleThreadedExecutor, executors.MultiThreadedExecutor):
+        for name in SPINS_UNTIL_FUTURE:
+            if name in vars(cls):
+                setattr(cls, name, drop_stale_wakers(vars(cls)[name], executors.__file__))
+
+
+def drop_stale_wakers(spin: Callable[..., Any], executors_file: str) -> Callable[..., Any]:
+    """spin_until_future_complete (or its spin_once_), leaving none of its wake-ups behind."""
+    def is_waker(callback: Any) -> bool:
+        code = getattr(callback, '__code__', None)
+        return code is not None and code.co_name == '<lambda>' and code.co_filename == executors_file
+
+    @wraps(spin)
+    def spin_without_leftovers(executor: Any, future: Any, *args: Any, **kwargs: Any) -> Any:
+        try:
+            return spin(executor, future, *args, **kwargs)
+        finally:
+            for callback in [c for c in getattr(future, '_callbacks', ()) if is_waker(c)]:
+                future.remove_done_callback(callback)
+            with executor._tasks_lock:
+                executor._tasks = [(task, entity, node) for task, entity, node in executor._tasks
+                                   if task.executing() or not is_waker(getattr(task, '_handler', None))]
+
+    return spin_without_leftovers
 
 
 def skip_half_built(delete: Callable[[Any], None]) -> Callable[[Any], None]:

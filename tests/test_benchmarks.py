@@ -20,7 +20,7 @@ SHRUNK = {
     'robot_view_latency.py': ['--samples', '1', '--pause', '0.3'],
     'ros2_help.py': ['--runs', '1'],
     'ros2cli_graph.py': ['--runs', '1', '--seconds', '2.5', '--messages', '200'],
-    'service_roundtrip.py': ['--calls', '20'],
+    'service_roundtrip.py': ['--calls', '20', '--long-calls', '100'],
     'stop_stress.py': ['--stops', '1', '--hogs', '0', '--kinds', 'temp_server ALL'],
     'teardown_hangs.py': ['--pairs', '2', '--hogs', '0'],
     'turtlesim_pose_rate.py': ['--seconds', '1'],
@@ -41,3 +41,11 @@ def test_benchmark_runs(script):
     assert result.returncode == 0, result.stdout + result.stderr
     assert 'Traceback' not in result.stderr
     assert any(character.isdigit() for character in result.stdout), result.stdout
+
+
+@pytest.mark.parametrize('argv', [['--calls', '0'], ['--long-calls', '5'], ['--long-calls', 'many']])
+def test_service_roundtrip_refuses_counts_it_cannot_measure_in_one_line(argv):
+    result = subprocess.run([sys.executable, str(BENCH / 'service_roundtrip.py'), *argv], capture_output=True,
+                            text=True, timeout=30, check=False)
+    assert result.returncode == 2 and 'Traceback' not in result.stderr
+    assert result.stderr.splitlines()[-1].startswith('service_roundtrip.py: error: argument --')

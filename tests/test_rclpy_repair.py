@@ -114,3 +114,59 @@ def test_a_task_whose_construction_ctrl_c_cut_short_is_deleted_quietly():
          'print("deleted")'],
         capture_output=True, text=True, timeout=60)
     assert (deleted.returncode, deleted.stdout, deleted.stderr) == (0, 'deleted\n', '')
+
+
+# A client that calls a plain rclpy echo service many times, awaiting each response the three
+# ways rclpy offers; it prints how many Tasks its executor holds at the end.
+CALLING_CLIENT = """
+import sys
+
+import rclpy
+from rclpy.executors import MultiThreadedExecutor, SingleThreadedExecutor
+from std_srvs.srv import Trigger
+
+style, calls = sys.argv[1], int(sys.argv[2])
+rclpy.init()
+node = rclpy.create_node('calling_client')
+executor = MultiThreadedExecutor() if style == 'multi' else SingleThreadedExecutor()
+executor.add_node(node)
+client = node.create_client(Trigger, 'echo')
+assert client.wait_for_service(timeout_sec=20.0)
+for _ in range(calls):
+    future = client.call_async(Trigger.Request())
+    if style == 'function':
+        rclpy.spin_until_future_complete(node, future, executor=executor, timeout_sec=10.0)
+    else:
+        executor.spin_until_future_complete(future, timeout_sec=10.0)
+    assert future.done()
+print('tasks left:', len(executor._tasks), flush=True)
+executor.shutdown()
+rclpy.shutdown()
+"""
+
+ECHO_SERVER = """
+import rclpy
+from std_srvs.srv import Trigger
+
+rclpy.init()
+node = rclpy.create_node('echo_server')
+node.create_service(Trigger, 'echo', lambda request, response: response)
+print('serving', flush=True)
+try:
+    rclpy.spin(node)
+except KeyboardInterrupt:
+    pass
+"""
+
+
+@pytest.mark.parametrize('style', ['executor', 'function', 'multi'])
+def test_awaiting_many_service_calls_leaves_no_tasks_behind(ros, tmp_path: Path, style: str):
+    # Upstream rclpy 7.1.6 leaves 3 Tasks per call in the executor, and each later wait walks them all.
+    (tmp_path / 'server.py').write_text(ECHO_SERVER)
+    (tmp_path / 'client.py').write_text(CALLING_CLIENT)
+    server = ros.command([sys.executable, str(tmp_path / 'server.py')], label='echo server')
+    server.wait_for('serving', timeout=20)
+    client = ros.command([sys.executable, str(tmp_path / 'client.py'), style, '300'], label='client')
+    assert client.wait(60) == 0, client.tail()
+    tasks = int(client.wait_for(r'tasks left: (\d+)')[0].group(1))
+    assert tasks <= 3, f'{tasks} Tasks left in the executor after 300 calls'
