@@ -24,6 +24,12 @@ thread (the only one where Python raises KeyboardInterrupt) while SIGINT has Pyt
   context goes down within SHUTDOWN_GRACE; otherwise it is a real error and stays as it is.
 A program with a SIGINT handler of its own, and executors spinning in other threads, are untouched.
 
+rclpy's ActionClient sends a goal, cancel or result request first and files the Future that its
+response completes afterwards, unlocked: when the executor spins in another thread (a GUI, a test
+harness) and the response is taken in between, it is dropped ("Ignoring unexpected cancel
+response") and the caller waits forever. Sending and filing now happen under a lock of the client,
+and the client's execute() waits for that lock before it looks a response up.
+
 A service client slowed down with every call (3.6 ms per call over its first 300 calls, 42 ms over
 calls 1200-1500): each spin_until_future_complete (and each of its spin_once_ rounds) gives the
 future a done-callback that wakes the executor, and once the future is done rclpy makes each such
@@ -45,29 +51,39 @@ import threading
 import time
 from collections.abc import Callable
 from functools import wraps
-from typing import Any
+from typing import Any, ClassVar
 
 from owl_gui_hook import PatchingLoader, find_spec_after
 
 TAKES = ('_take_subscription', '_take_client', '_take_service', '_take_waitable')
 SPINS_UNTIL_FUTURE = ('spin_until_future_complete', 'spin_once_until_future_complete')
+SENDS = ('send_goal_async', '_cancel_goal_async', '_get_result_async')  # ActionClient's requests
 CONVERSION_ERROR = 'Unable to convert call argument'
 SHUTDOWN_GRACE = 0.5  # s for rclpy's signal thread to shut the context down after its handler ran
 
 
 class RclpyImportHook:
-    """A sys.meta_path entry that acts on the first `import rclpy.executors`."""
+    """A sys.meta_path entry that acts on the first import of each module in patches()."""
+
+    patched: ClassVar[set[str]] = set()
 
     @classmethod
     def find_spec(cls, fullname: str, path: object = None, target: object = None) -> object:
-        if fullname != 'rclpy.executors':
+        patch = patches().get(fullname)
+        if patch is None or fullname in cls.patched:
             return None
-        sys.meta_path.remove(cls)
+        cls.patched.add(fullname)
+        if cls.patched >= set(patches()):
+            sys.meta_path.remove(cls)
         spec = find_spec_after(cls, fullname, target, path)
         if spec is None or spec.loader is None:
             return None
-        spec.loader = PatchingLoader(spec.loader, patch_executors)
+        spec.loader = PatchingLoader(spec.loader, patch)
         return spec
+
+
+def patches() -> dict[str, Callable[[Any], None]]:
+    return {'rclpy.executors': patch_executors, 'rclpy.action.client': patch_action_client}
 
 
 def install() -> None:
@@ -85,6 +101,39 @@ def patch_executors(executors: Any) -> None:
         for name in SPINS_UNTIL_FUTURE:
             if name in vars(cls):
                 setattr(cls, name, drop_stale_wakers(vars(cls)[name], executors.__file__))
+
+
+def patch_action_client(client: Any) -> None:
+    """Each ActionClient files a request's Future before the executor may handle its response."""
+    action_client = client.ActionClient
+    init = action_client.__init__
+
+    @wraps(init)
+    def init_with_filing_lock(self: Any, *args: Any, **kwargs: Any) -> None:
+        self._owl_filing = threading.Lock()
+        init(self, *args, **kwargs)
+
+    action_client.__init__ = init_with_filing_lock
+    for name in SENDS:
+        setattr(action_client, name, filing_under_lock(getattr(action_client, name)))
+    execute = action_client.execute
+
+    @wraps(execute)
+    async def execute_once_filed(self: Any, taken_data: Any) -> Any:
+        with self._owl_filing:  # a request being sent is filed before its response is looked up
+            pass
+        return await execute(self, taken_data)
+
+    action_client.execute = execute_once_filed
+
+
+def filing_under_lock(send: Callable[..., Any]) -> Callable[..., Any]:
+    @wraps(send)
+    def send_and_file(self: Any, *args: Any, **kwargs: Any) -> Any:
+        with self._owl_filing:
+            return send(self, *args, **kwargs)
+
+    return send_and_file
 
 
 def drop_stale_wakers(spin: Callable[..., Any], executors_file: str) -> Callable[..., Any]:

@@ -170,3 +170,96 @@ def test_awaiting_many_service_calls_leaves_no_tasks_behind(ros, tmp_path: Path,
     assert client.wait(60) == 0, client.tail()
     tasks = int(client.wait_for(r'tasks left: (\d+)')[0].group(1))
     assert tasks <= 3, f'{tasks} Tasks left in the executor after 300 calls'
+
+
+# An action server that settles every goal at once, and a client whose executor spins in a
+# thread of its own while the main thread sends goals and cancels them, as a GUI or a test
+# harness does. The client's Futures are built slowly in the sending thread (2 ms), which is where
+# rclpy 7.1.6 has sent the request but not yet filed the Future the response will complete.
+ACTION_SERVER = """
+import rclpy
+from rclpy.action import ActionServer, CancelResponse
+from turtlesim.action import RotateAbsolute
+
+
+def execute(goal_handle):
+    goal_handle.succeed()
+    return RotateAbsolute.Result(delta=0.0)
+
+
+rclpy.init()
+node = rclpy.create_node('settling_server')
+ActionServer(node, RotateAbsolute, 'settle', execute, cancel_callback=lambda goal: CancelResponse.ACCEPT)
+print('serving', flush=True)
+try:
+    rclpy.spin(node)
+except KeyboardInterrupt:
+    pass
+"""
+
+THREADED_ACTION_CLIENT = """
+import sys
+import threading
+import time
+
+import rclpy
+import rclpy.task
+from rclpy.action import ActionClient
+from rclpy.executors import SingleThreadedExecutor
+from turtlesim.action import RotateAbsolute
+
+rounds = int(sys.argv[1])
+rclpy.init()
+node = rclpy.create_node('threaded_client')
+executor = SingleThreadedExecutor()
+executor.add_node(node)
+client = ActionClient(node, RotateAbsolute, 'settle')
+spinner = threading.Thread(target=executor.spin)
+spinner.start()
+assert client.wait_for_server(timeout_sec=20.0)
+plain_init = rclpy.task.Future.__init__
+
+
+def slow_init(future, *args, **kwargs):
+    plain_init(future, *args, **kwargs)
+    if threading.current_thread() is threading.main_thread():
+        time.sleep(0.002)
+
+
+rclpy.task.Future.__init__ = slow_init
+
+
+def wait(future):
+    done = threading.Event()
+    future.add_done_callback(lambda _: done.set())
+    return done.wait(1.0)
+
+
+lost = 0
+for _ in range(rounds):
+    if lost >= 5:
+        break
+    goal = client.send_goal_async(RotateAbsolute.Goal(theta=1.0))
+    if not wait(goal):
+        lost += 1
+        continue
+    if not wait(goal.result().cancel_goal_async()):
+        lost += 1
+print('lost responses:', lost, flush=True)
+executor.shutdown()
+spinner.join()
+client.destroy()
+node.destroy_node()
+rclpy.shutdown()
+"""
+
+
+def test_goals_and_cancels_sent_from_another_thread_get_their_responses(ros, tmp_path: Path):
+    (tmp_path / 'server.py').write_text(ACTION_SERVER)
+    (tmp_path / 'client.py').write_text(THREADED_ACTION_CLIENT)
+    server = ros.command([sys.executable, str(tmp_path / 'server.py')], label='action server')
+    server.wait_for('serving', timeout=20)
+    client = ros.command([sys.executable, str(tmp_path / 'client.py'), '200'], label='action client')
+    assert client.wait(120) == 0, client.tail()
+    assert client.wait_for(r'lost responses: (\d+)')[0].group(1) == '0', client.tail()
+    assert 'Ignoring unexpected' not in client.output
