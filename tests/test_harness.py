@@ -34,6 +34,39 @@ def test_processes_of_a_closed_sandbox_are_gone():
     assert not sleeper.running()
 
 
+# A test run as a separate process: it starts turtlesim in a sandbox, says turtlesim's pid, then waits.
+KILLED_RUNNER = """
+import time
+from owl_common.processes import RosSandbox
+
+sandbox = RosSandbox()
+turtlesim = sandbox.run('turtlesim', 'turtlesim_node', '--headless')
+turtlesim.wait_for(r'Spawning turtle', timeout=30)
+print('turtlesim', turtlesim.pid, flush=True)
+time.sleep(120)
+"""
+
+
+def pid_alive(pid: int) -> bool:
+    try:
+        with open(f'/proc/{pid}/stat') as stat:
+            return stat.read().split(') ', 1)[1][0] != 'Z'
+    except FileNotFoundError:
+        return False
+
+
+@pytest.mark.parametrize('kill_signal', [signal.SIGKILL, signal.SIGTERM])
+def test_a_killed_test_run_takes_its_ros_processes_with_it(kill_signal, tmp_path):
+    (tmp_path / 'runner.py').write_text(KILLED_RUNNER)
+    with RosSandbox() as outer:  # only for its domain and environment
+        runner = outer.command(['python', str(tmp_path / 'runner.py')], label='runner')
+        turtlesim_pid = int(runner.wait_for(r'^turtlesim (\d+)', timeout=40)[0].group(1))
+        assert pid_alive(turtlesim_pid)
+        runner.popen.send_signal(kill_signal)
+        runner.popen.wait(timeout=10)
+        wait_until(lambda: not pid_alive(turtlesim_pid), 10, f'turtlesim {turtlesim_pid} to end with the run')
+
+
 def test_stop_cleanly_reports_the_exit_code_signal_and_output_of_an_unclean_stop():
     with RosSandbox() as sandbox:
         stubborn = sandbox.command(['sh', '-c', 'trap "echo cleaning up; exit 3" INT; echo ready; '

@@ -7,6 +7,7 @@ share one) and discovery limited to this machine.
 
 from __future__ import annotations
 
+import ctypes
 import fcntl
 import os
 import re
@@ -16,7 +17,7 @@ import socket
 import subprocess
 import threading
 import time
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 from typing import IO
 
@@ -89,10 +90,27 @@ def installed_executable(package: str, executable: str) -> Path:
         '(is the workspace built and env.sh sourced?)')
 
 
-def _default_sigint() -> None:
-    """Run in the child before exec: children are stopped with Ctrl-C's signal as at a terminal, so
-    they must not inherit an ignored SIGINT (what `nohup` or a script's background job gives us)."""
-    signal.signal(signal.SIGINT, signal.SIG_DFL)
+PR_SET_PDEATHSIG = 1  # prctl option: the signal a process gets when its parent thread ends
+
+
+def _prepare_child(default_sigint: bool, parent: int | None) -> Callable[[], None]:
+    """What the child runs before exec.
+
+    Children are stopped with Ctrl-C's signal as at a terminal, so they must not inherit an ignored
+    SIGINT (what `nohup` or a script's background job gives us). And each gets SIGTERM when its
+    parent dies: a test run, a demo or a benchmark that is killed (SIGKILL included) would
+    otherwise leave its nodes running, in their own process groups, talking in a leased domain.
+    The death signal follows the thread that started the child, so parent is None (no death
+    signal) for a child started by a helper thread, which may end long before the child.
+    """
+    def prepare() -> None:
+        if default_sigint:
+            signal.signal(signal.SIGINT, signal.SIG_DFL)
+        if parent is not None:
+            ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGTERM)
+            if os.getppid() != parent:  # the parent died before the line above
+                os.kill(os.getpid(), signal.SIGTERM)
+    return prepare
 
 
 class RosProcess:
@@ -110,7 +128,9 @@ class RosProcess:
             self.argv, env=env, cwd=cwd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
             stderr=subprocess.STDOUT, text=True, errors='replace', bufsize=1,
             start_new_session=True,
-            preexec_fn=_default_sigint if signal.getsignal(signal.SIGINT) == signal.SIG_IGN else None)
+            preexec_fn=_prepare_child(
+                signal.getsignal(signal.SIGINT) == signal.SIG_IGN,
+                os.getpid() if threading.current_thread() is threading.main_thread() else None))
         self._reader = threading.Thread(target=self._read, daemon=True)
         self._reader.start()
 
