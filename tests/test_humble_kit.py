@@ -165,7 +165,7 @@ def test_a_stock_jazzy_install_beside_ours_sees_our_topics_not_our_node_names_an
         "print('topics:', sorted(dict(node.get_topic_names_and_types())), flush=True)\n"
         "print('nodes:', sorted(node.get_node_names()), flush=True)\n"
         'rclpy.spin(node)\n')
-    with RosSandbox() as sandbox:
+    with RosSandbox(discovery_range='SUBNET') as sandbox:  # a stock install is on another machine
         turtlesim = sandbox.run('turtlesim', 'turtlesim_node', '--headless')
         turtlesim.wait_for(r'Spawning turtle \[turtle1\]', timeout=30)
         stock = sandbox.command(['python', str(stock_script)], label='stock jazzy',

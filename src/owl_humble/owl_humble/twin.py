@@ -31,6 +31,7 @@ from std_msgs.msg import Bool, Float32
 from owl_humble import discovery_info as info
 from owl_humble import wire
 from owl_humble.graph_partition import DISCOVERY_TOPIC
+from owl_humble.launcher import ensure_discovery_bridge
 
 PREFIX = 'humble_twin'
 MODULE_TYPES = ('imu', 'servo')
@@ -189,6 +190,10 @@ def main(argv: list[str] | None = None) -> None:
     signal.signal(signal.SIGINT, stop)
     signal.signal(signal.SIGTERM, stop)
     twin = Twin(args.module, args.namespace, args.rate, args.pitch)
+    if wire.ros_discovery_settings()[1] == 'LOCALHOST':
+        # In open mode our tools start the bridge, as they do for a real module; in private mode
+        # they do not (no real module can be there), so this stand-in starts it for its own demo.
+        ensure_discovery_bridge(local_twin=True)
     say(f'ready: node /{twin.node.name} ({args.module}, ROS 2 Humble on the wire), participant '
         f'{twin.participant.gid.hex()} in domain {twin.participant.domain_id}')
     next_tick = time.monotonic()

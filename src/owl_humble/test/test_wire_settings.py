@@ -19,8 +19,12 @@ def test_the_discovery_range_and_static_peers_become_cyclone_settings():
 
 
 def test_one_bridge_per_user_domain_and_range_and_none_where_it_cannot_help():
-    local = bridge_address({'ROS_DOMAIN_ID': '3', 'ROS_AUTOMATIC_DISCOVERY_RANGE': 'LOCALHOST'})
-    assert local != bridge_address({'ROS_DOMAIN_ID': '3', 'ROS_AUTOMATIC_DISCOVERY_RANGE': 'SUBNET'})
+    local = {'ROS_DOMAIN_ID': '3', 'ROS_AUTOMATIC_DISCOVERY_RANGE': 'LOCALHOST'}
+    assert bridge_address(local) is None  # private mode: no real module can be reached
+    assert bridge_address(local, local_twin=True) is not None
+    assert bridge_address({**local, 'ROS_STATIC_PEERS': '10.42.0.8'}) is not None
+    subnet = bridge_address({'ROS_DOMAIN_ID': '3', 'ROS_AUTOMATIC_DISCOVERY_RANGE': 'SUBNET'})
+    assert subnet is not None and bridge_address(local, local_twin=True) != subnet
     assert bridge_address({'ROS_DOMAIN_ID': '3'}) != bridge_address({'ROS_DOMAIN_ID': '4'})
     assert bridge_address({'ROS_AUTOMATIC_DISCOVERY_RANGE': 'OFF'}) is None
     assert bridge_address({'RMW_IMPLEMENTATION': 'rmw_cyclonedds_cpp'}) is None
