@@ -201,5 +201,4 @@ def main(argv: list[str] | None = None) -> None:
         twin.step()
         next_tick += twin.period
         time.sleep(max(0.0, next_tick - time.monotonic()))
-    say(twin.check.summary())
-    twin.participant.close()
+    say(twin.check.summary())  # the participant says goodbye on DDS as the process ends

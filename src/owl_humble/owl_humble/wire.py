@@ -84,17 +84,15 @@ def discovery_reader_qos() -> Qos:
                Policy.History.KeepAll)
 
 
-def topic_qos(depth: int = 10, best_effort: bool = False) -> Qos:
-    """rclpy's QoSProfile(depth) (reliable, volatile), or best effort."""
-    reliability = Policy.Reliability.BestEffort if best_effort else Policy.Reliability.Reliable(
-        max_blocking_time=SECOND)
-    return Qos(reliability, Policy.Durability.Volatile, Policy.History.KeepLast(depth))
+def topic_qos(depth: int = 10) -> Qos:
+    """rclpy's QoSProfile(depth): reliable, volatile."""
+    return Qos(Policy.Reliability.Reliable(max_blocking_time=SECOND), Policy.Durability.Volatile,
+               Policy.History.KeepLast(depth))
 
 
 @dataclass
 class RawSample:
     data: bytes
-    publication_handle: int
     alive: bool
 
 
@@ -127,9 +125,6 @@ class Participant:
         subscriber = Subscriber(self.dds, qos=Qos(Policy.Partition([partition]))) if partition else self.dds
         return DataReader(subscriber, self.topic(name, typename), qos=qos)
 
-    def close(self) -> None:
-        self.dds = None  # type: ignore[assignment]  # the participant is deleted with its last reference
-
 
 def take(reader: DataReader, limit: int = 256) -> Iterator[RawSample]:
     """The reader's new samples as bytes, none deserialized (a typed read would drop or choke on a
@@ -138,7 +133,7 @@ def take(reader: DataReader, limit: int = 256) -> Iterator[RawSample]:
     if isinstance(result, int):
         return
     for data, info in result:
-        yield RawSample(bytes(data), info.publication_handle, bool(info.valid_data))
+        yield RawSample(bytes(data), bool(info.valid_data))
 
 
 def write(writer: DataWriter, data: bytes) -> None:
