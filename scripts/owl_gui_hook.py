@@ -65,9 +65,11 @@ display.
   pollKey, display.flip/update or event call after the interval, so the file ends up showing the
   last image shown.
   Keys: read whenever the program looks for input, each reader in file order from the start:
-  - pygame: pygame.event.get/poll/wait/peek/pump and pygame.key.get_pressed/get_mods first turn
-    new lines into events: `down left` posts KEYDOWN (key=K_LEFT, mod, unicode, scancode),
-    `up left` posts KEYUP, and pygame.key.get_pressed()[K_LEFT] is True from the down to the up.
+  - pygame: pygame.event.get/poll/wait/peek/pump first turn new lines into events: `down left`
+    posts KEYDOWN (key=K_LEFT, mod, unicode, scancode), `up left` posts KEYUP, and
+    pygame.key.get_pressed()[K_LEFT] is True from the event call that posted the down to the one
+    that posted the up (get_pressed and get_mods read no lines: as with SDL, the keyboard state
+    changes only when events are pumped).
     No key repeat is made: append another `down` for a repeat. A down and its up read in the same
     call arrive as two events in one pygame.event.get(); hold a key for longer than the program's
     input period to have it seen as held.
@@ -793,14 +795,14 @@ class HeadlessPygame:
                     return found
                 time.sleep(0.01)
 
+        # The keyboard state changes only when events are pumped, as SDL's does: a key read from the
+        # seam between a loop's event.get() and its get_pressed() is held only after its KEYDOWN.
         def get_pressed() -> object:
-            self.inject()
             pressed = PressedKeys(real['pygame.key.get_pressed']())
             pressed.held = frozenset(self.held)
             return pressed
 
         def get_mods() -> int:
-            self.inject()
             return real['pygame.key.get_mods']() | self.mods()
 
         class PressedKeys(key.ScancodeWrapper):

@@ -192,3 +192,11 @@ def test_owl_headless_1_makes_windows_headless_on_a_display_too(ros, x_display, 
     assert x_display.windows('^(camera|keys)$') == []
     viewer.stop_cleanly(timeout=10)
     keys.stop_cleanly(timeout=10)
+
+
+def test_a_seam_key_is_held_only_from_the_event_pump_that_delivers_its_keydown(ros, tmp_path):
+    # As with SDL's own keyboard state: a key pressed after the loop took its events shows as held
+    # only once an event function has pumped its KEYDOWN, never in get_pressed() before it.
+    order = student(ros, 'pygame_key_order.py', {**NO_DISPLAY, 'OWL_WINDOWS_DIR': str(tmp_path)})
+    assert order.wait(30) == 0, order.output
+    assert re.search(r'^KEYDOWN, then held, at loop 6$', order.output, re.M), order.output
