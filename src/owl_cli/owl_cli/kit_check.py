@@ -19,8 +19,8 @@ NODE_PATTERN = re.compile(r'olive_(imu|servo|camera)_([A-Za-z0-9_]+?)_dcm_srv')
 MAIN_TOPICS = {'imu': ('imu', 'sensor_msgs/msg/Imu'), 'servo': ('joint', 'sensor_msgs/msg/JointState'),
                'camera': ('image/compressed', 'sensor_msgs/msg/CompressedImage')}
 HUMBLE = 'ROS 2 Humble'
-ACK_TIMEOUT = 5.0  # seconds for the acknowledgements (Fast DDS asks for them every 3 s)
 NEWER = 'ROS 2 Iron or newer'
+ACK_TIMEOUT = 5.0  # seconds for the acknowledgements (Fast DDS asks for them every 3 s)
 
 
 @dataclass
