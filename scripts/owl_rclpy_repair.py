@@ -1,4 +1,25 @@
-"""The venv's repair of Ctrl-C that lands while rclpy builds a message (a defect of the rclpy wheel).
+"""The venv's repairs of rclpy 7.1 (Jazzy): Ctrl-C as the course expects it, takes, service calls.
+
+Ctrl-C in a program that called a plain rclpy.init() (the course's listings, the official
+tutorials): Jazzy's rclpy installs a SIGINT handler that shuts every context down, so the course's
+clean-up after rclpy.spin (the appendix's torque-off call, destroy_node, rclpy.shutdown) fails with
+"RCLError: failed to shutdown: rcl_shutdown already called", spin may end with
+ExternalShutdownException instead of KeyboardInterrupt, and a listing with no try/except ends with
+a KeyboardInterrupt traceback. With this repair, such an rclpy.init installs no rclpy handler
+(SIGTERM ends the process, as Python's default, rather than shutting ROS down under the course's
+clean-up), and Ctrl-C behaves as on Humble, the course's distribution: it raises CtrlC, a
+KeyboardInterrupt, in the main thread and ROS stays up until the program calls rclpy.shutdown().
+Executors blocked in their wait are woken as rclpy's own handler wakes them (their SIGINT guard
+conditions are triggered, by a thread that reads Python's signal wake-up fd), so the Ctrl-C lands
+at once. CtrlC is also a SystemExit without a code: a program that does not catch it ends quietly
+with exit status 0, as after sys.exit(), instead of printing a traceback. A SIGINT within SAME_PRESS
+of the last is the same Ctrl-C passed on by `ros2 launch` and is not raised again. When the interpreter
+exits after a Ctrl-C, the default context is shut down before Python joins the program's threads,
+so an executor spinning in a thread of its own stops as it did with rclpy's handler. Code that asks
+for upstream's behaviour keeps it: signal_handler_options given to rclpy.init, a SIGINT handler or
+wake-up fd of the program's own, rclpy.init outside the main thread or for another context.
+
+The repair of Ctrl-C that lands while rclpy builds a message (a defect of the rclpy wheel):
 
 Python raises KeyboardInterrupt at the next point where the main thread runs Python code. When the
 Ctrl-C arrives while rclpy's executor takes a message, request or response from DDS, that point is
@@ -11,17 +32,19 @@ traceback and exit code 1: about 1 stop in 3 under a flood of messages, 1-3 % at
 with rclpy's own Ctrl-C handler and with SignalHandlerOptions.NO alike. Upstream rclpy has it too.
 
 scripts/bootstrap.sh copies this module into the venv's site-packages with a .pth line that calls
-install() at every start of the venv's Python; nothing happens until rclpy.executors is imported.
+install() at every start of the venv's Python; nothing happens until rclpy is imported.
 Then the executor's take methods (TAKES: a message, a service's request or response, an action's
 data; a few microseconds each, never the callback that follows) are wrapped, for calls in the main
-thread (the only one where Python raises KeyboardInterrupt) while SIGINT has Python's default handler:
-- SignalHandlerOptions.NO (Python's handler alone): a Ctrl-C during the take is held and raised as
-  KeyboardInterrupt as the take returns, never inside it.
-- rclpy's handler (a plain rclpy.init): it cannot be swapped for a while, as signal.signal would
-  also replace rclpy's handler in the kernel. The SystemError carries the KeyboardInterrupt as its
-  cause and is turned back into it. rclpy's handler shuts the context down and then calls Python's,
-  so the RuntimeError, which carries nothing, is turned back into a KeyboardInterrupt when the
-  context goes down within SHUTDOWN_GRACE; otherwise it is a real error and stays as it is.
+thread (the only one where Python raises KeyboardInterrupt) while SIGINT has Python's default handler
+or CtrlC's:
+- a plain rclpy.init, or SignalHandlerOptions.NO (a Python handler alone): a Ctrl-C during the take
+  is held and raised as the take returns, never inside it.
+- rclpy's handler (SignalHandlerOptions.ALL or SIGINT given): it cannot be swapped for a while,
+  as signal.signal would also replace rclpy's handler in the kernel. The SystemError carries the
+  KeyboardInterrupt as its cause and is turned back into it. rclpy's handler shuts the context down
+  and then calls Python's, so the RuntimeError, which carries nothing, is turned back into a
+  KeyboardInterrupt when the context goes down within SHUTDOWN_GRACE; otherwise it is a real error
+  and stays as it is.
 A program with a SIGINT handler of its own, and executors spinning in other threads, are untouched.
 
 rclpy's ActionClient sends a goal, cancel or result request first and files the Future that its
@@ -45,10 +68,12 @@ object has no attribute '_exception'" on the way out. Future.__del__ is made to 
 whose construction was interrupted (it has no exception to report).
 """
 
+import os
 import signal
 import sys
 import threading
 import time
+import weakref
 from collections.abc import Callable
 from functools import wraps
 from typing import Any, ClassVar
@@ -60,6 +85,7 @@ SPINS_UNTIL_FUTURE = ('spin_until_future_complete', 'spin_once_until_future_comp
 SENDS = ('send_goal_async', '_cancel_goal_async', '_get_result_async')  # ActionClient's requests
 CONVERSION_ERROR = 'Unable to convert call argument'
 SHUTDOWN_GRACE = 0.5  # s for rclpy's signal thread to shut the context down after its handler ran
+SAME_PRESS = 0.3  # s: SIGINTs this close together are one Ctrl-C (the terminal's and a launcher's)
 
 
 class RclpyImportHook:
@@ -83,7 +109,103 @@ class RclpyImportHook:
 
 
 def patches() -> dict[str, Callable[[Any], None]]:
-    return {'rclpy.executors': patch_executors, 'rclpy.action.client': patch_action_client}
+    return {'rclpy.signals': patch_signals, 'rclpy': patch_init,
+            'rclpy.executors': patch_executors, 'rclpy.action.client': patch_action_client}
+
+
+class CtrlC(KeyboardInterrupt, SystemExit):
+    """Ctrl-C in a ROS program: caught by `except KeyboardInterrupt`; uncaught, a quiet exit 0."""
+
+
+class CtrlCAsOnHumble:
+    """SIGINT raising CtrlC in the main thread, with every executor's wait woken (see above)."""
+
+    sigint_guards: ClassVar[weakref.WeakSet[Any]] = weakref.WeakSet()
+    installed = False
+    pressed_at: float | None = None  # time.monotonic() of the last Ctrl-C
+
+    @classmethod
+    def take_over(cls) -> bool:
+        """Install it unless the program handles SIGINT or the wake-up fd itself; whether it is on."""
+        if cls.installed:
+            return signal.getsignal(signal.SIGINT) is raise_ctrl_c
+        if (threading.current_thread() is not threading.main_thread()
+                or signal.getsignal(signal.SIGINT) is not signal.default_int_handler):
+            return False
+        read_end, write_end = os.pipe()
+        os.set_blocking(write_end, False)
+        previous = signal.set_wakeup_fd(write_end, warn_on_full_buffer=False)
+        if previous != -1:
+            signal.set_wakeup_fd(previous)
+            os.close(read_end)
+            os.close(write_end)
+            return False
+        signal.signal(signal.SIGINT, raise_ctrl_c)
+        threading.Thread(target=cls.wake_executors, args=(read_end,), name='owl-ctrl-c',
+                         daemon=True).start()
+        threading._register_atexit(cls.shut_down_after_ctrl_c)  # type: ignore[attr-defined]
+        cls.installed = True
+        return True
+
+    @classmethod
+    def wake_executors(cls, read_end: int) -> None:
+        while True:
+            if signal.SIGINT in os.read(read_end, 64):
+                for guard in list(cls.sigint_guards):
+                    try:
+                        guard.trigger()
+                    except Exception:  # destroyed meanwhile: nothing left to wake
+                        pass
+
+    @classmethod
+    def shut_down_after_ctrl_c(cls) -> None:
+        """At exit after a Ctrl-C: ROS down, so threads still spinning end and Python can join them.
+
+        Another Ctrl-C (the launcher's copy) is ignored from here: Python soon gives SIGINT back its
+        default action, which would kill the process before DDS says goodbye, and other nodes
+        would list this one until its lease ran out."""
+        if cls.pressed_at is not None:
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
+            import rclpy
+            rclpy.try_shutdown()
+
+
+def raise_ctrl_c(signum: int, frame: object) -> None:
+    """One Ctrl-C, one CtrlC: the copy that `ros2 launch` passes on to a node that the terminal
+    already signalled must not cut the clean-up that the first one started."""
+    now = time.monotonic()
+    last = CtrlCAsOnHumble.pressed_at
+    if last is not None and now - last < SAME_PRESS:
+        return
+    CtrlCAsOnHumble.pressed_at = now
+    raise CtrlC
+
+
+def patch_signals(signals: Any) -> None:
+    guard_init = signals.SignalHandlerGuardCondition.__init__
+
+    @wraps(guard_init)
+    def init_and_track(self: Any, *args: Any, **kwargs: Any) -> None:
+        guard_init(self, *args, **kwargs)
+        CtrlCAsOnHumble.sigint_guards.add(self)
+
+    signals.SignalHandlerGuardCondition.__init__ = init_and_track
+
+
+def patch_init(rclpy: Any) -> None:
+    """A plain rclpy.init() of the default context gets Ctrl-C as on Humble (see above)."""
+    init = rclpy.init
+
+    @wraps(init)
+    def init_with_ctrl_c_as_on_humble(*args: Any, **kwargs: Any) -> Any:
+        context = kwargs.get('context')
+        if (kwargs.get('signal_handler_options') is None
+                and (context is None or context is rclpy.get_default_context())
+                and CtrlCAsOnHumble.take_over()):
+            kwargs['signal_handler_options'] = rclpy.SignalHandlerOptions.NO
+        return init(*args, **kwargs)
+
+    rclpy.init = init_with_ctrl_c_as_on_humble
 
 
 def install() -> None:
@@ -174,8 +296,9 @@ def keep_ctrl_c_out(take: Callable[..., Any]) -> Callable[..., Any]:
 
     @wraps(take)
     def take_keeping_ctrl_c_out(executor: Any, entity: Any) -> Any:
+        python_handler = signal.getsignal(signal.SIGINT)
         if (threading.current_thread() is not threading.main_thread()
-                or signal.getsignal(signal.SIGINT) is not signal.default_int_handler):
+                or python_handler not in (signal.default_int_handler, raise_ctrl_c)):
             return take(executor, entity)
         if get_current_signal_handlers_options() in rclpy_handles:
             try:
@@ -189,9 +312,9 @@ def keep_ctrl_c_out(take: Callable[..., Any]) -> Callable[..., Any]:
         try:
             result = take(executor, entity)
         finally:
-            signal.signal(signal.SIGINT, signal.default_int_handler)
+            signal.signal(signal.SIGINT, python_handler)
         if held:
-            raise KeyboardInterrupt
+            python_handler(signal.SIGINT, None)
         return result
 
     return take_keeping_ctrl_c_out

@@ -263,3 +263,34 @@ def test_goals_and_cancels_sent_from_another_thread_get_their_responses(ros, tmp
     assert client.wait(120) == 0, client.tail()
     assert client.wait_for(r'lost responses: (\d+)')[0].group(1) == '0', client.tail()
     assert 'Ignoring unexpected' not in client.output
+
+
+ASKED_FOR = """
+import signal
+import rclpy
+from rclpy.signals import SignalHandlerOptions, get_current_signal_handlers_options
+{setup}
+rclpy.init({init_args})
+print(get_current_signal_handlers_options().name, signal.getsignal(signal.SIGINT).__name__)
+rclpy.shutdown()
+"""
+
+
+@pytest.mark.parametrize(('setup', 'init_args', 'expected'), [
+    ('', '', 'NO raise_ctrl_c'),  # the course's plain rclpy.init: Ctrl-C as on Humble
+    ('', 'signal_handler_options=SignalHandlerOptions.ALL', 'ALL default_int_handler'),
+    ('', 'signal_handler_options=SignalHandlerOptions.NO', 'NO default_int_handler'),
+    ('def own(signum, frame):\n    pass\nsignal.signal(signal.SIGINT, own)', '', 'ALL own'),
+    ('import os\nfd = os.pipe()[1]\nos.set_blocking(fd, False)\nsignal.set_wakeup_fd(fd)', '',
+     'ALL default_int_handler'),
+    ('context = rclpy.Context()', 'context=context', 'NO default_int_handler'),
+], ids=['plain', 'all', 'no', 'own-handler', 'own-wakeup-fd', 'other-context'])
+def test_code_that_asks_for_upstreams_ctrl_c_keeps_it(tmp_path: Path, setup: str, init_args: str,
+                                                     expected: str):
+    script = tmp_path / 'asked_for.py'
+    shutdown = 'rclpy.shutdown(context=context)' if 'context=' in init_args else 'rclpy.shutdown()'
+    script.write_text(ASKED_FOR.format(setup=setup, init_args=init_args)
+                      .replace('rclpy.shutdown()', shutdown))
+    result = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=60)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.split('\n')[-2] == expected

@@ -11,13 +11,10 @@ import time
 import cv2
 import rclpy
 from cv_bridge import CvBridge, CvBridgeError
-from owl_common.run import interrupt_between_callbacks
 from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.exceptions import InvalidTopicNameException, ParameterException
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import QoSDurabilityPolicy, QoSProfile, QoSReliabilityPolicy
-from rclpy.signals import SignalHandlerOptions
 from sensor_msgs.msg import CompressedImage
 
 from olive_camera.frames import FrameWatch, describe
@@ -76,15 +73,12 @@ class DisplayCamera(Node):
 
 
 def main(args: list[str] | None = None) -> None:
-    # Ctrl-C raises KeyboardInterrupt here (Python's own handler): rclpy's handler shuts ROS down
-    # from another thread, which can fail a frame being taken (bench/stop_stress.py).
-    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+    rclpy.init(args=args)
     display_camera = None
     try:
         display_camera = DisplayCamera()
-        interrupt_between_callbacks(display_camera)  # Ctrl-C: never while rclpy takes a frame (README)
         rclpy.spin(display_camera)
-    except (KeyboardInterrupt, ExternalShutdownException):
+    except KeyboardInterrupt:
         pass  # Ctrl-C is how the course stops a node
     except (ParameterException, ValueError) as error:
         if display_camera is not None:
@@ -98,7 +92,7 @@ def main(args: list[str] | None = None) -> None:
         cv2.destroyAllWindows()
         if display_camera is not None:
             display_camera.destroy_node()
-        rclpy.try_shutdown()
+        rclpy.shutdown()
 
 
 if __name__ == '__main__':

@@ -6,13 +6,10 @@ import time
 
 import rclpy
 from geometry_msgs.msg import Quaternion, Twist
-from owl_common.run import interrupt_between_callbacks
 from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor
 from rclpy.exceptions import InvalidTopicNameException, ParameterException
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import qos_profile_sensor_data
-from rclpy.signals import SignalHandlerOptions
 from sensor_msgs.msg import Imu
 
 from olive_imu.drive import turtle_velocity
@@ -89,15 +86,12 @@ class ImuTurtle(Node):
 
 
 def main(args: list[str] | None = None) -> None:
-    # Not rclpy's own Ctrl-C handler: it shuts ROS down from a thread of its own while this one may
-    # still be using it (tracebacks in stress runs, see this package's README).
-    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+    rclpy.init(args=args)
     imu_turtle = None
     try:
         imu_turtle = ImuTurtle()
-        interrupt_between_callbacks(imu_turtle)  # Ctrl-C: never while rclpy takes a message (README)
         rclpy.spin(imu_turtle)
-    except (KeyboardInterrupt, ExternalShutdownException):
+    except KeyboardInterrupt:
         pass  # Ctrl-C is how the course stops a node
     except (ParameterException, ValueError) as error:
         if imu_turtle is not None:
@@ -108,7 +102,7 @@ def main(args: list[str] | None = None) -> None:
         signal.signal(signal.SIGINT, signal.SIG_IGN)  # ros2 launch passes on a second Ctrl-C
         if imu_turtle is not None:
             imu_turtle.destroy_node()
-        rclpy.try_shutdown()
+        rclpy.shutdown()
 
 
 if __name__ == '__main__':

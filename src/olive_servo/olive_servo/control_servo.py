@@ -6,10 +6,8 @@ import sys
 import rclpy
 from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor
 from rclpy.exceptions import ParameterException
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.parameter import Parameter
-from rclpy.signals import SignalHandlerOptions
 from rclpy.timer import Timer
 from std_msgs.msg import Float32
 
@@ -61,15 +59,13 @@ class ControlServo(Node):
 
 
 def main(args: list[str] | None = None) -> None:
-    # Ctrl-C raises KeyboardInterrupt in this thread (Python's own handler) and ROS keeps working
-    # until the torque is off: rclpy's handler would shut ROS down first, from another thread.
-    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+    rclpy.init(args=args)
     control_servo = None
     try:
         control_servo = ControlServo()
         control_servo.enable_torque()
         rclpy.spin(control_servo)
-    except (KeyboardInterrupt, ExternalShutdownException):
+    except KeyboardInterrupt:
         pass  # Ctrl-C is how the course stops a node
     except TorqueError as error:
         assert control_servo is not None  # only enable_torque() raises it
@@ -85,7 +81,7 @@ def main(args: list[str] | None = None) -> None:
         if control_servo is not None:
             control_servo.disable_torque()
             control_servo.destroy_node()
-        rclpy.try_shutdown()
+        rclpy.shutdown()
 
 
 if __name__ == '__main__':

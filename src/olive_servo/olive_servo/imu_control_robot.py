@@ -7,13 +7,10 @@ import time
 import rclpy
 from geometry_msgs.msg import Quaternion
 from olive_imu.euler import orientation_problem, quaternion_to_euler
-from owl_common.run import interrupt_between_callbacks
 from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.exceptions import InvalidTopicNameException, ParameterException
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import qos_profile_sensor_data
-from rclpy.signals import SignalHandlerOptions
 from rclpy.timer import Timer
 from sensor_msgs.msg import Imu
 from std_msgs.msg import Float32
@@ -95,16 +92,13 @@ class ImuControlRobot(Node):
 
 
 def main(args: list[str] | None = None) -> None:
-    # Ctrl-C raises KeyboardInterrupt in this thread (Python's own handler) and ROS keeps working
-    # until the torque is off: rclpy's handler would shut ROS down first, from another thread.
-    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+    rclpy.init(args=args)
     imu_control_robot = None
     try:
         imu_control_robot = ImuControlRobot()
         imu_control_robot.enable_torque()
-        interrupt_between_callbacks(imu_control_robot)  # Ctrl-C: never while rclpy takes a message (README)
         rclpy.spin(imu_control_robot)
-    except (KeyboardInterrupt, ExternalShutdownException):
+    except KeyboardInterrupt:
         pass  # Ctrl-C is how the course stops a node
     except TorqueError as error:
         assert imu_control_robot is not None  # only enable_torque() raises it
@@ -120,7 +114,7 @@ def main(args: list[str] | None = None) -> None:
         if imu_control_robot is not None:
             imu_control_robot.disable_torque()
             imu_control_robot.destroy_node()
-        rclpy.try_shutdown()
+        rclpy.shutdown()
 
 
 if __name__ == '__main__':

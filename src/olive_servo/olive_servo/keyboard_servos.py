@@ -20,9 +20,7 @@ import pygame
 import rclpy
 from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor
 from rclpy.exceptions import ParameterException
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
-from rclpy.signals import SignalHandlerOptions
 from rclpy.timer import Timer
 from std_msgs.msg import Float32
 
@@ -120,15 +118,13 @@ class KeyboardServos(Node):
 
 
 def main(args: list[str] | None = None) -> None:
-    # No rclpy Ctrl-C handler: it would shut ROS down at Ctrl-C, from another thread, before the
-    # except clause below could switch the torque off. Python's own raises KeyboardInterrupt here.
-    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+    rclpy.init(args=args)
     keyboard_servos = None
     try:
         keyboard_servos = KeyboardServos()
         keyboard_servos.enable_torque()
         rclpy.spin(keyboard_servos)
-    except (KeyboardInterrupt, ExternalShutdownException, WindowClosed):
+    except (KeyboardInterrupt, WindowClosed):
         pass  # Ctrl-C is how the course stops a node; closing the window too
     except TorqueError as error:
         assert keyboard_servos is not None  # only enable_torque() raises it
@@ -144,7 +140,7 @@ def main(args: list[str] | None = None) -> None:
         if keyboard_servos is not None:
             keyboard_servos.disable_torque()
             keyboard_servos.destroy_node()
-        rclpy.try_shutdown()
+        rclpy.shutdown()
 
 
 if __name__ == '__main__':

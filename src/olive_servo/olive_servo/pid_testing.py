@@ -6,9 +6,7 @@ The course's listing with its fixes, each marked "Fix:" (see this package's READ
 import signal
 
 import rclpy
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
-from rclpy.signals import SignalHandlerOptions
 from std_msgs.msg import Float32
 from std_srvs.srv import Trigger
 
@@ -36,9 +34,6 @@ class PidTesting(Node):
         self.publisher = self.create_publisher(Float32, self.topic_gp, 10)
         self.timer = self.create_timer(3.0, self.publish_goal)
         self.state = True
-        # Fix: rclpy.spin sleeps until a callback is due, and Ctrl-C (with rclpy's handler off,
-        # see main) is only seen when it wakes: this timer wakes it every 0.1 s, not every 3 s.
-        self.wake_timer = self.create_timer(0.1, lambda: None)
 
     def enable_torque(self) -> None:
         self.future = self.service_enable_torque.call_async(self.request_enable_torque)
@@ -64,17 +59,14 @@ class PidTesting(Node):
 
 
 def main(args: list[str] | None = None) -> None:
-    # Fix: the listing's rclpy.init() installs rclpy's Ctrl-C handler, which shuts ROS down before
-    # the except clause runs: disable_torque() could not get its answer, and rclpy.shutdown() then
-    # failed with a traceback. Without it, Ctrl-C raises KeyboardInterrupt and ROS still works.
-    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+    rclpy.init(args=args)
     cntrl_publisher = None
 
     try:
         cntrl_publisher = PidTesting()
         cntrl_publisher.enable_torque()
         rclpy.spin(cntrl_publisher)
-    except (KeyboardInterrupt, ExternalShutdownException):
+    except KeyboardInterrupt:
         pass
     finally:
         # Fix: the listing cleans up only after Ctrl-C, and not at all for a Ctrl-C while the
@@ -83,7 +75,7 @@ def main(args: list[str] | None = None) -> None:
         if cntrl_publisher is not None:
             cntrl_publisher.disable_torque()
             cntrl_publisher.destroy_node()
-        rclpy.try_shutdown()
+        rclpy.shutdown()
 
 
 if __name__ == "__main__":

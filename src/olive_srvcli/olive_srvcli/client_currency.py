@@ -4,7 +4,6 @@ import sys
 
 import rclpy
 from olive_interfaces.srv import CurrencyConv
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 
 from olive_srvcli.command_line import argument_or_exit, euros_argument
@@ -39,12 +38,12 @@ def main(args: list[str] | None = None) -> None:
         currency_client.get_logger().info(
             f'{euros} Euros are {response.dollars} US dollars, {response.pounds} British pounds '
             f'and {response.swiss_francs} Swiss francs')
-    except (KeyboardInterrupt, ExternalShutdownException):
+    except KeyboardInterrupt:
         pass  # Ctrl-C while it waits for the server
     finally:
         if currency_client is not None:
             currency_client.destroy_node()
-        rclpy.try_shutdown()
+        rclpy.shutdown()
 
 
 if __name__ == '__main__':

@@ -4,7 +4,6 @@ import sys
 
 import rclpy
 from olive_interfaces.srv import Factorial
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 
 from olive_srvcli.command_line import argument_or_exit, integer_argument
@@ -37,12 +36,12 @@ def main(args: list[str] | None = None) -> None:
             factorial_client.get_logger().error(f'The server refused: {response.message}')
             sys.exit(1)
         factorial_client.get_logger().info(f'The factorial of {n} is {response.factorial}')
-    except (KeyboardInterrupt, ExternalShutdownException):
+    except KeyboardInterrupt:
         pass  # Ctrl-C while it waits for the server
     finally:
         if factorial_client is not None:
             factorial_client.destroy_node()
-        rclpy.try_shutdown()
+        rclpy.shutdown()
 
 
 if __name__ == '__main__':

@@ -2,7 +2,6 @@
 
 import rclpy
 from olive_interfaces.srv import TempConv
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 
 from olive_srvcli.command_line import argument_or_exit, celsius_argument
@@ -35,12 +34,12 @@ def main(args: list[str] | None = None) -> None:
         temp_client.get_logger().info(
             f'The Temperature of {temp_c} Celsius is equal to {response.temp_k} Kelvin '
             f'and {response.temp_f} Fahrenheit')
-    except (KeyboardInterrupt, ExternalShutdownException):
+    except KeyboardInterrupt:
         pass  # Ctrl-C while it waits for the server
     finally:
         if temp_client is not None:
             temp_client.destroy_node()
-        rclpy.try_shutdown()
+        rclpy.shutdown()
 
 
 if __name__ == '__main__':

@@ -10,7 +10,6 @@ import rclpy
 from olive_interfaces.srv import CurrencyConv
 from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor
 from rclpy.exceptions import ParameterException
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 
 from olive_srvcli.conversions import convert_euros
@@ -52,7 +51,7 @@ def main(args: list[str] | None = None) -> None:
     try:
         currency_service = CurrencyService()
         rclpy.spin(currency_service)
-    except (KeyboardInterrupt, ExternalShutdownException):
+    except KeyboardInterrupt:
         pass  # Ctrl-C is how the course stops a node
     except (ParameterException, ValueError) as error:
         if currency_service is not None:
@@ -63,7 +62,7 @@ def main(args: list[str] | None = None) -> None:
         signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C must not stop the clean-up
         if currency_service is not None:
             currency_service.destroy_node()
-        rclpy.try_shutdown()
+        rclpy.shutdown()
 
 
 if __name__ == '__main__':

@@ -4,7 +4,6 @@ import signal
 
 import rclpy
 from olive_interfaces.srv import Factorial
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 
 from olive_srvcli.conversions import factorial
@@ -35,13 +34,13 @@ def main(args: list[str] | None = None) -> None:
     try:
         factorial_service = FactorialService()
         rclpy.spin(factorial_service)
-    except (KeyboardInterrupt, ExternalShutdownException):
+    except KeyboardInterrupt:
         pass  # Ctrl-C is how the course stops a node
     finally:
         signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C must not stop the clean-up
         if factorial_service is not None:
             factorial_service.destroy_node()
-        rclpy.try_shutdown()
+        rclpy.shutdown()
 
 
 if __name__ == '__main__':

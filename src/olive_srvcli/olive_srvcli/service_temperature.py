@@ -4,7 +4,6 @@ import signal
 
 import rclpy
 from olive_interfaces.srv import TempConv
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 
 from olive_srvcli.conversions import celsius_to_fahrenheit, celsius_to_kelvin, check_celsius
@@ -36,13 +35,13 @@ def main(args: list[str] | None = None) -> None:
     try:
         temp_service = TempService()
         rclpy.spin(temp_service)
-    except (KeyboardInterrupt, ExternalShutdownException):
+    except KeyboardInterrupt:
         pass  # Ctrl-C is how the course stops a node
     finally:
         signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C must not stop the clean-up
         if temp_service is not None:
             temp_service.destroy_node()
-        rclpy.try_shutdown()
+        rclpy.shutdown()
 
 
 if __name__ == '__main__':

@@ -921,9 +921,9 @@ def check_control_servo(s: Session, torque_off_only: bool = False) -> None:
         Criterion(
             text,
             disabled,
-            'catch KeyboardInterrupt and call /olive/servo/pan/setTorqueDisable; with '
-            "rclpy's own Ctrl-C handler ROS is already shut down by then: "
-            'rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)',
+            'catch KeyboardInterrupt and call /olive/servo/pan/setTorqueDisable (on a ROS 2 '
+            "install of your own, Jazzy's Ctrl-C handler shuts ROS down first: there use "
+            'rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO))',
         )
     )
 
@@ -1718,8 +1718,8 @@ def check_keyboard_servos_torque(s: Session) -> None:
             disabled,
             'after rclpy.spin, call /olive/servo/pan/setTorqueDisable and '
             '/olive/servo/tilt/setTorqueDisable; '
-            "with rclpy's own Ctrl-C handler ROS is already shut down by then: "
-            'rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)',
+            "(on a ROS 2 install of your own, Jazzy's Ctrl-C handler shuts ROS down first: there use "
+            'rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO))',
             ', '.join(v for v in ('pan', 'tilt') if 'torque disabled' in s.helpers[v].output),
         )
     )

@@ -93,35 +93,6 @@ def spin_until_stopped(node: Node, stop: StopRequest) -> None:
         raise KeyboardInterrupt
 
 
-def _raise_keyboard_interrupt() -> None:
-    raise KeyboardInterrupt
-
-
-def interrupt_between_callbacks(node: Node) -> None:
-    """From now on Ctrl-C raises KeyboardInterrupt out of rclpy.spin(node) between two callbacks.
-
-    Python's own SIGINT handler raises KeyboardInterrupt wherever the main thread is, also inside
-    the Python constructor of a message that rclpy's C++ code builds while it takes the message
-    from DDS; pybind11 then replaces it with "RuntimeError: Unable to convert call argument '0' to
-    Python object": a traceback and exit code 1 (bench/stop_stress.py: 1-3 % of the stops of
-    imu_turtle at the IMU's 100 messages/s, 20 % with a flood of messages). Here Ctrl-C only
-    triggers a guard condition of the node, whose callback raises KeyboardInterrupt: the executor
-    runs it like any other callback and lets the exception out of rclpy.spin. The first Ctrl-C
-    also ignores those that follow (`ros2 launch` passes one on), so the clean-up runs undisturbed.
-
-    For a node started with SignalHandlerOptions.NO (rclpy's own handler would shut ROS down from
-    another thread) that has a timer: Python runs a signal handler only when the main thread runs
-    Python code, so a node waiting in rclpy.spin sees the Ctrl-C at its next callback.
-    """
-    stop = node.create_guard_condition(_raise_keyboard_interrupt)
-
-    def on_ctrl_c(signum: int, frame: object) -> None:
-        signal.signal(signal.SIGINT, signal.SIG_IGN)
-        stop.trigger()
-
-    signal.signal(signal.SIGINT, on_ctrl_c)
-
-
 def spin_node(make_node: Callable[[], Node], args: list[str] | None = None) -> None:
     """Initialise rclpy, spin the node make_node() builds, and clean up on every exit path.
 

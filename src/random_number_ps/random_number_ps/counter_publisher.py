@@ -3,7 +3,6 @@
 import signal
 
 import rclpy
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from std_msgs.msg import Int32
 
@@ -28,13 +27,13 @@ def main(args: list[str] | None = None) -> None:
     try:
         counter_publisher = CounterPublisher()
         rclpy.spin(counter_publisher)
-    except (KeyboardInterrupt, ExternalShutdownException):
+    except KeyboardInterrupt:
         pass  # Ctrl-C is how the course stops a node
     finally:
         signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C must not stop the clean-up
         if counter_publisher is not None:
             counter_publisher.destroy_node()
-        rclpy.try_shutdown()
+        rclpy.shutdown()
 
 
 if __name__ == '__main__':

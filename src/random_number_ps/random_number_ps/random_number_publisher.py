@@ -7,7 +7,6 @@ import sys
 import rclpy
 from rcl_interfaces.msg import ParameterDescriptor, SetParametersResult
 from rclpy.exceptions import ParameterException
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from std_msgs.msg import Int32
@@ -57,7 +56,7 @@ def main(args: list[str] | None = None) -> None:
     try:
         random_number_publisher = RandomNumberPublisher()
         rclpy.spin(random_number_publisher)
-    except (KeyboardInterrupt, ExternalShutdownException):
+    except KeyboardInterrupt:
         pass  # Ctrl-C is how the course stops a node
     except (ParameterException, ValueError) as error:
         if random_number_publisher is not None:
@@ -68,7 +67,7 @@ def main(args: list[str] | None = None) -> None:
         signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C must not stop the clean-up
         if random_number_publisher is not None:
             random_number_publisher.destroy_node()
-        rclpy.try_shutdown()
+        rclpy.shutdown()
 
 
 if __name__ == '__main__':

@@ -3,7 +3,6 @@
 import signal
 
 import rclpy
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from std_msgs.msg import Int32
 
@@ -25,13 +24,13 @@ def main(args: list[str] | None = None) -> None:
     try:
         random_number_subscriber = RandomNumberSubscriber()
         rclpy.spin(random_number_subscriber)
-    except (KeyboardInterrupt, ExternalShutdownException):
+    except KeyboardInterrupt:
         pass  # Ctrl-C is how the course stops a node
     finally:
         signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C must not stop the clean-up
         if random_number_subscriber is not None:
             random_number_subscriber.destroy_node()
-        rclpy.try_shutdown()
+        rclpy.shutdown()
 
 
 if __name__ == '__main__':

@@ -8,7 +8,6 @@ import rclpy
 from geometry_msgs.msg import Twist
 from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor
 from rclpy.exceptions import ParameterException
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 
 
@@ -56,7 +55,7 @@ def main(args: list[str] | None = None) -> None:
     try:
         turtle_random_velocity = TurtleRandomVelocity()
         rclpy.spin(turtle_random_velocity)
-    except (KeyboardInterrupt, ExternalShutdownException):
+    except KeyboardInterrupt:
         pass  # Ctrl-C is how the course stops a node
     except (ParameterException, ValueError) as error:
         if turtle_random_velocity is not None:
@@ -67,7 +66,7 @@ def main(args: list[str] | None = None) -> None:
         signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C must not stop the clean-up
         if turtle_random_velocity is not None:
             turtle_random_velocity.destroy_node()
-        rclpy.try_shutdown()
+        rclpy.shutdown()
 
 
 if __name__ == '__main__':

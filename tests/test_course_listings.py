@@ -1,0 +1,127 @@
+"""The course's listings, typed verbatim, end every Ctrl-C cleanly on Jazzy (scripts/owl_rclpy_repair.py).
+
+tests/course_listings/ holds each listing of the course as a student types it (see its README). Each
+runs in a private domain beside what it talks to, and gets one Ctrl-C (SIGINT to its process group,
+as a terminal sends it) at a random moment between its node's appearance in the graph and 1.5 s
+later: inside the rest of its constructor, its spin, its callbacks, its service wait. 20 runs per
+listing, RUNS_AT_ONCE at a time. Each run must end with exit code 0 and print no traceback. Every
+other copy also gets the copy of the Ctrl-C that `ros2 launch` passes on, DOUBLE_PRESS s later: the
+appendix's torque-off must still happen. A run still alive EXIT_TIMEOUT s after its Ctrl-C fails
+with every thread's stack (faulthandler).
+
+On Jazzy's rclpy without the repair, every listing fails: the ones with no try/except (3.5.x,
+3.6.3, 3.7.2) print a KeyboardInterrupt or ExternalShutdownException traceback, and the
+appendix's ends with "RCLError: failed to shutdown: rcl_shutdown already called" after a
+torque-off call that never reached the servo.
+"""
+
+from __future__ import annotations
+
+import random
+import re
+import signal
+import subprocess
+import time
+from collections import Counter
+from dataclasses import dataclass
+from pathlib import Path
+
+import pytest
+from owl_common.processes import RosProcess
+from ros_harness import RosHarness, wait_until
+from servo_helpers import start_servo
+
+LISTINGS = Path(__file__).parent / 'course_listings'
+RUNS = 20
+RUNS_AT_ONCE = 4
+LATEST_CTRL_C = 1.5  # s after the node appeared
+EXIT_TIMEOUT = 10.0
+DOUBLE_PRESS = 0.01  # s
+TRACEBACK = re.compile(r'Traceback|Error|Exception ignored')
+
+
+@dataclass
+class Listing:
+    script: str
+    node: str
+    args: tuple[str, ...] = ()
+    beside: tuple[str, ...] = ()  # other listings that run during the test (the other end of a topic)
+    servo: str | None = None  # a simulated kit servo it talks to
+
+
+CASES = [
+    Listing('s3_5_1_publisher.py', 'my_publisher'),
+    Listing('s3_5_2_subscriber.py', 'my_subscriber', beside=('s3_5_1_publisher.py',)),
+    Listing('s3_5_3_random_number_publisher.py', 'random_number_publisher'),
+    Listing('s3_5_4_random_number_subscriber.py', 'random_number_subscriber',
+            beside=('s3_5_3_random_number_publisher.py',)),
+    Listing('s3_6_3_service_temperature.py', 'temp_service'),
+    # No server: the Ctrl-C lands in the constructor's wait_for_service loop, as when a student
+    # starts the client first and gives up waiting.
+    Listing('s3_6_3_client_temperature.py', 'temp_client', args=('0.0',)),
+    Listing('s3_7_2_random_number_publisher_parameter.py', 'random_number_publisher'),
+    Listing('s5_3_pid_testing.py', 'control_servo', servo='pan'),
+    Listing('tutorial_action_server.py', 'rotate_action_server', beside=('tutorial_action_client.py',)),
+    Listing('tutorial_parameter_node.py', 'parameter_node'),
+]
+
+
+def run_once(ros: RosHarness, listing: Listing, delays: list[float]) -> list[tuple[RosProcess, float]]:
+    """Start len(delays) copies of the listing; give each its Ctrl-C delays[i] s after its node appeared."""
+    # The last round's nodes leave the graph first (each says goodbye as it exits).
+    wait_until(lambda: Counter(ros.probe.node.get_node_names())[listing.node] == 0, 20.0,
+               f'the last round of {listing.node} nodes to leave the graph')
+    started = [ros.command(['python', str(LISTINGS / listing.script), *listing.args],
+                           label=f'{listing.script} #{i}', env={'PYTHONFAULTHANDLER': '1'})
+               for i in range(len(delays))]
+    wait_until(lambda: Counter(ros.probe.node.get_node_names())[listing.node] >= len(started),
+               20.0, f'{len(started)} {listing.node} nodes')
+    appeared = time.monotonic()
+    for index, (process, delay) in enumerate(sorted(zip(started, delays, strict=True), key=lambda p: p[1])):
+        time.sleep(max(0.0, appeared + delay - time.monotonic()))
+        process.send_signal()
+        if index % 2:
+            time.sleep(DOUBLE_PRESS)
+            process.send_signal()
+    for process in started:
+        try:
+            process.wait(EXIT_TIMEOUT)
+        except subprocess.TimeoutExpired:
+            process.send_signal(signal.SIGABRT)  # faulthandler prints where each thread is
+            process.wait(EXIT_TIMEOUT)
+    return list(zip(started, delays, strict=True))
+
+
+@pytest.mark.parametrize('listing', CASES, ids=[c.script.removesuffix('.py') for c in CASES])
+def test_ctrl_c_at_any_moment_ends_a_listing_cleanly(ros: RosHarness, listing: Listing):
+    servo = start_servo(ros, listing.servo) if listing.servo else None
+    for other in listing.beside:
+        ros.command(['python', str(LISTINGS / other)], label=other)
+    rng = random.Random()
+    failures = []
+    for _ in range(RUNS // RUNS_AT_ONCE):
+        delays = [rng.uniform(0.0, LATEST_CTRL_C) for _ in range(RUNS_AT_ONCE)]
+        for process, delay in run_once(ros, listing, delays):
+            code = process.popen.returncode
+            if code != 0 or TRACEBACK.search(process.output):
+                failures.append(f'Ctrl-C {delay:.2f} s after its node appeared: exit code {code}, '
+                                f'output:\n{process.tail(60)}')
+    assert not failures, f'{len(failures)} of {RUNS} runs did not end cleanly; the first:\n{failures[0]}'
+    if servo is not None:
+        # The appendix's except clause switches the torque off whenever it had been switched on.
+        enabled = len(re.findall(r'torque enabled', servo.output))
+        assert enabled > 0, 'no run got as far as enabling the torque'
+        wait_until(lambda: len(re.findall(r'torque disabled', servo.output)) == enabled, 5.0,
+                   f'{enabled} torque-off calls')
+
+
+def test_the_listings_are_the_courses_own_lines():
+    """Each line of a listing is a line of the course (the course is beside the repository while
+    it is written; a clean clone alone has only the listings)."""
+    course_dir = Path(__file__).resolve().parents[2] / 'shared' / 'course'
+    if not course_dir.is_dir():
+        pytest.skip('the course text is not beside this clone')
+    course = {line.strip() for path in course_dir.glob('*.txt') for line in path.read_text().splitlines()}
+    for listing in sorted(LISTINGS.glob('s*.py')):
+        foreign = [line for line in listing.read_text().splitlines() if line.strip() not in course]
+        assert not foreign, f'{listing.name}: not in the course: {foreign}'
