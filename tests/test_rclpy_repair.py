@@ -6,6 +6,7 @@ traceback. By chance that is 1 stop in 3 under a flood of messages; here the Ctr
 inside the constructor every time, so the test does not depend on luck.
 """
 
+import signal
 import subprocess
 import sys
 from pathlib import Path
@@ -291,6 +292,8 @@ def test_code_that_asks_for_upstreams_ctrl_c_keeps_it(tmp_path: Path, setup: str
     shutdown = 'rclpy.shutdown(context=context)' if 'context=' in init_args else 'rclpy.shutdown()'
     script.write_text(ASKED_FOR.format(setup=setup, init_args=init_args)
                       .replace('rclpy.shutdown()', shutdown))
-    result = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=60)
+    # Started as from a terminal: a test run in the background inherits an ignored SIGINT.
+    result = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=60,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     assert result.returncode == 0, result.stderr
     assert result.stdout.split('\n')[-2] == expected
