@@ -11,6 +11,7 @@ import pytest
 # Set before any rclpy context exists in this process.
 os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
 
+from gates import prerequisite_missing
 from owl_common.processes import LEASE_DIR, try_lock_file
 from ros_harness import RosHarness
 from web_harness import Browser, BrowserPage, chromium_missing
@@ -32,7 +33,7 @@ def browser():
     Playwright's event loop is the main thread's, where no other test could run one (asyncio.run)."""
     missing = chromium_missing()
     if missing:
-        pytest.skip(missing)
+        prerequisite_missing(missing)
     started = Browser()
     try:
         yield started

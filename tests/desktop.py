@@ -16,7 +16,7 @@ import shutil
 import subprocess
 import time
 
-import pytest
+from gates import prerequisite_missing
 
 # A window in `xwininfo -root -tree`: its id and its title.
 WINDOW_LINE = re.compile(r'^\s*(0x[0-9a-f]+) "(.*)":', re.MULTILINE)
@@ -31,7 +31,7 @@ MISSING = "{program} is not installed, so this window test is skipped ('sudo apt
 
 def require(program: str, package: str) -> None:
     if shutil.which(program) is None:
-        pytest.skip(MISSING.format(program=program, package=package))
+        prerequisite_missing(MISSING.format(program=program, package=package))
 
 
 def read_line(fd: int, timeout: float) -> str:
@@ -149,7 +149,7 @@ def send_close_request(display_name: str, window: int) -> None:
     close button is clicked (xdotool 3.2016 can only destroy a window or kill its client)."""
     library = ctypes.util.find_library('X11')
     if library is None:
-        pytest.skip(MISSING.format(program='libX11', package='libx11-6'))
+        prerequisite_missing(MISSING.format(program='libX11', package='libx11-6'))
     xlib = ctypes.CDLL(library)
     xlib.XOpenDisplay.restype = ctypes.c_void_p
     xlib.XOpenDisplay.argtypes = [ctypes.c_char_p]

@@ -8,7 +8,7 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-import pytest
+from gates import prerequisite_missing
 from olive_sim.network_hosts import Lan, NetworkSetupError, setup_problem
 from owl_common.processes import RosProcess
 
@@ -23,11 +23,12 @@ class TestLan(Lan):
     def __init__(self, prefix: str = 'owltest') -> None:
         problem = setup_problem()
         if problem:
-            pytest.skip(f'{problem}, so this network test is skipped')
+            prerequisite_missing(f'{problem}, so this network test is skipped')
         try:
             super().__init__(prefix=prefix)
         except NetworkSetupError as error:
-            pytest.skip(f'cannot make a network namespace here ({error}), so this network test is skipped')
+            prerequisite_missing(
+                f'cannot make a network namespace here ({error}), so this network test is skipped')
         self.processes: list[RosProcess] = []
 
     def run(self, host: str, command: str, env: dict[str, str], label: str | None = None) -> RosProcess:

@@ -9,6 +9,7 @@ import sys
 from pathlib import Path
 
 import pytest
+from gates import prerequisite_missing
 from web_harness import chromium_missing
 
 BENCH = Path(__file__).resolve().parents[1] / 'bench'
@@ -35,7 +36,7 @@ def test_every_benchmark_has_a_shrunk_run():
 @pytest.mark.parametrize('script', sorted(SHRUNK))
 def test_benchmark_runs(script):
     if script in NEEDS_CHROMIUM and chromium_missing():
-        pytest.skip(chromium_missing())
+        prerequisite_missing(chromium_missing())
     result = subprocess.run([sys.executable, str(BENCH / script), *SHRUNK[script]], capture_output=True,
                             text=True, timeout=110, check=False)
     assert result.returncode == 0, result.stdout + result.stderr

@@ -1,0 +1,62 @@
+"""Nothing passes untested in CI: a missing browser, Xvfb or namespace fails there instead of skipping."""
+
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+PREREQS = ROOT / 'scripts' / 'test_prereqs.sh'
+NEEDS_A_BROWSER = """
+from gates import prerequisite_missing
+
+def test_needs_a_browser():
+    prerequisite_missing('chromium not found')
+"""
+
+
+def without_ci(**extra: str) -> dict[str, str]:
+    env = {k: v for k, v in os.environ.items() if k != 'CI'}
+    env.update(extra)
+    return env
+
+
+@pytest.mark.parametrize(('ci', 'outcome'), [(False, '1 skipped'), (True, '1 failed')])
+def test_a_missing_prerequisite_skips_here_and_fails_in_ci(tmp_path: Path, ci: bool, outcome: str):
+    (tmp_path / 'test_needs.py').write_text(NEEDS_A_BROWSER)
+    env = without_ci(PYTHONPATH=f'{ROOT / "tests"}{os.pathsep}{os.environ.get("PYTHONPATH", "")}',
+                     **({'CI': 'true'} if ci else {}))
+    result = subprocess.run([sys.executable, '-m', 'pytest', '-q', '-p', 'no:cacheprovider', '-p', 'no:xdist',
+                             '-p', 'no:randomly', str(tmp_path / 'test_needs.py')],
+                            cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120)
+    assert outcome in result.stdout, result.stdout + result.stderr
+
+
+def machine_without_the_programs(tmp_path: Path) -> Path:
+    """A PATH with only what the script needs to run, none of the programs it looks for, and an
+    apt-get that fails (as on a machine whose package mirror is unreachable)."""
+    path = tmp_path / 'bin'
+    path.mkdir()
+    for tool in ('bash', 'id', 'mkdir', 'dirname'):
+        found = shutil.which(tool)
+        assert found is not None
+        (path / tool).symlink_to(found)
+    apt_get = path / 'apt-get'
+    apt_get.write_text('#!/bin/sh\necho "E: mirror unreachable" >&2\nexit 100\n')
+    apt_get.chmod(0o755)
+    return path
+
+
+@pytest.mark.parametrize(('ci', 'code', 'says'), [(False, 0, 'skip'), (True, 1, 'the run fails')])
+def test_the_prerequisite_script_fails_a_ci_run_when_chromium_is_absent(tmp_path: Path, ci: bool, code: int,
+                                                                         says: str):
+    path = machine_without_the_programs(tmp_path)
+    env = without_ci(PATH=str(path), **({'CI': 'true'} if ci else {}))
+    result = subprocess.run([str(path / 'bash'), str(PREREQS)], env=env, capture_output=True, text=True,
+                            timeout=60)
+    output = result.stdout + result.stderr
+    assert result.returncode == code, output
+    assert 'chromium' in output and says in output, output
