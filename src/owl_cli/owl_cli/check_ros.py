@@ -200,7 +200,7 @@ class Session:
                 code == 0 and not traceback,
                 (
                     f'exit code {code}{" with a traceback" if traceback else ""}: wrap rclpy.spin in '
-                    'try/except (KeyboardInterrupt, ExternalShutdownException); last lines: '
+                    'try/except KeyboardInterrupt, then destroy_node() and rclpy.shutdown(); last lines: '
                     f'{judge.tail_lines(process.output)}'
                 ),
                 f'exit code {code}',

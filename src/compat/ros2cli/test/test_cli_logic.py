@@ -75,3 +75,16 @@ def test_nested_parameters_for_dump():
     from rcl_interfaces.msg import ParameterValue
     values = [ParameterValue(type=2, integer_value=1), ParameterValue(type=7, integer_array_value=[1, 2])]
     assert nested_parameters(['a.b', 'c'], values) == {'a': {'b': 1}, 'c': [1, 2]}
+
+
+def test_python_value_gives_what_rclpy_gives_for_every_parameter_type():
+    from rcl_interfaces.msg import ParameterValue
+    from rclpy.parameter import parameter_value_to_python
+    from ros2cli.command.param import python_value
+
+    fields = [{}, {'bool_value': True}, {'integer_value': 5}, {'double_value': 2.5}, {'string_value': 'x'},
+              {'byte_array_value': [b'a']}, {'bool_array_value': [True]}, {'integer_array_value': [1, 2]},
+              {'double_array_value': [1.5]}, {'string_array_value': ['a']}]
+    values = [ParameterValue(type=kind, **held) for kind, held in enumerate(fields)]
+    for value in values:
+        assert repr(python_value(value)) == repr(parameter_value_to_python(value))

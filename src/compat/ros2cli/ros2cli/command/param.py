@@ -23,10 +23,25 @@ def full_name(node_name: str) -> str:
     return node_name if node_name.startswith('/') else '/' + node_name
 
 
+# ParameterValue's field for each of its types (rcl_interfaces/msg/ParameterType), 0 being NOT_SET.
+VALUE_FIELDS = ('', 'bool_value', 'integer_value', 'double_value', 'string_value', 'byte_array_value',
+                'bool_array_value', 'integer_array_value', 'double_array_value', 'string_array_value')
+
+
+def python_value(value: 'ParameterValue') -> Any:
+    """The value a ParameterValue holds, arrays as lists: what rclpy's parameter_value_to_python
+    gives, without importing rclpy (a fifth of a warm `param get`'s time)."""
+    if not 0 <= value.type < len(VALUE_FIELDS):
+        raise ValueError(f'unknown parameter type {value.type}')
+    if not value.type:
+        return None
+    held = getattr(value, VALUE_FIELDS[value.type])
+    return list(held) if VALUE_FIELDS[value.type].endswith('_array_value') else held
+
+
 def value_text(value: 'ParameterValue') -> str:
     """What `param get` prints after the label (Python's str of the value)."""
-    from rclpy.parameter import parameter_value_to_python
-    return str(parameter_value_to_python(value))
+    return str(python_value(value))
 
 
 class ParameterSession:
@@ -294,14 +309,13 @@ class DescribeVerb(VerbExtension):
 
 def nested_parameters(names: list[str], values: list['ParameterValue']) -> dict[str, Any]:
     """{'a.b': 1} -> {'a': {'b': 1}}, the shape of a parameter file."""
-    from rclpy.parameter import parameter_value_to_python
     tree: dict[str, Any] = {}
     for name, value in zip(names, values, strict=True):
         *path, leaf = name.split('.')
         branch = tree
         for part in path:
             branch = branch.setdefault(part, {})
-        branch[leaf] = parameter_value_to_python(value)
+        branch[leaf] = python_value(value)
     return tree
 
 

@@ -1,4 +1,4 @@
-"""DirectNode: a hidden rclpy node of the verb itself, given a moment for DDS discovery."""
+"""DirectNode: a hidden rclpy node of the verb itself, which waits until DDS discovery has settled."""
 
 import argparse
 import os
@@ -6,11 +6,12 @@ import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
+from ros2cli.node.settle import MOST, POLL, DiscoverySettling, graph_view, local_participants
+
 if TYPE_CHECKING:  # rclpy is imported when a node is made: `ros2 -h` does not need it
     from rclpy.node import Node
     from rosidl_runtime_py.graph import GraphQueries
 
-DEFAULT_SPIN_TIME = 0.5
 # A verb that looks for one named entity (node, topic, service) keeps looking this much longer
 # before it says "unknown": DDS discovery of a just started participant sometimes takes ~2 s.
 NAMED_LOOKUP_GRACE = 2.0
@@ -18,9 +19,10 @@ NAMED_LOOKUP_GRACE = 2.0
 
 def add_direct_node_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
-        '--spin-time', type=float, default=DEFAULT_SPIN_TIME,
+        '--spin-time', type=float, default=None,
         help='Spin time in seconds to wait for discovery (only applies when not using an already '
-             'running daemon)')
+             'running daemon); by default until discovery has settled, at most '
+             f'{MOST:.1f} s')
     parser.add_argument('-s', '--use-sim-time', action='store_true', help='Enable ROS simulation time')
 
 
@@ -52,13 +54,23 @@ class DirectNode:
         self._rclpy = rclpy
         use_sim_time = bool(getattr(args, 'use_sim_time', False))
         if spin_time is None:
-            spin_time = getattr(args, 'spin_time', DEFAULT_SPIN_TIME)
+            spin_time = getattr(args, 'spin_time', None)
         rclpy.init(args=[])
         self.node = Node(
             node_name or f'_ros2cli_{os.getpid()}', start_parameter_services=False,
             parameter_overrides=[Parameter('use_sim_time', value=use_sim_time)])
         self._graph: GraphQueries | None = None
-        self.spin_for(spin_time)
+        if spin_time is None:
+            self.settle()
+        else:
+            self.spin_for(spin_time)
+
+    def settle(self) -> None:
+        """Serve callbacks until discovery has settled (see ros2cli.node.settle)."""
+        settling = DiscoverySettling()
+        started = time.monotonic()
+        while not settling.settled(time.monotonic() - started, *graph_view(self.graph, local_participants())):
+            self._rclpy.spin_once(self.node, timeout_sec=POLL)
 
     def spin_for(self, seconds: float) -> None:
         """Serve callbacks for that long; what DDS discovery needs to fill the graph cache."""

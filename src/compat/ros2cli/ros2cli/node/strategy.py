@@ -3,14 +3,13 @@
 import argparse
 import time
 from collections.abc import Callable
+from typing import Any
 
 from owl_humble.launcher import ensure_discovery_bridge
 
 from ros2cli.node.direct import NAMED_LOOKUP_GRACE, DirectNode, add_direct_node_arguments
 from ros2cli.node.graph import Graph
-
-# Seconds of discovery a fresh daemon gets before its answers are used.
-DAEMON_WARM_UP = 1.0
+from ros2cli.node.settle import MOST, POLL, DiscoverySettling, graph_view, local_participants
 
 
 def add_strategy_arguments(parser: argparse.ArgumentParser) -> None:
@@ -35,8 +34,7 @@ class NodeStrategy:
             if client.is_daemon_running():
                 daemon = client.DaemonGraph()
                 graph = daemon
-                # A daemon started a moment ago (by the previous call) is still discovering.
-                time.sleep(max(0.0, DAEMON_WARM_UP - daemon.get_uptime()))
+                wait_until_settled(daemon)
             else:
                 client.spawn_daemon(on_demand=True)
         self.graph: Graph = self.direct.graph if graph is None else graph
@@ -69,3 +67,15 @@ class NodeStrategy:
 
     def __exit__(self, *exc: object) -> None:
         self.close()
+
+
+def wait_until_settled(daemon: Any) -> None:
+    """A daemon started a moment ago (by the previous call) may still be discovering: wait, as a
+    verb's own node does, until its graph has settled. One past MOST s answers at once."""
+    uptime = daemon.get_uptime()
+    if uptime >= MOST:
+        return
+    settling = DiscoverySettling()
+    started = time.monotonic() - uptime
+    while not settling.settled(time.monotonic() - started, *graph_view(daemon, local_participants())):
+        time.sleep(POLL)
