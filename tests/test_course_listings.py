@@ -22,7 +22,6 @@ import re
 import signal
 import subprocess
 import time
-from collections import Counter
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -66,19 +65,31 @@ CASES = [
 ]
 
 
-def run_once(ros: RosHarness, listing: Listing, delays: list[float]) -> list[tuple[RosProcess, float]]:
-    """Start len(delays) copies of the listing; give each its Ctrl-C delays[i] s after its node appeared."""
-    # The last round's nodes leave the graph first (each says goodbye as it exits).
-    wait_until(lambda: Counter(ros.probe.node.get_node_names())[listing.node] == 0, 20.0,
-               f'the last round of {listing.node} nodes to leave the graph')
-    started = [ros.command(['python', str(LISTINGS / listing.script), *listing.args],
-                           label=f'{listing.script} #{i}', env={'PYTHONFAULTHANDLER': '1'})
-               for i in range(len(delays))]
-    wait_until(lambda: Counter(ros.probe.node.get_node_names())[listing.node] >= len(started),
-               20.0, f'{len(started)} {listing.node} nodes')
-    appeared = time.monotonic()
-    for index, (process, delay) in enumerate(sorted(zip(started, delays, strict=True), key=lambda p: p[1])):
-        time.sleep(max(0.0, appeared + delay - time.monotonic()))
+def run_once(ros: RosHarness, listing: Listing, round_number: int,
+             delays: list[float]) -> list[tuple[RosProcess, float]]:
+    """Start len(delays) copies of the listing; give each its Ctrl-C delays[i] s after its node appeared.
+
+    Each copy's node gets a name of its own (`--ros-args -r __node:=...`, which rclpy.init() reads
+    from the command line as it would a student's), so a copy is known to be up by its own name,
+    whatever the graph still remembers of the last round."""
+    names = [f'{listing.node}_{round_number}_{index}' for index in range(len(delays))]
+    started = [ros.command(['python', str(LISTINGS / listing.script), *listing.args,
+                            '--ros-args', '-r', f'__node:={name}'],
+                           label=f'{listing.script} #{index}', env={'PYTHONFAULTHANDLER': '1'})
+               for index, name in enumerate(names)]
+    appeared: dict[str, float] = {}
+
+    def all_appeared() -> bool:
+        now = time.monotonic()
+        for name in set(ros.probe.node.get_node_names()) & set(names):
+            appeared.setdefault(name, now)
+        return len(appeared) == len(names)
+
+    wait_until(all_appeared, 20.0, f'{len(names)} {listing.node} nodes')
+    moments = sorted((appeared[name] + delay, index, process)
+                     for index, (name, delay, process) in enumerate(zip(names, delays, started, strict=True)))
+    for moment, index, process in moments:
+        time.sleep(max(0.0, moment - time.monotonic()))
         process.send_signal()
         if index % 2:
             time.sleep(DOUBLE_PRESS)
@@ -99,9 +110,9 @@ def test_ctrl_c_at_any_moment_ends_a_listing_cleanly(ros: RosHarness, listing: L
         ros.command(['python', str(LISTINGS / other)], label=other)
     rng = random.Random()
     failures = []
-    for _ in range(RUNS // RUNS_AT_ONCE):
+    for round_number in range(RUNS // RUNS_AT_ONCE):
         delays = [rng.uniform(0.0, LATEST_CTRL_C) for _ in range(RUNS_AT_ONCE)]
-        for process, delay in run_once(ros, listing, delays):
+        for process, delay in run_once(ros, listing, round_number, delays):
             code = process.popen.returncode
             if code != 0 or TRACEBACK.search(process.output):
                 failures.append(f'Ctrl-C {delay:.2f} s after its node appeared: exit code {code}, '
