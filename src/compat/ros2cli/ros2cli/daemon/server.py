@@ -4,10 +4,12 @@ Started by ros2cli.daemon.client.spawn_daemon() with the already bound listening
 """
 
 import argparse
+import hashlib
 import os
 import socket
 import time
 import uuid
+from typing import Any
 from xmlrpc.server import SimpleXMLRPCRequestHandler, SimpleXMLRPCServer
 
 from ros2cli.daemon import RPC_PATH, daemon_port
@@ -37,6 +39,7 @@ def serve(domain: int, listener: socket.socket, idle_timeout: float, alone_timeo
     from rosidl_runtime_py.graph import GraphQueries
 
     from ros2cli.node.direct import tear_down
+    from ros2cli.node.settle import graph_view, local_participants
     from ros2cli.service_call import ServiceCaller, serve_call
 
     server = _Server(
@@ -56,6 +59,14 @@ def serve(domain: int, listener: socket.socket, idle_timeout: float, alone_timeo
     started = time.monotonic()
     server.register_function(lambda: domain, 'get_domain_id')
     server.register_function(lambda: time.monotonic() - started, 'get_uptime')
+    graph = GraphQueries(node)
+
+    def discovery_view() -> list[Any]:
+        """What ros2cli.node.settle needs of this daemon's graph, in one call (the graph reduced to a
+        digest: XML-RPC carries no tuples)."""
+        seen, others, complete = graph_view(graph, local_participants())
+        return [hashlib.sha1(repr(seen).encode()).hexdigest(), others, complete]
+    server.register_function(discovery_view, 'discovery_view')
     caller = ServiceCaller(node)
     server.register_function(
         lambda service, type_name, text, timeout: serve_call(caller, service, type_name, text, timeout),

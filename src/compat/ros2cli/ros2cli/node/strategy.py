@@ -9,7 +9,10 @@ from owl_humble.launcher import ensure_discovery_bridge
 
 from ros2cli.node.direct import NAMED_LOOKUP_GRACE, DirectNode, add_direct_node_arguments
 from ros2cli.node.graph import Graph
-from ros2cli.node.settle import MOST, POLL, DiscoverySettling, graph_view, local_participants
+from ros2cli.node.settle import MOST, POLL, QUIET_COMPLETE, DiscoverySettling
+
+# A daemon up this long has seen every repair of lost discovery data (each within about 1 s).
+DAEMON_SETTLED = 5.0
 
 
 def add_strategy_arguments(parser: argparse.ArgumentParser) -> None:
@@ -70,12 +73,19 @@ class NodeStrategy:
 
 
 def wait_until_settled(daemon: Any) -> None:
-    """A daemon started a moment ago (by the previous call) may still be discovering: wait, as a
-    verb's own node does, until its graph has settled. One past MOST s answers at once."""
+    """A daemon started a moment ago (by `ros2 daemon start` or the previous call) may still be
+    discovering: wait, as a verb's own node does, until its graph has settled, at most MOST s from
+    now. Past MOST s of age a complete graph is answered at once (what trickles in right after a
+    participant is seen has arrived by then); one up for DAEMON_SETTLED s is not asked at all."""
+    import xmlrpc.client
+
     uptime = daemon.get_uptime()
-    if uptime >= MOST:
+    if uptime >= DAEMON_SETTLED:
         return
-    settling = DiscoverySettling()
-    started = time.monotonic() - uptime
-    while not settling.settled(time.monotonic() - started, *graph_view(daemon, local_participants())):
-        time.sleep(POLL)
+    settling = DiscoverySettling(quiet_complete=0.0 if uptime >= MOST else QUIET_COMPLETE)
+    started = time.monotonic()
+    try:
+        while not settling.settled(time.monotonic() - started, *daemon.discovery_view()):
+            time.sleep(POLL)
+    except xmlrpc.client.Fault:
+        pass  # a daemon of an older install, started before an update: its graph as it is
