@@ -124,6 +124,9 @@ def test_pygame_keys_seam_sends_key_events_and_held_keys_and_gets_the_window(ros
     folder = tmp_path / f'pygame_keys-{keys.pid}'
     window = folder / 'pygame.png'
     wait_until(window.exists, 30, 'the window in the seam')
+    # The program prints its notice before it writes the image, but this test reads the notice
+    # through a pipe and a reader thread: the file can be seen first.
+    wait_until(lambda: bool(own_lines(keys)), 10, "the program's notice")
     assert own_lines(keys) == [f"{PYGAME_NOTICE}; or append key events to {folder / 'keys'} ('down left', "
                                "'up left')"]
     assert read_image(window).shape == (80, 200, 3)  # black at first: set_mode's empty window
