@@ -2,6 +2,9 @@
 
 import itertools
 import math
+import os
+import signal
+import time
 
 import pytest
 from geometry_msgs.msg import Quaternion
@@ -81,6 +84,21 @@ def test_interface_rate_and_gyro_integration_with_the_scripted_motion(ros):
     assert last.linear_acceleration_covariance[8] > 0
     response = trigger(ros, 'setBias')
     assert not response.success and 'moving' in response.message
+
+
+def test_a_module_held_up_still_stamps_its_samples_at_its_rate(ros):
+    # A machine that holds the module up delays its messages, not its samples: their stamps keep
+    # the 100 Hz spacing, as a real IMU's clock gives them, and the missed ones are sent late.
+    module = ros.run('olive_sim', 'imu_sim')
+    ros.probe.wait_for_node(NODE, timeout=20)
+    imu = ros.probe.collect(Imu, PREFIX + 'imu')
+    wait_for_messages(imu, 20, timeout=20)
+    os.kill(module.pid, signal.SIGSTOP)
+    time.sleep(0.08)
+    os.kill(module.pid, signal.SIGCONT)
+    wait_for_messages(imu, 60, timeout=10)
+    gaps = [stamp(later) - stamp(earlier) for earlier, later in itertools.pairwise(imu[:60])]
+    assert min(gaps) > 0.008 and max(gaps) < 0.012, [round(g, 4) for g in gaps]
 
 
 def test_commanded_motion_gravity_heading_and_zeroing(ros):

@@ -6,6 +6,7 @@ import threading
 import time
 from collections.abc import Callable
 
+from owl_common.periodic import scheduled_time
 from rcl_interfaces.msg import FloatingPointRange, IntegerRange
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from rclpy.serialization import serialize_message
@@ -92,8 +93,11 @@ class ImuOutput:
                 SerializedTemplate(serialize_message(mag), values[:3]))
 
     def publish(self) -> None:
-        stamp = self.node.now_ns()
-        t = time.monotonic() - self._epoch
+        # Sampled and stamped on the rate's schedule, however late the thread runs: the stamps of
+        # a real IMU are its own clock's, so their spacing stays 1/imu_rate under any load.
+        due = scheduled_time()
+        stamp = self.node.ros_time_at(due)
+        t = due - self._epoch
         with self.lock:
             reading = self.sensor.sample(t, self.true_orientation(t))
         imu = self._imu.fill(stamp, (*reading.orientation, *reading.angular_velocity,

@@ -241,6 +241,14 @@ class OliveModule(Node):
             return clock.now().nanoseconds
         return time.time_ns()
 
+    def ros_time_at(self, monotonic: float) -> int:
+        """The node's ROS time in ns at an instant given as time.monotonic() (a sample's due time)."""
+        clock = self.get_clock()
+        if isinstance(clock, ROSClock) and clock.ros_time_is_active:
+            return clock.now().nanoseconds - round((time.monotonic() - monotonic) * 1e9)
+        # One expression of C calls: no other thread runs between the two clock readings.
+        return time.time_ns() - time.monotonic_ns() + round(monotonic * 1e9)
+
     def create_polled_subscription(self, msg_type: type, topic: str, callback: Callable[[Any], None],
                                    qos: QoSProfile | int, raw: bool = False) -> PolledSubscription:
         """A subscription the executor never wakes up for: see PolledSubscription."""

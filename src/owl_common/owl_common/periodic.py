@@ -10,6 +10,18 @@ from collections.abc import Callable
 # Event.wait; a stop request then waits at most this long.
 SLEEP_LIMIT = 0.1
 
+_call = threading.local()  # the call under way on a PeriodicThread's thread
+
+
+def scheduled_time() -> float:
+    """The time.monotonic() at which the periodic call under way on this thread was due.
+
+    A sensor takes its sample at this time and stamps it with it: a machine that holds the thread
+    up delays the message, not the sample, as with a real sensor's own clock. Only valid inside a
+    PeriodicThread's callback.
+    """
+    return _call.due
+
 
 def next_call(last_due: float, now: float, period: float, catch_up: float) -> tuple[float, float]:
     """The next call's due time after the one due at last_due, and how long to wait for it (<= 0:
@@ -60,6 +72,7 @@ class PeriodicThread:
                     return
             elif delay > 0 and self._stop.wait(delay):
                 return
+            _call.due = due
             try:
                 self.callback()
             except Exception:

@@ -1,8 +1,9 @@
+import itertools
 import threading
 import time
 
 import pytest
-from owl_common.periodic import PeriodicThread, next_call
+from owl_common.periodic import PeriodicThread, next_call, scheduled_time
 
 
 def test_calls_at_its_rate_until_stopped_then_finishes_on_its_own_thread():
@@ -53,3 +54,20 @@ def test_further_behind_than_catch_up_or_one_period_the_schedule_restarts():
     assert next_call(10.0, 10.35, 0.01, 0.2) == (10.35, 0.0)
     assert next_call(10.0, 10.025, 0.01, 0.0) == (10.025, 0.0)  # no catch_up: one period late at most
     assert next_call(10.0, 10.019, 0.01, 0.0) == pytest.approx((10.01, -0.009))
+
+
+def test_a_call_held_up_keeps_its_due_time_and_the_schedule_goes_on():
+    due_times = []
+
+    def call():
+        due_times.append(scheduled_time())
+        if len(due_times) == 2:
+            time.sleep(0.05)  # the machine holds the thread up for five periods
+
+    periodic = PeriodicThread(100.0, call, 'test', alive=lambda: True, catch_up=5.0)
+    deadline = time.monotonic() + 5.0
+    while len(due_times) < 12 and time.monotonic() < deadline:
+        time.sleep(0.01)
+    periodic.stop()
+    gaps = [later - earlier for earlier, later in itertools.pairwise(due_times[:12])]
+    assert gaps == pytest.approx([0.01] * 11, abs=1e-9)
