@@ -87,7 +87,7 @@ def main() -> None:
             process_down.append(down)
             up, down = launch_and_stop(
                 sandbox, ['turtle.launch.py'], r'Spawning turtle \[turtle1\]', 2,
-                cwd=str(ROOT / 'src' / 'olive_launch' / 'launch'))
+                cwd=str(ROOT / 'src' / 'course' / 'olive_launch' / 'launch'))
             turtles_up.append(up)
             turtles_down.append(down)
             up, down = start_and_stop_directly(sandbox)

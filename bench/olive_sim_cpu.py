@@ -26,9 +26,8 @@ import time
 
 import rclpy
 from measure import cpu_seconds
+from olive_kit.description import OWL_KIT, page_host
 from olive_sim.camera_render import CameraRenderer
-from olive_sim.kit import OWL_KIT
-from olive_sim.network_settings import page_host
 from olive_sim.servo_model import PidGains, ServoSim
 from owl_common.processes import RosProcess, RosSandbox
 from rclpy.context import Context

@@ -17,8 +17,7 @@ import sys
 import time
 from dataclasses import dataclass, field
 
-from geometry_msgs.msg import Quaternion
-from olive_imu.euler import orientation_problem, quaternion_to_euler
+from owl_common import quaternion
 from owl_common.probe import Probe
 from owl_common.processes import RosProcess, RosSandbox
 from rclpy.qos import qos_profile_sensor_data
@@ -38,7 +37,7 @@ ROBOT_VIEW_LINE = r'robot_view: open (http://127\.0\.0\.1:\d+/) in a browser'
 class RobotState:
     """The latest of everything the demo reports, filled by the probe's subscriptions."""
 
-    orientation: Quaternion | None = None
+    euler: tuple[float, float, float] | None = None  # the IMU's last usable (roll, pitch, yaw)
     goals: dict[str, float] = field(default_factory=dict)
     positions: dict[str, float] = field(default_factory=dict)
     frames: int = 0
@@ -50,8 +49,10 @@ def watch(probe: Probe) -> RobotState:
     state = RobotState()
 
     def on_imu(msg: Imu) -> None:
-        if orientation_problem(msg.orientation) is None:
-            state.orientation = msg.orientation
+        q = msg.orientation
+        euler = quaternion.usable_euler((q.x, q.y, q.z, q.w))
+        if euler is not None:
+            state.euler = euler
 
     def on_frame(_msg: CompressedImage) -> None:
         state.frames += 1
@@ -78,8 +79,8 @@ def degrees(radians: float) -> str:
 def report_line(elapsed: float, state: RobotState, fps: float) -> str:
     """One line of what the robot does now."""
     parts = [f'{elapsed:3.0f} s']
-    if state.orientation is not None:
-        roll, pitch, yaw = quaternion_to_euler(state.orientation)
+    if state.euler is not None:
+        roll, pitch, yaw = state.euler
         parts.append(f'IMU roll {degrees(roll)} pitch {degrees(pitch)} yaw {degrees(yaw)}')
     for servo in SERVOS:
         goal, position = state.goals.get(servo), state.positions.get(servo)

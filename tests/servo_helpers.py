@@ -4,7 +4,7 @@ check that it never saw a goal before its torque was on nor one outside its boun
 from typing import Any
 
 from diagnostic_msgs.msg import DiagnosticStatus
-from olive_sim.kit import OWL_KIT
+from olive_kit.description import OWL_KIT
 from ros_harness import RosHarness
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float32

@@ -1,6 +1,6 @@
 """A ROS 2 Humble module beside our Jazzy processes, on the wire.
 
-humble_twin (src/owl_humble) is what a Humble Olive module sends: graph messages with 24-byte
+humble_twin (src/common/owl_humble) is what a Humble Olive module sends: graph messages with 24-byte
 gids, endpoints without type hashes. Beside it run the simulated kit, the course's chapter 4 nodes
 and the `ros2` command, in each network mode. The twin counts every graph message it receives that
 a Humble module would misread; with our Fast DDS profile there is none, and without the profile's

@@ -14,7 +14,7 @@ from ros_harness import LAUNCH_STOP_TIMEOUT, wait_until
 from std_msgs.msg import Int32
 
 STARTED = r'\[INFO\] \[([\w.-]+)\]: process started with pid \[(\d+)\]'
-COURSE_LAUNCH_DIR = Path(__file__).resolve().parents[1] / 'src' / 'olive_launch' / 'launch'
+COURSE_LAUNCH_DIR = Path(__file__).resolve().parents[1] / 'src' / 'course' / 'olive_launch' / 'launch'
 # The promise: Ctrl-C brings everything down within 5 s (launch's own SIGTERM escalation
 # would only start after 5 s).  A little slack for a loaded machine.
 CTRL_C_LIMIT = 6.0

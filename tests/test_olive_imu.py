@@ -7,7 +7,7 @@ import time
 
 import pytest
 from geometry_msgs.msg import Quaternion, Twist
-from olive_sim import quaternion as quat
+from owl_common import quaternion as quat
 from ros_harness import wait_for_messages, wait_until
 from sensor_msgs.msg import Imu
 from turtlesim.msg import Pose

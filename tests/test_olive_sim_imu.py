@@ -8,7 +8,7 @@ import time
 
 import pytest
 from geometry_msgs.msg import Quaternion
-from olive_sim import quaternion as quat
+from owl_common import quaternion as quat
 from rclpy.qos import ReliabilityPolicy
 from ros_harness import endpoints, list_parameter_names, wait_for_messages, wait_until
 from sensor_msgs.msg import Imu, MagneticField

@@ -1,6 +1,6 @@
 """`ros2 launch olive_sim owl_kit.launch.py`: the whole Owl Kit as the course's chapter 4 sees it."""
 
-from olive_sim.kit import OWL_KIT
+from olive_kit.description import OWL_KIT
 from ros_harness import wait_until
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float32

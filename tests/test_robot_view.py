@@ -10,14 +10,14 @@ import time
 from typing import Any
 
 from geometry_msgs.msg import Quaternion
-from olive_sim.imu_node import DEFAULT_NAMESPACE
+from olive_kit.description import IMU_NAMESPACE
 from ros_harness import wait_until
 from sensor_msgs.msg import Imu, JointState
 from web_harness import PageSocket, free_port
 
 URL_LINE = r'robot_view: open (http://127\.0\.0\.1:\d+/) in a browser \(Ctrl-C to quit\)'
-IMU_TOPIC = f'/olive/imu/{DEFAULT_NAMESPACE}/imu'
-TRUE_ORIENTATION = f'/olive_imu_{DEFAULT_NAMESPACE}_dcm_srv/true_orientation'
+IMU_TOPIC = f'/olive/imu/{IMU_NAMESPACE}/imu'
+TRUE_ORIENTATION = f'/olive_imu_{IMU_NAMESPACE}_dcm_srv/true_orientation'
 MIN_FPS = 25.0  # the camera publishes 30 frames/s
 LATENCY_SAMPLES = 6
 

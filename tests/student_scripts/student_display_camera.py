@@ -1,6 +1,6 @@
 """A student's display_camera as section 4.5 asks for it: the course's QoS, CvBridge, cv2.imshow.
 
-Not ours (src/olive_camera is): what a student writes, to show that the venv's start-up hook keeps
+Not ours (src/course/olive_camera is): what a student writes, to show that the venv's start-up hook keeps
 such a program running without a display without a change to it. Its main() has the course's
 shape; rclpy.try_shutdown because rclpy's Ctrl-C handler has already shut ROS down (Jazzy's
 rclpy.shutdown() would raise "rcl_shutdown already called" there, display or not), and Jazzy's Ctrl-C

@@ -50,7 +50,7 @@ def _graph_names(query: str, parsed_args: argparse.Namespace | None) -> list[str
 
 
 def _names_from(graph: Graph, query: str) -> list[str]:
-    from rosidl_runtime_py.graph import full_node_name
+    from owl_common.graph import full_node_name
     if query == 'nodes':
         return sorted(full_node_name(ns, n) for n, ns in graph.node_names_and_namespaces())
     return [name for name, _ in getattr(graph, f'{query}_names_and_types')()]

@@ -1,9 +1,9 @@
 """Mistyped names on the command line, while a verb waits for them. (The rules of node and topic
-names live in rosidl_runtime_py.graph, the 'did you mean' hint in rosidl_runtime_py.hints.)"""
+names live in owl_common.graph, the 'did you mean' hint in owl_common.hints.)"""
 
 from collections.abc import Callable, Iterable
 
-from rosidl_runtime_py.hints import did_you_mean
+from owl_common.hints import did_you_mean
 
 
 class WaitingHint:

@@ -9,8 +9,8 @@ wheels do not ship rosidl_runtime_py), so that code written against upstream run
   get_service_interfaces, get_action_interfaces, get_interface_path
 - import_message: import_message_from_namespaced_type
 
-Our additions, shared by ros2cli, rqt_web and owl_web: graph (graph queries as plain data, and the
-rules of node/topic names), hints (did_you_mean), and the type lookup with reasons in utilities.
+The type lookup in utilities gives its reasons (and the closest installed type) in its errors; the
+graph queries and name hints that ros2cli and the web tools share live in owl_common.
 """
 
 from rosidl_runtime_py.convert import message_to_csv, message_to_ordereddict, message_to_yaml

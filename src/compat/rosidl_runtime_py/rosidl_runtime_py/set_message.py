@@ -11,6 +11,7 @@ from collections.abc import Callable
 from typing import Any
 
 import yaml
+from owl_common.hints import did_you_mean
 from rosidl_parser.definition import (
     AbstractGenericString,
     AbstractNestedType,
@@ -22,7 +23,6 @@ from rosidl_parser.definition import (
 )
 
 from rosidl_runtime_py.convert import fields_of, type_text
-from rosidl_runtime_py.hints import did_you_mean
 from rosidl_runtime_py.utilities import type_name_of
 
 INTEGER_RANGES = {

@@ -5,7 +5,7 @@ says in one line why a name is wrong, with the closest installed name."""
 import importlib
 from typing import Any
 
-from rosidl_runtime_py.hints import did_you_mean
+from owl_common.hints import did_you_mean
 
 KINDS = ('msg', 'srv', 'action')
 KIND_WORDS = {'msg': 'message', 'srv': 'service', 'action': 'action'}

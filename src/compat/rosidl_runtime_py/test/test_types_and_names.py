@@ -3,6 +3,8 @@
 import os
 
 import pytest
+from owl_common.graph import full_node_name, is_hidden_name, is_hidden_node, split_node_name
+from owl_common.hints import did_you_mean
 from rosidl_runtime_py import (
     get_interface_path,
     get_interfaces,
@@ -14,8 +16,6 @@ from rosidl_runtime_py.get_interfaces import (
     get_interface_packages,
     get_service_interfaces,
 )
-from rosidl_runtime_py.graph import full_node_name, is_hidden_name, is_hidden_node, split_node_name
-from rosidl_runtime_py.hints import did_you_mean
 from rosidl_runtime_py.utilities import (
     InvalidType,
     canonical_type,

@@ -54,8 +54,8 @@ class InfoVerb(VerbExtension):
         add_strategy_arguments(parser)
 
     def main(self, *, args: argparse.Namespace) -> int | str:
-        from rosidl_runtime_py.graph import full_node_name
-        from rosidl_runtime_py.hints import did_you_mean
+        from owl_common.graph import full_node_name
+        from owl_common.hints import did_you_mean
 
         from ros2cli.node.strategy import NodeStrategy
 
@@ -143,10 +143,10 @@ class SendGoalVerb(VerbExtension):
 
     def _send(self, args: argparse.Namespace, action_class: Any, goal: Any, node_name: str) -> int | str:
         import rclpy
+        from owl_common.graph import expand_topic_name
         from rclpy.action import ActionClient, get_action_names_and_types
         from rclpy.node import Node
         from rosidl_runtime_py.convert import message_to_yaml
-        from rosidl_runtime_py.graph import expand_topic_name
 
         from ros2cli.names import WaitingHint
         from ros2cli.node.direct import NAMED_LOOKUP_GRACE, tear_down

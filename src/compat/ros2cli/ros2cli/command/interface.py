@@ -27,8 +27,8 @@ def _wanted_kinds(args: argparse.Namespace) -> list[str]:
 
 
 def _unknown_package(package: str) -> str:
+    from owl_common.hints import did_you_mean
     from rosidl_runtime_py.get_interfaces import interface_index
-    from rosidl_runtime_py.hints import did_you_mean
     return f"Unknown package '{package}'{did_you_mean(package, interface_index())}"
 
 
@@ -69,8 +69,8 @@ def definition_lines(package: str, kind: str, name: str) -> list[str]:
         with open(path, encoding='utf-8') as definition:
             return definition.read().splitlines()
     except OSError:
+        from owl_common.hints import did_you_mean
         from rosidl_runtime_py.get_interfaces import interface_index
-        from rosidl_runtime_py.hints import did_you_mean
         known = interface_index().get(package, {}).get(kind, [])
         idl = os.path.join(share, kind, f'{name}.idl')
         raise RuntimeError(f"Could not find the interface '{idl}'{did_you_mean(name, known)}") from None

@@ -14,7 +14,7 @@ DUPLICATE_WARNING = ('WARNING: Be aware that there are nodes in the graph that s
 
 def node_names(graph: Graph, include_hidden: bool = False) -> list[str]:
     """Full names of the nodes in the graph, sorted, duplicates kept."""
-    from rosidl_runtime_py.graph import full_node_name, is_hidden_node
+    from owl_common.graph import full_node_name, is_hidden_node
     names = [full_node_name(ns, name) for name, ns in graph.node_names_and_namespaces()]
     return sorted(n for n in names if include_hidden or not is_hidden_node(n))
 
@@ -44,7 +44,7 @@ class ListVerb(VerbExtension):
 
 
 def print_section(title: str, names_and_types: list[list[Any]], include_hidden: bool) -> None:
-    from rosidl_runtime_py.graph import is_hidden_name
+    from owl_common.graph import is_hidden_name
     print(f'  {title}:')
     lines = [f"    {name}: {', '.join(types)}" for name, types in names_and_types
              if include_hidden or not is_hidden_name(name)]
@@ -65,8 +65,8 @@ class InfoVerb(VerbExtension):
                             'services, and actions as well')
 
     def main(self, *, args: argparse.Namespace) -> int | str:
-        from rosidl_runtime_py.graph import split_node_name
-        from rosidl_runtime_py.hints import did_you_mean
+        from owl_common.graph import split_node_name
+        from owl_common.hints import did_you_mean
 
         from ros2cli.node.strategy import NodeStrategy
 

@@ -60,7 +60,7 @@ class ParameterSession:
         self._caller: Any = None
 
     def __enter__(self) -> 'ParameterSession':
-        from rosidl_runtime_py.hints import did_you_mean
+        from owl_common.hints import did_you_mean
 
         from ros2cli.command.node import node_names
         from ros2cli.node.direct import NAMED_LOOKUP_GRACE
@@ -114,7 +114,7 @@ class ParameterSession:
 
     def unknown(self, name: str) -> str:
         """' (did you mean ...)' for an undeclared parameter name."""
-        from rosidl_runtime_py.hints import did_you_mean
+        from owl_common.hints import did_you_mean
         return did_you_mean(name, self.names())
 
     def close(self) -> None:
@@ -340,8 +340,8 @@ def parameters_for_node(path: str, node_name: str, use_wildcard: bool) -> list['
     then the node's own entry, which overrides it (rclpy's parameter_dict_from_yaml_file reads
     them). RuntimeError with one line when the file cannot be read or nothing in it fits.
     """
+    from owl_common.hints import did_you_mean
     from rclpy.parameter import parameter_dict_from_yaml_file
-    from rosidl_runtime_py.hints import did_you_mean
 
     document = read_parameter_file(path)  # its YAML errors and shape, said in one line
     if not isinstance(document, dict):

@@ -108,7 +108,7 @@ def run(args: argparse.Namespace) -> int | str:
         get_package_prefix,
         get_packages_with_prefixes,
     )
-    from rosidl_runtime_py.hints import did_you_mean
+    from owl_common.hints import did_you_mean
 
     try:
         prefix = get_package_prefix(args.package_name)

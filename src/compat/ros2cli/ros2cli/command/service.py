@@ -24,7 +24,7 @@ def _add_hidden_argument(parser: argparse.ArgumentParser) -> None:
 
 
 def visible_services(graph: Graph, include_hidden: bool) -> list[list[Any]]:
-    from rosidl_runtime_py.graph import is_hidden_name
+    from owl_common.graph import is_hidden_name
     return [[name, types] for name, types in graph.service_names_and_types()
             if include_hidden or not is_hidden_name(name)]
 
@@ -107,8 +107,8 @@ class CallVerb(VerbExtension):
 
     def main(self, *, args: argparse.Namespace) -> int | str:
         import rclpy
+        from owl_common.graph import expand_topic_name
         from rclpy.node import Node
-        from rosidl_runtime_py.graph import expand_topic_name
         from rosidl_runtime_py.set_message import FieldError, set_message_fields
         from rosidl_runtime_py.utilities import InvalidType, import_type, split_type
 

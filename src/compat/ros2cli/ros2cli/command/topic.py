@@ -18,7 +18,7 @@ def _add_hidden_argument(parser: argparse.ArgumentParser) -> None:
 
 
 def visible_topics(graph: Graph, include_hidden: bool) -> list[list[Any]]:
-    from rosidl_runtime_py.graph import is_hidden_name
+    from owl_common.graph import is_hidden_name
     return [[name, types] for name, types in graph.topic_names_and_types()
             if include_hidden or not is_hidden_name(name)]
 
@@ -41,7 +41,7 @@ def topic_types(graph: Graph, topic: str) -> list[str] | None:
 
 
 def unknown_topic(graph: Graph, topic: str) -> str:
-    from rosidl_runtime_py.hints import did_you_mean
+    from owl_common.hints import did_you_mean
     return f"Unknown topic '{topic}'{did_you_mean(topic, [n for n, _ in graph.topic_names_and_types()])}"
 
 

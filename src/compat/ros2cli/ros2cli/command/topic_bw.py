@@ -49,8 +49,8 @@ class BwVerb(VerbExtension):
         add_direct_node_arguments(parser)
 
     def main(self, *, args: argparse.Namespace) -> int | str:
+        from owl_common.graph import expand_topic_name
         from rclpy.executors import SingleThreadedExecutor
-        from rosidl_runtime_py.graph import expand_topic_name
         from rosidl_runtime_py.utilities import InvalidType, import_type
 
         from ros2cli.node.direct import DirectNode

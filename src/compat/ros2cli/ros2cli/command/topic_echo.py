@@ -155,7 +155,7 @@ class EchoVerb(VerbExtension):
                             help='Shows the associated message info.')
 
     def main(self, *, args: argparse.Namespace) -> int | str:
-        from rosidl_runtime_py.graph import expand_topic_name
+        from owl_common.graph import expand_topic_name
         from rosidl_runtime_py.utilities import InvalidType, import_type
 
         from ros2cli.node.direct import NAMED_LOOKUP_GRACE, DirectNode

@@ -71,7 +71,7 @@ class PubVerb(VerbExtension):
         add_direct_node_arguments(parser)
 
     def main(self, *, args: argparse.Namespace) -> int | str:
-        from rosidl_runtime_py.graph import expand_topic_name
+        from owl_common.graph import expand_topic_name
         from rosidl_runtime_py.set_message import FieldError, set_message_fields
         from rosidl_runtime_py.utilities import InvalidType, import_type
 

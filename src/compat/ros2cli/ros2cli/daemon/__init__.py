@@ -1,6 +1,6 @@
 """The `ros2` daemon: one background process per ROS domain that keeps a warm graph cache.
 
-It serves the graph queries of rosidl_runtime_py.graph.GraphQueries over XML-RPC at
+It serves the graph queries of owl_common.graph.GraphQueries over XML-RPC at
 http://127.0.0.1:<11511 + ROS_DOMAIN_ID>/ros2cli/, like upstream's daemon.
 """
 

@@ -35,8 +35,8 @@ class _Server(SimpleXMLRPCServer):
 
 def serve(domain: int, listener: socket.socket, idle_timeout: float, alone_timeout: float | None) -> None:
     import rclpy
+    from owl_common.graph import GraphQueries
     from rclpy.node import Node
-    from rosidl_runtime_py.graph import GraphQueries
 
     from ros2cli.node.direct import tear_down
     from ros2cli.node.settle import graph_view, local_participants

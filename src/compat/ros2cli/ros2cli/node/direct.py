@@ -9,8 +9,8 @@ from typing import TYPE_CHECKING, Any
 from ros2cli.node.settle import MOST, POLL, DiscoverySettling, graph_view, local_participants
 
 if TYPE_CHECKING:  # rclpy is imported when a node is made: `ros2 -h` does not need it
+    from owl_common.graph import GraphQueries
     from rclpy.node import Node
-    from rosidl_runtime_py.graph import GraphQueries
 
 # A verb that looks for one named entity (node, topic, service) keeps looking this much longer
 # before it says "unknown": DDS discovery of a just started participant sometimes takes ~2 s.
@@ -90,7 +90,7 @@ class DirectNode:
     @property
     def graph(self) -> 'GraphQueries':
         if self._graph is None:
-            from rosidl_runtime_py.graph import GraphQueries
+            from owl_common.graph import GraphQueries
             self._graph = GraphQueries(self.node)
         return self._graph
 

@@ -1,0 +1,120 @@
+"""Graph queries answered from an rclpy node, as plain data (lists, dicts, strings), and the rules of
+node and topic names, shared by ros2cli, rqt_web and owl_web.
+
+The same class serves a verb's own DirectNode and the daemon, whose XML-RPC server exports
+it: plain data is what XML-RPC can carry, so both modes give exactly the same answers.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # the name rules below are used where rclpy need not be imported
+    from rclpy.node import Node
+
+NamesAndTypes = list[list[Any]]  # [[name, [type, ...]], ...]
+
+
+def endpoint_to_dict(info: Any) -> dict[str, Any]:
+    """A TopicEndpointInfo as a dict of strings and numbers."""
+    qos = info.qos_profile
+    type_hash = getattr(info, 'topic_type_hash', None)
+    return {
+        'node_name': info.node_name,
+        'node_namespace': info.node_namespace,
+        'topic_type': info.topic_type,
+        'topic_type_hash': str(type_hash) if type_hash is not None else 'INVALID',
+        'endpoint_type': info.endpoint_type.name,
+        'endpoint_gid': list(info.endpoint_gid),
+        'reliability': qos.reliability.name,
+        'history': qos.history.name,
+        'depth': qos.depth,
+        'durability': qos.durability.name,
+        # rclpy's Duration prints 'Infinite' or '<n> nanoseconds', as upstream shows it.
+        'lifespan': str(qos.lifespan),
+        'deadline': str(qos.deadline),
+        'liveliness': qos.liveliness.name,
+        'liveliness_lease_duration': str(qos.liveliness_lease_duration),
+    }
+
+
+def _plain(names_and_types: list[tuple[str, list[str]]]) -> NamesAndTypes:
+    return sorted([name, list(types)] for name, types in names_and_types)
+
+
+class GraphQueries:
+    """Every graph question a verb asks, answered by one rclpy node."""
+
+    def __init__(self, node: Node) -> None:
+        self._node = node
+
+    def node_names_and_namespaces(self) -> list[list[str]]:
+        return [[name, ns] for name, ns in self._node.get_node_names_and_namespaces()]
+
+    def topic_names_and_types(self) -> NamesAndTypes:
+        return _plain(self._node.get_topic_names_and_types())
+
+    def service_names_and_types(self) -> NamesAndTypes:
+        return _plain(self._node.get_service_names_and_types())
+
+    def action_names_and_types(self) -> NamesAndTypes:
+        from rclpy.action import get_action_names_and_types
+        return _plain(get_action_names_and_types(self._node))
+
+    def publishers_by_node(self, name: str, namespace: str) -> NamesAndTypes:
+        return _plain(self._node.get_publisher_names_and_types_by_node(name, namespace))
+
+    def subscribers_by_node(self, name: str, namespace: str) -> NamesAndTypes:
+        return _plain(self._node.get_subscriber_names_and_types_by_node(name, namespace))
+
+    def services_by_node(self, name: str, namespace: str) -> NamesAndTypes:
+        return _plain(self._node.get_service_names_and_types_by_node(name, namespace))
+
+    def clients_by_node(self, name: str, namespace: str) -> NamesAndTypes:
+        return _plain(self._node.get_client_names_and_types_by_node(name, namespace))
+
+    def action_servers_by_node(self, name: str, namespace: str) -> NamesAndTypes:
+        from rclpy.action import get_action_server_names_and_types_by_node
+        return _plain(get_action_server_names_and_types_by_node(self._node, name, namespace))
+
+    def action_clients_by_node(self, name: str, namespace: str) -> NamesAndTypes:
+        from rclpy.action import get_action_client_names_and_types_by_node
+        return _plain(get_action_client_names_and_types_by_node(self._node, name, namespace))
+
+    def publishers_info(self, topic: str) -> list[dict[str, Any]]:
+        return [endpoint_to_dict(i) for i in self._node.get_publishers_info_by_topic(topic)]
+
+    def subscriptions_info(self, topic: str) -> list[dict[str, Any]]:
+        return [endpoint_to_dict(i) for i in self._node.get_subscriptions_info_by_topic(topic)]
+
+    def count_publishers(self, topic: str) -> int:
+        return self._node.count_publishers(topic)
+
+    def count_subscribers(self, topic: str) -> int:
+        return self._node.count_subscribers(topic)
+
+
+def full_node_name(namespace: str, name: str) -> str:
+    """'/' + 'talker' -> '/talker'; '/ns' + 'talker' -> '/ns/talker'."""
+    return f"{namespace.rstrip('/')}/{name}"
+
+
+def split_node_name(node_name: str) -> tuple[str, str]:
+    """A node name (leading '/' optional) as (namespace, base name)."""
+    full = node_name if node_name.startswith('/') else '/' + node_name
+    namespace, _, name = full.rpartition('/')
+    return namespace or '/', name
+
+
+def is_hidden_node(full_name: str) -> bool:
+    return full_name.rpartition('/')[2].startswith('_')
+
+
+def is_hidden_name(name: str) -> bool:
+    """A topic or service is hidden when any of its tokens starts with '_'."""
+    return any(token.startswith('_') for token in name.split('/'))
+
+
+def expand_topic_name(name: str) -> str:
+    """Relative names resolve against the CLI node's namespace, the root."""
+    return name if name.startswith('/') else '/' + name

@@ -1,0 +1,20 @@
+from setuptools import find_packages, setup
+
+package_name = 'olive_kit'
+
+setup(
+    name=package_name,
+    version='0.1.0',
+    packages=find_packages(exclude=['test']),
+    data_files=[
+        ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
+        ('share/' + package_name, ['package.xml']),
+    ],
+    install_requires=['setuptools'],
+    zip_safe=True,
+    maintainer='Owl Kit Lab',
+    maintainer_email='team@owlkitlab.invalid',
+    description='The Owl Kit as data: modules, addresses, topics, limits.',
+    license='Apache-2.0',
+    tests_require=['pytest'],
+)

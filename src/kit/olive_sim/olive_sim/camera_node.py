@@ -1,0 +1,150 @@
+"""camera_sim: a simulated Olive camera (OLV-CAM01) on the Owl Kit's pan/tilt head."""
+
+from __future__ import annotations
+
+import math
+import time
+
+from owl_common import quaternion as quat
+from owl_common.quaternion import Quaternion
+from rcl_interfaces.msg import FloatingPointRange, IntegerRange
+from rclpy.parameter import Parameter
+from rclpy.qos import DurabilityPolicy, QoSProfile
+from rclpy.serialization import deserialize_message, serialize_message
+from sensor_msgs.msg import CameraInfo, CompressedImage, JointState
+
+from olive_sim.camera_render import CameraRenderer
+from olive_sim.imu_output import ImuOutput, reliability
+from olive_sim.module_node import OliveModule, describe, run_module
+from olive_sim.serialized import STAMP_MARKER, SerializedTemplate, joint_state_position
+
+# Horizontal field of view of the vendor's shipped calibration (K of calibration/ost.yaml).
+DEFAULT_FOV_DEG = 48.66
+
+
+class CameraModule(OliveModule):
+
+    def __init__(self, namespace: str) -> None:
+        super().__init__('camera', namespace, serial='1715257918934')
+        self.declare_parameter('width', 640, describe('Image width [px].', True, integer_range=[
+            IntegerRange(from_value=16, to_value=4096, step=1)]))
+        self.declare_parameter('height', 480, describe('Image height [px].', True, integer_range=[
+            IntegerRange(from_value=16, to_value=4096, step=1)]))
+        self.declare_parameter('fps', 30.0, describe('Frame rate [Hz].', True, floating_point_range=[
+            FloatingPointRange(from_value=0.1, to_value=240.0)]))
+        self.declare_parameter('jpeg_quality', 80, describe('JPEG quality 1..100.', integer_range=[
+            IntegerRange(from_value=1, to_value=100, step=1)]))
+        self.declare_parameter('horizontal_fov', DEFAULT_FOV_DEG, describe(
+            'Horizontal field of view [deg].', True, floating_point_range=[
+                FloatingPointRange(from_value=5.0, to_value=160.0)]))
+        self.declare_parameter('image_reliability', 'best_effort', describe(
+            'Reliability of image/compressed and image/camera_info: best_effort (as the course shows) '
+            'or reliable.', True))
+        self.declare_parameter('frame_id', 'olive', describe('header.frame_id of the images.', True))
+        self.declare_parameter('pan_joint_topic', '/olive/servo/pan/joint', describe(
+            'JointState topic of the pan servo the camera sits on.', True))
+        self.declare_parameter('tilt_joint_topic', '/olive/servo/tilt/joint', describe(
+            'JointState topic of the tilt servo the camera sits on.', True))
+        value = self.get_parameter
+        self.renderer = CameraRenderer(value('width').value, value('height').value,
+                                       math.radians(value('horizontal_fov').value))
+        self.frame_id = value('frame_id').value
+        self.pan = 0.0
+        self.tilt = 0.0
+        self.frames = 0
+        self.jpeg_quality = value('jpeg_quality').value
+        qos = QoSProfile(depth=10, durability=DurabilityPolicy.VOLATILE,
+                         reliability=reliability(value('image_reliability').value, 'image_reliability'))
+        self.image_publisher = self.create_publisher(CompressedImage, self.topic('image/compressed'), qos)
+        self.info_publisher = self.create_publisher(CameraInfo, self.topic('image/camera_info'), qos)
+        # Only its stamp changes: published as serialized bytes with the stamp patched in.
+        self.camera_info = SerializedTemplate(serialize_message(self._camera_info()), [])
+        # Polled by the frame and IMU threads just before they use pan and tilt, as bytes: only
+        # the position is read from them.
+        # Each joint's callback runs under its subscription's lock, the frames on their own thread.
+        self.pan_traffic, self.tilt_traffic, self.frame_traffic = (self.traffic.counter() for _ in range(3))
+        self.joints = [self.create_polled_subscription(JointState, value(topic).value, callback, 10,
+                                                       raw=True)
+                       for topic, callback in (('pan_joint_topic', self._on_pan),
+                                               ('tilt_joint_topic', self._on_tilt))]
+        self.add_post_set_parameters_callback(self._apply_parameters)
+        self.output = ImuOutput(self, self.topic, f'{namespace}_body_link', self.orientation)
+        self.frame_thread = self.create_periodic(value('fps').value, self.publish_frame, 'frames')
+
+    def _apply_parameters(self, parameters: list[Parameter]) -> None:
+        for p in parameters:
+            if p.name == 'jpeg_quality':
+                self.jpeg_quality = p.value
+
+    def _poll_joints(self) -> None:
+        for joint in self.joints:
+            joint.poll()
+
+    def orientation(self, t: float) -> Quaternion:
+        """The camera's true orientation: yaw by pan, pitched down by tilt."""
+        self._poll_joints()
+        return quat.from_euler(0.0, self.tilt, self.pan)
+
+    def _joint_position(self, data: bytes, which: str) -> float | None:
+        try:
+            position = joint_state_position(data)
+        except ValueError:  # an encoding we do not read directly
+            msg = deserialize_message(data, JointState)
+            position = msg.position[0] if msg.position else None
+        if position is None or not math.isfinite(position):
+            self.warn(f'{which} joint', f'{which} joint state without a finite position ignored')
+            return None
+        return position
+
+    def _on_pan(self, data: bytes) -> None:
+        self.pan_traffic.received += len(data)
+        position = self._joint_position(data, 'pan')
+        if position is not None:
+            self.pan = position
+
+    def _on_tilt(self, data: bytes) -> None:
+        self.tilt_traffic.received += len(data)
+        position = self._joint_position(data, 'tilt')
+        if position is not None:
+            self.tilt = position
+
+    def _camera_info(self) -> CameraInfo:
+        r = self.renderer
+        info = CameraInfo(width=r.width, height=r.height, distortion_model='plumb_bob')
+        info.d = [0.0, 0.0, 0.0, 0.0, 0.0]
+        info.k = [r.fx, 0.0, r.cx, 0.0, r.fy, r.cy, 0.0, 0.0, 1.0]
+        info.r = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]
+        info.p = [r.fx, 0.0, r.cx, 0.0, 0.0, r.fy, r.cy, 0.0, 0.0, 0.0, 1.0, 0.0]
+        info.header.frame_id = self.frame_id
+        info.header.stamp.sec, info.header.stamp.nanosec = STAMP_MARKER
+        return info
+
+    def publish_frame(self) -> None:
+        self._poll_joints()
+        self.frames += 1
+        now = self.now_ns()
+        seconds = now / 1e9
+        clock = time.strftime('%H:%M:%S', time.gmtime(seconds))
+        caption = f'#{self.frames}  {clock}.{int(seconds % 1 * 1000):03d}'
+        msg = CompressedImage(format='jpeg')
+        msg.header.stamp.sec, msg.header.stamp.nanosec = divmod(now, 1_000_000_000)
+        msg.header.frame_id = self.frame_id
+        msg.data = self.renderer.jpeg(self.pan, self.tilt, caption, self.jpeg_quality)
+        self.image_publisher.publish(msg)
+        info = self.camera_info.fill(now, ())
+        self.info_publisher.publish(info)
+        self.frame_traffic.sent += len(msg.data) + len(info) + 64  # 64: the image's header and format
+
+    def imu_orientation(self) -> Quaternion | None:
+        return self.output.latest
+
+    def temperature(self) -> float:
+        return 42.0
+
+
+def main(args: list[str] | None = None) -> None:
+    run_module(CameraModule, 'eye', args)
+
+
+if __name__ == '__main__':
+    main()

@@ -1,0 +1,158 @@
+"""src/ is laid out by role: each group's packages import only the groups below them.
+
+The groups and their rules are docs/architecture.md's picture; each group's README says the same in
+words. The compat packages stand in for ROS 2 itself, so every other package sees them only
+through names that upstream Jazzy has: that is what lets the course, the kit and the tools build
+on a normal ROS 2 install with `src/compat/` left out (the README's recipe).
+"""
+
+from __future__ import annotations
+
+import ast
+import sys
+import xml.etree.ElementTree as ET
+from functools import cache
+from graphlib import CycleError, TopologicalSorter
+from pathlib import Path
+
+import pytest
+
+SRC = Path(__file__).resolve().parents[1] / 'src'
+
+# group -> the groups of ours its packages may import (compat is ROS 2: see UPSTREAM_NAMES).
+MAY_IMPORT = {
+    'common': {'common'},
+    'compat': {'compat', 'common'},
+    'web': {'web', 'common'},
+    'kit': {'kit', 'web', 'common'},
+    'course': {'course'},
+    'tools': {'tools', 'kit', 'web', 'common'},
+}
+# Our stand-ins for upstream tools (rqt, rosdep): left out on a real install, like compat, so they
+# may use compat's own additions (the type lookup with reasons, FieldError).
+STAND_INS = {'rqt_web', 'owl_rosdep'}
+# The kit's description is data that the simulator and the tools share: the standard library only.
+STDLIB_ONLY = {'olive_kit'}
+
+# What the packages outside compat import from compat's packages: all of it is upstream Jazzy's
+# public surface (ros2/launch, ros2/launch_ros, ros2/rosidl_runtime_py, ros-perception/vision_opencv,
+# ros/ros_tutorials on their jazzy branches). A new name goes here once upstream is seen to have it.
+UPSTREAM_NAMES = {
+    'cv_bridge': {'CvBridge', 'CvBridgeError'},
+    'launch': {'LaunchContext', 'LaunchDescription'},
+    'launch.actions': {'DeclareLaunchArgument', 'IncludeLaunchDescription', 'LogInfo', 'OpaqueFunction'},
+    'launch.launch_description_entity': {'LaunchDescriptionEntity'},
+    'launch.launch_description_sources': {'PythonLaunchDescriptionSource'},
+    'launch.substitutions': {'LaunchConfiguration', 'PathJoinSubstitution', 'ThisLaunchFileDir'},
+    'launch_ros.actions': {'Node'},
+    'rosidl_runtime_py.convert': {'message_to_ordereddict'},
+    'rosidl_runtime_py.utilities': {'get_service'},
+    'turtlesim.msg': {'Pose'},
+    'turtlesim.srv': {'Kill', 'SetPen', 'Spawn', 'TeleportAbsolute', 'TeleportRelative'},
+}
+
+
+@cache
+def packages() -> dict[str, Path]:
+    """ROS package name -> its folder, for every package.xml under src/."""
+    found = {}
+    for manifest in SRC.rglob('package.xml'):
+        name = ET.parse(manifest).getroot().findtext('name')
+        assert name, manifest
+        found[name] = manifest.parent
+    return found
+
+
+def group_of(package: str) -> str:
+    return packages()[package].relative_to(SRC).parts[0]
+
+
+@cache
+def module_owners() -> dict[str, str]:
+    """Top-level Python module -> the package that installs it (interface packages generate a module
+    named after themselves)."""
+    owners = {name: name for name in packages()}
+    for name, folder in packages().items():
+        for child in folder.iterdir():
+            if (child / '__init__.py').is_file():
+                owners[child.name] = name
+    return owners
+
+
+def imports(package: str) -> list[tuple[Path, str, set[str]]]:
+    """(file, module, names) of every absolute import in the package's code (its unit tests aside)."""
+    found = []
+    folder = packages()[package]
+    for path in sorted(folder.rglob('*.py')):
+        if 'test' in path.relative_to(folder).parts or path.name == 'setup.py':
+            continue
+        for node in ast.walk(ast.parse(path.read_text(), str(path))):
+            if isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+                found.append((path, node.module, {alias.name for alias in node.names}))
+            elif isinstance(node, ast.Import):
+                found += [(path, alias.name, set()) for alias in node.names]
+    return found
+
+
+def is_interface_package(package: str) -> bool:
+    """Messages and services only (olive_interfaces): `owl check` calls the course's services with
+    the course's own types, so the tools may import these, never the course's nodes."""
+    folder = packages()[package]
+    return (folder / 'CMakeLists.txt').is_file() and any((folder / kind).is_dir() for kind in ('msg', 'srv'))
+
+
+def ours(module: str) -> str | None:
+    return module_owners().get(module.split('.')[0])
+
+
+def test_every_package_sits_in_a_group_with_a_readme_of_its_rules():
+    for name, folder in packages().items():
+        parts = folder.relative_to(SRC).parts
+        assert len(parts) == 2 and parts[0] in MAY_IMPORT, f'{name}: {folder} is not src/<group>/<package>'
+    for group in MAY_IMPORT:
+        readme = SRC / group / 'README.md'
+        assert readme.is_file(), f'{readme} is missing'
+        assert 'may import' in readme.read_text().lower(), f'{readme} does not say what may be imported'
+
+
+@pytest.mark.parametrize('package', sorted(packages()))
+def test_imports_point_down_the_groups(package):
+    group = group_of(package)
+    wrong = []
+    for path, module, names in imports(package):
+        owner = ours(module)
+        if package in STDLIB_ONLY and module.split('.')[0] not in sys.stdlib_module_names:
+            wrong.append(f'{path}: {module} (this package imports the standard library only)')
+        if owner is None or owner == package:
+            continue
+        owner_group = group_of(owner)
+        if owner_group == 'compat' and group != 'compat' and package not in STAND_INS:
+            extra = names - UPSTREAM_NAMES.get(module, set()) if names else {module}
+            if extra:
+                wrong.append(f'{path}: {module} {sorted(extra)} (not upstream Jazzy names)')
+        elif owner_group != 'compat' and owner_group not in MAY_IMPORT[group] and not (
+                group == 'tools' and is_interface_package(owner)):
+            wrong.append(f'{path}: {module} ({owner} is in {owner_group}/, which {group}/ may not import)')
+        elif group == 'tools' and owner_group == 'kit' and owner not in STDLIB_ONLY:
+            wrong.append(f'{path}: {module} (the tools know the kit by its description, not its nodes)')
+    assert not wrong, '\n'.join(wrong)
+
+
+@pytest.mark.parametrize('package', sorted(packages()))
+def test_declared_dependencies_point_down_the_groups(package):
+    root = ET.parse(packages()[package] / 'package.xml').getroot()
+    group = group_of(package)
+    for tag in ('depend', 'exec_depend', 'build_depend'):
+        for element in root.iter(tag):
+            target = element.text or ''
+            if target in packages() and group_of(target) != 'compat':
+                assert group_of(target) in MAY_IMPORT[group], f'{package} {tag}s on {target}'
+
+
+def test_no_package_imports_itself_back():
+    graph = {name: {ours(module) for _, module, _ in imports(name)} - {None, name} for name in packages()}
+    try:
+        order = list(TopologicalSorter(graph).static_order())
+    except CycleError as cycle:
+        pytest.fail(f'packages import each other in a cycle: {cycle.args[1]}')
+    assert set(order) == set(packages())
