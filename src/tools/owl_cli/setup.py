@@ -25,5 +25,18 @@ setup(
         'console_scripts': [
             'owl = owl_cli.main:main',
         ],
+        # owl check's exercises, one plug-in per course section (owl_cli/check_catalogue.py).
+        'owl_cli.exercises': [
+            '3.4 = owl_cli.exercises.section_3_4:SECTION',
+            '3.5 = owl_cli.exercises.section_3_5:SECTION',
+            '3.6 = owl_cli.exercises.section_3_6:SECTION',
+            '3.7 = owl_cli.exercises.section_3_7:SECTION',
+            '3.8 = owl_cli.exercises.section_3_8:SECTION',
+            '3.9 = owl_cli.exercises.section_3_9:SECTION',
+            '4.3 = owl_cli.exercises.section_4_3:SECTION',
+            '4.4 = owl_cli.exercises.section_4_4:SECTION',
+            '4.4.1 = owl_cli.exercises.section_4_4_1:SECTION',
+            '4.5 = owl_cli.exercises.section_4_5:SECTION',
+        ],
     },
 )

@@ -14,11 +14,43 @@ from owl_cli.main import main
 # -- catalogue -------------------------------------------------------------------------------------
 
 
-def test_every_checkable_exercise_has_a_check_and_a_unique_id():
-    from owl_cli.check_ros import CHECKS
-
+def test_every_exercise_has_a_check_or_a_reason_and_a_unique_id():
     assert [e.id for e in catalogue.EXERCISES] == list(catalogue.BY_ID)
-    assert {e.id for e in catalogue.CHECKABLE} == set(CHECKS)
+    for exercise in catalogue.EXERCISES:
+        assert (exercise.check is None) == bool(exercise.not_checked), exercise.id
+
+
+def test_the_plugins_come_in_the_courses_section_order():
+    sections = [catalogue.section_order(e.section.split()[0].rstrip(','))[:2] for e in catalogue.EXERCISES]
+    assert sections == sorted(sections)
+    assert catalogue.EXERCISES[0].id == 'test_package' and catalogue.EXERCISES[-1].id == 'robot_camera_launch'
+
+
+def test_two_plugins_that_declare_one_id_are_refused(monkeypatch):
+    twin = catalogue.Section()
+    twin.by_hand('imu_turtle', '4.3.2', 'olive_imu', 'again', 'a second declaration')
+
+    class Plugin:
+        def __init__(self, name: str, section: catalogue.Section) -> None:
+            self.name, self.section = name, section
+
+        def load(self) -> catalogue.Section:
+            return self.section
+
+    first = catalogue.Section()
+    first.by_hand('imu_turtle', '4.3.2', 'olive_imu', 'first', 'a declaration')
+    monkeypatch.setattr(catalogue, 'entry_points', lambda group: [Plugin('4.3', first), Plugin('9.9', twin)])
+    with pytest.raises(ValueError, match='more than one plug-in declares imu_turtle'):
+        catalogue.load_exercises()
+
+
+def test_no_check_module_is_longer_than_400_lines():
+    from pathlib import Path
+
+    import owl_cli
+
+    for module in Path(owl_cli.__file__).parent.rglob('*.py'):
+        assert len(module.read_text().splitlines()) <= 400, module
 
 
 def test_the_catalogue_covers_sections_3_4_to_4_5_with_every_extra():

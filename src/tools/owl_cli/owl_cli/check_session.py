@@ -1,0 +1,346 @@
+"""The template every check of `owl check` shares: a Session of processes in a private ROS domain
+and the probe node that watches and drives them, the kit's names as the checks use them, and the
+helpers more than one section needs.
+
+A check drives the student's node only through the course's names (topics, types, QoS, services,
+parameters), prints each criterion as one JSON line as soon as it is decided (Session.add), and
+leaves everything it started to Session.close.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import tempfile
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from olive_kit.description import IMU_NAMESPACE, OWL_KIT, node_name
+from owl_common.probe import Probe
+from owl_common.processes import RosProcess, RosSandbox
+from rcl_interfaces.srv import GetParameters, ListParameters, SetParameters
+from rclpy.parameter import Parameter, parameter_value_to_python
+
+from owl_cli import check_criteria as judge
+from owl_cli.check_report import RESULT_PREFIX, WORKSPACE_VARIABLE, Criterion
+
+if TYPE_CHECKING:
+    from rclpy.publisher import Publisher
+    from rclpy.qos import QoSProfile
+    from rclpy.topic_endpoint_info import TopicEndpointInfo
+
+_SERVO_RANGES = {m.namespace: (m.own_parameters['min_position'], m.own_parameters['max_position'])
+                 for m in OWL_KIT if m.module_type == 'servo'}
+_CAMERA = next(m for m in OWL_KIT if m.module_type == 'camera')
+IMU_TOPIC = f'/olive/imu/{IMU_NAMESPACE}/imu'
+IMU_COMMAND_TOPIC = f"/{node_name('imu', IMU_NAMESPACE)}/true_orientation"  # imu_sim's motion:=command
+CMD_VEL = '/turtle1/cmd_vel'
+COURSE_CMD_VEL = '/turtle/cmd_vel'  # section 4.3.2's text; turtlesim's turtle is turtle1
+CAMERA_TOPIC = f'/olive/camera/{_CAMERA.namespace}/image/compressed'
+PAN_RANGE = _SERVO_RANGES['pan']
+TILT_RANGE = _SERVO_RANGES['tilt']  # the camera bracket's
+START_TIMEOUT = 15.0  # s for a student's node to show up in the graph
+STOP_TIMEOUT = 8.0  # s for Ctrl-C to end a student's node
+PROBE_NODE = 'owl_check'
+# The simulated modules serve no web page during a check: a page binds the module's fixed address
+# (127.42.0.N), which the student's own kit may hold, and nobody watches it here.
+NO_WEB_PAGE = ('-p', 'web_port:=0')  # after --ros-args
+
+
+STANDARD_PARAMETERS = ('use_sim_time', 'qos_overrides.', 'start_type_description_service')
+
+
+def goal_topic(servo: str) -> str:
+    return f'/olive/servo/{servo}/goal/position'
+
+
+class Failed(Exception):
+    """A criterion failed in a way that leaves the rest of the check nothing to look at."""
+
+
+class Session:
+    """The processes of one check and the probe node that watches and drives them."""
+
+    def __init__(self) -> None:
+        self.sandbox = RosSandbox()
+        self.probe = Probe(self.sandbox.domain_id, PROBE_NODE)
+        self.node = self.probe.node
+        self.student_process: RosProcess | None = None
+        self.imu_command_publisher: Publisher | None = None  # hold_imu's, made on its first call
+        self.helpers: dict[str, RosProcess] = {}
+        self.decided = 0
+        self.stopped = False  # set at our Ctrl-C: an exit after it is no crash
+        self.temporary = tempfile.TemporaryDirectory(prefix='owl-check-')
+
+    # -- results ---------------------------------------------------------------------------------
+
+    def add(self, criterion: Criterion) -> bool:
+        process = self.student_process
+        if not criterion.passed and process is not None and not self.stopped and not process.running():
+            criterion.hint = (f'{criterion.hint}; ' if criterion.hint else '') + self.student_exit()
+        print(RESULT_PREFIX + json.dumps(criterion.__dict__), flush=True)
+        self.decided += 1
+        return criterion.passed
+
+    def require(self, criterion: Criterion) -> None:
+        if not self.add(criterion):
+            raise Failed(criterion.text)
+
+    def student_exit(self) -> str:
+        process = self.student_process
+        assert process is not None
+        return (
+            f'your node ended with exit code {process.popen.poll()}; its last lines: '
+            f'{judge.tail_lines(process.output)}'
+        )
+
+    # -- processes -------------------------------------------------------------------------------
+
+    def helper(self, package: str, executable: str, *args: str, env: dict | None = None) -> RosProcess:
+        process = self.sandbox.run(package, executable, *args, env=env)
+        self.helpers[executable] = process
+        return process
+
+    def kit(self, *modules: str, imu_command: bool = False) -> None:
+        """The simulated modules: 'imu', 'pan', 'tilt', 'camera' (nodes are waited for)."""
+        nodes = []
+        if 'imu' in modules:
+            motion = 'command' if imu_command else 'scripted'
+            self.helper(
+                'olive_sim',
+                'imu_sim',
+                '--ros-args',
+                '-p',
+                f'motion:={motion}',
+                '-p',
+                'seed:=1',
+                '-p',
+                'orientation_noise:=0.0',
+                *NO_WEB_PAGE,
+            )
+            nodes.append(node_name('imu', IMU_NAMESPACE))
+        for servo, (low, high) in (('pan', PAN_RANGE), ('tilt', TILT_RANGE)):
+            if servo in modules:
+                process = self.sandbox.run(
+                    'olive_sim',
+                    'servo_sim',
+                    '--ros-args',
+                    '-p',
+                    f'namespace:={servo}',
+                    '-p',
+                    f'min_position:={low}',
+                    '-p',
+                    f'max_position:={high}',
+                    *NO_WEB_PAGE,
+                    label=f'servo {servo}',
+                )
+                self.helpers[servo] = process
+                nodes.append(node_name('servo', servo))
+        if 'camera' in modules:
+            self.helper('olive_sim', 'camera_sim', '--ros-args', *NO_WEB_PAGE)
+            nodes.append(node_name('camera', _CAMERA.namespace))
+        for name in nodes:
+
+            def started(n: str = name) -> bool:
+                return n in self.node.get_node_names()
+
+            if not self.wait(started, 30.0):
+                raise RuntimeError(f'the simulated kit did not start ({name})')
+
+    def student(self, package: str, executable: str, *args: str, env: dict | None = None) -> RosProcess:
+        """`ros2 run package executable args` from the student's workspace."""
+        self.student_process = self.sandbox.command(
+            ['ros2', 'run', package, executable, *args], label=executable, env=env
+        )
+        return self.student_process
+
+    def student_launch(
+        self, package: str, launch_file: str, env: dict[str, str | None] | None = None
+    ) -> RosProcess:
+        self.student_process = self.sandbox.command(
+            ['ros2', 'launch', package, launch_file], label=launch_file, env=env
+        )
+        return self.student_process
+
+    def stop_student(
+        self, text: str = 'Ctrl-C stops the node cleanly (exit code 0, no traceback)', launch: bool = False
+    ) -> None:
+        process = self.student_process
+        assert process is not None
+        if not process.running():
+            self.add(Criterion(text, False, 'the node was no longer running at Ctrl-C'))
+            return
+        self.stopped = True
+        if launch:  # ros2 launch without a terminal passes Ctrl-C on to its nodes itself
+            os.kill(process.pid, signal.SIGINT)
+        else:
+            process.send_signal(signal.SIGINT)
+        try:
+            code = process.wait(STOP_TIMEOUT)
+        except Exception:
+            process.stop(2.0)
+            self.add(
+                Criterion(
+                    text,
+                    False,
+                    f'still running {STOP_TIMEOUT:g} s after Ctrl-C: catch '
+                    'KeyboardInterrupt around rclpy.spin and let main() return',
+                )
+            )
+            return
+        traceback = 'Traceback' in process.output
+        self.add(
+            Criterion(
+                text,
+                code == 0 and not traceback,
+                (
+                    f'exit code {code}{" with a traceback" if traceback else ""}: wrap rclpy.spin in '
+                    'try/except KeyboardInterrupt, then destroy_node() and rclpy.shutdown(); last lines: '
+                    f'{judge.tail_lines(process.output)}'
+                ),
+                f'exit code {code}',
+            )
+        )
+
+    def close(self) -> None:
+        # Ctrl-C to every process at once: the sandbox then waits for each in turn, and the kit's
+        # modules end together (0.4 s for four, where one after the other took 2.7 s).
+        for process in self.sandbox.processes:
+            process.send_signal(signal.SIGINT)
+        try:
+            self.probe.close()
+        finally:
+            self.sandbox.close()
+            self.temporary.cleanup()
+
+    # -- waiting and the graph -------------------------------------------------------------------
+
+    def wait(self, condition: Callable[[], bool], timeout: float) -> bool:
+        """Wait for condition; False at the timeout or as soon as the student's node has exited."""
+        deadline = time.monotonic() + timeout
+        while not condition():
+            process = self.student_process
+            if time.monotonic() > deadline or (process is not None and not process.running()):
+                return condition()
+            time.sleep(0.05)
+        return True
+
+    def endpoints(self, topic: str, kind: str) -> list[TopicEndpointInfo]:
+        lookup = (
+            self.node.get_publishers_info_by_topic
+            if kind == 'publishers'
+            else self.node.get_subscriptions_info_by_topic
+        )
+        return [
+            info
+            for info in lookup(topic)
+            if info.node_name not in (PROBE_NODE, '_NODE_NAME_UNKNOWN_')
+            and not info.node_name.startswith('olive_')
+        ]
+
+    def expect_endpoint(
+        self, topic: str, kind: str, type_name: str, hint: str, timeout: float = START_TIMEOUT
+    ) -> TopicEndpointInfo | None:
+        verb = 'publishes' if kind == 'publishers' else 'subscribes to'
+        text = f'{verb} {type_name} on {topic}'
+        self.wait(lambda: bool(self.endpoints(topic, kind)), timeout)
+        found = self.endpoints(topic, kind)
+        if not found:
+            self.add(Criterion(text, False, hint))
+            return None
+        types = sorted({info.topic_type for info in found})
+        return (
+            found[0]
+            if self.add(
+                Criterion(
+                    text, type_name in types, f'the type is {", ".join(types)}', f'node {found[0].node_name}'
+                )
+            )
+            else None
+        )
+
+    def collect(self, msg_type: Any, topic: str, qos: QoSProfile | int = 10) -> list[tuple[float, Any]]:
+        """(monotonic arrival time, message) of every message from now on."""
+        received: list[tuple[float, Any]] = []
+        self.node.create_subscription(msg_type, topic, lambda m: received.append((time.monotonic(), m)), qos)
+        return received
+
+    def call(self, srv_type: Any, service: str, request: Any, timeout: float = 10.0) -> Any | None:
+        client = self.node.create_client(srv_type, service)
+        try:
+            if not self.wait(lambda: client.service_is_ready(), timeout):
+                return None
+            deadline = time.monotonic() + timeout
+            while time.monotonic() < deadline:
+                future = client.call_async(request)
+                # Right after start-up the server may not know this client yet: ask again.
+                if self.wait(future.done, min(2.0, deadline - time.monotonic())):
+                    return future.result()
+                client.remove_pending_request(future)
+            return None
+        finally:
+            self.node.destroy_client(client)
+
+    def parameters(self, node: str) -> list[str]:
+        response = self.call(ListParameters, f'/{node}/list_parameters', ListParameters.Request())
+        return list(response.result.names) if response else []
+
+    def get_parameter(self, node: str, name: str) -> Any:
+        return self.get_parameters(node, [name]).get(name)
+
+    def get_parameters(self, node: str, names: list[str]) -> dict[str, Any]:
+        """The values of the parameters, in one service call (each call is a round trip)."""
+        response = self.call(GetParameters, f'/{node}/get_parameters', GetParameters.Request(names=names))
+        if response is None or len(response.values) != len(names):
+            return {}
+        return {name: parameter_value_to_python(v) for name, v in zip(names, response.values, strict=True)}
+
+    def own_parameters(self, node: str) -> dict[str, Any]:
+        """A node's parameters and values, without those rclpy declares for every node."""
+        names = [n for n in self.parameters(node) if not n.startswith(STANDARD_PARAMETERS)]
+        return self.get_parameters(node, names) if names else {}
+
+    def set_parameter(self, node: str, name: str, value: Any) -> tuple[bool, str]:
+        request = SetParameters.Request(parameters=[Parameter(name, value=value).to_parameter_msg()])
+        response = self.call(SetParameters, f'/{node}/set_parameters', request)
+        if response is None:
+            return False, f'/{node}/set_parameters did not answer'
+        result = response.results[0]
+        return result.successful, result.reason
+
+
+def values_since(
+    received: list[tuple[float, Any]], since: float, value: Callable[[Any], float]
+) -> list[float]:
+    return [value(message) for stamp, message in received if stamp >= since]
+
+
+def launch_files(package: str) -> list[Path]:
+    from ament_index_python.packages import get_package_share_directory
+
+    folder = Path(get_package_share_directory(package)) / 'launch'
+    return sorted(p for p in folder.glob('*') if p.suffix in ('.py', '.xml', '.yaml'))
+
+
+def workspace() -> Path:
+    return Path(os.environ.get(WORKSPACE_VARIABLE, '.'))
+
+
+def client_ended(s: Session, process: RosProcess) -> None:
+    """A service client's last criterion: it ends by itself once it has its answer (else it is stopped)."""
+    code = process.popen.poll()
+    s.add(
+        Criterion(
+            'ends by itself with exit code 0 after the answer',
+            code == 0,
+            'after the answer: destroy_node() and rclpy.shutdown(), so main() returns'
+            if code is None
+            else f'exit code {code}: {judge.tail_lines(process.output)}',
+            f'exit code {code}',
+        )
+    )
+    if process.running():
+        s.stop_student()

@@ -1,0 +1,304 @@
+"""Section 4.4.1: the keyboard and the IMU move the pan/tilt head."""
+
+from __future__ import annotations
+
+import itertools
+import time
+from pathlib import Path
+
+from owl_common.processes import RosProcess
+
+from owl_cli import check_criteria as judge
+from owl_cli.check_catalogue import Section
+from owl_cli.check_report import Criterion
+from owl_cli.check_session import (
+    IMU_TOPIC,
+    PAN_RANGE,
+    START_TIMEOUT,
+    TILT_RANGE,
+    Session,
+    goal_topic,
+)
+from owl_cli.exercises.section_4_3 import hold_imu, settle
+from owl_cli.exercises.section_4_4 import joint_positions, moved, numeric_parameters, scaled, torque_criterion
+
+SECTION = Section()
+
+
+def press(s: Session, process: RosProcess, *events: str) -> bool:
+    """Key events ('down left', 'up left') for the node's headless pygame window (owl_gui_hook)."""
+    windows = Path(s.temporary.name)
+    folders = list(windows.glob('*-*'))
+    if not folders:
+        return False
+    with open(folders[0] / 'keys', 'a') as keys:
+        for event in events:
+            keys.write(event + '\n')
+    return True
+
+
+def hold_keys(
+    s: Session, process: RosProcess, keys: tuple[str, ...], goals: dict[str, list], longest: float = 5.0
+) -> float:
+    """Hold keys until the goals stop changing (or longest s); return when it started."""
+    start = time.monotonic()
+    press(s, process, *(f'down {k}' for k in keys))
+
+    def settled() -> bool:
+        if time.monotonic() - start < 1.0:
+            return False
+        recent = [m.data for servo in goals for t, m in goals[servo] if t >= time.monotonic() - 0.5]
+        earlier = [
+            m.data
+            for servo in goals
+            for t, m in goals[servo]
+            if time.monotonic() - 0.7 <= t < time.monotonic() - 0.5
+        ]
+        return (
+            bool(recent)
+            and bool(earlier)
+            and max(recent) - min(recent) < 1e-3
+            and abs(recent[-1] - earlier[-1]) < 1e-3
+        )
+
+    s.wait(settled, longest)
+    press(s, process, *(f'up {k}' for k in keys))
+    return start
+
+
+@SECTION.check(
+    'keyboard_servos',
+    '4.4.1',
+    'olive_servo',
+    'arrow keys move the pan (left/right) and tilt (up/down) goals, within bounds',
+)
+def check_keyboard_servos(s: Session) -> None:
+    from std_msgs.msg import Float32
+
+    s.kit('pan', 'tilt')
+    goals = {servo: s.collect(Float32, goal_topic(servo)) for servo in ('pan', 'tilt')}
+    process = s.student(
+        'olive_servo',
+        'keyboard_servos',
+        env={
+            'DISPLAY': None,
+            'WAYLAND_DISPLAY': None,
+            'OWL_HEADLESS': '1',
+            'OWL_WINDOWS_DIR': s.temporary.name,
+        },
+    )
+    for servo in ('pan', 'tilt'):
+        s.expect_endpoint(
+            goal_topic(servo), 'publishers', 'std_msgs/msg/Float32', f'no publisher on {goal_topic(servo)}'
+        )
+    window = s.wait(lambda: press(s, process), START_TIMEOUT)
+    if not s.add(
+        Criterion(
+            'opens a pygame window for the keys',
+            window,
+            'pygame.display.set_mode(...) gives the window whose keys move the servos',
+        )
+    ):
+        s.stop_student()
+        return
+    s.wait(lambda: all(len(g) >= 5 for g in goals.values()), 5.0)
+    moves = {}
+    for keys in (('left', 'up'), ('right', 'down')):
+        start = hold_keys(s, process, keys, goals)
+        for servo, key in zip(('pan', 'tilt'), keys, strict=True):
+            values = [m.data for t, m in goals[servo] if t >= start]
+            moves[key] = (values, start)
+            range_ = PAN_RANGE if servo == 'pan' else TILT_RANGE
+            s.add(judge.bounded_goal(servo, values, *range_, f'{key.title()} is held'))
+    for servo, keys in (('pan', ('left', 'right')), ('tilt', ('up', 'down'))):
+        first, second = (moves[k][0] for k in keys)
+        swing = (max(first + second) - min(first + second)) if first + second else 0.0
+        s.add(
+            Criterion(
+                f'{keys[0].title()}/{keys[1].title()} move the {servo} goal',
+                swing >= 0.3,
+                f'holding {keys[0].title()} and {keys[1].title()} left the {servo} goal where it was: '
+                'read pygame.key.get_pressed() in the timer callback',
+                f'it swung {swing:.2f} rad',
+            )
+        )
+    s.stop_student()
+
+
+KEYBOARD_ENV_KEYS = ('DISPLAY', 'WAYLAND_DISPLAY')
+
+
+def start_keyboard_servos(s: Session) -> RosProcess:
+    env: dict[str, str | None] = {key: None for key in KEYBOARD_ENV_KEYS}
+    env.update({'OWL_HEADLESS': '1', 'OWL_WINDOWS_DIR': s.temporary.name})
+    return s.student('olive_servo', 'keyboard_servos', env=env)
+
+
+@SECTION.check(
+    'keyboard_servos_torque',
+    '4.4.1 +',
+    'olive_servo',
+    "keyboard_servos enables both servos' torque at start and disables it when it stops",
+    extra=True,
+)
+def check_keyboard_servos_torque(s: Session) -> None:
+    from std_msgs.msg import Float32
+
+    s.kit('pan', 'tilt')
+    goals = {servo: s.collect(Float32, goal_topic(servo)) for servo in ('pan', 'tilt')}
+    start_keyboard_servos(s)
+    s.wait(lambda: all(len(g) >= 5 for g in goals.values()), START_TIMEOUT)
+    for servo in ('pan', 'tilt'):
+        torque_criterion(s, servo, goals[servo])
+    s.stop_student()
+    disabled = s.wait(lambda: all('torque disabled' in s.helpers[v].output for v in ('pan', 'tilt')), 2.0)
+    s.add(
+        Criterion(
+            'Ctrl-C disables the pan and tilt torque (setTorqueDisable) before the node ends',
+            disabled,
+            'after rclpy.spin, call /olive/servo/pan/setTorqueDisable and '
+            '/olive/servo/tilt/setTorqueDisable; '
+            "(on a ROS 2 install of your own, Jazzy's Ctrl-C handler shuts ROS down first: there use "
+            'rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO))',
+            ', '.join(v for v in ('pan', 'tilt') if 'torque disabled' in s.helpers[v].output),
+        )
+    )
+
+
+@SECTION.check(
+    'keyboard_servos_speed',
+    '4.4.1 +',
+    'olive_servo',
+    'a parameter of keyboard_servos that adjusts the speed of the servos',
+    extra=True,
+)
+def check_keyboard_servos_speed(s: Session) -> None:
+    from std_msgs.msg import Float32
+
+    s.kit('pan', 'tilt')
+    pan = s.collect(Float32, goal_topic('pan'))
+    process = start_keyboard_servos(s)
+    window = s.wait(lambda: press(s, process) and len(pan) >= 5, START_TIMEOUT)
+    if not s.add(
+        Criterion(
+            'opens a pygame window and publishes pan goals',
+            window,
+            'pygame.display.set_mode(...) gives the window whose keys move the servos',
+        )
+    ):
+        s.stop_student()
+        return
+    keys = itertools.cycle(('left', 'right'))
+
+    def speed() -> float:
+        key = next(keys)
+        start = time.monotonic()
+        press(s, process, f'down {key}')
+        s.wait(lambda: time.monotonic() > start + 0.7, 1.0)
+        press(s, process, f'up {key}')
+        samples = [(t, m.data) for t, m in pan if start + 0.2 <= t <= start + 0.7]
+        return judge.slope([(t, v) for t, v in samples if PAN_RANGE[0] + 0.01 < v < PAN_RANGE[1] - 0.01])
+
+    before = speed()
+    found, detail = None, []
+    for name, value in numeric_parameters(s, 'keyboard_servos', ('speed', 'step', 'vel', 'rate', 'gain')):
+        if any(word in name.lower() for word in ('min', 'max', 'limit', 'bound')):
+            continue  # the goals' bounds, not their speed
+        changed = scaled(value, 2.0)
+        ok, _ = s.set_parameter('keyboard_servos', name, changed)
+        if not ok:
+            continue
+        after = speed()
+        s.set_parameter('keyboard_servos', name, value)
+        detail.append(f'{name} {value}->{changed}: {before:.2f}->{after:.2f} rad/s')
+        if before > judge.STILL and abs(after - before) > 0.3 * before:
+            found = name
+            break
+        before = speed()
+    s.add(
+        Criterion(
+            'a parameter changes how fast a held key moves the servo (ros2 param set)',
+            found is not None,
+            "declare_parameter('speed', 1.0) and scale each step of the goal by "
+            "self.get_parameter('speed').value in the timer callback",
+            '; '.join(detail) or 'no numeric parameter',
+        )
+    )
+    s.stop_student()
+
+
+@SECTION.check(
+    'imu_control_robot',
+    '4.4.1',
+    'olive_servo',
+    'the IMU points the pan/tilt head: goals follow yaw and pitch, within bounds',
+)
+def check_imu_control_robot(s: Session) -> None:
+    from std_msgs.msg import Float32
+
+    s.kit('imu', 'pan', 'tilt', imu_command=True)
+    hold_imu(s, 0.0, 0.0, 0.0)
+    goals = {servo: s.collect(Float32, goal_topic(servo)) for servo in ('pan', 'tilt')}
+    joints = joint_positions(s, 'pan')
+    s.student('olive_servo', 'imu_control_robot')
+    s.expect_endpoint(IMU_TOPIC, 'subscriptions', 'sensor_msgs/msg/Imu', f'no subscription on {IMU_TOPIC}')
+    for servo in ('pan', 'tilt'):
+        s.expect_endpoint(
+            goal_topic(servo), 'publishers', 'std_msgs/msg/Float32', f'no publisher on {goal_topic(servo)}'
+        )
+    s.wait(lambda: all(len(g) >= 3 for g in goals.values()), 10.0)
+
+    def last(servo: str, since: float) -> float | None:
+        values = [m.data for t, m in goals[servo] if t >= since]
+        return judge.mean(values[-5:]) if values else None
+
+    results = {}
+    for name, (pitch, yaw) in {'yaw': (0.0, 0.6), 'pitch': (0.5, 0.0)}.items():
+        start = time.monotonic()
+        settle(s, goals['pan'], 0.0, pitch, yaw, lambda m: (m.data,), 1.2)
+        results[name] = (last('pan', start + 0.6), last('tilt', start + 0.6))
+    pan_yaw, tilt_yaw = results['yaw']
+    pan_pitch, tilt_pitch = results['pitch']
+    if pan_yaw is None or tilt_yaw is None or pan_pitch is None or tilt_pitch is None:
+        s.add(
+            Criterion(
+                'sends pan and tilt goals while the IMU turns',
+                False,
+                'publish a goal for each servo from each IMU message (or a timer)',
+            )
+        )
+    else:
+        s.add(
+            Criterion(
+                'the pan goal follows the yaw (turning the IMU left turns the head left)',
+                abs(pan_yaw - 0.6) <= 0.15 and abs(pan_pitch) <= 0.15,
+                'pan must be the yaw angle and tilt the pitch angle from equations (3); check which '
+                'angle goes to which servo and its sign',
+                f'pan {pan_yaw:+.2f} rad at yaw +0.60, {pan_pitch:+.2f} rad at pitch +0.50',
+            )
+        )
+        s.add(
+            Criterion(
+                'the tilt goal follows the pitch (tilting the IMU forward tilts the camera down)',
+                abs(tilt_pitch - 0.5) <= 0.15 and abs(tilt_yaw) <= 0.15,
+                'tilt must be the pitch angle from equations (3); check which angle goes to which '
+                'servo and its sign',
+                f'tilt {tilt_pitch:+.2f} rad at pitch +0.50, {tilt_yaw:+.2f} rad at yaw +0.60',
+            )
+        )
+    start = time.monotonic()
+    settle(s, goals['pan'], 0.0, 1.4, 2.6, lambda m: (m.data,), 1.5)
+    for servo, range_ in (('pan', PAN_RANGE), ('tilt', TILT_RANGE)):
+        values = [m.data for t, m in goals[servo] if t >= start]
+        s.add(judge.bounded_goal(servo, values, *range_, 'the IMU turns far (yaw 2.6, pitch 1.4 rad)'))
+    torque_criterion(s, 'pan', goals['pan'])
+    swing = moved(joints)
+    s.add(
+        Criterion(
+            'the pan servo moves with the IMU',
+            swing >= 0.3,
+            'the servo does not follow the goals',
+            f'it turned {swing:.2f} rad',
+        )
+    )
+    s.stop_student()
