@@ -105,7 +105,8 @@ def free_port() -> int:
 
 class PageWatcher:
     """A browser's share of the work, without a browser: each module page's WebSocket subscribed to
-    System Status, and the IMU's and camera's to their Debug GUI orientation."""
+    System Status, and the IMU's and camera's to their Debug GUI orientation.
+    """
 
     def __init__(self, port: int) -> None:
         import aiohttp

@@ -80,7 +80,7 @@ def yaw_quaternion(yaw: float) -> Quaternion:
 
 
 def measure_page(page, timings: Timings, samples: int, pause: float) -> tuple[list[float], list[float]]:
-    """ms from the mouse move to the pan moving, and to robot_view's hold_imu on DDS."""
+    """Ms from the mouse move to the pan moving, and to robot_view's hold_imu on DDS."""
     to_moving, to_command = [], []
     for sample in range(samples):
         start_position = timings.settle(pause)
@@ -99,7 +99,7 @@ def measure_page(page, timings: Timings, samples: int, pause: float) -> tuple[li
 
 
 def measure_direct(probe: Probe, timings: Timings, samples: int, pause: float) -> list[float]:
-    """ms from publishing a 0.2 rad turn on true_orientation to the pan moving."""
+    """Ms from publishing a 0.2 rad turn on true_orientation to the pan moving."""
     publisher = probe.node.create_publisher(Quaternion, TRUE_ORIENTATION, 10)
     publisher.publish(yaw_quaternion(0.0))
     results = []

@@ -48,7 +48,8 @@ def timed(sandbox: RosSandbox, argv: list[str]) -> tuple[float, str]:
 def sample(sandbox: RosSandbox, argv: list[str], runs: int, complete: re.Pattern[str],
            before: list[list[str]] | None = None) -> tuple[float, int]:
     """Median wall time over runs, and how many runs saw all NODES entities; the commands in before
-    run (untimed) ahead of each run."""
+    run (untimed) ahead of each run.
+    """
     times, full = [], 0
     for _ in range(runs):
         for command in before or []:

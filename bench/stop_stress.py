@@ -114,7 +114,8 @@ def course_main(make_node: Callable[[], Node], options: SignalHandlerOptions, co
 
 def owl_common_main(make_node: Callable[[], Node]) -> None:
     """The main() the course's nodes had before: owl_common.run's stop request (never raises inside
-    rclpy while it spins; polls every 0.1 s) and teardown watchdog."""
+    rclpy while it spins; polls every 0.1 s) and teardown watchdog.
+    """
     stop = init_with_stop_request()
     node = None
     try:
@@ -132,7 +133,8 @@ def owl_common_main(make_node: Callable[[], Node]) -> None:
 
 def flood_imu() -> None:
     """Publish a level IMU's messages on imu_turtle's topic as fast as Python can (--flood): the
-    nodes then take a message most of the time, where a KeyboardInterrupt can land in rclpy."""
+    nodes then take a message most of the time, where a KeyboardInterrupt can land in rclpy.
+    """
     rclpy.init()
     node = Node('imu_flood')
     publisher = node.create_publisher(Imu, DEFAULT_IMU_TOPIC, qos_profile_sensor_data)

@@ -97,7 +97,8 @@ def upper_bound(count: int, total: int, confidence: float = 0.95) -> float:
 
 def native_stacks(pid: int) -> str:
     """Every thread's innermost native frames (Fast DDS threads are not Python threads, so the
-    watchdog's dump cannot show them)."""
+    watchdog's dump cannot show them).
+    """
     gdb = shutil.which('gdb')
     if gdb is None:
         return '(no gdb on PATH: no native stacks)'
@@ -252,7 +253,8 @@ class PairLoop:
 
 def version(*distributions: str) -> str:
     """The version of the first of these wheels that is installed (Fast DDS 3 is ros-fastdds, 2.x
-    ros-fastrtps; the ros-rclpy wheel's version, not that of the rclpy egg-info inside it)."""
+    ros-fastrtps; the ros-rclpy wheel's version, not that of the rclpy egg-info inside it).
+    """
     for distribution in distributions:
         try:
             return importlib.metadata.version(distribution)

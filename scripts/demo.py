@@ -95,7 +95,8 @@ def report_line(elapsed: float, state: RobotState, fps: float) -> str:
 
 def robot_view_port(preferred: int = ROBOT_VIEW_PORT) -> int:
     """The preferred port when it is free on 127.0.0.1 (a robot_view or another demo may have it), else 0:
-    robot_view then picks a free one and prints it."""
+    robot_view then picks a free one and prints it.
+    """
     with socket.socket() as probe:
         try:
             probe.bind(('127.0.0.1', preferred))

@@ -215,7 +215,8 @@ def prepare_cv2() -> object:
 
 def keep_font_dir(before: str | None) -> object:
     """The patch for real windows: fonts for the wheel's Qt. cv2's loader points QT_QPA_FONTDIR at a
-    folder the wheel does not ship, and Qt then prints ten lines per window about missing fonts."""
+    folder the wheel does not ship, and Qt then prints ten lines per window about missing fonts.
+    """
 
     def patch(cv2: object) -> None:
         if before and os.path.isdir(before):
@@ -317,7 +318,8 @@ def windows_root(environ: dict[str, str]) -> str | None:
 
 def private_root(root: str) -> None:
     """Make the windows folder's root, only the user's (0700); OSError if it is someone else's: another
-    user could otherwise watch these windows or press their keys."""
+    user could otherwise watch these windows or press their keys.
+    """
     os.makedirs(root, mode=0o700, exist_ok=True)
     if os.stat(root).st_uid != os.getuid():
         raise PermissionError(13, 'it belongs to another user')
@@ -354,7 +356,7 @@ CV2_NAMED_KEYS = {
 
 
 def cv2_key_code(key: str) -> int | None:
-    """waitKeyEx's value for a pygame key name, None for a key we do not know."""
+    """WaitKeyEx's value for a pygame key name, None for a key we do not know."""
     if len(key) == 1:
         return ord(key)
     return CV2_NAMED_KEYS.get(key)
@@ -431,7 +433,8 @@ class WindowsFolder:
 
     def show(self, file_name: str, frame: object, encode: object, copy: object) -> None:
         """Write encode(frame) now if the rate allows, else keep copy(frame) to write when it does
-        (the program may draw into its frame again before then)."""
+        (the program may draw into its frame again before then).
+        """
         import time
 
         if not self.make():

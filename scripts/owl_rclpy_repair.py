@@ -163,7 +163,8 @@ class CtrlCAsOnHumble:
 
         Another Ctrl-C (the launcher's copy) is ignored from here: Python soon gives SIGINT back its
         default action, which would kill the process before DDS says goodbye, and other nodes
-        would list this one until its lease ran out."""
+        would list this one until its lease ran out.
+        """
         if cls.pressed_at is not None:
             signal.signal(signal.SIGINT, signal.SIG_IGN)
             import rclpy
@@ -172,7 +173,8 @@ class CtrlCAsOnHumble:
 
 def raise_ctrl_c(signum: int, frame: object) -> None:
     """One Ctrl-C, one CtrlC: the copy that `ros2 launch` passes on to a node that the terminal
-    already signalled must not cut the clean-up that the first one started."""
+    already signalled must not cut the clean-up that the first one started.
+    """
     now = time.monotonic()
     last = CtrlCAsOnHumble.pressed_at
     if last is not None and now - last < SAME_PRESS:

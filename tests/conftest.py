@@ -30,7 +30,8 @@ def ros():
 @pytest.fixture(scope='module')
 def browser():
     """Headless Chromium (Debian's, through Playwright), started once per test module: while it runs,
-    Playwright's event loop is the main thread's, where no other test could run one (asyncio.run)."""
+    Playwright's event loop is the main thread's, where no other test could run one (asyncio.run).
+    """
     missing = chromium_missing()
     if missing:
         prerequisite_missing(missing)
@@ -54,7 +55,8 @@ def page(browser):
 @pytest.hookimpl(wrapper=True)
 def pytest_runtest_call(item: pytest.Item):
     """A test that passed fails if its page logged a console error or threw: a page that works
-    only on the surface is not working."""
+    only on the surface is not working.
+    """
     result = yield
     page = item.funcargs.get('page') if hasattr(item, 'funcargs') else None
     if isinstance(page, BrowserPage) and page.console_errors:
@@ -66,7 +68,8 @@ def pytest_runtest_call(item: pytest.Item):
 @pytest.hookimpl(hookwrapper=True)
 def pytest_runtest_makereport(item, call):
     """A failed test also shows what each of its ROS processes printed last and whether it exited:
-    a node that crashed or hung at start-up is otherwise invisible behind a graph timeout."""
+    a node that crashed or hung at start-up is otherwise invisible behind a graph timeout.
+    """
     outcome = yield
     report = outcome.get_result()
     if report.when != 'call' or not report.failed:
@@ -103,7 +106,8 @@ SLOT_DIR = Path(os.environ.get('OWL_TEST_SLOT_DIR', LEASE_DIR.parent / 'owl-kit-
 def pytest_runtest_protocol(item: pytest.Item,
                             nextitem: pytest.Item | None) -> Generator[None, object, object]:
     """A system test runs (with its rerun, fixtures and timeout) only while it holds a slot; the
-    wait is outside its timeout."""
+    wait is outside its timeout.
+    """
     if not item.path.is_relative_to(SYSTEM_TESTS):
         return (yield)
     while (slot := try_lock_file(SLOT_DIR, SYSTEM_TEST_SLOTS, os.getpid())) is None:
@@ -165,7 +169,8 @@ RAISED = re.compile(r'\b[A-Z]\w*(Error|Exception|Interrupt): ')
 def first_line(report: pytest.TestReport) -> str:
     """A failure report's exception in one line, as in pytest's short test summary. When the
     assertion's message is a process's output (a launch's starts with its log folder), the last
-    exception that output names says more than its first line, so that one is shown."""
+    exception that output names says more than its first line, so that one is shown.
+    """
     crash = getattr(report.longrepr, 'reprcrash', None)
     text = crash.message if crash is not None else report.longreprtext
     lines = [line.strip() for line in text.splitlines() if line.strip()] or ['(no message)']
@@ -180,7 +185,8 @@ def first_line(report: pytest.TestReport) -> str:
 @pytest.hookimpl(wrapper=True, tryfirst=True)
 def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> Generator[None, None, None]:
     """A flake is never silent: after every other summary, just above the final counts line (which
-    CI reads), one line per test that needed its second run."""
+    CI reads), one line per test that needed its second run.
+    """
     result = yield
     if RERUNS:
         terminalreporter.write_line(

@@ -105,7 +105,8 @@ class VirtualDisplay:
 
     def press(self, window: str, key: str, seconds: float) -> None:
         """Hold an X key (e.g. 'Left') in a window for the given time, as a keyboard does (XTEST to
-        the focused window; Xvfb has no window manager to give the focus, so it is set first)."""
+        the focused window; Xvfb has no window manager to give the focus, so it is set first).
+        """
         self.xdotool('windowfocus', '--sync', window)
         self.xdotool('keydown', key)
         time.sleep(seconds)
@@ -113,7 +114,8 @@ class VirtualDisplay:
 
     def type(self, window: str, *keys: str) -> None:
         """Type X keys (Left, a, Escape) into a window as a keyboard does (XTEST, not XSendEvent,
-        which Qt ignores): the window gets the focus first (Xvfb has no window manager)."""
+        which Qt ignores): the window gets the focus first (Xvfb has no window manager).
+        """
         self.xdotool('windowfocus', '--sync', window)
         self.xdotool('key', '--delay', '50', *keys)
 
@@ -132,6 +134,7 @@ class VirtualDisplay:
 
 class ClientMessage(ctypes.Structure):
     """Xlib's XClientMessageEvent with 32-bit data (X11/Xlib.h)."""
+
     _fields_ = [('type', ctypes.c_int), ('serial', ctypes.c_ulong), ('send_event', ctypes.c_int),
                 ('display', ctypes.c_void_p), ('window', ctypes.c_ulong), ('message_type', ctypes.c_ulong),
                 ('format', ctypes.c_int), ('data', ctypes.c_long * 5)]
@@ -146,7 +149,8 @@ X_CLIENT_MESSAGE = 33  # ClientMessage in X11/X.h
 
 def send_close_request(display_name: str, window: int) -> None:
     """Send a window the WM_PROTOCOLS/WM_DELETE_WINDOW message that a window manager sends when its
-    close button is clicked (xdotool 3.2016 can only destroy a window or kill its client)."""
+    close button is clicked (xdotool 3.2016 can only destroy a window or kill its client).
+    """
     library = ctypes.util.find_library('X11')
     if library is None:
         prerequisite_missing(MISSING.format(program='libX11', package='libx11-6'))

@@ -33,7 +33,8 @@ class TestLan(Lan):
 
     def run(self, host: str, command: str, env: dict[str, str], label: str | None = None) -> RosProcess:
         """A shell command on a host after `source env.sh`; env sets OWL_NETWORK, ROS_DOMAIN_ID... as a
-        user's shell would (the test's own discovery range is not passed on)."""
+        user's shell would (the test's own discovery range is not passed on).
+        """
         process_env = {k: v for k, v in os.environ.items() if not k.startswith('ROS_AUTOMATIC_DISCOVERY')}
         process_env.update(env, PYTHONUNBUFFERED='1', RCUTILS_LOGGING_BUFFERED_STREAM='1')
         argv = self.exec_argv(host, ['bash', '-c', f'source {ROOT}/env.sh && exec {command}'])

@@ -1,5 +1,6 @@
 """Helpers of the system tests that drive olive_sim's servos: start a kit servo, watch its topics,
-check that it never saw a goal before its torque was on nor one outside its bounds."""
+check that it never saw a goal before its torque was on nor one outside its bounds.
+"""
 
 from typing import Any
 

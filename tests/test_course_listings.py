@@ -71,7 +71,8 @@ def run_once(ros: RosHarness, listing: Listing, round_number: int,
 
     Each copy's node gets a name of its own (`--ros-args -r __node:=...`, which rclpy.init() reads
     from the command line as it would a student's), so a copy is known to be up by its own name,
-    whatever the graph still remembers of the last round."""
+    whatever the graph still remembers of the last round.
+    """
     names = [f'{listing.node}_{round_number}_{index}' for index in range(len(delays))]
     started = [ros.command(['python', str(LISTINGS / listing.script), *listing.args,
                             '--ros-args', '-r', f'__node:={name}'],
@@ -128,7 +129,8 @@ def test_ctrl_c_at_any_moment_ends_a_listing_cleanly(ros: RosHarness, listing: L
 
 def test_the_listings_are_the_courses_own_lines():
     """Each line of a listing is a line of the course (the course is beside the repository while
-    it is written; a clean clone alone has only the listings)."""
+    it is written; a clean clone alone has only the listings).
+    """
     course_dir = Path(__file__).resolve().parents[2] / 'shared' / 'course'
     if not course_dir.is_dir():
         pytest.skip('the course text is not beside this clone')

@@ -37,7 +37,8 @@ def test_a_missing_prerequisite_skips_here_and_fails_in_ci(tmp_path: Path, ci: b
 
 def machine_without_the_programs(tmp_path: Path) -> Path:
     """A PATH with only what the script needs to run, none of the programs it looks for, and an
-    apt-get that fails (as on a machine whose package mirror is unreachable)."""
+    apt-get that fails (as on a machine whose package mirror is unreachable).
+    """
     path = tmp_path / 'bin'
     path.mkdir()
     for tool in ('bash', 'id', 'mkdir', 'dirname'):

@@ -60,7 +60,8 @@ def stop_twin(twin):
 
 def seconds_until_listing(sandbox, condition, timeout=10.0):
     """Seconds from now to the start of the first `ros2 node list` whose answer meets the condition
-    (each call takes a while itself; what counts is when it was asked)."""
+    (each call takes a while itself; what counts is when it was asked).
+    """
     started = time.monotonic()
     while time.monotonic() < started + timeout:
         asked = time.monotonic()
@@ -151,7 +152,8 @@ def test_without_the_graph_partition_a_humble_module_gets_messages_it_misreads(t
 def test_a_stock_jazzy_install_beside_ours_sees_our_topics_not_our_node_names_and_we_see_its_nodes(tmp_path):
     """A student's normal Jazzy (no profile of ours) beside our processes: nothing breaks; it lists
     our topics but not our nodes (our graph messages are in our partition), and our tools list its
-    node through the discovery bridge."""
+    node through the discovery bridge.
+    """
     stock_script = tmp_path / 'stock_jazzy.py'
     stock_script.write_text(
         'import time, rclpy\n'

@@ -1,7 +1,8 @@
 """keyboard_servos over real DDS against olive_sim's servos: arrow keys pressed in its real window
 under Xvfb, and key events through the headless seam (scripts/owl_gui_hook.py); which arrow turns
 which servo which way, goals within the bounds, torque on before the first goal and off after
-Ctrl-C, the speed and bound parameters and their bad values."""
+Ctrl-C, the speed and bound parameters and their bad values.
+"""
 
 import signal
 import time

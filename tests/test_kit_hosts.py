@@ -23,14 +23,16 @@ PULLED_FOR = 12.0      # s: longer than the participants' 10 s lease (config/fas
 
 def positions(process) -> list[float]:
     """Joint positions a `ros2 topic echo ... --field position` process has printed so far (a
-    float64[] field prints as Python's array, `array('d', [0.25])`, as upstream's echo does)."""
+    float64[] field prints as Python's array, `array('d', [0.25])`, as upstream's echo does).
+    """
     return [float(v) for v in re.findall(r"^array\('d', \[([-+0-9.e]+)\]\)$", process.output, re.M)]
 
 
 @pytest.fixture
 def classroom():
     """A student's PC and, not on the kit's bridge, a second machine (both namespaces); the PC runs
-    kit_hosts, which joins it to the kit's bridge at 10.42.0.1."""
+    kit_hosts, which joins it to the kit's bridge at 10.42.0.1.
+    """
     lan = TestLan()
     try:
         lan.add_host('pc', None)
@@ -77,7 +79,8 @@ def descendants(pid: int) -> list[int]:
 
 def set_module_link(kit, module_argument: str, state: str) -> None:
     """Pull out (down) or plug in (up) a module host's cable. kit_hosts made its namespaces inside
-    the PC's own mount namespace, so they are entered through the module process's /proc entry."""
+    the PC's own mount namespace, so they are entered through the module process's /proc entry.
+    """
     for pid in descendants(kit.pid):
         try:
             command = Path(f'/proc/{pid}/cmdline').read_bytes().split(b'\0')

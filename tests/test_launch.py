@@ -1,6 +1,7 @@
 """`ros2 launch` end to end with small executables: actions, substitutions, conditions and event
 handlers in Python, XML and YAML files; process output, crashes, respawn, signal escalation,
-Ctrl-C; and every kind of bad input (one readable error, exit code 1, no process left behind)."""
+Ctrl-C; and every kind of bad input (one readable error, exit code 1, no process left behind).
+"""
 
 import os
 import re
@@ -518,7 +519,8 @@ time.sleep(1.0)
 
 def test_interactive_launch_leaves_ctrl_c_to_the_terminal(ros, tmp_path):
     """With a terminal on stdin, the terminal's Ctrl-C reaches every child itself: launch must not
-    send a second SIGINT.  Without one (scripts, CI) launch forwards it, as upstream does."""
+    send a second SIGINT.  Without one (scripts, CI) launch forwards it, as upstream does.
+    """
     script = write(tmp_path, 'count.py', COUNT_SIGINT)
     path = write(tmp_path, 'count.launch.xml', f'''
         <launch>

@@ -70,7 +70,8 @@ def group_of(package: str) -> str:
 @cache
 def module_owners() -> dict[str, str]:
     """Top-level Python module -> the package that installs it (interface packages generate a module
-    named after themselves)."""
+    named after themselves).
+    """
     owners = {name: name for name in packages()}
     for name, folder in packages().items():
         for child in folder.iterdir():
@@ -96,7 +97,8 @@ def imports(package: str) -> list[tuple[Path, str, set[str]]]:
 
 def is_interface_package(package: str) -> bool:
     """Messages and services only (olive_interfaces): `owl check` calls the course's services with
-    the course's own types, so the tools may import these, never the course's nodes."""
+    the course's own types, so the tools may import these, never the course's nodes.
+    """
     folder = packages()[package]
     return (folder / 'CMakeLists.txt').is_file() and any((folder / kind).is_dir() for kind in ('msg', 'srv'))
 

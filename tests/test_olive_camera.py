@@ -1,6 +1,7 @@
 """olive_camera over real DDS against olive_sim's camera: display_camera without a display (one line,
 the camera's images in its window's seam) and with one (a real window under Xvfb), the launch file
-with the kit, the QoS the course chose and why, bad input, Ctrl-C."""
+with the kit, the QoS the course chose and why, bad input, Ctrl-C.
+"""
 
 import signal
 import time

@@ -1,5 +1,6 @@
 """olive_imu's imu_turtle over real DDS: which IMU tilt drives the turtle which way, the launch file,
-the scripted IMU driving it around, bad input, Ctrl-C."""
+the scripted IMU driving it around, bad input, Ctrl-C.
+"""
 
 import math
 import signal

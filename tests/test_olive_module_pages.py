@@ -3,7 +3,8 @@ kit processes, in Chromium (web_harness.py): every page loads with live data and
 Restart Services brings a servo back and imu_control_robot moves it again, an IP change moves the
 page (bad, outside and taken addresses are refused in one line), Reboot Device waits its boot, and
 bad input on every endpoint gets one line while the module keeps running.
-docs/screenshots/module_*.png are made here."""
+docs/screenshots/module_*.png are made here.
+"""
 
 from __future__ import annotations
 

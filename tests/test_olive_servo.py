@@ -1,6 +1,7 @@
 """olive_servo over real DDS against olive_sim's servos: control_servo's sine, the appendix's
 pid_testing, imu_control_robot; torque on before any goal and off after Ctrl-C, signs, bounds,
-bad input."""
+bad input.
+"""
 
 import itertools
 import math

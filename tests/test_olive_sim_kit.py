@@ -9,7 +9,8 @@ from std_srvs.srv import Trigger
 
 def first_answer(ros, argv):
     """A fresh `ros2` process's answer: complete the first time (ros2cli waits until discovery of
-    every local participant has settled), as a student at the kit sees it."""
+    every local participant has settled), as a student at the kit sees it.
+    """
     process = ros.command(argv, label=argv[1])
     assert process.wait(30) == 0, process.output
     return process

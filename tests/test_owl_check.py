@@ -168,7 +168,8 @@ FRESH_DUMP = """/turtlesim:
 @pytest.mark.timeout(300)
 def test_all_in_a_workspace_of_ros2_pkg_create_and_an_unedited_parameter_file(tmp_path):
     """Section 3.4's command makes a package that passes; ~/Documents/turtlesim.yaml straight from
-    ros2 param dump was never edited; --all checks just these two (3.6's choice: none attempted)."""
+    ros2 param dump was never edited; --all checks just these two (3.6's choice: none attempted).
+    """
     workspace, home = tmp_path / 'ws', tmp_path / 'home'
     (workspace / 'src').mkdir(parents=True)
     (home / 'Documents').mkdir(parents=True)

@@ -1,6 +1,7 @@
 """`owl windows` with real programs without a display: a student's OpenCV viewer and pygame key
 reader (tests/student_scripts/) show on the page in Chromium, live; keys pressed on the page reach
-the pygame program; bad input gets one line. docs/screenshots/owl_windows.png is made here."""
+the pygame program; bad input gets one line. docs/screenshots/owl_windows.png is made here.
+"""
 
 import re
 import sys

@@ -105,7 +105,8 @@ def test_ctrl_c_inside_a_take_ends_the_node_cleanly(ros, tmp_path: Path, entity:
 
 def test_a_task_whose_construction_ctrl_c_cut_short_is_deleted_quietly():
     """A Ctrl-C inside a Task's constructor (before its attributes are set) stops the node, and its
-    __del__ must not then print "Exception ignored ... has no attribute '_exception'"."""
+    __del__ must not then print "Exception ignored ... has no attribute '_exception'".
+    """
     deleted = subprocess.run(
         [sys.executable, '-c', 'import gc, rclpy.executors\n'
          'from rclpy.task import Task\n'

@@ -1,6 +1,7 @@
 """robot_view over real DDS with the real kit processes, its page in Chromium (web_harness.py): the
 model follows the servos, the mouse holds the IMU and the head follows it (imu_control_robot), the
-camera shows at its rate, and bad input gets one line. docs/screenshots/robot_view.png is made here."""
+camera shows at its rate, and bad input gets one line. docs/screenshots/robot_view.png is made here.
+"""
 
 import math
 import re

@@ -1,7 +1,8 @@
 """robot_view's live plots and servo controls over real DDS with the kit's processes, its page in
 Chromium: a Kp change shows in the plotted step response, the goal buttons move the servo, the
 torque switch switches, Pause freezes the plots, and bad input gets one line and reaches no servo.
-docs/screenshots/robot_view_plots.png is made here."""
+docs/screenshots/robot_view_plots.png is made here.
+"""
 
 from __future__ import annotations
 
@@ -63,7 +64,8 @@ def torque_enabled(diagnostics: list[DiagnosticStatus]) -> bool | None:
 
 def step_response(plotted: dict[str, list[float | None]], goal: float) -> dict[str, float]:
     """Rise time (10-90 %), overshoot and remaining error of the last step to `goal` in a plot read
-    from the page ({x, goal, position, effort})."""
+    from the page ({x, goal, position, effort}).
+    """
     x, goals, positions = plotted['x'], plotted['goal'], plotted['position']
     steps = [i for i in range(1, len(x)) if goals[i] == goal and goals[i - 1] != goal]
     assert steps, f'no step to {goal} in the plot: goals {sorted({g for g in goals if g is not None})}'

@@ -1,6 +1,7 @@
 """`rqt` (package rqt_web) over real DDS: the page, Node Graph, Message Publisher, Service Caller and
 Image View through the HTTP API and the WebSocket the page uses, bad input, port handling and Ctrl-C.
-(test_rqt_browser.py drives the page itself in Chromium.)"""
+(test_rqt_browser.py drives the page itself in Chromium.)
+"""
 
 import io
 import re

@@ -62,7 +62,8 @@ class Browser:
 
 class BrowserPage:
     """A Playwright page (its methods are this object's) that keeps every console error and
-    uncaught exception; conftest.py fails the test that leaves any."""
+    uncaught exception; conftest.py fails the test that leaves any.
+    """
 
     def __init__(self, page: Any) -> None:
         self.page = page
@@ -81,7 +82,8 @@ class BrowserPage:
         full_page, else the viewport). A picture that hardly differs from the one there (a live
         page is never the same twice: the camera's clock, the plots' noise) leaves the file as it
         is, so a test run does not dirty the tree when the page did not change; OWL_SCREENSHOTS=always
-        writes it anyway (after a change too small for that test, say)."""
+        writes it anyway (after a change too small for that test, say).
+        """
         SCREENSHOTS.mkdir(parents=True, exist_ok=True)
         path = SCREENSHOTS / f'{name}.png'
         picture = self.page.screenshot(full_page=full_page)
@@ -100,7 +102,8 @@ VISIBLE_DIFFERENCE = 48  # of 255 in any colour channel
 
 def nearly_the_same(old_png: bytes, new_png: bytes) -> bool:
     """Whether two screenshots show the same page: the same size, and at most SAME_PICTURE_PIXELS of
-    their pixels differ by more than VISIBLE_DIFFERENCE."""
+    their pixels differ by more than VISIBLE_DIFFERENCE.
+    """
     import cv2  # here: only a test that takes a picture needs OpenCV loaded
     import numpy
     old, new = (cv2.imdecode(numpy.frombuffer(png, numpy.uint8), cv2.IMREAD_COLOR)
@@ -121,7 +124,8 @@ class SocketClosed(Exception):
 
 class PageSocket:
     """A page's WebSocket (/ws of an owl_web server) from a test, through aiohttp's client on an
-    event loop of its own thread."""
+    event loop of its own thread.
+    """
 
     def __init__(self, base_url: str) -> None:
         self._loop = asyncio.new_event_loop()

@@ -27,7 +27,8 @@ def next_call(last_due: float, now: float, period: float, catch_up: float) -> tu
     """The next call's due time after the one due at last_due, and how long to wait for it (<= 0:
     call at once). The schedule does not drift; calls the thread missed while the machine held it
     up are made up back to back while they are at most catch_up (and always one period) late, so a
-    100 Hz sensor still gives 100 samples a second; further behind, the schedule restarts now."""
+    100 Hz sensor still gives 100 samples a second; further behind, the schedule restarts now.
+    """
     due = last_due + period
     if now - due > max(period, catch_up):
         return now, 0.0

@@ -32,7 +32,8 @@ LEASE_DIR = Path(os.environ.get('OWL_DOMAIN_LEASE_DIR', '/tmp/owl-kit-lab-domain
 def try_lock_file(directory: Path, ids: Sequence[int], start: int = 0) -> tuple[int, IO[str]] | None:
     """The first of ids, counting from index start and wrapping, whose lock file in directory no
     process holds, locked until the returned handle is closed (or the process ends); None when all
-    are held. How concurrent runs on one machine share domains and test slots."""
+    are held. How concurrent runs on one machine share domains and test slots.
+    """
     directory.mkdir(parents=True, exist_ok=True)
     for offset in range(len(ids)):
         chosen = ids[(start + offset) % len(ids)]
@@ -65,7 +66,8 @@ class DomainLease:
 def isolated_env(domain_id: int, base: dict[str, str] | None = None,
                  discovery_range: str = 'LOCALHOST') -> dict[str, str]:
     """The environment for processes that must only see each other (on other machines too, with
-    discovery_range SUBNET)."""
+    discovery_range SUBNET).
+    """
     env = dict(os.environ if base is None else base)
     env.update({
         'ROS_DOMAIN_ID': str(domain_id),
@@ -258,7 +260,8 @@ class RosSandbox:
 
 def stop_ros2_daemon(domain_id: int, env: dict[str, str]) -> None:
     """Stop the `ros2` daemon of a domain, if one runs, so the next user of the domain starts
-    with an empty graph cache instead of one remembering this sandbox's nodes."""
+    with an empty graph cache instead of one remembering this sandbox's nodes.
+    """
     try:
         with socket.create_connection(('127.0.0.1', ROS2_DAEMON_BASE_PORT + domain_id), timeout=0.2):
             pass

@@ -28,7 +28,7 @@ def conjugate(q: Quaternion) -> Quaternion:
 
 
 def normalize(q: Quaternion) -> Quaternion:
-    """q scaled to unit length; ValueError for a zero or non-finite quaternion."""
+    """Q scaled to unit length; ValueError for a zero or non-finite quaternion."""
     norm = math.sqrt(sum(c * c for c in q))
     if not math.isfinite(norm) or norm < 1e-9:
         raise ValueError(f'not a rotation: quaternion {q} has no usable length')
@@ -64,7 +64,7 @@ def usable_euler(q: Quaternion) -> Vector | None:
 
 
 def rotate(q: Quaternion, v: Vector) -> Vector:
-    """v expressed in the fixed frame, for v given in the frame that q rotates to."""
+    """V expressed in the fixed frame, for v given in the frame that q rotates to."""
     x, y, z, _ = multiply(multiply(q, (v[0], v[1], v[2], 0.0)), conjugate(q))
     return x, y, z
 

@@ -52,7 +52,8 @@ class ParticipantEntities:
 
     def in_layout(self, layout: Layout) -> ParticipantEntities:
         """The same information with every gid cut or zero-padded to the layout's size (a GUID is
-        16 bytes; Humble pads it with zeros)."""
+        16 bytes; Humble pads it with zeros).
+        """
         def fit(gid: bytes) -> bytes:
             return gid[:layout.gid_size].ljust(layout.gid_size, b'\x00')
         return ParticipantEntities(fit(self.gid), [
@@ -182,7 +183,8 @@ NODE_ENTITIES_SIZE_ARMHF = 72
 def humble_largest_allocation(data: bytes) -> int:
     """The largest block, in bytes, that Humble's generated deserializer asks for while reading
     the sample: it resizes each sequence to the length it reads before reading the elements, and
-    stops (throws) only when the bytes run out. 0 for a sample too short to hold a length."""
+    stops (throws) only when the bytes run out. 0 for a sample too short to hold a length.
+    """
     body = _Reader(bytes(data[4:]), ENCAPSULATIONS.get(bytes(data[:2]), '<'))
     largest = 0
     try:

@@ -19,7 +19,8 @@ import sys
 def bridge_address(environ: dict[str, str] | None = None, local_twin: bool = False) -> str | None:
     """The abstract socket name that one bridge per user, domain and discovery range holds, or None
     where no bridge is wanted: discovery off, another rmw than Fast DDS, private mode without static
-    peers (unless for a local twin)."""
+    peers (unless for a local twin).
+    """
     env = os.environ if environ is None else environ
     discovery_range = (env.get('ROS_AUTOMATIC_DISCOVERY_RANGE') or 'SUBNET').upper()
     peers = env.get('ROS_STATIC_PEERS', '')

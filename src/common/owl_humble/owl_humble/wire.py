@@ -65,7 +65,8 @@ def opaque_type(typename: str) -> type:
     """An IDL type named like the ROS type, whose samples we only ever handle as bytes.
 
     Cyclone checks a sample against the type's first members when it is written or received and
-    keeps the bytes whole: one octet accepts any ROS message in either layout."""
+    keeps the bytes whole: one octet accepts any ROS message in either layout.
+    """
     if typename not in _opaque_types:
         body = types.new_class(
             typename.replace(':', '_'), (IdlStruct,), {'typename': typename},
@@ -85,7 +86,7 @@ def discovery_reader_qos() -> Qos:
 
 
 def topic_qos(depth: int = 10) -> Qos:
-    """rclpy's QoSProfile(depth): reliable, volatile."""
+    """Rclpy's QoSProfile(depth): reliable, volatile."""
     return Qos(Policy.Reliability.Reliable(max_blocking_time=SECOND), Policy.Durability.Volatile,
                Policy.History.KeepLast(depth))
 
@@ -128,7 +129,8 @@ class Participant:
 
 def take(reader: DataReader, limit: int = 256) -> Iterator[RawSample]:
     """The reader's new samples as bytes, none deserialized (a typed read would drop or choke on a
-    sample in the other layout)."""
+    sample in the other layout).
+    """
     result: Any = ddspy_take(reader._ref, ANY_SAMPLE, limit)
     if isinstance(result, int):
         return

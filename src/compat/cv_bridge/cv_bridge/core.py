@@ -38,7 +38,8 @@ class CvBridge:
 
     def imgmsg_to_cv2(self, img_msg: Image, desired_encoding: str = PASSTHROUGH) -> np.ndarray:
         """A new array of a sensor_msgs/msg/Image's pixels, in desired_encoding's channel order
-        and depth ('passthrough': as the message has them)."""
+        and depth ('passthrough': as the message has them).
+        """
         require_message(img_msg, Image, 'imgmsg_to_cv2')
         source = parse_encoding(img_msg.encoding)
         target = parse_encoding(target_encoding(desired_encoding, source.name))
@@ -50,7 +51,8 @@ class CvBridge:
                       header: Header | None = None) -> Image:
         """A sensor_msgs/msg/Image of an array. The pixels go as they are: encoding names what they
         already are (bgr8 for OpenCV's colour images) and must fit the array's type and channels;
-        'passthrough' names the array's OpenCV type, such as 8UC3."""
+        'passthrough' names the array's OpenCV type, such as 8UC3.
+        """
         image = check_image(cvim)
         cv_type = cv_type_of(image)
         if encoding != PASSTHROUGH:
@@ -69,7 +71,8 @@ class CvBridge:
     def compressed_imgmsg_to_cv2(self, cmprs_img_msg: CompressedImage,
                                  desired_encoding: str = PASSTHROUGH) -> np.ndarray:
         """The image in a sensor_msgs/msg/CompressedImage ('passthrough': as decoded, BGR(A) for
-        colour), or converted to desired_encoding."""
+        colour), or converted to desired_encoding.
+        """
         require_message(cmprs_img_msg, CompressedImage, 'compressed_imgmsg_to_cv2')
         image = decode(cmprs_img_msg.data, cmprs_img_msg.format)
         source = decoded_encoding(image)
@@ -77,6 +80,7 @@ class CvBridge:
 
     def cv2_to_compressed_imgmsg(self, cvim: np.ndarray, dst_format: str = 'jpg') -> CompressedImage:
         """A sensor_msgs/msg/CompressedImage of an array (BGR(A) if colour), as jpg, jpeg or png;
-        its format field is dst_format, as upstream sets it."""
+        its format field is dst_format, as upstream sets it.
+        """
         data = encode(check_image(cvim), dst_format)
         return CompressedImage(format=dst_format, data=data)

@@ -1,5 +1,6 @@
 """What upstream launch documents, checked on ours: its module paths, the actions and frontend
-pieces added for issue 13, and the behaviours that used to differ."""
+pieces added for issue 13, and the behaviours that used to differ.
+"""
 
 import asyncio
 import importlib

@@ -1,5 +1,6 @@
 """XML and YAML launch_ros tags: what <node>, <param>, <remap>, <push_ros_namespace>,
-<set_parameter>, <set_remap> and <set_parameters_from_file> turn into on the command line."""
+<set_parameter>, <set_remap> and <set_parameters_from_file> turn into on the command line.
+"""
 
 import textwrap
 

@@ -1,5 +1,6 @@
 """launch_ros as upstream documents it: module paths, $(param), SetUseSimTime, SetROSLogDir, the
-lifecycle pieces' checks, and what is refused (composition, bare parameter values)."""
+lifecycle pieces' checks, and what is refused (composition, bare parameter values).
+"""
 
 import importlib
 import os

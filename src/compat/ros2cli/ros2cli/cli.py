@@ -24,7 +24,8 @@ from ros2cli.command import add_subparsers_on_demand
 
 def build_parser(argv: list[str]) -> argparse.ArgumentParser:
     """The `ros2` parser: the commands of the entry point group 'ros2cli.command', of which only the
-    one argv chooses is imported (all of them for `ros2 -h`, whose listing needs their docstrings)."""
+    one argv chooses is imported (all of them for `ros2 -h`, whose listing needs their docstrings).
+    """
     parser = argparse.ArgumentParser(
         prog='ros2', description='ros2 is an extensible command-line tool for ROS 2.',
         formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -40,7 +41,8 @@ def build_parser(argv: list[str]) -> argparse.ArgumentParser:
 
 def one_line(message: str) -> str:
     """An exception message on one line: rcl's multi-line name errors (text, the name, a caret
-    line) joined, and the C source location rcl appends dropped."""
+    line) joined, and the C source location rcl appends dropped.
+    """
     import re
     parts = [line.strip() for line in message.splitlines() if line.strip() and set(line.strip()) != {'^'}]
     return re.sub(r', at \S+\.c:\d+', '', ' '.join(parts))
@@ -62,7 +64,8 @@ def run_command(command_main: Callable[[argparse.Namespace], int | str | None],
                 args: argparse.Namespace) -> int | str | None:
     """command_main(args), after which whatever ROS state the command left is under owl_common's
     clean-up watchdog: a command cut short (Ctrl-C during discovery, an error) leaves its node to
-    interpreter exit, where a Fast DDS teardown deadlock would otherwise hang the process."""
+    interpreter exit, where a Fast DDS teardown deadlock would otherwise hang the process.
+    """
     try:
         return command_main(args)
     finally:

@@ -16,7 +16,8 @@ Completer = Callable[..., Iterable[str]]
 
 def with_completer(argument: argparse.Action, completer: Completer) -> argparse.Action:
     """Attach shell completion to an argument: argcomplete reads the `completer` attribute of the
-    Action that add_argument returned (argparse's own Action has no such field, hence setattr)."""
+    Action that add_argument returned (argparse's own Action has no such field, hence setattr).
+    """
     setattr(argument, 'completer', completer)  # noqa: B010
     return argument
 

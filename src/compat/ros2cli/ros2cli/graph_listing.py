@@ -42,7 +42,8 @@ def print_names_of_type(entries: Entries, type_name: str, count_only: bool) -> i
 
 def print_types(strategy: 'NodeStrategy', entries_of: Callable[[Graph], Entries], name: str) -> int:
     """`type`: wait (within the strategy's grace) for name in the graph, print its types one a line;
-    exit code 1, printing nothing, when it never shows up (as upstream)."""
+    exit code 1, printing nothing, when it never shows up (as upstream).
+    """
     strategy.wait_until(lambda: types_of(entries_of(strategy.graph), name) is not None)
     types = types_of(entries_of(strategy.graph), name)
     if types is None:

@@ -1,5 +1,6 @@
 """Mistyped names on the command line, while a verb waits for them. (The rules of node and topic
-names live in owl_common.graph, the 'did you mean' hint in owl_common.hints.)"""
+names live in owl_common.graph, the 'did you mean' hint in owl_common.hints.)
+"""
 
 from collections.abc import Callable, Iterable
 
@@ -8,7 +9,8 @@ from owl_common.hints import did_you_mean
 
 class WaitingHint:
     """While a verb waits for a name (as upstream, forever), say so once on stderr after a grace
-    period, and once more when a close name shows up: the name is probably mistyped."""
+    period, and once more when a close name shows up: the name is probably mistyped.
+    """
 
     def __init__(self, subject: str, name: str, grace: float) -> None:
         import time

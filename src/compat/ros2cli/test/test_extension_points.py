@@ -43,7 +43,8 @@ def test_first_line_of_the_docstring_without_its_period():
         """
 
         Various things.
-        More."""
+        More.
+        """
     assert get_first_line_doc(Documented) == 'Various things'
     assert get_first_line_doc(object()) == 'The base class of the class hierarchy'
     assert get_first_line_doc(type('Bare', (), {'__doc__': None})) == ''

@@ -1,5 +1,6 @@
 """`ros2 launch [options] <package_name> <launch_file_name> [name:=value ...]` or `<path>`; `ros2` finds
-the command through this package's entry point ('ros2cli.command' in setup.py)."""
+the command through this package's entry point ('ros2cli.command' in setup.py).
+"""
 
 from __future__ import annotations
 

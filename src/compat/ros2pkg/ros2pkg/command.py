@@ -1,5 +1,6 @@
 """`ros2 pkg <verb>`: the command and its verbs, found by `ros2` through this package's entry points
-('ros2cli.command' and 'ros2pkg.verb' in setup.py)."""
+('ros2cli.command' and 'ros2pkg.verb' in setup.py).
+"""
 
 from __future__ import annotations
 

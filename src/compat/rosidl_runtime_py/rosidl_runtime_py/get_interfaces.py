@@ -59,7 +59,8 @@ def get_action_interfaces(package_names: list[str] | None = None) -> dict[str, l
 
 def get_interface_path(interface_name: str) -> str:
     """The installed file of 'pkg/msg/Name' (its .msg/.srv/.action, else its .idl), or of a name
-    with its extension ('pkg/msg/Name.idl'); LookupError when there is none."""
+    with its extension ('pkg/msg/Name.idl'); LookupError when there is none.
+    """
     from ament_index_python.packages import PackageNotFoundError, get_package_share_directory
     parts = interface_name.split('/')
     if len(parts) != 3 or not all(parts):

@@ -1,6 +1,7 @@
 """Interface types by name: upstream rosidl_runtime_py.utilities (get_message, get_service,
 get_action, get_interface, get_namespaced_type, is_message/is_service/is_action), on a lookup that
-says in one line why a name is wrong, with the closest installed name."""
+says in one line why a name is wrong, with the closest installed name.
+"""
 
 import importlib
 from typing import Any
@@ -13,7 +14,8 @@ KIND_WORDS = {'msg': 'message', 'srv': 'service', 'action': 'action'}
 
 class InvalidType(ValueError):
     """A type name that names no installed interface of the wanted kind; str() says why (a
-    ValueError, as upstream's lookups raise)."""
+    ValueError, as upstream's lookups raise).
+    """
 
 
 def split_type(type_name: str, kind: str) -> tuple[str, str, str]:

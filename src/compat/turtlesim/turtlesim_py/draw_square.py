@@ -41,7 +41,7 @@ class Goal:
 
 
 def wrap(angle: float) -> float:
-    """angle into [-PI, PI)."""
+    """Angle into [-PI, PI)."""
     return angle - 2.0 * PI * math.floor((angle + PI) / (2.0 * PI))
 
 

@@ -119,7 +119,7 @@ class Turtle:
         self._teleports.append(_Teleport(True, linear, angular))
 
     def set_pen(self, r: int, g: int, b: int, width: int, off: int) -> None:
-        """off != 0 only lifts the pen; width 0 means Qt's default pen width, 1 px."""
+        """Off != 0 only lifts the pen; width 0 means Qt's default pen width, 1 px."""
         if off:
             self.pen.on = False
             return

@@ -27,13 +27,14 @@ TICK_CATCH_UP = 0.5
 def tick_time(last_tick: float, now: float) -> float:
     """The time of the tick after the one at last_tick, when the clock reads now: its due time
     while it is at most TICK_CATCH_UP late (a made-up tick), else now (the clock jumped, stopped
-    under sim time, or the ticks fell too far behind)."""
+    under sim time, or the ticks fell too far behind).
+    """
     due = last_tick + TICK_DT
     return due if due <= now <= due + TICK_CATCH_UP else now
 
 
 def float32(value: float) -> float:
-    """value rounded to the nearest IEEE single, as a C++ float would hold it."""
+    """Value rounded to the nearest IEEE single, as a C++ float would hold it."""
     return struct.unpack('f', struct.pack('f', value))[0]
 
 
@@ -44,7 +45,7 @@ CENTER = float32(WIDTH / 2.0)
 
 
 def normalize_angle(angle: float) -> float:
-    """angle wrapped into [-PI, PI)."""
+    """Angle wrapped into [-PI, PI)."""
     return angle - TWO_PI * math.floor((angle + PI) / TWO_PI)
 
 

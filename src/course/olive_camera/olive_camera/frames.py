@@ -5,7 +5,8 @@ import numpy as np
 
 class FrameWatch:
     """Follows the arrival times of images: while none arrives, display_camera says which topic it
-    waits for; when they stop, it says so once; when they come (back), it says that once."""
+    waits for; when they stop, it says so once; when they come (back), it says that once.
+    """
 
     def __init__(self, stale_after: float) -> None:
         self.stale_after = stale_after

@@ -31,7 +31,8 @@ def test_level_and_facing_ahead_stands_still():
 @pytest.mark.parametrize('start', [0.0, 4.0, 19.0, 34.0, 51.0])
 def test_the_simulated_imu_drives_the_turtle_around_inside_the_window(start):
     """Item 4 of issue 11: olive_sim's scripted IMU, started any time before imu_turtle, drives
-    the turtle around for a minute without reaching a wall."""
+    the turtle around for a minute without reaching a wall.
+    """
     motion, step = ScriptedMotion(), 0.016
     x = y = START
     theta = 0.0

@@ -1,5 +1,6 @@
 """Goal positions for the servos, kept free of ROS: the sine, the bounds, the IMU's head angles, the
-arrow keys' goals."""
+arrow keys' goals.
+"""
 
 import math
 
@@ -13,7 +14,7 @@ KIT_BOUNDS = {'pan': PAN_BOUNDS, 'tilt': TILT_BOUNDS}
 
 
 def clamp(value: float, low: float, high: float) -> float:
-    """value limited to low..high."""
+    """Value limited to low..high."""
     return max(low, min(high, value))
 
 

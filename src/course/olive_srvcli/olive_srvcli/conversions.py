@@ -42,7 +42,7 @@ def check_celsius(temp_c: float) -> str:
 
 
 def convert_euros(euros: float, rates: dict[str, float]) -> Outcome[dict[str, float]]:
-    """euros in each currency of rates (currency -> units per euro), rounded to cents."""
+    """Euros in each currency of rates (currency -> units per euro), rounded to cents."""
     if not math.isfinite(euros):
         return Outcome(error=f'{euros} is not a finite amount')
     if euros < 0:
@@ -51,7 +51,7 @@ def convert_euros(euros: float, rates: dict[str, float]) -> Outcome[dict[str, fl
 
 
 def factorial(n: int) -> Outcome[int]:
-    """n! for 0 <= n <= 20, exact."""
+    """N! for 0 <= n <= 20, exact."""
     if n < 0:
         return Outcome(error=f'the factorial of a negative number ({n}) is not defined')
     if n > MAX_FACTORIAL_INPUT:

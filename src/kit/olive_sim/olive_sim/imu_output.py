@@ -72,7 +72,8 @@ class ImuOutput:
 
     def _templates(self) -> tuple[SerializedTemplate, SerializedTemplate]:
         """Serialized imu and magnetometer messages to fill: orientation, angular velocity and
-        linear acceleration (10 values), and the magnetic field (3 values)."""
+        linear acceleration (10 values), and the magnetic field (3 values).
+        """
         sec, nanosec = STAMP_MARKER
         values = markers(10)
         imu = Imu()
@@ -109,7 +110,7 @@ class ImuOutput:
         self.traffic.sent += len(imu) + len(mag)
 
     def motion_time(self) -> float:
-        """s of motion so far (a restarted module goes on from there)."""
+        """S of motion so far (a restarted module goes on from there)."""
         return time.monotonic() - self._epoch
 
 

@@ -96,7 +96,8 @@ def describe(description: str, read_only: bool = False, **ranges: Any) -> Parame
 
 class OliveModule(Node):
     """Base class of the module nodes: the common topics, the `namespace` parameter, the module's
-    web page and its restart."""
+    web page and its restart.
+    """
 
     # What the process before this one handed over at a restart (restart.py); run_module sets it.
     handover: ClassVar[dict[str, Any]] = {}
@@ -186,7 +187,8 @@ class OliveModule(Node):
 
     def now_ns(self) -> int:
         """The node's ROS time in ns, for stamps. Clock.now() costs as much as a publication, so
-        the system clock (which ROS time is without sim time) is read directly when it is the same."""
+        the system clock (which ROS time is without sim time) is read directly when it is the same.
+        """
         clock = self.get_clock()
         if isinstance(clock, ROSClock) and clock.ros_time_is_active:  # a node's clock is a ROSClock
             return clock.now().nanoseconds
@@ -208,7 +210,8 @@ class OliveModule(Node):
     def create_periodic(self, rate: float, callback: Callable[[], None], name: str,
                         catch_up: float = 0.0) -> PeriodicThread:
         """Run callback at rate Hz on a thread of its own until the node is destroyed (catch_up:
-        see PeriodicThread)."""
+        see PeriodicThread).
+        """
         periodic = PeriodicThread(rate, callback, f'{self.get_name()}.{name}', self.context.ok,
                                   catch_up=catch_up)
         self._periodic.append(periodic)
@@ -239,7 +242,8 @@ class OliveModule(Node):
 
     def warn(self, kind: str, message: str) -> None:
         """Log a warning, at most once per WARN_EVERY s for each kind (a stream of bad goals
-        at 100 Hz must not flood the log, but a different problem is still reported at once)."""
+        at 100 Hz must not flood the log, but a different problem is still reported at once).
+        """
         now = time.monotonic()
         if now - self._last_warning.get(kind, -math.inf) >= WARN_EVERY:
             self._last_warning[kind] = now
@@ -288,7 +292,8 @@ class OliveModule(Node):
 
 def run_module(make_node: Any, default_namespace: str, args: list[str] | None = None) -> None:
     """main() of a module executable: read the namespace, build the node, serve its page, spin
-    until Ctrl-C; after the page's Restart Services or Reboot Device, start again (restart.py)."""
+    until Ctrl-C; after the page's Restart Services or Reboot Device, start again (restart.py).
+    """
     OliveModule.handover = take_handover()
     built: list[OliveModule] = []
 

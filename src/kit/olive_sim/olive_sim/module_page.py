@@ -50,7 +50,8 @@ RESTART_GRACE = 0.3      # s between answering Restart/Reboot and stopping, for 
 
 class WatchedChannel:
     """A channel whose data is made and pushed at `rate` on a thread that runs only while at
-    least one page subscribes."""
+    least one page subscribes.
+    """
 
     def __init__(self, name: str, rate: float, make: Callable[[], dict[str, Any]],
                  alive: Callable[[], bool], first: Callable[[Subscription], None] | None = None) -> None:

@@ -95,7 +95,8 @@ class Lan:
 
     def add_host(self, name: str, address: str | None) -> str:
         """A host with its loopback up and the address on its link to the bridge (no link at all
-        with address None: a machine not on this LAN); returns its namespace."""
+        with address None: a machine not on this LAN); returns its namespace.
+        """
         if address is not None:
             self._check_address(address)
         namespace = f'{self.tag}-{name}'
@@ -108,7 +109,8 @@ class Lan:
 
     def join_this_machine(self, address: str) -> str:
         """Plug this machine itself into the bridge with the address (a student's PC on the kit's
-        bridge); returns the name of its new network interface."""
+        bridge); returns the name of its new network interface.
+        """
         self._check_address(address)
         self.joined_link = self._plug('this machine', address, None)
         return self.joined_link

@@ -37,7 +37,8 @@ class NetworkSettings:
 
 def default_settings(address: str) -> NetworkSettings:
     """The settings of a module at address: a /24 whose first host is the host PC (10.42.0.1 for
-    the course's modules, the student's address on the kit's link)."""
+    the course's modules, the student's address on the kit's link).
+    """
     ip = parse_address(address, 'address')
     subnet = ipaddress.IPv4Network(f'{ip}/{DEFAULT_MASK}', strict=False)
     return checked(NetworkSettings(str(ip), DEFAULT_MASK, str(subnet.network_address + 1)))
@@ -69,7 +70,7 @@ def parse_mask(value: Any) -> int:
 
 
 def checked(settings: NetworkSettings) -> NetworkSettings:
-    """settings if a module can have them, else ValueError with one line naming the problem."""
+    """Settings if a module can have them, else ValueError with one line naming the problem."""
     address = parse_address(settings.address, 'address')
     gateway = parse_address(settings.gateway, 'gateway')
     prefix = parse_mask(settings.mask)
@@ -90,7 +91,7 @@ def checked(settings: NetworkSettings) -> NetworkSettings:
 
 
 def changed(current: NetworkSettings, request: dict[str, Any]) -> NetworkSettings:
-    """current with the fields the request gives (a subset of FIELDS), checked."""
+    """Current with the fields the request gives (a subset of FIELDS), checked."""
     unknown = [key for key in request if key not in FIELDS]
     if unknown:
         raise ValueError(f"unknown field '{unknown[0][:40]}'; expected: {', '.join(FIELDS)}")

@@ -265,7 +265,8 @@ def simulate_step(gains: PidGains, goal: float = 1.57, duration: float = 3.0,
                   params: ServoParams | None = None, physics_rate: float = 1000.0,
                   pid_rate: float = 500.0, sample_rate: float = 100.0) -> StepMetrics:
     """The course's PID exercise (section 4.4 with the appendix 5.3 script): torque on at 0 rad,
-    then a goal step to `goal`, watched for `duration` s (the script flips the goal every 3 s)."""
+    then a goal step to `goal`, watched for `duration` s (the script flips the goal every 3 s).
+    """
     sim = ServoSim(params, physics_rate, pid_rate, gains)
     sim.enable_torque(True)
     start = sim.state.position
@@ -295,7 +296,8 @@ def course_exercise(sequence: tuple[tuple[str, PidGains], ...] = COURSE_GAIN_SEQ
                     params: ServoParams | None = None, sample_rate: float = 100.0
                     ) -> list[tuple[str, StepMetrics]]:
     """One servo running the appendix 5.3 script (goal flips every `period` s), the gains changed
-    before each flip as the exercise goes: the step-response numbers of every flip."""
+    before each flip as the exercise goes: the step-response numbers of every flip.
+    """
     sim = ServoSim(params)
     sim.enable_torque(True)
     every = max(1, round(1.0 / (sample_rate * sim.dt)))

@@ -109,7 +109,8 @@ class ServoModule(OliveModule):
 
     def _take_over(self, state: Any) -> None:
         """The shaft where the process before a restart left it, and after Restart Services its
-        torque and goal (restart.py); a reboot hands over the shaft only."""
+        torque and goal (restart.py); a reboot hands over the shaft only.
+        """
         if not isinstance(state, dict):
             return
         try:

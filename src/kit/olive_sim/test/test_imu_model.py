@@ -67,7 +67,8 @@ def test_scripted_motion_sweeps_the_kit_ranges_and_repeats_every_minute():
 @pytest.mark.parametrize('start', [0.0, 7.0, 41.0])
 def test_a_turtle_driven_by_pitch_and_yaw_comes_back_after_a_minute(speed, turn, start):
     """The scripted motion's promise to the course's imu_turtle: speed = f * pitch and turn rate =
-    g * yaw give a closed path for any f and g, from any moment the turtle starts."""
+    g * yaw give a closed path for any f and g, from any moment the turtle starts.
+    """
     motion, dt = ScriptedMotion(), 0.005
     x = y = heading = 0.0
     farthest = 0.0

@@ -1,5 +1,6 @@
 """The node-free parts of a module's page: process samples, traffic counters, the log book, the
-restart handover."""
+restart handover.
+"""
 
 import json
 

@@ -58,7 +58,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def build(workspace: Path, names: list[str], quiet: bool) -> str | None:
-    """colcon build of the packages; None when it worked, else the build's last error line."""
+    """Colcon build of the packages; None when it worked, else the build's last error line."""
     command = ws.build_command(names)
     if not quiet:
         print(f'owl check: building {", ".join(sorted(names))} ({shlex.join(command)})', flush=True)
@@ -139,7 +139,8 @@ def attempted(exercise: Exercise, workspace: Path, available: dict[str, ws.Packa
     """For --all: whether the workspace holds something of this exercise to check.
 
     Of the course's "choose one" exercises (3.6: currency or factorial) only those whose
-    executable is installed; params_file only when the workspace (or ~/Documents) has a file."""
+    executable is installed; params_file only when the workspace (or ~/Documents) has a file.
+    """
     if not exercise.package:
         return bool(ws.parameter_files(workspace, Path.home()))
     if exercise.choice:

@@ -164,7 +164,8 @@ ROLE_WORDS = {'server': ('server', 'service', 'srv'), 'client': ('client', 'cli'
 
 def find_executable(names: list[str], subject: str, role: str) -> str | None:
     """The executable for a subject ('currency') and role ('server'): the reference name
-    (currency_server) if there is one, else the first whose name has a word of each."""
+    (currency_server) if there is one, else the first whose name has a word of each.
+    """
     if f'{subject}_{role}' in names:
         return f'{subject}_{role}'
     for name in sorted(names):
@@ -176,7 +177,8 @@ def find_executable(names: list[str], subject: str, role: str) -> str | None:
 
 def parameter_files(workspace: Path, home: Path | None = None) -> list[Path]:
     """YAML files with a `ros__parameters` key (what `ros2 param dump` writes): in the workspace
-    (outside build/install/log) and in ~/Documents, where section 3.7.1 saves turtlesim.yaml."""
+    (outside build/install/log) and in ~/Documents, where section 3.7.1 saves turtlesim.yaml.
+    """
     found = []
     roots = [(workspace, 4)] + ([(home / 'Documents', 1)] if home is not None else [])
     for root, max_depth in roots:
@@ -204,7 +206,8 @@ def _has_ros_parameters(path: Path) -> bool:
 def read_parameter_file(text: str) -> dict[str, dict[str, object]]:
     """{node name: {parameter: value}} of a parameter file; nested keys joined with '.' as ROS does.
 
-    Raises ValueError with a one-line reason when the text is not such a file."""
+    Raises ValueError with a one-line reason when the text is not such a file.
+    """
     import yaml
 
     try:

@@ -52,7 +52,8 @@ def distribution(type_hash_versions: list[int]) -> str:
 
 def node_distribution(node: Any, name: str, namespace: str) -> str:
     """The distribution of another node, from the type hashes of its publishers (an rclpy Node asks);
-    'unknown' for a node that has left meanwhile."""
+    'unknown' for a node that has left meanwhile.
+    """
     from rclpy.node import NodeNameNonExistentError
 
     try:
@@ -84,7 +85,8 @@ def kit_verdicts(reports: list[ModuleReport]) -> list[tuple[bool, str]]:
 
 def check_kit(domain_id: int, seconds: float, expected: list[str]) -> list[ModuleReport]:
     """Find the modules in the domain (waiting up to ACK_TIMEOUT more for the expected nodes, which
-    `owl network` found a moment ago) and exchange one message each way with all of them at once."""
+    `owl network` found a moment ago) and exchange one message each way with all of them at once.
+    """
     import rclpy
     from rclpy.context import Context
     from rclpy.duration import Duration

@@ -135,7 +135,8 @@ def interfaces() -> list[Interface]:
 
 def answers(address: str, timeout: float) -> bool:
     """Whether a host answers at address: any TCP answer counts, a refused connection too (its RST is
-    an answer), so no web server and no root are needed."""
+    an answer), so no web server and no root are needed.
+    """
     try:
         with socket.create_connection((address, 80), timeout=timeout):
             return True
@@ -147,7 +148,8 @@ def answers(address: str, timeout: float) -> bool:
 
 def olive_nodes(domain_id: int, seconds: float) -> dict[str, str]:
     """The Olive module nodes (olive_*) DDS discovers in a domain within seconds, each with its
-    ROS 2 distribution."""
+    ROS 2 distribution.
+    """
     import time
 
     import rclpy

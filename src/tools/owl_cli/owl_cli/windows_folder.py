@@ -71,7 +71,8 @@ def window_of(path: Path, program: str, pid: int) -> Window | None:
 
 def scan(root: Path) -> list[Window]:
     """Every window of a running program under root, ordered by program, pid and name. Folders of
-    programs that ended without removing them (killed) are left out."""
+    programs that ended without removing them (killed) are left out.
+    """
     windows: list[Window] = []
     try:
         folders = list(root.iterdir())
@@ -102,7 +103,8 @@ def read_frame(window: Window) -> bytes | None:
 
 def key_event_line(event: str, key: str) -> str:
     """'down'/'up' and a pygame key name as a line of the keys file; ValueError for anything else
-    (a key name is printable and on one line, and a key the windows know)."""
+    (a key name is printable and on one line, and a key the windows know).
+    """
     if not isinstance(event, str) or not isinstance(key, str):
         raise ValueError('event and key must be strings')
     if len(key) > 20 or not key.isprintable() or key != key.strip():
@@ -116,7 +118,8 @@ def key_event_line(event: str, key: str) -> str:
 
 def append_key_event(window: Window, event: str, key: str) -> None:
     """Append one key event to the keys file of the window's program (ValueError: a bad event;
-    OSError: the program has gone)."""
+    OSError: the program has gone).
+    """
     line = key_event_line(event, key)
     keys = window.path.parent / 'keys'
     with open(keys, 'a', encoding='utf-8') as file:  # the program made it; it may be gone

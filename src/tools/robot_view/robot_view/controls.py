@@ -51,7 +51,8 @@ def number(value: Any, what: str, low: float, high: float) -> float:
 
 def gains_request(arguments: dict[str, Any]) -> tuple[str, dict[str, float]]:
     """A `set_gains` command ({"servo": "pan", "kp": 1.0, "ki": 0, "kd": 0}, at least one gain):
-    (servo, {gain: value})."""
+    (servo, {gain: value}).
+    """
     codec.check_keys(arguments, ('servo', *GAINS), required=('servo',))
     servo = servo_name(arguments)
     gains = {name: number(arguments[name], f'{servo} {name}', 0.0, GAIN_LIMITS[name])
@@ -69,7 +70,8 @@ def torque_request(arguments: dict[str, Any]) -> tuple[str, bool]:
 
 def goal_request(arguments: dict[str, Any]) -> tuple[str, float]:
     """A `goal` command ({"servo": "pan", "position": 1.57}): (servo, position in rad), within the
-    servo's range."""
+    servo's range.
+    """
     codec.check_keys(arguments, ('servo', 'position'), required=('servo', 'position'))
     servo = servo_name(arguments)
     low, high = SERVO_BOUNDS[servo]
@@ -78,7 +80,8 @@ def goal_request(arguments: dict[str, Any]) -> tuple[str, float]:
 
 def appendix_goals(servo: str) -> list[float]:
     """The appendix's goals, 0 and 1.57 rad, each brought within the servo's range (the tilt
-    servo's top is 0.9 rad: the camera would hit the base)."""
+    servo's top is 0.9 rad: the camera would hit the base).
+    """
     low, high = SERVO_BOUNDS[servo]
     return [min(high, max(low, goal)) for goal in APPENDIX_GOALS]
 

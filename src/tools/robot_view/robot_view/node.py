@@ -1,7 +1,8 @@
 """RobotViewNode: subscribes to the kit's servo joints and goals, IMU and camera and pushes them to
 the robot view page over owl_web's WebSocket (the model's state, the live plots, the camera's
 frames, the servos' gains and torque); carries out the page's commands: "hold_imu" / "level" on the
-simulated IMU's true_orientation, and "set_gains", "torque" and "goal" on the servos."""
+simulated IMU's true_orientation, and "set_gains", "torque" and "goal" on the servos.
+"""
 
 from __future__ import annotations
 
@@ -145,7 +146,8 @@ class RobotViewNode(Node):
         """A service's response, waited for in this (web worker) thread while the executor spins;
         a missing or silent service is one ApiError line. Every request here is idempotent, so it
         goes out again when no answer came within RESEND_EVERY: a server that has not discovered
-        this client yet drops the request or its response."""
+        this client yet drops the request or its response.
+        """
         if not client.service_is_ready():
             raise ApiError(503, f'{client.srv_name} is not available (is {what} running?)')
         deadline = time.monotonic() + SERVICE_TIMEOUT
@@ -191,7 +193,8 @@ class RobotViewNode(Node):
     def _ask_for_unknown_gains(self) -> None:
         """Ask each servo whose gains are not known yet for them (a servo that started before
         robot_view announced them on /parameter_events before robot_view listened). Never waits:
-        this runs on the executor."""
+        this runs on the executor.
+        """
         for servo, client in self._get_parameters.items():
             with self._lock:
                 known = self._servos[servo]['kp'] is not None

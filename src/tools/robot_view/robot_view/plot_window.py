@@ -38,7 +38,8 @@ DECIMALS = 4    # of a value sent (0.1 mrad, 0.1 mN*m: finer than any plot shows
 def sample_time(stamp_ns: int | None, now: float) -> float:
     """The time (s) to plot a sample at: its stamp (ns since the epoch), or `now` (time.time())
     when it has none or when the stamp is more than STAMP_TRUSTED away from now (another machine's
-    clock, a module that was never set)."""
+    clock, a module that was never set).
+    """
     if stamp_ns is None:
         return now
     stamp = stamp_ns / 1e9
@@ -62,7 +63,8 @@ class Bucket:
 
 class PlotWindow:
     """Samples of named series in time order, decimated into buckets of `bucket` seconds, kept for
-    `window` (+ OVERLAP) seconds. Times are any clock's seconds (the node uses time.monotonic)."""
+    `window` (+ OVERLAP) seconds. Times are any clock's seconds (the node uses time.monotonic).
+    """
 
     def __init__(self, series: Iterable[str], held: Iterable[str] = (), bucket: float = BUCKET,
                  window: float = WINDOW) -> None:
@@ -81,7 +83,8 @@ class PlotWindow:
         """Samples taken at `time` (seconds). Samples may come a little out of order (each topic's
         own messages are in order, different topics' are not): one up to LATE behind the newest
         bucket goes in its own bucket, an older one in the newest. Non-finite values and unknown
-        series are refused with ValueError (the node checks what it takes from ROS)."""
+        series are refused with ValueError (the node checks what it takes from ROS).
+        """
         for name, value in values.items():
             if name not in self.series:
                 raise ValueError(f"unknown series '{name}'; known: {', '.join(self.series)}")
@@ -116,7 +119,8 @@ class PlotWindow:
 
     def _hold(self, position: int, name: str, value: float) -> None:
         """A held series changes to value in the bucket at `position` and in every later one up to
-        the next change of it."""
+        the next change of it.
+        """
         buckets = self._buckets
         buckets[position].held_here.add(name)
         for later in range(position, len(buckets)):
@@ -135,7 +139,8 @@ class PlotWindow:
 
     def columns(self, since: float = -math.inf) -> dict[str, list[float | None]]:
         """{'t': bucket start times, <series>: values (None where a bucket has no sample)} of the
-        buckets that start at or after `since`, oldest first: what a page's plot (uPlot) takes."""
+        buckets that start at or after `since`, oldest first: what a page's plot (uPlot) takes.
+        """
         chosen = [b for b in self._buckets if b.index * self.bucket >= since - 1e-9]
         columns: dict[str, list[float | None]] = {'t': [round(b.index * self.bucket, 3) for b in chosen]}
         for name in self.series:
@@ -146,7 +151,8 @@ class PlotWindow:
 
 class PushCursor:
     """Where one page's pushes are: the first push sends the whole window, each later one what is
-    new plus OVERLAP seconds of what was sent (see the module's docstring)."""
+    new plus OVERLAP seconds of what was sent (see the module's docstring).
+    """
 
     def __init__(self) -> None:
         self.since = -math.inf  # the first batch: everything the window has

@@ -1,5 +1,6 @@
 """Checks of what the page (or any HTTP or WebSocket client) sends, each failing with one clear line
-(node-free). The generic ones (JSON objects, keys, booleans) are owl_web.codec's."""
+(node-free). The generic ones (JSON objects, keys, booleans) are owl_web.codec's.
+"""
 
 import json
 import math
@@ -16,7 +17,8 @@ MAX_TIMEOUT = 300.0  # s
 def positive_number(value: object, what: str, maximum: float, unit: str) -> float:
     """A finite number in (0, maximum]; JSON numbers or numeric text (a query string).
 
-    The checks here take `object`: parsed JSON may be anything, and they find out what it is."""
+    The checks here take `object`: parsed JSON may be anything, and they find out what it is.
+    """
     if isinstance(value, str):
         try:
             value = float(value)

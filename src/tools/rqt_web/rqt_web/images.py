@@ -58,7 +58,8 @@ def encode_png(image: Image.Image) -> bytes:
 
 def compressed_for_browser(image_format: str, data: bytes) -> tuple[str, bytes]:
     """(content type, bytes) of a sensor_msgs/msg/CompressedImage: JPEG and PNG as they are,
-    anything else Pillow reads as PNG."""
+    anything else Pillow reads as PNG.
+    """
     if data.startswith(JPEG_MAGIC):
         return 'image/jpeg', data
     if data.startswith(PNG_MAGIC):

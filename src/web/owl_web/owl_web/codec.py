@@ -155,7 +155,8 @@ QUATERNION_NORM_TOLERANCE = 0.01  # a page's float32/float64 rounding, not a dif
 
 def unit_quaternion(value: Any, what: str = 'the orientation') -> tuple[float, float, float, float]:
     """(x, y, z, w) of a rotation sent as {"x", "y", "z", "w"}: finite numbers of norm 1 (within
-    QUATERNION_NORM_TOLERANCE), returned normalised; anything else is a one-line ApiError."""
+    QUATERNION_NORM_TOLERANCE), returned normalised; anything else is a one-line ApiError.
+    """
     if not isinstance(value, dict):
         raise ApiError(400, f'{what} must be an object {{"x", "y", "z", "w"}}, got {json.dumps(value)[:80]}')
     check_keys(value, QUATERNION_KEYS, required=QUATERNION_KEYS)

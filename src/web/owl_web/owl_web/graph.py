@@ -99,7 +99,8 @@ def graph_options(params: dict[str, Any]) -> tuple[bool, bool]:
 
 class GraphChannel:
     """The 'graph' channel of a server: a page subscribes with {"channel": "graph", "hide_debug":
-    true, "hide_leaf_topics": false} and gets the model at once and again at every change."""
+    true, "hide_leaf_topics": false} and gets the model at once and again at every change.
+    """
 
     def __init__(self, node: Node, server: WebServer) -> None:
         self._queries = GraphQueries(node)

@@ -154,7 +154,8 @@ class Channel:
 class Subscription:
     """One page's subscription to a channel. send*/error may be called from any thread; they never
     block: an update not yet sent is replaced by a newer one (a page wants the newest state, and a
-    slow page must not hold up ROS callbacks), errors wait in order."""
+    slow page must not hold up ROS callbacks), errors wait in order.
+    """
 
     def __init__(self, connection: 'Connection', subscription_id: int | str, channel: str,
                  params: dict[str, Any]) -> None:
@@ -228,7 +229,8 @@ class Connection:
 
     async def send_pending(self) -> None:
         """The connection's sender: waits for messages and sends them (errors first) until the
-        page goes away (then the receiving side ends the connection)."""
+        page goes away (then the receiving side ends the connection).
+        """
         try:
             while True:
                 await self._wake.wait()
@@ -247,7 +249,7 @@ class Connection:
 
 
 def port_number(text: str) -> int:
-    """argparse's type for a page's --port: 0..65535 (0 picks a free one)."""
+    """Argparse's type for a page's --port: 0..65535 (0 picks a free one)."""
     if not text.isdigit() or int(text) > 65535:
         raise argparse.ArgumentTypeError(f"'{text}' is not a port number (0..65535)")
     return int(text)
@@ -259,7 +261,8 @@ class WebServer:
     def __init__(self, name: str, static_dir: Path, port: int = 0, host: str = '127.0.0.1',
                  log: Callable[[str], None] | None = None) -> None:
         """Binds at once (OSError for a busy port). name prefixes the lines the server prints;
-        log (default: stderr) gets one line for each internal error."""
+        log (default: stderr) gets one line for each internal error.
+        """
         address = ipaddress.ip_address(host)
         if address.version != 4 or not address.is_loopback:
             raise ValueError(f'{name} serves on loopback addresses only (127.x.y.z), not {host}')
@@ -311,13 +314,15 @@ class WebServer:
     def channel(self, name: str, open: Callable[[Subscription], None],
                 close: Callable[[Subscription], None] | None = None) -> None:
         """open(subscription) starts pushing to it (ApiError refuses the subscription); close is
-        called once when the page unsubscribes or goes away."""
+        called once when the page unsubscribes or goes away.
+        """
         self._channels[name] = Channel(name, open, close)
 
     def command(self, name: str, handler: Callable[[dict[str, Any]], None]) -> None:
         """handler(arguments) carries out a page's {"type": "command", "name": name, ...arguments}
         (the message without type, id and name); it raises ApiError to refuse, before anything
-        reaches ROS. Runs in a worker thread; the page gets {"type": "done"} or the error line."""
+        reaches ROS. Runs in a worker thread; the page gets {"type": "done"} or the error line.
+        """
         self._commands[name] = handler
 
     # ---- running ---------------------------------------------------------------------------
@@ -386,7 +391,8 @@ class WebServer:
 
     async def _in_thread(self, function: Callable[..., Any], *args: Any) -> Any:
         """function(*args) in a daemon thread of its own: a handler blocked on ROS holds neither the
-        event loop nor the process's exit (a thread pool's workers would hold both)."""
+        event loop nor the process's exit (a thread pool's workers would hold both).
+        """
         loop = asyncio.get_running_loop()
         future = loop.create_future()
 

@@ -74,7 +74,8 @@ def web(tmp_path, monkeypatch):
 
 def run(coroutine):
     """The coroutine's result, from an event loop in a thread of its own (the main thread may have
-    one running already: a browser test's Playwright in the same session)."""
+    one running already: a browser test's Playwright in the same session).
+    """
     with ThreadPoolExecutor(1) as thread:
         return thread.submit(asyncio.run, asyncio.wait_for(coroutine, 30)).result()
 
@@ -170,7 +171,8 @@ def test_routes_and_their_errors(web):
 
 async def exchange(server, *messages, receive=1):
     """Send messages on one WebSocket; return what came back (frames as (header, payload)) and the
-    close code (None while open)."""
+    close code (None while open).
+    """
     received = []
     async with aiohttp.ClientSession() as session, session.ws_connect(server.url + 'ws') as socket_:
         for message in messages:

@@ -133,7 +133,8 @@ class Parser:
 
     def boolean(self, entity: Entity, name: str) -> bool | None:
         """A true/false attribute, read with YAML's rules as upstream's typed attributes are:
-        true/false, yes/no, on/off in any case (YAML booleans pass as they are)."""
+        true/false, yes/no, on/off in any case (YAML booleans pass as they are).
+        """
         from launch.utilities.type_utils import coerce_to_type
 
         value = entity.get_attr(name, optional=True)

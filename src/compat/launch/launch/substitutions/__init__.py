@@ -322,7 +322,8 @@ def _is_number_text(text: str) -> bool:
 
 class EqualsSubstitution(Substitution):
     """'true' when both sides are equal: as booleans if both are true/false/1/0, as numbers (close
-    enough) if both are numbers, else as text.  Sides may be any value: None, bools, numbers."""
+    enough) if both are numbers, else as text.  Sides may be any value: None, bools, numbers.
+    """
 
     def __init__(self, left: object, right: object) -> None:
         self.left = _comparable(left)

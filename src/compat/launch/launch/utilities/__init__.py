@@ -23,7 +23,7 @@ def is_a(obj: Any, entity_type: type | tuple[type, ...]) -> bool:
 
 
 def is_a_subclass(obj: Any, entity_type: type | tuple[type, ...]) -> bool:
-    """obj is an instance of entity_type, or a class derived from it."""
+    """Obj is an instance of entity_type, or a class derived from it."""
     if isinstance(obj, type):
         return issubclass(obj, entity_type)
     return isinstance(obj, entity_type)

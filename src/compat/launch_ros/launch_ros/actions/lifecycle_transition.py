@@ -28,7 +28,8 @@ _TRANSITION = lifecycle_msgs.msg.Transition
 class LifecycleTransition(Action):
     """Request transition_ids[0] of every named node; each node's next transition is requested
     when the node has reached the goal state of the previous one.  A node that ends up in
-    'errorprocessing' gets no further transitions.  The sequence must be possible."""
+    'errorprocessing' gets no further transitions.  The sequence must be possible.
+    """
 
     # transition id -> the StateTransition (start, goal) labels that mean it succeeded
     transition_targets: ClassVar[dict[int, dict[str, str]]] = {

@@ -39,7 +39,7 @@ MAX_NAME_LENGTH = 255
 
 
 def validate_node_name(name: str) -> None:
-    """rmw's rules: non-empty, letters, digits and _, not starting with a digit, at most 255."""
+    """Rmw's rules: non-empty, letters, digits and _, not starting with a digit, at most 255."""
     if not name:
         raise ValueError('node name must not be empty')
     if len(name) > MAX_NAME_LENGTH:

@@ -22,7 +22,8 @@ if TYPE_CHECKING:
 @expose_action('set_ros_log_dir')
 class SetROSLogDir(Action):
     """Set ROS_LOG_DIR in launch's environment; a relative new_log_dir goes below the current one
-    ($ROS_LOG_DIR, else rcl's default $ROS_HOME/log or ~/.ros/log).  Scoped by a GroupAction."""
+    ($ROS_LOG_DIR, else rcl's default $ROS_HOME/log or ~/.ros/log).  Scoped by a GroupAction.
+    """
 
     def __init__(self, new_log_dir: SomeSubstitutionsType, **kwargs: Any) -> None:
         super().__init__(**kwargs)

@@ -12,7 +12,7 @@ def is_root_namespace(namespace: str) -> bool:
 
 
 def prefix_namespace(base_ns: str | None, namespace: str | None) -> str | None:
-    """namespace under base_ns unless namespace is absolute; None when both are None."""
+    """Namespace under base_ns unless namespace is absolute; None when both are None."""
     if namespace is None:
         return base_ns
     return join_namespaces(base_ns, namespace)

@@ -46,7 +46,8 @@ def get_command_extensions(group_name: str) -> dict[str, Any]:
 def _chosen_name(cli_name: str, argv: list[str] | None) -> str | None:
     """The word at this parser's depth ('ros2' 0, 'ros2 topic' 1): the extension the user chose.
     Option values are not told apart from words here; a wrong guess only means every extension of
-    the group is loaded, as for `-h`."""
+    the group is loaded, as for `-h`.
+    """
     given = argv if argv is not None else ARGV if ARGV is not None else sys.argv[1:]
     words = [word for word in given if not word.startswith('-')]
     depth = len(cli_name.split()) - 1
@@ -60,7 +61,8 @@ def add_subparsers(parser: argparse.ArgumentParser, cli_name: str, dest: str,
     """A sub-parser per extension, listed as upstream lists them (one padded line each, then the
     hint line); the chosen one sets `args.<dest>` to the extension. `names` adds bare sub-parsers
     for extensions that were not loaded (so that their names still parse). Without
-    `with_arguments` the extensions' add_arguments() is not called: a listing needs none."""
+    `with_arguments` the extensions' add_arguments() is not called: a listing needs none.
+    """
     shown = {name: extension for name, extension in extensions.items() if name not in (hide_extensions or ())}
     width = max(map(len, shown), default=0) + 2
     listing = '\n'.join(f'{name:<{width}}{get_first_line_doc(extension)}'
@@ -87,7 +89,8 @@ def add_subparsers_on_demand(parser: argparse.ArgumentParser, cli_name: str, des
                              argv: list[str] | None = None) -> Any:
     """add_subparsers() for a group's entry points, importing only the extension that argv chooses;
     all of them when it chooses none (help) or an unknown name (the error lists the known ones),
-    then without their arguments: `ros2 -h` needs the commands' docstrings, not their verbs."""
+    then without their arguments: `ros2 -h` needs the commands' docstrings, not their verbs.
+    """
     names = sorted(get_entry_points(group_name))
     chosen = _chosen_name(cli_name, argv)
     wanted = [chosen] if chosen in names else None

@@ -1,5 +1,6 @@
 """`ros2 extension_points` and `ros2 extensions`: which extension points there are, and which
-installed packages extend them (upstream ros2cli's two introspection commands)."""
+installed packages extend them (upstream ros2cli's two introspection commands).
+"""
 
 from __future__ import annotations
 
@@ -11,7 +12,8 @@ from ros2cli.command import CommandExtension
 
 def _extension_point_groups() -> dict[str, str]:
     """{group: first docstring line of its base class} of 'ros2cli.extension_point'; a base class
-    that cannot be imported is warned about and listed without its description."""
+    that cannot be imported is warned about and listed without its description.
+    """
     from ros2cli.entry_points import get_entry_points, get_first_line_doc, load_entry_point
     groups = {}
     for name, entry_point in sorted(get_entry_points('ros2cli.extension_point').items()):

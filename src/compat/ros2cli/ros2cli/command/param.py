@@ -30,7 +30,8 @@ VALUE_FIELDS = ('', 'bool_value', 'integer_value', 'double_value', 'string_value
 
 def python_value(value: 'ParameterValue') -> Any:
     """The value a ParameterValue holds, arrays as lists: what rclpy's parameter_value_to_python
-    gives, without importing rclpy (a fifth of a warm `param get`'s time)."""
+    gives, without importing rclpy (a fifth of a warm `param get`'s time).
+    """
     if not 0 <= value.type < len(VALUE_FIELDS):
         raise ValueError(f'unknown parameter type {value.type}')
     if not value.type:
@@ -224,8 +225,9 @@ def _set_one(args: argparse.Namespace, session: ParameterSession, value: Any, ve
 
 
 def failure_reason(reason: str, name: str, session: ParameterSession) -> str:
-    """rclpy's reason, said plainly: the course's type names instead of rclpy's enum names, the closest
-    declared name."""
+    """Rclpy's reason, said plainly: the course's type names instead of rclpy's enum names, the closest
+    declared name.
+    """
     import re
 
     from rclpy.parameter import Parameter

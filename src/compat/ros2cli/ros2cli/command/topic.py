@@ -191,7 +191,8 @@ class TopicCommand(VerbCommand):
 
 def wait_for_topic_type(direct: Any, topic: str) -> list[str]:
     """The topic's types once it is in the graph; like upstream this waits for as long as it takes,
-    and says when the name looks mistyped."""
+    and says when the name looks mistyped.
+    """
     from ros2cli.names import WaitingHint
     from ros2cli.node.direct import NAMED_LOOKUP_GRACE
 

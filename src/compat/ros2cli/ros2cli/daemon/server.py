@@ -63,7 +63,8 @@ def serve(domain: int, listener: socket.socket, idle_timeout: float, alone_timeo
 
     def discovery_view() -> list[Any]:
         """What ros2cli.node.settle needs of this daemon's graph, in one call (the graph reduced to a
-        digest: XML-RPC carries no tuples)."""
+        digest: XML-RPC carries no tuples).
+        """
         seen, others, complete = graph_view(graph, local_participants())
         return [hashlib.sha1(repr(seen).encode()).hexdigest(), others, complete]
     server.register_function(discovery_view, 'discovery_view')

@@ -1,5 +1,6 @@
 """Graph: what a verb asks of the ROS graph, answered by the daemon (DaemonGraph, over XML-RPC) or by
-a verb's own node (owl_common.graph.GraphQueries). Both give the same plain answers."""
+a verb's own node (owl_common.graph.GraphQueries). Both give the same plain answers.
+"""
 
 from typing import Any, Protocol
 

@@ -49,7 +49,8 @@ class DiscoverySettling:
     def settled(self, elapsed: float, graph: Hashable, others_seen: bool, complete: bool | None) -> bool:
         """Whether to answer now, elapsed s after joining. graph is any value that changes when the
         graph does; others_seen whether a node other than a hidden one is in it; complete whether
-        every participant there is has been seen, or None where that cannot be known."""
+        every participant there is has been seen, or None where that cannot be known.
+        """
         if graph != self._seen:
             self._seen = graph
             self._changed_at = elapsed
@@ -89,7 +90,8 @@ def local_participants() -> int | None:
 
 def graph_view(graph: Graph, participants: int | None) -> tuple[Hashable, bool, bool | None]:
     """What settling compares (node, topic and service names), whether a node that is not a hidden
-    one (the asker's own, a `ros2` daemon) is in sight, and whether all participants are seen."""
+    one (the asker's own, a `ros2` daemon) is in sight, and whether all participants are seen.
+    """
     nodes = tuple(sorted(f'{namespace.rstrip("/")}/{name}'
                          for name, namespace in graph.node_names_and_namespaces()))
     topics = tuple(sorted(name for name, _ in graph.topic_names_and_types()))

@@ -76,7 +76,8 @@ def wait_until_settled(daemon: Any) -> None:
     """A daemon started a moment ago (by `ros2 daemon start` or the previous call) may still be
     discovering: wait, as a verb's own node does, until its graph has settled, at most MOST s from
     now. Past MOST s of age a complete graph is answered at once (what trickles in right after a
-    participant is seen has arrived by then); one up for DAEMON_SETTLED s is not asked at all."""
+    participant is seen has arrived by then); one up for DAEMON_SETTLED s is not asked at all.
+    """
     import xmlrpc.client
 
     uptime = daemon.get_uptime()

@@ -1,2 +1,3 @@
 """The checks of `owl check`, one module per course section (plug-ins: setup.py's
-owl_cli.exercises entry points list them)."""
+owl_cli.exercises entry points list them).
+"""
