@@ -7,7 +7,7 @@ logging over bare rclpy. Part 2 is the long run: LONG sequential calls to the ec
 awaited with executor.spin_until_future_complete and then with a spin_once loop (a fresh executor
 each), and compares the mean of the last WINDOW calls with the first WINDOW: a client must keep its
 first calls' latency (rclpy 7.1.6 alone left 3 Tasks per call in the executor; the venv's repair
-drops them, see scripts/owl_rclpy_repair.py). Target: last/first <= 1.2.
+drops them, see src/tools/owl_venv_hooks/owl_rclpy_repair.py). Target: last/first <= 1.2.
 """
 
 from __future__ import annotations

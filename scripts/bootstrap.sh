@@ -76,11 +76,12 @@ fi
 # --- OpenCV's headless build beside the GUI build, and the venv's start-up hooks (GUI libraries, rclpy). ---
 # Falling back needs no root, so a clean clone on a minimal machine (CI, a container) still gets a
 # working `import cv2`; a desktop keeps cv2.imshow windows. The same hook gives cv2 and pygame
-# windows that need no display where there is none. See scripts/owl_gui_hook.py.
+# windows that need no display where there is none. See $HOOKS/owl_gui_hook.py.
 CV_STAMP="$VENV/.owl-opencv-headless.sha256"
 cv_version="$(sed -n 's/^opencv-python==\([^ ;]*\).*/\1/p' requirements.txt)"
 [ -n "$cv_version" ] || die "requirements.txt pins no opencv-python."
-cv_hash="$( (echo "$cv_version"; cat scripts/owl_gui_hook.py scripts/owl_rclpy_repair.py) | sha256sum | cut -d' ' -f1)"
+HOOKS=src/tools/owl_venv_hooks
+cv_hash="$( (echo "$cv_version"; cat "$HOOKS/owl_gui_hook.py" "$HOOKS/owl_rclpy_repair.py") | sha256sum | cut -d' ' -f1)"
 if [ "$(cat "$CV_STAMP" 2>/dev/null)" != "$cv_hash" ]; then
   site_packages="$(env _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/python" -c \
     'import sysconfig; print(sysconfig.get_path("purelib"))')"
@@ -91,14 +92,14 @@ if [ "$(cat "$CV_STAMP" 2>/dev/null)" != "$cv_hash" ]; then
       --no-deps --compile-bytecode --target "$VENV/opencv-headless" "opencv-python-headless==$cv_version"
   fi
   rm -f "$site_packages/owl_cv2_fallback.py" "$site_packages/owl_cv2_fallback.pth"  # its old name
-  cp scripts/owl_gui_hook.py "$site_packages/"
+  cp "$HOOKS/owl_gui_hook.py" "$site_packages/"
   # Every start of the venv's Python imports it: compiled once here, as PYTHONDONTWRITEBYTECODE
   # would otherwise have each start compile it again (about 20 ms).
   env _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/python" -m py_compile "$site_packages/owl_gui_hook.py"
   echo 'import owl_gui_hook; owl_gui_hook.install()' >"$site_packages/owl_gui_hook.pth"
   # The rclpy wheel's Ctrl-C defect (a traceback when it lands while rclpy builds a message): the
-  # same kind of hook, acting at the first import of rclpy.executors. See scripts/owl_rclpy_repair.py.
-  cp scripts/owl_rclpy_repair.py "$site_packages/"
+  # same kind of hook, acting at the first import of rclpy. See $HOOKS/owl_rclpy_repair.py.
+  cp "$HOOKS/owl_rclpy_repair.py" "$site_packages/"
   env _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/python" -m py_compile "$site_packages/owl_rclpy_repair.py"
   echo 'import owl_rclpy_repair; owl_rclpy_repair.install()' >"$site_packages/owl_rclpy_repair.pth"
   cv_notice="$(env _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/python" -m owl_gui_hook)"

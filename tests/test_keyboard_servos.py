@@ -1,5 +1,5 @@
 """keyboard_servos over real DDS against olive_sim's servos: arrow keys pressed in its real window
-under Xvfb, and key events through the headless seam (scripts/owl_gui_hook.py); which arrow turns
+under Xvfb, and key events through the headless seam (src/tools/owl_venv_hooks/owl_gui_hook.py); which arrow turns
 which servo which way, goals within the bounds, torque on before the first goal and off after
 Ctrl-C, the speed and bound parameters and their bad values.
 """

@@ -1,4 +1,4 @@
-"""Unit tests of scripts/owl_gui_hook.py's pure parts and of its headless cv2 on a stand-in module.
+"""Unit tests of src/tools/owl_venv_hooks/owl_gui_hook.py's pure parts and of its headless cv2 on a stand-in module.
 
 The module is loaded from scripts/ (the copy in the venv is what processes run; tests/ runs those).
 Its headless pygame needs SDL in a process of its own: tests/test_headless_windows.py.
