@@ -23,8 +23,10 @@ from ros2cli.command import add_subparsers_on_demand
 
 
 def build_parser(argv: list[str]) -> argparse.ArgumentParser:
-    """The `ros2` parser: the commands of the entry point group 'ros2cli.command', of which only the
-    one argv chooses is imported (all of them for `ros2 -h`, whose listing needs their docstrings).
+    """The `ros2` parser, with the commands of the entry point group 'ros2cli.command'.
+
+    Only the command argv chooses is imported (all of them for `ros2 -h`, whose listing needs
+    their docstrings).
     """
     parser = argparse.ArgumentParser(
         prog='ros2', description='ros2 is an extensible command-line tool for ROS 2.',
@@ -40,8 +42,10 @@ def build_parser(argv: list[str]) -> argparse.ArgumentParser:
 
 
 def one_line(message: str) -> str:
-    """An exception message on one line: rcl's multi-line name errors (text, the name, a caret
-    line) joined, and the C source location rcl appends dropped.
+    """An exception message on one line, as `ros2` reports an unexpected error.
+
+    rcl's multi-line name errors (text, the name, a caret line) are joined, and the C source
+    location rcl appends is dropped.
     """
     import re
     parts = [line.strip() for line in message.splitlines() if line.strip() and set(line.strip()) != {'^'}]
@@ -62,9 +66,11 @@ def _completion_argv() -> list[str] | None:
 
 def run_command(command_main: Callable[[argparse.Namespace], int | str | None],
                 args: argparse.Namespace) -> int | str | None:
-    """command_main(args), after which whatever ROS state the command left is under owl_common's
-    clean-up watchdog: a command cut short (Ctrl-C during discovery, an error) leaves its node to
-    interpreter exit, where a Fast DDS teardown deadlock would otherwise hang the process.
+    """command_main(args), after which whatever ROS state it left is under the clean-up watchdog.
+
+    A command cut short (Ctrl-C during discovery, an error) leaves its node to interpreter exit,
+    where a Fast DDS teardown deadlock would otherwise hang the process; owl_common's watchdog
+    ends it instead.
     """
     try:
         return command_main(args)
@@ -77,6 +83,11 @@ def run_command(command_main: Callable[[argparse.Namespace], int | str | None],
 
 
 def main(argv: list[str] | None = None) -> int | str:
+    """Run `ros2` with argv (default: sys.argv[1:]) and return the process's exit code.
+
+    A command's string result or RuntimeError is printed on stderr (exit code 1); under shell
+    completion argcomplete prints the candidates and exits. The module docstring has the rest.
+    """
     completing = _completion_argv()
     argv = completing if completing is not None else sys.argv[1:] if argv is None else argv
     parser = build_parser(argv)

@@ -15,19 +15,26 @@ Completer = Callable[..., Iterable[str]]
 
 
 def with_completer(argument: argparse.Action, completer: Completer) -> argparse.Action:
-    """Attach shell completion to an argument: argcomplete reads the `completer` attribute of the
-    Action that add_argument returned (argparse's own Action has no such field, hence setattr).
+    """The argument, with shell completion attached.
+
+    argcomplete reads the `completer` attribute of the Action that add_argument returned
+    (argparse's own Action has no such field, hence setattr).
     """
     setattr(argument, 'completer', completer)  # noqa: B010
     return argument
 
 
 def package_completer(prefix: str, **_kwargs: object) -> Iterable[str]:
+    """The names of the installed packages that start with prefix, sorted."""
     from ament_index_python.packages import get_packages_with_prefixes
     return sorted(p for p in get_packages_with_prefixes() if p.startswith(prefix))
 
 
 def executable_completer(prefix: str, parsed_args: argparse.Namespace, **_kwargs: object) -> Iterable[str]:
+    """The package's executable names that start with prefix, sorted (none for an unknown package).
+
+    The package is the one given before it on the command line (parsed_args.package_name).
+    """
     from ament_index_python.packages import get_package_prefix
 
     from ros2cli.command.run import package_executables
@@ -83,5 +90,6 @@ action_type_completer = _type_completer('action')
 
 
 def any_type_completer(prefix: str, **kwargs: object) -> list[str]:
+    """Message, service and action type names ('pkg/msg/Name') that start with prefix."""
     return [*message_type_completer(prefix), *service_type_completer(prefix),
             *action_type_completer(prefix)]

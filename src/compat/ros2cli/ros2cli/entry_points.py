@@ -59,6 +59,7 @@ def get_entry_points(group_name: str) -> dict[str, EntryPoint]:
 
 
 def get_entry_point_groups() -> list[str]:
+    """The names of every entry point group of the installed distributions, sorted."""
     return sorted(_all_entry_points())
 
 

@@ -41,8 +41,10 @@ def print_names_of_type(entries: Entries, type_name: str, count_only: bool) -> i
 
 
 def print_types(strategy: 'NodeStrategy', entries_of: Callable[[Graph], Entries], name: str) -> int:
-    """`type`: wait (within the strategy's grace) for name in the graph, print its types one a line;
-    exit code 1, printing nothing, when it never shows up (as upstream).
+    """`type`: print the types of name one a line, once it is in the graph; the exit code.
+
+    It waits for name within the strategy's grace; exit code 1, printing nothing, when it never
+    shows up (as upstream).
     """
     strategy.wait_until(lambda: types_of(entries_of(strategy.graph), name) is not None)
     types = types_of(entries_of(strategy.graph), name)

@@ -1,5 +1,7 @@
-"""Mistyped names on the command line, while a verb waits for them. (The rules of node and topic
-names live in owl_common.graph, the 'did you mean' hint in owl_common.hints.)
+"""Mistyped names on the command line, while a verb waits for them.
+
+(The rules of node and topic names live in owl_common.graph, the 'did you mean' hint in
+owl_common.hints.)
 """
 
 from collections.abc import Callable, Iterable
@@ -8,8 +10,10 @@ from owl_common.hints import did_you_mean
 
 
 class WaitingHint:
-    """While a verb waits for a name (as upstream, forever), say so once on stderr after a grace
-    period, and once more when a close name shows up: the name is probably mistyped.
+    """The notice on stderr while a verb waits (as upstream, forever) for a name that may be mistyped.
+
+    It is said once after a grace period (`grace`, seconds), and once more when a close name shows
+    up: the name is then probably mistyped.
     """
 
     def __init__(self, subject: str, name: str, grace: float) -> None:
@@ -20,6 +24,10 @@ class WaitingHint:
         self._said = self._suggested = False
 
     def update(self, candidates: Callable[[], Iterable[str]]) -> None:
+        """Call at each retry: print the notice when due; candidates() lists the names seen so far.
+
+        candidates is only called once the grace period is over and until a close name was found.
+        """
         import sys
         import time
         if self._suggested or time.monotonic() < self._grace_end:

@@ -1,5 +1,7 @@
-"""Versions and instances of extensions, under upstream ros2cli's names, so that extensions written
-for upstream (`satisfies_version(PLUGIN_SYSTEM_VERSION, '^0.1')` in their __init__) load here.
+"""Versions and instances of extensions, under upstream ros2cli's names.
+
+The names are kept so that extensions written for upstream
+(`satisfies_version(PLUGIN_SYSTEM_VERSION, '^0.1')` in their __init__) load here.
 """
 
 from __future__ import annotations
@@ -23,8 +25,10 @@ def _numbers(version: str) -> list[int]:
 
 
 def satisfies_version(version: str, caret_range: str) -> None:
-    """PluginException unless `version` lies in the caret range (npm's rule: '^0.1' is >=0.1 <0.2,
-    '^1.2' is >=1.2 <2.0: below 1.0 the minor number breaks compatibility).
+    """PluginException unless `version` lies in the caret range.
+
+    The range follows npm's rule: '^0.1' is >=0.1 <0.2, '^1.2' is >=1.2 <2.0 (below 1.0 the minor
+    number breaks compatibility).
     """
     if not caret_range.startswith('^'):
         raise PluginException(f"'{caret_range}' is not a caret range such as '^0.1'")

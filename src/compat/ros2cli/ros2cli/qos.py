@@ -17,6 +17,7 @@ OVERRIDES = ('qos_depth', 'qos_history', 'qos_reliability', 'qos_durability', 'q
 
 
 def add_qos_arguments(parser: argparse.ArgumentParser, entity: str, default_profile: str) -> None:
+    """Add --qos-profile (default: default_profile) and the policy overrides; entity is the help's verb."""
     parser.add_argument(
         '--qos-profile', choices=PROFILES, default=default_profile,
         help=f'Quality of service preset profile to {entity} with (default: {default_profile})')

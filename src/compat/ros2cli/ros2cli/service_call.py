@@ -22,10 +22,14 @@ class ServiceCallError(RuntimeError):
 
 
 class ServiceUnavailable(ServiceCallError):
+    """No server of the service showed up within the timeout."""
+
     pass
 
 
 class NoResponse(ServiceCallError):
+    """No response came to any of the CALL_ATTEMPTS sends of the request."""
+
     pass
 
 
@@ -38,6 +42,11 @@ class ServiceCaller:
         self._clients: dict[tuple[str, Any], Client] = {}
 
     def call(self, service: str, srv_class: Any, request: Any, timeout: float) -> Any:
+        """The service's response to request; ServiceCallError (or a subclass) when there is none.
+
+        It waits up to timeout s for the server, then sends the request up to CALL_ATTEMPTS times, each
+        attempt waiting longer for the answer (timeout * attempt / CALL_ATTEMPTS s).
+        """
         import rclpy
 
         client = self._clients.get((service, srv_class))
@@ -71,6 +80,7 @@ class DaemonServiceCaller:
         self._daemon = DaemonGraph(timeout=timeout * 2 + 5.0)
 
     def call(self, service: str, srv_class: Any, request: Any, timeout: float) -> Any:
+        """The same call, made by the daemon (see serve_call): the same response, or the same exceptions."""
         import xmlrpc.client
 
         from rosidl_runtime_py.convert import dump_yaml, message_to_ordereddict

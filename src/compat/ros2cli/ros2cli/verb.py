@@ -1,5 +1,6 @@
-"""`ros2 <command> <verb>`: the verb extension point (entry point groups '<package>.verb', e.g.
-'ros2topic.verb').
+"""`ros2 <command> <verb>`: the verb extension point.
+
+Its entry point groups are '<package>.verb', e.g. 'ros2topic.verb'.
 
 A verb is a class with a docstring (its first line is what `ros2 <command> -h` lists),
     add_arguments(self, parser, cli_name) -> None   its options
@@ -25,9 +26,11 @@ class VerbExtension:
         satisfies_version(PLUGIN_SYSTEM_VERSION, '^0.1')
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the verb's options to its parser; by default it has none."""
         pass
 
     def main(self, *, args: argparse.Namespace) -> int | str | None:
+        """Do the verb's work; every verb must override it (see ros2cli.cli for the result)."""
         raise NotImplementedError
 
 

@@ -43,7 +43,8 @@ def test_bandwidth_statistics():
         statistics.add(index * 0.1, 2000)
     assert statistics.report() == ('20.00 KB/s from 10 messages\n\tMessage size mean: 2.00 KB '
                                       'min: 2.00 KB max: 2.00 KB')
-    assert size_text(12) == '12 B' and size_text(3_500_000) == '3.50 MB'
+    assert size_text(12) == '12 B'
+    assert size_text(3_500_000) == '3.50 MB'
 
 
 def test_parameter_file_shapes(tmp_path):

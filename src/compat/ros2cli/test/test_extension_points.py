@@ -17,7 +17,8 @@ def test_entry_points_text_is_read_per_group_first_declaration_wins():
            found)
     _parse('[ros2cli.command]\nhello = shadowed.command:Hello\n', found)
     assert found['ros2cli.command']['hello'].value == 'pkg.command:Hello'
-    assert found['other']['x'].value == 'y:z' and list(found['other']) == ['x']
+    assert found['other']['x'].value == 'y:z'
+    assert list(found['other']) == ['x']
 
 
 def test_the_installed_commands_and_verbs_are_entry_points():
@@ -44,13 +45,13 @@ def test_first_line_of_the_docstring_without_its_period():
 
         Various things.
         More.
-        """
+        """  # noqa: D205 -- the shape under test: only the first non-blank line counts
     assert get_first_line_doc(Documented) == 'Various things'
     assert get_first_line_doc(object()) == 'The base class of the class hierarchy'
     assert get_first_line_doc(type('Bare', (), {'__doc__': None})) == ''
 
 
-@pytest.mark.parametrize('version, caret, fits', [
+@pytest.mark.parametrize(('version', 'caret', 'fits'), [
     ('0.1', '^0.1', True), ('0.1.5', '^0.1', True), ('0.2', '^0.1', False), ('0.0', '^0.1', False),
     ('1.4', '^1.2', True), ('2.0', '^1.2', False), ('1.1', '^1.2', False)])
 def test_caret_ranges(version, caret, fits):
@@ -89,5 +90,6 @@ def test_subparsers_list_docstrings_and_set_the_chosen_extension():
     add_subparsers(parser, 'ros2 hello', '_verb', {'greet': Greet(), 'hello': Hello()}, required=False)
     assert '\n  greet  Say hello\n  hello  Greet\n' in parser.format_help()
     args = parser.parse_args(['greet', '--name', 'Owl'])
-    assert isinstance(args._verb, Greet) and args.name == 'Owl'
+    assert isinstance(args._verb, Greet)
+    assert args.name == 'Owl'
     assert not hasattr(parser.parse_args([]), '_verb')

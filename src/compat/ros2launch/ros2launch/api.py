@@ -16,6 +16,8 @@ from launch.substitution import describe_substitutions
 
 
 class MultipleLaunchFilesError(RuntimeError):
+    """The launch file's name was found more than once below the package's share directory."""
+
     pass
 
 
@@ -60,6 +62,10 @@ def load_launch_file(path: str) -> LaunchDescription:
 
 
 def format_arguments_of_launch_file(path: str) -> str:
+    """The `ros2 launch -s` text: each declared argument with its description and default, as upstream.
+
+    Arguments that are only used under some condition are starred, with a note at the end.
+    """
     arguments = load_launch_file(path).get_launch_arguments(conditional_inclusion=True)
     lines = ["Arguments (pass arguments as '<name>:=<value>'):"]
     for argument in arguments:

@@ -1,5 +1,6 @@
-"""`ros2 launch [options] <package_name> <launch_file_name> [name:=value ...]` or `<path>`; `ros2` finds
-the command through this package's entry point ('ros2cli.command' in setup.py).
+"""`ros2 launch [options] <package_name> <launch_file_name> [name:=value ...]` or `<path>`.
+
+`ros2` finds the command through this package's entry point ('ros2cli.command' in setup.py).
 """
 
 from __future__ import annotations
@@ -15,13 +16,16 @@ class LaunchCommand(CommandExtension):
     """Run a launch file."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the launch options (see add_launch_arguments)."""
         add_launch_arguments(parser)
 
     def main(self, *, parser: argparse.ArgumentParser, args: argparse.Namespace) -> int | str:
+        """Launch the file, or show it (-p) or its arguments (-s); the exit code (see launch())."""
         return launch(args)
 
 
 def add_launch_arguments(parser: argparse.ArgumentParser) -> None:
+    """Add the options, the package name (or a path), the launch file name and the name:=value arguments."""
     parser.add_argument('-n', '--noninteractive', action='store_true', default=not sys.stdin.isatty(),
                         help='Run the launch system non-interactively, with no terminal associated')
     parser.add_argument('-d', '--debug', action='store_true',
@@ -66,6 +70,11 @@ def resolve_launch_file(args: argparse.Namespace) -> tuple[str, list[str]]:
 
 
 def launch(args: argparse.Namespace) -> int | str:
+    """Run `ros2 launch` with the parsed arguments; launch's exit code, or 0 after -p or -s.
+
+    A missing package or file or a malformed name:=value raises RuntimeError, and so does a broken
+    launch file for -p and -s; --launch-prefix-filter without --launch-prefix is the error message.
+    """
     # Imported here: `launch` takes a while to import, and `ros2 -h` imports this module.
     from ros2launch.api import (
         format_arguments_of_launch_file,

@@ -32,9 +32,11 @@ class CommandExtension:
         satisfies_version(PLUGIN_SYSTEM_VERSION, '^0.1')
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the command's options (and verbs) to its parser; by default it has none."""
         pass
 
     def main(self, *, parser: argparse.ArgumentParser, args: argparse.Namespace) -> int | str | None:
+        """Do the command's work; every command must override it (see ros2cli.cli for the result)."""
         raise NotImplementedError
 
 
@@ -45,6 +47,7 @@ def get_command_extensions(group_name: str) -> dict[str, Any]:
 
 def _chosen_name(cli_name: str, argv: list[str] | None) -> str | None:
     """The word at this parser's depth ('ros2' 0, 'ros2 topic' 1): the extension the user chose.
+
     Option values are not told apart from words here; a wrong guess only means every extension of
     the group is loaded, as for `-h`.
     """
@@ -58,10 +61,11 @@ def add_subparsers(parser: argparse.ArgumentParser, cli_name: str, dest: str,
                    extensions: dict[str, Any], hide_extensions: list[str] | None = None,
                    required: bool = True, names: list[str] | None = None,
                    with_arguments: bool = True) -> Any:
-    """A sub-parser per extension, listed as upstream lists them (one padded line each, then the
-    hint line); the chosen one sets `args.<dest>` to the extension. `names` adds bare sub-parsers
-    for extensions that were not loaded (so that their names still parse). Without
-    `with_arguments` the extensions' add_arguments() is not called: a listing needs none.
+    """A sub-parser per extension; the chosen one sets `args.<dest>` to the extension.
+
+    They are listed as upstream lists them (one padded line each, then the hint line). `names`
+    adds bare sub-parsers for extensions that were not loaded (so that their names still parse).
+    Without `with_arguments` the extensions' add_arguments() is not called: a listing needs none.
     """
     shown = {name: extension for name, extension in extensions.items() if name not in (hide_extensions or ())}
     width = max(map(len, shown), default=0) + 2
@@ -87,9 +91,11 @@ def add_subparsers(parser: argparse.ArgumentParser, cli_name: str, dest: str,
 def add_subparsers_on_demand(parser: argparse.ArgumentParser, cli_name: str, dest: str, group_name: str,
                              hide_extensions: list[str] | None = None, required: bool = True,
                              argv: list[str] | None = None) -> Any:
-    """add_subparsers() for a group's entry points, importing only the extension that argv chooses;
-    all of them when it chooses none (help) or an unknown name (the error lists the known ones),
-    then without their arguments: `ros2 -h` needs the commands' docstrings, not their verbs.
+    """add_subparsers() for a group's entry points, importing only the extension that argv chooses.
+
+    All of them are imported when argv chooses none (help) or an unknown name (the error lists
+    the known ones), then without their arguments: `ros2 -h` needs the commands' docstrings, not
+    their verbs.
     """
     names = sorted(get_entry_points(group_name))
     chosen = _chosen_name(cli_name, argv)
@@ -107,10 +113,12 @@ class VerbCommand(CommandExtension):
     VERB_GROUP = ''
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add a sub-parser per verb of VERB_GROUP (only the chosen verb is imported)."""
         self._subparser = parser
         add_subparsers_on_demand(parser, cli_name, '_verb', self.VERB_GROUP, required=False)
 
     def main(self, *, parser: argparse.ArgumentParser, args: argparse.Namespace) -> int | str | None:
+        """Run the chosen verb and return its result; without a verb, print the command's help."""
         if not hasattr(args, '_verb'):
             self._subparser.print_help()
             return 0

@@ -13,6 +13,7 @@ STATUS_NAMES = {0: 'UNKNOWN', 1: 'ACCEPTED', 2: 'EXECUTING', 3: 'CANCELING', 4: 
 
 
 def action_types(graph: Graph, action: str) -> list[str] | None:
+    """The action's types in the graph, or None while the action is not (yet) in it."""
     from ros2cli.graph_listing import types_of
     return types_of(graph.action_names_and_types(), action)
 
@@ -26,6 +27,7 @@ class ListVerb(VerbExtension):
     """Output a list of action names."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add -t/--show-types, -c/--count-actions and the NodeStrategy options."""
         from ros2cli.node.strategy import add_strategy_arguments
         parser.add_argument('-t', '--show-types', action='store_true',
                             help='Additionally show the action type')
@@ -34,6 +36,7 @@ class ListVerb(VerbExtension):
         add_strategy_arguments(parser)
 
     def main(self, *, args: argparse.Namespace) -> int:
+        """Print the action names (with their types for -t, or only how many there are for -c)."""
         from ros2cli.graph_listing import print_listing
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
@@ -45,6 +48,7 @@ class InfoVerb(VerbExtension):
     """Print information about an action."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the action name, -t/--show-types, -c/--count and the NodeStrategy options."""
         from ros2cli.node.strategy import add_strategy_arguments
         _action_argument(parser, "Name of the ROS action to get info (e.g. '/fibonacci')")
         parser.add_argument('-t', '--show-types', action='store_true',
@@ -54,6 +58,12 @@ class InfoVerb(VerbExtension):
         add_strategy_arguments(parser)
 
     def main(self, *, args: argparse.Namespace) -> int | str:
+        """Print the nodes that are the action's clients and servers (with types for -t, only counts for -c).
+
+        The name must be absolute, else its error message is returned. An action that is not in the
+        graph (after the discovery grace) gives empty sections and, when a known name is close, a
+        'did you mean' line on stderr.
+        """
         from owl_common.graph import full_node_name
         from owl_common.hints import did_you_mean
 
@@ -92,11 +102,13 @@ class TypeVerb(VerbExtension):
     """Print a action's type."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the action name and the NodeStrategy options."""
         from ros2cli.node.strategy import add_strategy_arguments
         _action_argument(parser, "Name of the ROS action to get type (e.g. '/fibonacci')")
         add_strategy_arguments(parser)
 
     def main(self, *, args: argparse.Namespace) -> int:
+        """Print the action's types one a line; exit code 1 when the action never shows up."""
         from ros2cli.graph_listing import print_types
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
@@ -113,6 +125,7 @@ class SendGoalVerb(VerbExtension):
     """Send an action goal."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the action name and type, the goal's YAML values (or --stdin) and -f/--feedback."""
         from ros2cli.command.topic_pub import add_values_arguments
         from ros2cli.completion import action_type_completer, with_completer
         _action_argument(parser, "Name of the ROS action (e.g. '/fibonacci')")
@@ -123,6 +136,11 @@ class SendGoalVerb(VerbExtension):
                             help='Echo feedback messages for the goal')
 
     def main(self, *, args: argparse.Namespace) -> int | str:
+        """Send one goal made of the YAML values, print its feedback (-f) and result, and return 0.
+
+        An invalid action type or goal field is returned as the error message. Ctrl-C cancels a goal that
+        is running and exits with 2.
+        """
         from rosidl_runtime_py.set_message import FieldError, set_message_fields
         from rosidl_runtime_py.utilities import InvalidType, canonical_type, import_type
 

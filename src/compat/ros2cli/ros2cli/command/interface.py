@@ -102,6 +102,7 @@ class ShowVerb(VerbExtension):
     """Output the interface definition."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the type (or '-' to read it from stdin) and --all-comments or --no-comments."""
         from ros2cli.completion import any_type_completer, with_completer
         with_completer(parser.add_argument(
             'type', help="Show an interface definition (e.g. 'example_interfaces/msg/String'). Passing '-' "
@@ -114,6 +115,11 @@ class ShowVerb(VerbExtension):
         self._parser = parser
 
     def main(self, *, args: argparse.Namespace) -> int | str:
+        """Print the interface's definition, nested message types expanded beneath their fields.
+
+        A malformed name is returned as the error message; an unknown package or interface raises
+        RuntimeError (with a 'did you mean' hint).
+        """
         type_name = args.type
         if type_name == '-':
             if sys.stdin.isatty():
@@ -137,9 +143,11 @@ class ListVerb(VerbExtension):
     """List all interface types available."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the -m/-s/-a filters (only messages, services or actions)."""
         _add_kind_filters(parser)
 
     def main(self, *, args: argparse.Namespace) -> int:
+        """Print every installed interface's full name, in a section per kind the filters allow."""
         from rosidl_runtime_py.get_interfaces import interface_index
         index = interface_index()
         wanted = _wanted_kinds(args)
@@ -156,11 +164,13 @@ class PackageVerb(VerbExtension):
     """Output a list of available interface types within one package."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the package name and the -m/-s/-a filters."""
         from ros2cli.completion import package_completer, with_completer
         with_completer(parser.add_argument('package_name', help='Name of the ROS package'), package_completer)
         _add_kind_filters(parser)
 
     def main(self, *, args: argparse.Namespace) -> int | str:
+        """Print the package's interfaces as full names; the error message for an unknown package."""
         from rosidl_runtime_py.get_interfaces import interface_index
         index = interface_index()
         if args.package_name not in index:
@@ -175,9 +185,11 @@ class PackagesVerb(VerbExtension):
     """Output a list of packages that provide interfaces."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the -m/-s/-a filters: only packages with interfaces of that kind."""
         _add_kind_filters(parser)
 
     def main(self, *, args: argparse.Namespace) -> int:
+        """Print the names of the packages that provide interfaces of the kinds the filters allow."""
         from rosidl_runtime_py.get_interfaces import interface_index
         wanted = _wanted_kinds(args)
         for package, kinds in sorted(interface_index().items()):
@@ -205,6 +217,7 @@ class ProtoVerb(VerbExtension):
     """Output an interface prototype."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the type and --no-quotes."""
         from ros2cli.completion import any_type_completer, with_completer
         with_completer(parser.add_argument(
             'type', help="Show an interface definition (e.g. 'std_msgs/msg/String')"
@@ -212,6 +225,10 @@ class ProtoVerb(VerbExtension):
         parser.add_argument('--no-quotes', action='store_true', help='if true output has no outer quotes.')
 
     def main(self, *, args: argparse.Namespace) -> int:
+        """Print a default instance as YAML, in double quotes unless --no-quotes.
+
+        For a service it is the request, for an action the goal; an invalid name raises RuntimeError.
+        """
         from rosidl_runtime_py.convert import message_to_yaml
         text = message_to_yaml(default_instance(args.type))
         print(text if args.no_quotes else f'"{text}"')

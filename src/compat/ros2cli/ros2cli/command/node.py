@@ -23,6 +23,7 @@ class ListVerb(VerbExtension):
     """Output a list of available nodes."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the NodeStrategy options, -a/--all (hidden nodes too) and -c/--count-nodes."""
         from ros2cli.node.strategy import add_strategy_arguments
         add_strategy_arguments(parser)
         parser.add_argument('-a', '--all', action='store_true', help='Display all nodes even hidden ones')
@@ -30,6 +31,10 @@ class ListVerb(VerbExtension):
                             help='Only display the number of nodes discovered')
 
     def main(self, *, args: argparse.Namespace) -> int:
+        """Print the nodes' full names, sorted, or only how many there are (-c).
+
+        Names that several nodes share are listed each time, after a warning on stderr.
+        """
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
             names = node_names(strategy.graph, args.all)
@@ -44,6 +49,10 @@ class ListVerb(VerbExtension):
 
 
 def print_section(title: str, names_and_types: list[list[Any]], include_hidden: bool) -> None:
+    """Print one section of `node info`: its title, then a `name: types` line per entry.
+
+    Hidden names are left out unless include_hidden; an empty section prints one empty line.
+    """
     from owl_common.graph import is_hidden_name
     print(f'  {title}:')
     lines = [f"    {name}: {', '.join(types)}" for name, types in names_and_types
@@ -56,6 +65,7 @@ class InfoVerb(VerbExtension):
     """Output information about a node."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the node name, the NodeStrategy options and --include-hidden."""
         from ros2cli.completion import node_completer, with_completer
         from ros2cli.node.strategy import add_strategy_arguments
         with_completer(parser.add_argument('node_name', help='Node name to request information'),
@@ -65,6 +75,11 @@ class InfoVerb(VerbExtension):
                             'services, and actions as well')
 
     def main(self, *, args: argparse.Namespace) -> int | str:
+        """Print the node's subscribers, publishers, service servers and clients, action servers and clients.
+
+        An unknown node gives the error message (with a 'did you mean' hint). When several nodes share the
+        name, the sections are those of one of them, with a warning on stderr.
+        """
         from owl_common.graph import split_node_name
         from owl_common.hints import did_you_mean
 

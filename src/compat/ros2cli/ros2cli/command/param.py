@@ -20,6 +20,7 @@ VALUE_LABELS = {1: 'Boolean value is:', 2: 'Integer value is:', 3: 'Double value
 
 
 def full_name(node_name: str) -> str:
+    """The node name made absolute: '/' put in front when missing (no namespace is applied)."""
     return node_name if node_name.startswith('/') else '/' + node_name
 
 
@@ -29,8 +30,10 @@ VALUE_FIELDS = ('', 'bool_value', 'integer_value', 'double_value', 'string_value
 
 
 def python_value(value: 'ParameterValue') -> Any:
-    """The value a ParameterValue holds, arrays as lists: what rclpy's parameter_value_to_python
-    gives, without importing rclpy (a fifth of a warm `param get`'s time).
+    """The value a ParameterValue holds, arrays as lists; None when it is not set.
+
+    This is what rclpy's parameter_value_to_python gives, without importing rclpy (a fifth of a
+    warm `param get`'s time). ValueError for a type number that does not exist.
     """
     if not 0 <= value.type < len(VALUE_FIELDS):
         raise ValueError(f'unknown parameter type {value.type}')
@@ -84,6 +87,10 @@ class ParameterSession:
         return self
 
     def call(self, service: str, srv_class: Any, request: Any) -> Any:
+        """The response of one of the node's parameter services (`service`: e.g. 'get_parameters').
+
+        RuntimeError, with upstream's message, when the service is not available or the call fails.
+        """
         from ros2cli.service_call import ServiceCallError, ServiceUnavailable
         try:
             return self._caller.call(f'{self.node_name}/{service}', srv_class, request, SERVICE_TIMEOUT)
@@ -95,20 +102,24 @@ class ParameterSession:
                                f'{error}') from None
 
     def names(self, prefixes: list[str] | None = None) -> list[str]:
+        """The node's parameter names, sorted (only those under `prefixes`, when given)."""
         from rcl_interfaces.srv import ListParameters
         request = ListParameters.Request(prefixes=prefixes or [], depth=0)
         return sorted(self.call('list_parameters', ListParameters, request).result.names)
 
     def values(self, names: list[str]) -> list['ParameterValue']:
+        """The ParameterValue of each name, in order; an empty list when the node lacks any of them."""
         from rcl_interfaces.srv import GetParameters
         return list(self.call('get_parameters', GetParameters, GetParameters.Request(names=names)).values)
 
     def set(self, parameters: list['ParameterMsg']) -> list['SetParametersResult']:
+        """Set the parameters on the node (NOT_SET deletes); a SetParametersResult for each, in order."""
         from rcl_interfaces.srv import SetParameters
         request = SetParameters.Request(parameters=parameters)
         return list(self.call('set_parameters', SetParameters, request).results)
 
     def describe(self, name: str) -> list['ParameterDescriptor']:
+        """The descriptor of one parameter, in a list; an empty list when the node has not declared it."""
         from rcl_interfaces.srv import DescribeParameters
         request = DescribeParameters.Request(names=[name])
         return list(self.call('describe_parameters', DescribeParameters, request).descriptors)
@@ -119,6 +130,7 @@ class ParameterSession:
         return did_you_mean(name, self.names())
 
     def close(self) -> None:
+        """Close the NodeStrategy if this session made it; one that was passed in is the caller's to close."""
         if self._strategy is not None and self._owns_strategy:
             self._strategy.close()
         self._strategy = None
@@ -143,6 +155,7 @@ class ListVerb(VerbExtension):
     """Output a list of available parameters."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the common node options (node name optional) and --param-prefixes, --param-type, --filter."""
         _add_common(parser, node_required=False, timeout=False)
         parser.add_argument('--param-prefixes', nargs='+', default=[],
                             help='Only list parameters with the provided prefixes')
@@ -151,6 +164,11 @@ class ListVerb(VerbExtension):
         parser.add_argument('--filter', metavar='REGEX', help='Only list parameters matching this regex')
 
     def main(self, *, args: argparse.Namespace) -> int | str:
+        """Print the parameter names of one node, or of every node that has parameter services, node by node.
+
+        --filter is a regular expression matched at the start of each name; an invalid one gives the error
+        message. Without a node name, a node whose services fail is reported in one line and the rest listed.
+        """
         import re
 
         from ros2cli.command.node import node_names
@@ -194,11 +212,16 @@ class GetVerb(VerbExtension):
     """Get parameter."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the common node options, the parameter name and --hide-type."""
         _add_common(parser)
         parser.add_argument('parameter_name', help='Name of the parameter')
         parser.add_argument('--hide-type', action='store_true', help='Hide the type information')
 
     def main(self, *, args: argparse.Namespace) -> int | str:
+        """Print the value after its type's label ('Integer value is: 3'), or the value alone for --hide-type.
+
+        An undeclared parameter gives the error message, with a 'did you mean' hint.
+        """
         with ParameterSession(args, args.node_name) as session:
             values = session.values([args.parameter_name])
             if not values:
@@ -225,8 +248,10 @@ def _set_one(args: argparse.Namespace, session: ParameterSession, value: Any, ve
 
 
 def failure_reason(reason: str, name: str, session: ParameterSession) -> str:
-    """Rclpy's reason, said plainly: the course's type names instead of rclpy's enum names, the closest
-    declared name.
+    """Rclpy's reason for a refused parameter, said plainly.
+
+    The course's type names replace rclpy's enum names, an undeclared name gets the closest
+    declared one as a hint, and an empty reason becomes 'no reason given'.
     """
     import re
 
@@ -245,11 +270,13 @@ class SetVerb(VerbExtension):
     """Set parameter."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the common node options, the parameter name and its value (YAML: '3' is an integer)."""
         _add_common(parser)
         parser.add_argument('parameter_name', help='Name of the parameter')
         parser.add_argument('value', help='Value of the parameter')
 
     def main(self, *, args: argparse.Namespace) -> int:
+        """Set the parameter and print the outcome; a refusal goes to stderr (exit code 0, as upstream)."""
         from rclpy.parameter import get_parameter_value
         with ParameterSession(args, args.node_name) as session:
             _set_one(args, session, get_parameter_value(args.value),
@@ -261,10 +288,12 @@ class DeleteVerb(VerbExtension):
     """Delete parameter."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the common node options and the parameter name."""
         _add_common(parser)
         parser.add_argument('parameter_name', help='Name of the parameter')
 
     def main(self, *, args: argparse.Namespace) -> int:
+        """Delete the parameter (set it NOT_SET) and print the outcome; a refusal is explained on stderr."""
         from rcl_interfaces.msg import ParameterValue
         with ParameterSession(args, args.node_name) as session:
             _set_one(args, session, ParameterValue(type=0),
@@ -276,10 +305,16 @@ class DescribeVerb(VerbExtension):
     """Show descriptive information about declared parameters."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the common node options and one or more parameter names."""
         _add_common(parser)
         parser.add_argument('parameter_names', nargs='+', help='Names of the parameters')
 
     def main(self, *, args: argparse.Namespace) -> int:
+        """Print each declared parameter's type, description and constraints.
+
+        Names the node has not declared are reported afterwards on stderr, with a 'did you mean' hint; the
+        exit code is 0 all the same.
+        """
         with ParameterSession(args, args.node_name) as session:
             # One request per name: a node answers nothing at all when any name is undeclared.
             descriptors, hints = [], {}
@@ -325,9 +360,11 @@ class DumpVerb(VerbExtension):
     """Show all of the parameters of a node in a YAML file format."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the common node options."""
         _add_common(parser)
 
     def main(self, *, args: argparse.Namespace) -> int:
+        """Print all of the node's parameters as a parameter file (YAML `<node>: ros__parameters: ...`)."""
         import yaml
         with ParameterSession(args, args.node_name) as session:
             names = session.names()
@@ -338,9 +375,11 @@ class DumpVerb(VerbExtension):
 
 
 def parameters_for_node(path: str, node_name: str, use_wildcard: bool) -> list['ParameterMsg']:
-    """The Parameter messages a parameter file holds for one node: the '/**' entry (when used) first,
-    then the node's own entry, which overrides it (rclpy's parameter_dict_from_yaml_file reads
-    them). RuntimeError with one line when the file cannot be read or nothing in it fits.
+    """The Parameter messages a parameter file holds for one node.
+
+    The '/**' entry (when used) is read first, then the node's own entry, which overrides it
+    (rclpy's parameter_dict_from_yaml_file reads them). RuntimeError with one line when the file
+    cannot be read or nothing in it fits.
     """
     from owl_common.hints import did_you_mean
     from rclpy.parameter import parameter_dict_from_yaml_file
@@ -382,12 +421,18 @@ class LoadVerb(VerbExtension):
     """Load parameter file for a node."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the common node options, the parameter file and --no-use-wildcard."""
         _add_common(parser)
         parser.add_argument('parameter_file', help='Parameter file')
         parser.add_argument('--no-use-wildcard', action='store_true',
                             help="Do not load parameters in the '/**' namespace into the node")
 
     def main(self, *, args: argparse.Namespace) -> int:
+        """Set the node's parameters from the file and print one outcome line per parameter.
+
+        The file's '/**' entry counts too unless --no-use-wildcard (the node's own entry wins over it).
+        Failures go to stderr and the exit code is 0, as upstream.
+        """
         parameters = parameters_for_node(args.parameter_file, full_name(args.node_name),
                                          not args.no_use_wildcard)
         with ParameterSession(args, args.node_name) as session:

@@ -19,13 +19,16 @@ class RunCommand(CommandExtension):
     """Run a package specific executable."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add run's options (see add_run_arguments)."""
         add_run_arguments(parser)
 
     def main(self, *, parser: argparse.ArgumentParser, args: argparse.Namespace) -> int | str:
+        """Run the executable (see run()); its exit code, or the error message."""
         return run(args)
 
 
 def add_run_arguments(parser: argparse.ArgumentParser) -> None:
+    """Add --prefix, the package name, the executable name (both completed in the shell) and its arguments."""
     from ros2cli.completion import executable_completer, package_completer, with_completer
 
     parser.add_argument('--prefix', help='Prefix command, which should go before the executable. '
@@ -63,9 +66,12 @@ def _child_setup(take_terminal: bool) -> None:
 
 
 def run_executable(command: list[str]) -> int:
+    """Run command with signals forwarded; its exit code (128 + N when killed by signal N).
+
+    RuntimeError when the command cannot be started at all.
+    """
     import subprocess  # here: `ros2 -h` imports this module for its docstring
 
-    """Run command with signals forwarded; its exit code (128 + N when killed by signal N)."""
     take_terminal = False
     try:
         take_terminal = os.isatty(0) and os.tcgetpgrp(0) == os.getpgrp()
@@ -103,6 +109,11 @@ def run_executable(command: list[str]) -> int:
 
 
 def run(args: argparse.Namespace) -> int | str:
+    """Run the package's executable with the given arguments; its exit code or the error message.
+
+    An unknown package or executable gives the error message with a 'did you mean' hint and, for an
+    executable, the package's executables. --prefix (shell words) goes in front of the command.
+    """
     from ament_index_python.packages import (
         PackageNotFoundError,
         get_package_prefix,

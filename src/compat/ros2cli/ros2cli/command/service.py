@@ -24,6 +24,7 @@ def _add_hidden_argument(parser: argparse.ArgumentParser) -> None:
 
 
 def visible_services(graph: Graph, include_hidden: bool) -> list[list[Any]]:
+    """The graph's [name, [type, ...]] service entries, hidden services left out unless include_hidden."""
     from owl_common.graph import is_hidden_name
     return [[name, types] for name, types in graph.service_names_and_types()
             if include_hidden or not is_hidden_name(name)]
@@ -38,6 +39,7 @@ class ListVerb(VerbExtension):
     """Output a list of available services."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add -t/--show-types, -c/--count-services, --include-hidden-services and NodeStrategy options."""
         from ros2cli.node.strategy import add_strategy_arguments
         add_strategy_arguments(parser)
         parser.add_argument('-t', '--show-types', action='store_true',
@@ -47,6 +49,7 @@ class ListVerb(VerbExtension):
         _add_hidden_argument(parser)
 
     def main(self, *, args: argparse.Namespace) -> int:
+        """Print the service names (with their types for -t, or only how many there are for -c)."""
         from ros2cli.graph_listing import print_listing
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
@@ -58,11 +61,13 @@ class TypeVerb(VerbExtension):
     """Output a service's type."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the service name and the NodeStrategy options."""
         from ros2cli.node.strategy import add_strategy_arguments
         _service_argument(parser, "Name of the ROS service to get type (e.g. '/add_two_ints')")
         add_strategy_arguments(parser)
 
     def main(self, *, args: argparse.Namespace) -> int:
+        """Print the service's types one a line; exit code 1 when the service never shows up."""
         from ros2cli.graph_listing import print_types
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
@@ -73,6 +78,7 @@ class FindVerb(VerbExtension):
     """Output a list of available services of a given type."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the service type, -c/--count-services, --include-hidden-services and NodeStrategy options."""
         from ros2cli.completion import service_type_completer, with_completer
         from ros2cli.node.strategy import add_strategy_arguments
         with_completer(parser.add_argument('service_type', help="Name of the ROS service type to filter for "
@@ -84,6 +90,7 @@ class FindVerb(VerbExtension):
         _add_hidden_argument(parser)
 
     def main(self, *, args: argparse.Namespace) -> int:
+        """Print the names of the services of that type (or only how many there are for -c)."""
         from ros2cli.graph_listing import print_names_of_type
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
@@ -95,6 +102,7 @@ class CallVerb(VerbExtension):
     """Call a service."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the service name and type, the request's YAML values (or --stdin) and -r/--rate."""
         from ros2cli.command.topic_pub import add_values_arguments
         from ros2cli.completion import service_type_completer, with_completer
         _service_argument(parser, "Name of the ROS service to call to (e.g. '/add_two_ints')")
@@ -106,6 +114,11 @@ class CallVerb(VerbExtension):
                             help='Repeat the call at a specific rate in Hz')
 
     def main(self, *, args: argparse.Namespace) -> int | str:
+        """Call the service with the request made of the YAML values and print the response.
+
+        It waits for the server as long as it takes; with -r it calls again at that rate until Ctrl-C. An
+        invalid rate, service type or request field is returned as the error message.
+        """
         import rclpy
         from owl_common.graph import expand_topic_name
         from rclpy.node import Node

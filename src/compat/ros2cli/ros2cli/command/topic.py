@@ -18,6 +18,7 @@ def _add_hidden_argument(parser: argparse.ArgumentParser) -> None:
 
 
 def visible_topics(graph: Graph, include_hidden: bool) -> list[list[Any]]:
+    """The graph's [name, [type, ...]] topic entries, hidden topics left out unless include_hidden."""
     from owl_common.graph import is_hidden_name
     return [[name, types] for name, types in graph.topic_names_and_types()
             if include_hidden or not is_hidden_name(name)]
@@ -36,11 +37,13 @@ def _type_argument(parser: argparse.ArgumentParser, nargs: str | None = None, he
 
 
 def topic_types(graph: Graph, topic: str) -> list[str] | None:
+    """The topic's types in the graph, or None while the topic is not (yet) in it."""
     from ros2cli.graph_listing import types_of
     return types_of(graph.topic_names_and_types(), topic)
 
 
 def unknown_topic(graph: Graph, topic: str) -> str:
+    """The error message for a topic that is not in the graph, with a 'did you mean' hint."""
     from owl_common.hints import did_you_mean
     return f"Unknown topic '{topic}'{did_you_mean(topic, [n for n, _ in graph.topic_names_and_types()])}"
 
@@ -49,6 +52,7 @@ class ListVerb(VerbExtension):
     """Output a list of available topics."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the listing options (-t, -c, -v, --include-hidden-topics) and the NodeStrategy options."""
         from ros2cli.node.strategy import add_strategy_arguments
         add_strategy_arguments(parser)
         parser.add_argument('-t', '--show-types', action='store_true',
@@ -60,6 +64,11 @@ class ListVerb(VerbExtension):
                             help='List full details about each topic')
 
     def main(self, *, args: argparse.Namespace) -> int:
+        """Print the topic names (with their types for -t, or only how many there are for -c).
+
+        -v lists published and subscribed topics instead, each with its number of publishers or
+        subscribers.
+        """
         from ros2cli.graph_listing import print_listing
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
@@ -112,6 +121,7 @@ class InfoVerb(VerbExtension):
     """Print information about a topic."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the topic name, -v/--verbose and the NodeStrategy options."""
         from ros2cli.node.strategy import add_strategy_arguments
         _topic_argument(parser, 'Name of the ROS topic to get info (e.g. \'/chatter\')')
         parser.add_argument('--verbose', '-v', action='store_true',
@@ -121,6 +131,10 @@ class InfoVerb(VerbExtension):
         add_strategy_arguments(parser)
 
     def main(self, *, args: argparse.Namespace) -> int | str:
+        """Print the topic's type and how many publishers and subscriptions it has (-v: each one's details).
+
+        An unknown topic gives the error message, with a 'did you mean' hint.
+        """
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
             graph = strategy.graph
@@ -145,12 +159,14 @@ class TypeVerb(VerbExtension):
     """Print a topic's type."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the topic name, --include-hidden-topics and the NodeStrategy options."""
         from ros2cli.node.strategy import add_strategy_arguments
         _topic_argument(parser, 'Name of the ROS topic to get type (e.g. \'/chatter\')')
         _add_hidden_argument(parser)
         add_strategy_arguments(parser)
 
     def main(self, *, args: argparse.Namespace) -> int:
+        """Print the topic's types one a line; exit code 1 when the topic never shows up (or is hidden)."""
         from ros2cli.graph_listing import print_types
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
@@ -162,6 +178,7 @@ class FindVerb(VerbExtension):
     """Output a list of available topics of a given type."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the message type, -c/--count-topics, --include-hidden-topics and the NodeStrategy options."""
         from ros2cli.node.strategy import add_strategy_arguments
         _type_argument(parser, help_text='Name of the ROS topic type to filter for '
                        "(e.g. 'std_msgs/msg/String')")
@@ -171,6 +188,7 @@ class FindVerb(VerbExtension):
         _add_hidden_argument(parser)
 
     def main(self, *, args: argparse.Namespace) -> int:
+        """Print the names of the topics of that type (or only how many there are for -c)."""
         from ros2cli.graph_listing import print_names_of_type
         from ros2cli.node.strategy import NodeStrategy
         with NodeStrategy(args) as strategy:
@@ -184,14 +202,19 @@ class TopicCommand(VerbCommand):
     VERB_GROUP = 'ros2topic.verb'
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the verbs, and --include-hidden-topics as an option of the command itself (as upstream).
+
+        The list, type and find verbs honour it as they do their own --include-hidden-topics.
+        """
         parser.add_argument('--include-hidden-topics', dest='command_include_hidden', action='store_true',
                             help='Consider hidden topics as well')
         super().add_arguments(parser, cli_name)
 
 
 def wait_for_topic_type(direct: Any, topic: str) -> list[str]:
-    """The topic's types once it is in the graph; like upstream this waits for as long as it takes,
-    and says when the name looks mistyped.
+    """The topic's types, once the topic is in the graph; like upstream it waits as long as it takes.
+
+    While it waits it prints a warning, and says on stderr when the name looks mistyped.
     """
     from ros2cli.names import WaitingHint
     from ros2cli.node.direct import NAMED_LOOKUP_GRACE

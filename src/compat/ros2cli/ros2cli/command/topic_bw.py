@@ -11,6 +11,7 @@ from ros2cli.verb import VerbExtension
 
 
 def size_text(size: float) -> str:
+    """A byte count or rate as upstream shows it: '512 B', '2.00 KB', '3.50 MB' (units of 1000)."""
     for unit, scale in (('MB', 1e6), ('KB', 1e3)):
         if size >= scale:
             return f'{size / scale:.2f} {unit}'
@@ -24,9 +25,11 @@ class BandwidthStatistics:
         self.samples: deque[tuple[float, int]] = deque(maxlen=window)
 
     def add(self, arrival: float, size: int) -> None:
+        """Record one message: its arrival time (seconds) and its serialized size (bytes)."""
         self.samples.append((arrival, size))
 
     def report(self) -> str | None:
+        """The bandwidth and message size report, or None while there are fewer than two messages."""
         if len(self.samples) < 2:
             return None
         sizes = [size for _, size in self.samples]
@@ -42,6 +45,7 @@ class BwVerb(VerbExtension):
     """Display bandwidth used by topic."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the topic name, -w/--window and the DirectNode options."""
         from ros2cli.node.direct import add_direct_node_arguments
         _topic_argument(parser, "Name of the ROS topic to listen to (e.g. '/chatter')")
         parser.add_argument('--window', '-w', type=positive_int, default=100,
@@ -49,6 +53,11 @@ class BwVerb(VerbExtension):
         add_direct_node_arguments(parser)
 
     def main(self, *, args: argparse.Namespace) -> int | str:
+        """Print the topic's bandwidth once a second until Ctrl-C, once the topic is in the graph.
+
+        Messages are received serialized and never deserialized; a message type that cannot be imported
+        gives the error message.
+        """
         from owl_common.graph import expand_topic_name
         from rclpy.executors import SingleThreadedExecutor
         from rosidl_runtime_py.utilities import InvalidType, import_type

@@ -22,6 +22,7 @@ DURABLE_FALLBACK = ('Some, but not all, publishers are offering QoSDurabilityPol
 
 
 def positive_float(text: str) -> float:
+    """An argparse type: the text as a float, ArgumentTypeError unless it is above zero."""
     value = float(text)
     if value <= 0:
         raise argparse.ArgumentTypeError(f'{text} is not a positive number')
@@ -80,7 +81,7 @@ def choose_qos(args: argparse.Namespace, publishers: list[dict[str, Any]]) -> 'Q
 
 
 class MessagePrinter:
-    """Formats one received message as the options ask; returns the text to print or None."""
+    """Formats received messages as the options ask: matches() filters, format() gives the text to print."""
 
     def __init__(self, args: argparse.Namespace) -> None:
         self.args = args
@@ -98,6 +99,7 @@ class MessagePrinter:
                 raise RuntimeError(f"Invalid filter expression '{args.filter_expr}': {error.msg}") from None
 
     def matches(self, message: Any) -> bool:
+        """Whether the message passes --filter (always without one); RuntimeError if the expression fails."""
         if self.predicate is None:
             return True
         try:
@@ -107,6 +109,7 @@ class MessagePrinter:
                                f'{type(error).__name__}: {error}') from None
 
     def select(self, message: Any) -> Any:
+        """The --field part of the message (all of it without --field); RuntimeError for a missing field."""
         value = message
         for part in self.field_path or []:
             try:
@@ -117,6 +120,7 @@ class MessagePrinter:
         return value
 
     def format(self, message: Any) -> str:
+        """The text to print: YAML ending in '---', or a CSV line for --csv (str() of a non-message field)."""
         from rosidl_runtime_py.convert import message_to_csv, message_to_yaml
         from rosidl_runtime_py.utilities import is_message
 
@@ -135,6 +139,11 @@ class EchoVerb(VerbExtension):
     """Output messages from a topic."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the topic name, the optional type, and the NodeStrategy, QoS and output options.
+
+        Then echo's own: --no-lost-messages, --raw, --filter, --once, --timeout and -i. The QoS
+        profile defaults to sensor_data, fitted to the publishers (see choose_qos).
+        """
         from ros2cli.node.strategy import add_strategy_arguments
         from ros2cli.qos import add_qos_arguments
 
@@ -155,6 +164,12 @@ class EchoVerb(VerbExtension):
                             help='Shows the associated message info.')
 
     def main(self, *, args: argparse.Namespace) -> int | str:
+        """Print the topic's messages as they arrive, until Ctrl-C, --once or --timeout.
+
+        Without a type the topic's own is used, once the topic is in the graph (within the discovery
+        grace). An unknown topic, a topic with several types, or a --field or --filter that fails gives
+        the error message.
+        """
         from owl_common.graph import expand_topic_name
         from rosidl_runtime_py.utilities import InvalidType, import_type
 

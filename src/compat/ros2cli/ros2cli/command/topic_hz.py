@@ -14,6 +14,7 @@ if TYPE_CHECKING:  # rclpy is imported where it is used: `ros2 -h` imports this 
 
 
 def positive_int(text: str) -> int:
+    """An argparse type: the text as an int, ArgumentTypeError unless it is above zero."""
     value = int(text)
     if value <= 0:
         raise argparse.ArgumentTypeError(f'{text} is not a positive integer')
@@ -50,6 +51,10 @@ class RateStatistics:
         return True
 
     def report(self) -> str:
+        """The report upstream prints: average rate (Hz), then min, max and std dev of the intervals (s).
+
+        Only for when there is an interval (due() says so): without one it divides by zero.
+        """
         count = len(self.intervals)
         mean = sum(self.intervals) / count
         std_dev = math.sqrt(sum((i - mean) ** 2 for i in self.intervals) / count)
@@ -72,6 +77,7 @@ class HzVerb(VerbExtension):
     """Print the average publishing rate to screen."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the topic name, -w/--window, --filter, --wall-time and the DirectNode options."""
         from ros2cli.node.direct import add_direct_node_arguments
         _topic_argument(parser, "Name of the ROS topic to listen to (e.g. '/chatter')")
         parser.add_argument('--window', '-w', type=positive_int, default=10000,
@@ -84,6 +90,11 @@ class HzVerb(VerbExtension):
         add_direct_node_arguments(parser)
 
     def main(self, *, args: argparse.Namespace) -> int | str:
+        """Print the topic's average rate about once a second until Ctrl-C, once the topic is in the graph.
+
+        Times are the node's clock (sim time with -s) unless --wall-time; with --filter only the messages
+        it accepts count (a malformed expression gives the error message).
+        """
         from owl_common.graph import expand_topic_name
         from rclpy.clock import Clock, ClockType
         from rclpy.executors import SingleThreadedExecutor

@@ -16,6 +16,7 @@ MATCH_SETTLE = 0.3
 
 
 def nonnegative_int(text: str) -> int:
+    """An argparse type: the text as an int, ArgumentTypeError when it is below zero."""
     value = int(text)
     if value < 0:
         raise argparse.ArgumentTypeError(f'{text} is not a non-negative integer')
@@ -33,6 +34,7 @@ def read_values(args: argparse.Namespace, kind: str) -> Any:
 
 
 def add_values_arguments(parser: argparse.ArgumentParser, what: str, example: str) -> None:
+    """Add the YAML values (positional) or --stdin; `what` and `example` go into their help texts."""
     group = parser.add_mutually_exclusive_group()
     group.add_argument('values', nargs='?', default='{}',
                        help=f"Values to fill the {what} with in YAML format (e.g. '{example}'), "
@@ -44,6 +46,7 @@ class PubVerb(VerbExtension):
     """Publish a message to a topic."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the topic name and type, the values, and the rate, count, wait, QoS and DirectNode options."""
         from ros2cli.node.direct import add_direct_node_arguments
         from ros2cli.qos import add_qos_arguments
 
@@ -71,6 +74,11 @@ class PubVerb(VerbExtension):
         add_direct_node_arguments(parser)
 
     def main(self, *, args: argparse.Namespace) -> int | str:
+        """Publish the message made of the YAML values at --rate Hz: once (-1), N times (-t) or until Ctrl-C.
+
+        With -1 or -t it first waits for a matching subscription (see -w, and MATCH_SETTLE). An invalid
+        type or field, or a wait that times out, gives the error message.
+        """
         from owl_common.graph import expand_topic_name
         from rosidl_runtime_py.set_message import FieldError, set_message_fields
         from rosidl_runtime_py.utilities import InvalidType, import_type

@@ -11,6 +11,7 @@ RPC_PATH = '/ros2cli/'
 
 
 def domain_id() -> int:
+    """This shell's ROS_DOMAIN_ID; 0 when it is unset, empty or not a number."""
     try:
         return int(os.environ.get('ROS_DOMAIN_ID') or 0)
     except ValueError:
@@ -18,4 +19,5 @@ def domain_id() -> int:
 
 
 def daemon_port(domain: int | None = None) -> int:
+    """The daemon's XML-RPC port for a domain (by default this shell's): BASE_PORT + the domain id."""
     return BASE_PORT + (domain_id() if domain is None else domain)

@@ -75,6 +75,7 @@ def spawn_daemon(on_demand: bool = False) -> bool:
 
 
 def wait_until(condition: Callable[[], object], timeout: float = READY_TIMEOUT) -> bool:
+    """Poll condition() every 50 ms: True once it holds, False when timeout seconds have passed first."""
     deadline = time.monotonic() + timeout
     while not condition():
         if time.monotonic() > deadline:

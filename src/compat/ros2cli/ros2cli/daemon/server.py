@@ -34,6 +34,11 @@ class _Server(SimpleXMLRPCServer):
 
 
 def serve(domain: int, listener: socket.socket, idle_timeout: float, alone_timeout: float | None) -> None:
+    """Answer XML-RPC calls on listener from a hidden node in the domain, until it is time to stop.
+
+    That is on system.shutdown (`ros2 daemon stop`), after idle_timeout s without a request, or, when
+    alone_timeout is not None, once no node but `ros2`'s own has been in the domain for that long.
+    """
     import rclpy
     from owl_common.graph import GraphQueries
     from rclpy.node import Node
@@ -62,8 +67,9 @@ def serve(domain: int, listener: socket.socket, idle_timeout: float, alone_timeo
     graph = GraphQueries(node)
 
     def discovery_view() -> list[Any]:
-        """What ros2cli.node.settle needs of this daemon's graph, in one call (the graph reduced to a
-        digest: XML-RPC carries no tuples).
+        """What ros2cli.node.settle needs of this daemon's graph, in one call: [digest, others, complete].
+
+        The graph is reduced to a digest (SHA-1 of its repr): XML-RPC carries no tuples.
         """
         seen, others, complete = graph_view(graph, local_participants())
         return [hashlib.sha1(repr(seen).encode()).hexdigest(), others, complete]
@@ -97,6 +103,7 @@ def serve(domain: int, listener: socket.socket, idle_timeout: float, alone_timeo
 
 
 def main() -> None:
+    """The daemon process's entry point: the options spawn_daemon() passes, then serve(); Ctrl-C ends it."""
     parser = argparse.ArgumentParser(prog='ros2-daemon')
     parser.add_argument('--ros-domain-id', type=int, required=True)
     parser.add_argument('--fd', type=int, required=True, help='the bound, listening socket')

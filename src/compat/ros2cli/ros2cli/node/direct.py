@@ -18,6 +18,7 @@ NAMED_LOOKUP_GRACE = 2.0
 
 
 def add_direct_node_arguments(parser: argparse.ArgumentParser) -> None:
+    """Add --spin-time and -s/--use-sim-time, the options of a verb's own DirectNode."""
     parser.add_argument(
         '--spin-time', type=float, default=None,
         help='Spin time in seconds to wait for discovery (only applies when not using an already '
@@ -89,12 +90,14 @@ class DirectNode:
 
     @property
     def graph(self) -> 'GraphQueries':
+        """The node's graph queries (GraphQueries, made on first use)."""
         if self._graph is None:
             from owl_common.graph import GraphQueries
             self._graph = GraphQueries(self.node)
         return self._graph
 
     def close(self) -> None:
+        """Destroy the node and shut rclpy down (see tear_down); the process is meant to end next."""
         tear_down(self.node)
 
     def __enter__(self) -> 'DirectNode':

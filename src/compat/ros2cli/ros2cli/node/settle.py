@@ -47,9 +47,11 @@ class DiscoverySettling:
         self._changed_at = 0.0
 
     def settled(self, elapsed: float, graph: Hashable, others_seen: bool, complete: bool | None) -> bool:
-        """Whether to answer now, elapsed s after joining. graph is any value that changes when the
-        graph does; others_seen whether a node other than a hidden one is in it; complete whether
-        every participant there is has been seen, or None where that cannot be known.
+        """Whether to answer now, elapsed s after joining.
+
+        graph is any value that changes when the graph does; others_seen whether a node other than
+        a hidden one is in it; complete whether every participant there is has been seen, or None
+        where that cannot be known.
         """
         if graph != self._seen:
             self._seen = graph
@@ -89,8 +91,11 @@ def local_participants() -> int | None:
 
 
 def graph_view(graph: Graph, participants: int | None) -> tuple[Hashable, bool, bool | None]:
-    """What settling compares (node, topic and service names), whether a node that is not a hidden
-    one (the asker's own, a `ros2` daemon) is in sight, and whether all participants are seen.
+    """(graph, others_seen, complete) of a graph: what DiscoverySettling.settled() takes after elapsed.
+
+    graph is what settling compares (node, topic and service names); others_seen whether a node
+    that is not a hidden one (the asker's own, a `ros2` daemon) is in sight; complete whether all
+    of `participants` are seen (None when participants is None).
     """
     nodes = tuple(sorted(f'{namespace.rstrip("/")}/{name}'
                          for name, namespace in graph.node_names_and_namespaces()))

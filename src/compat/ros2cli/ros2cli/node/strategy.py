@@ -16,6 +16,7 @@ DAEMON_SETTLED = 5.0
 
 
 def add_strategy_arguments(parser: argparse.ArgumentParser) -> None:
+    """Add the DirectNode options and --no-daemon: the options of every verb that uses a NodeStrategy."""
     add_direct_node_arguments(parser)
     parser.add_argument('--no-daemon', action='store_true',
                         help='Do not spawn nor use an already running daemon')
@@ -44,6 +45,7 @@ class NodeStrategy:
 
     @property
     def uses_daemon(self) -> bool:
+        """True when .graph is the daemon's (a warm cache), False when it is the verb's own DirectNode."""
         return self._direct is None or self.graph is not self._direct.graph
 
     def wait_until(self, condition: Callable[[], bool], timeout: float = NAMED_LOOKUP_GRACE) -> bool:
@@ -57,11 +59,13 @@ class NodeStrategy:
 
     @property
     def direct(self) -> DirectNode:
+        """The verb's own DirectNode, made (and discovery waited for) on first use."""
         if self._direct is None:
             self._direct = DirectNode(self._args, spin_time=self._spin_time)
         return self._direct
 
     def close(self) -> None:
+        """Close the DirectNode if one was made; a daemon is left running."""
         if self._direct is not None:
             self._direct.close()
 
@@ -73,10 +77,12 @@ class NodeStrategy:
 
 
 def wait_until_settled(daemon: Any) -> None:
-    """A daemon started a moment ago (by `ros2 daemon start` or the previous call) may still be
-    discovering: wait, as a verb's own node does, until its graph has settled, at most MOST s from
-    now. Past MOST s of age a complete graph is answered at once (what trickles in right after a
-    participant is seen has arrived by then); one up for DAEMON_SETTLED s is not asked at all.
+    """Wait, as a verb's own node does, until a young daemon's graph has settled (at most MOST s).
+
+    A daemon started a moment ago (by `ros2 daemon start` or the previous call) may still be
+    discovering. Past MOST s of age a complete graph is answered at once (what trickles in right
+    after a participant is seen has arrived by then); one up for DAEMON_SETTLED s is not asked at
+    all.
     """
     import xmlrpc.client
 
