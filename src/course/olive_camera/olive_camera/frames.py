@@ -4,8 +4,10 @@ import numpy as np
 
 
 class FrameWatch:
-    """Follows the arrival times of images: while none arrives, display_camera says which topic it
-    waits for; when they stop, it says so once; when they come (back), it says that once.
+    """Follows the arrival times of images, so display_camera says when they start and stop.
+
+    While none arrives, display_camera says which topic it waits for; when they stop, it says so
+    once; when they come (back), it says that once.
     """
 
     def __init__(self, stale_after: float) -> None:

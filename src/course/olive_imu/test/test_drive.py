@@ -30,8 +30,10 @@ def test_level_and_facing_ahead_stands_still():
 
 @pytest.mark.parametrize('start', [0.0, 4.0, 19.0, 34.0, 51.0])
 def test_the_simulated_imu_drives_the_turtle_around_inside_the_window(start):
-    """Item 4 of issue 11: olive_sim's scripted IMU, started any time before imu_turtle, drives
-    the turtle around for a minute without reaching a wall.
+    """Item 4 of issue 11: the scripted IMU drives the turtle around, never reaching a wall.
+
+    olive_sim's scripted IMU, started any time before imu_turtle, drives the turtle around for a
+    minute without reaching a wall.
     """
     motion, step = ScriptedMotion(), 0.016
     x = y = START
@@ -50,6 +52,9 @@ def test_the_simulated_imu_drives_the_turtle_around_inside_the_window(start):
         ys.append(y)
         travelled += abs(linear) * step
     assert travelled > 20.0
-    assert max(xs) - min(xs) > 2.0 and max(ys) - min(ys) > 2.0  # around, not back and forth
-    assert 0.5 < min(xs) and max(xs) < WINDOW - 0.5
-    assert 0.5 < min(ys) and max(ys) < WINDOW - 0.5
+    assert max(xs) - min(xs) > 2.0  # around, not back and forth
+    assert max(ys) - min(ys) > 2.0
+    assert 0.5 < min(xs)
+    assert max(xs) < WINDOW - 0.5
+    assert 0.5 < min(ys)
+    assert max(ys) < WINDOW - 0.5

@@ -1,5 +1,6 @@
-"""Goal positions for the servos, kept free of ROS: the sine, the bounds, the IMU's head angles, the
-arrow keys' goals.
+"""Goal positions for the servos, kept free of ROS.
+
+The sine, the bounds, the IMU's head angles, the arrow keys' goals.
 """
 
 import math

@@ -54,7 +54,8 @@ def test_head_goals_never_leave_the_bounds(pitch, yaw):
     pan, tilt = head_goals(pitch, yaw, PAN_BOUNDS, TILT_BOUNDS)
     assert PAN_BOUNDS[0] <= pan <= PAN_BOUNDS[1]
     assert TILT_BOUNDS[0] <= tilt <= TILT_BOUNDS[1]
-    assert pan in PAN_BOUNDS and tilt in TILT_BOUNDS
+    assert pan in PAN_BOUNDS
+    assert tilt in TILT_BOUNDS
 
 
 def test_the_bounds_are_the_kits():

@@ -60,8 +60,10 @@ def integer_argument(argv: list[str]) -> int:
 
 
 def argument_or_exit(parse: Callable[[list[str]], Value], usage: str, args: list[str] | None = None) -> Value:
-    """parse(the arguments after the program's name, without --ros-args); for a bad command
-    line print `<program>: error: <reason> (usage: <program> <usage>)` and exit with code 2.
+    """The value parse() makes of the command line; for a bad one, print the reason and exit with code 2.
+
+    parse gets the arguments after the program's name, without --ros-args. On a UsageError this
+    prints `<program>: error: <reason> (usage: <program> <usage>)` to stderr and exits with code 2.
 
     args is main()'s args: None means sys.argv, as rclpy.init takes it.
     """

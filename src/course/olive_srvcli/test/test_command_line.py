@@ -17,7 +17,8 @@ from olive_srvcli.command_line import (
 ])
 def test_good_arguments(parse, argv, value):
     result = parse(argv)
-    assert result == value and type(result) is type(value)
+    assert result == value
+    assert type(result) is type(value)
 
 
 @pytest.mark.parametrize(('parse', 'argv', 'reason'), [

@@ -11,7 +11,8 @@ def test_equal_limits_are_a_range():
 def test_lower_above_upper_is_refused_with_both_values():
     reason = check_limits(10, 3)
     assert reason is not None
-    assert '10' in reason and '3' in reason
+    assert '10' in reason
+    assert '3' in reason
 
 
 def test_negative_ranges_are_fine():

@@ -43,6 +43,7 @@ BUILD_LIMIT = 900.0
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """Add owl check's arguments (ids, --workspace, --list, --all, --json) to its sub-command's parser."""
     parser.add_argument('exercises', nargs='*', metavar='ID', help='exercise ids (see --list)')
     parser.add_argument(
         '--workspace',
@@ -152,6 +153,11 @@ def attempted(exercise: Exercise, workspace: Path, available: dict[str, ws.Packa
 
 
 def check(args: argparse.Namespace) -> int:
+    """Run `owl check` for the parsed arguments and return its exit code (0, 1 or 2, see above).
+
+    Builds the packages the exercises need when they are stale, then checks each exercise in turn,
+    printing one line per criterion (or, with --json, one JSON document at the end).
+    """
     if args.list:
         print('\n'.join(catalogue.listing()))
         return 0

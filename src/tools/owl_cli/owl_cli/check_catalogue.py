@@ -30,6 +30,8 @@ TERMINAL = 'typed at a terminal (ros2 and rqt commands), it leaves nothing in a 
 
 @dataclass(frozen=True)
 class Exercise:
+    """One exercise or project of the course: its id, where it lives, and its check (None: by hand)."""
+
     id: str
     section: str
     package: str
@@ -43,6 +45,7 @@ class Exercise:
 
     @property
     def checkable(self) -> bool:
+        """Whether owl check can check it: False for an exercise done by hand (see not_checked)."""
         return self.check is not None
 
 
@@ -91,6 +94,7 @@ CHECKABLE = tuple(e for e in EXERCISES if e.checkable)
 
 
 def find(exercise_id: str) -> Exercise | None:
+    """The exercise with this id, or None for an unknown id."""
     return BY_ID.get(exercise_id)
 
 
@@ -101,12 +105,14 @@ def closest(exercise_id: str) -> str | None:
 
 
 def unknown_id_message(exercise_id: str) -> str:
+    """The error line of `owl check` for an unknown id, with the closest known id when there is one."""
     suggestion = closest(exercise_id)
     hint = f"; did you mean '{suggestion}'?" if suggestion else ''
     return f"owl check: unknown exercise '{exercise_id}'{hint} ('owl check --list' lists them)"
 
 
 def not_checked_message(exercise: Exercise) -> str:
+    """The error line of `owl check` for an exercise done by hand, with the reason it is not checked."""
     return f'owl check: {exercise.id} (section {exercise.section}) is not checked: {exercise.not_checked}'
 
 

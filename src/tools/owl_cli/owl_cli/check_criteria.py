@@ -17,6 +17,7 @@ STILL = 0.05
 
 
 def kelvin(temp_c: float, temp_k: float) -> Criterion:
+    """temp_conversion's kelvin answer temp_k for temp_c, against formula (2): K = °C + 273.15."""
     expected = temp_c + 273.15
     return Criterion(
         f'temp_conversion: {temp_c:g} °C is {expected:g} K (formula 2)',
@@ -27,6 +28,10 @@ def kelvin(temp_c: float, temp_k: float) -> Criterion:
 
 
 def fahrenheit(temp_c: float, temp_f: float) -> Criterion:
+    """temp_conversion's Fahrenheit answer temp_f for temp_c, against formula (1): °F = °C * 9/5 + 32.
+
+    The hint names the listing's typo (9 / 2 instead of 9 / 5) when that is what the answer used.
+    """
     expected = temp_c * 9 / 5 + 32
     passed = math.isclose(temp_f, expected, abs_tol=1e-6)
     if math.isclose(temp_f, temp_c * 9 / 2 + 32, abs_tol=1e-6):
@@ -49,6 +54,7 @@ def rate(stamps: Sequence[float]) -> float:
 
 
 def in_range(what: str, values: Sequence[float], low: float, high: float, hint: str) -> Criterion:
+    """Whether every one of values lies in low..high; it fails when none arrived, too."""
     outside = [v for v in values if not low <= v <= high]
     detail = f'{len(values)} values from {min(values):g} to {max(values):g}' if values else 'no values'
     return Criterion(
@@ -107,6 +113,7 @@ def turtle_response(motion: str, linear: float, angular: float) -> Criterion:
 
 
 def standing_still(linear: float, angular: float) -> Criterion:
+    """Whether the turtle's velocities stay within STILL while the IMU is level and faces ahead."""
     return Criterion(
         'the turtle stands still while the IMU is level and faces ahead',
         abs(linear) <= STILL and abs(angular) <= STILL,
@@ -160,10 +167,12 @@ def oscillates(values: Sequence[float], least_swing: float = 0.2) -> bool:
 
 
 def mean(values: Sequence[float]) -> float:
+    """The arithmetic mean of values; 0.0 for none."""
     return sum(values) / len(values) if values else 0.0
 
 
 def tail_lines(output: str, count: int = 5) -> str:
+    """The last count non-blank lines of a process's output joined by ' | ', for a hint on one line."""
     lines = [line for line in output.splitlines() if line.strip()]
     return ' | '.join(lines[-count:]) if lines else '(no output)'
 

@@ -13,6 +13,8 @@ WORKSPACE_VARIABLE = 'OWL_CHECK_WORKSPACE'
 
 @dataclass
 class Criterion:
+    """One decided criterion of a check: what was checked, whether it passed, a hint, what was measured."""
+
     text: str  # what is checked, in the course's terms
     passed: bool
     hint: str = ''  # for a failure: what to look at
@@ -20,6 +22,7 @@ class Criterion:
 
     @classmethod
     def from_dict(cls, values: dict[str, object]) -> Criterion:
+        """The criterion from its JSON object, as check_ros.py prints it after RESULT_PREFIX."""
         return cls(
             str(values['text']),
             bool(values['passed']),
@@ -30,6 +33,8 @@ class Criterion:
 
 @dataclass
 class ExerciseResult:
+    """The outcome of one exercise's check: its criteria, how long it took, or why it could not run."""
+
     exercise: str
     criteria: list[Criterion] = field(default_factory=list)
     seconds: float = 0.0
@@ -37,14 +42,17 @@ class ExerciseResult:
 
     @property
     def passed(self) -> bool:
+        """Whether the check ran and every one of its criteria (at least one) passed."""
         return not self.error and bool(self.criteria) and all(c.passed for c in self.criteria)
 
     @property
     def failed_count(self) -> int:
+        """How many of the criteria failed."""
         return sum(not c.passed for c in self.criteria)
 
 
 def criterion_line(criterion: Criterion) -> str:
+    """The printed line of a criterion: passed or FAILED, its text and detail, the hint on a failure."""
     mark = 'passed' if criterion.passed else 'FAILED'
     line = f'  {mark}: {criterion.text}'
     if criterion.detail:
@@ -55,6 +63,7 @@ def criterion_line(criterion: Criterion) -> str:
 
 
 def exercise_lines(result: ExerciseResult) -> list[str]:
+    """The lines of one exercise's report: a heading, one line per criterion and the verdict."""
     if result.error:
         return [f'owl check {result.exercise}: {result.error}']
     verdict = 'passed' if result.passed else f'FAILED ({result.failed_count} of {len(result.criteria)})'
@@ -66,6 +75,7 @@ def exercise_lines(result: ExerciseResult) -> list[str]:
 
 
 def summary_table(results: list[ExerciseResult]) -> list[str]:
+    """The lines of the table after several exercises: one row per exercise and a total line."""
     width = max([len('exercise')] + [len(r.exercise) for r in results])
     lines = [f'{"exercise":<{width}}  result   criteria  time', f'{"-" * width}  -------  --------  -----']
     for r in results:
@@ -81,6 +91,7 @@ def summary_table(results: list[ExerciseResult]) -> list[str]:
 
 
 def to_json(results: list[ExerciseResult], workspace: str) -> str:
+    """The results as the JSON document of `owl check --json` (for teachers)."""
     return json.dumps(
         {
             'workspace': workspace,

@@ -20,6 +20,10 @@ from owl_cli.check_session import Failed, Session
 
 
 def run(exercise_id: str) -> int:
+    """Run the exercise's check on a new Session and close it, also at SIGTERM; the exit code, 0.
+
+    The criteria go to stdout as the check decides them; a Failed criterion ends the check early.
+    """
     check = catalogue.BY_ID[exercise_id].check
     assert check is not None
     session = Session()
@@ -46,6 +50,7 @@ def run(exercise_id: str) -> int:
 
 
 def main() -> int:
+    """The process's entry point: check the exercise named by the one argument; 2 for a bad one."""
     ids = [e.id for e in catalogue.CHECKABLE]
     if len(sys.argv) != 2 or sys.argv[1] not in ids:
         print(f'usage: python -m owl_cli.check_ros {{{",".join(ids)}}}', file=sys.stderr)

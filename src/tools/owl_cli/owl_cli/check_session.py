@@ -1,6 +1,8 @@
-"""The template every check of `owl check` shares: a Session of processes in a private ROS domain
-and the probe node that watches and drives them, the kit's names as the checks use them, and the
-helpers more than one section needs.
+"""The template every check of `owl check` shares: the Session, the kit's names and common helpers.
+
+A Session holds the processes of a check in a private ROS domain and the probe node that watches
+and drives them; beside it are the kit's names as the checks use them, and the helpers more than
+one section needs.
 
 A check drives the student's node only through the course's names (topics, types, QoS, services,
 parameters), prints each criterion as one JSON line as soon as it is decided (Session.add), and
@@ -54,6 +56,7 @@ STANDARD_PARAMETERS = ('use_sim_time', 'qos_overrides.', 'start_type_description
 
 
 def goal_topic(servo: str) -> str:
+    """The topic that takes the position goals of a servo ('pan' or 'tilt')."""
     return f'/olive/servo/{servo}/goal/position'
 
 
@@ -78,6 +81,10 @@ class Session:
     # -- results ---------------------------------------------------------------------------------
 
     def add(self, criterion: Criterion) -> bool:
+        """Hand the decided criterion to `owl check` (one line on stdout) and return whether it passed.
+
+        When it failed and the student's node has ended by itself, the hint also tells how it ended.
+        """
         process = self.student_process
         if not criterion.passed and process is not None and not self.stopped and not process.running():
             criterion.hint = (f'{criterion.hint}; ' if criterion.hint else '') + self.student_exit()
@@ -86,10 +93,12 @@ class Session:
         return criterion.passed
 
     def require(self, criterion: Criterion) -> None:
+        """Add the criterion; raise Failed when it failed, for one the rest of the check depends on."""
         if not self.add(criterion):
             raise Failed(criterion.text)
 
     def student_exit(self) -> str:
+        """How the student's node ended, for a hint: its exit code and its last lines of output."""
         process = self.student_process
         assert process is not None
         return (
@@ -100,6 +109,7 @@ class Session:
     # -- processes -------------------------------------------------------------------------------
 
     def helper(self, package: str, executable: str, *args: str, env: dict | None = None) -> RosProcess:
+        """Start a node the check needs, like `ros2 run package executable args`; kept in helpers."""
         process = self.sandbox.run(package, executable, *args, env=env)
         self.helpers[executable] = process
         return process
@@ -160,6 +170,7 @@ class Session:
     def student_launch(
         self, package: str, launch_file: str, env: dict[str, str | None] | None = None
     ) -> RosProcess:
+        """`ros2 launch package launch_file` from the student's workspace (in env, None unsets a variable)."""
         self.student_process = self.sandbox.command(
             ['ros2', 'launch', package, launch_file], label=launch_file, env=env
         )
@@ -168,6 +179,11 @@ class Session:
     def stop_student(
         self, text: str = 'Ctrl-C stops the node cleanly (exit code 0, no traceback)', launch: bool = False
     ) -> None:
+        """Press Ctrl-C on the student's node and add the criterion text: it ends cleanly in time.
+
+        Cleanly is exit code 0 and no traceback within STOP_TIMEOUT s. With launch the signal goes
+        to `ros2 launch` alone, which passes it on to its nodes; else to the whole process group.
+        """
         process = self.student_process
         assert process is not None
         if not process.running():
@@ -206,6 +222,7 @@ class Session:
         )
 
     def close(self) -> None:
+        """Stop everything the check started: its processes, the probe node and its temporary folder."""
         # Ctrl-C to every process at once: the sandbox then waits for each in turn, and the kit's
         # modules end together (0.4 s for four, where one after the other took 2.7 s).
         for process in self.sandbox.processes:
@@ -229,6 +246,10 @@ class Session:
         return True
 
     def endpoints(self, topic: str, kind: str) -> list[TopicEndpointInfo]:
+        """The student's publishers (kind 'publishers') or else subscriptions on topic.
+
+        The probe's own endpoints and the simulated kit's (nodes named olive_*) are left out.
+        """
         lookup = (
             self.node.get_publishers_info_by_topic
             if kind == 'publishers'
@@ -244,6 +265,10 @@ class Session:
     def expect_endpoint(
         self, topic: str, kind: str, type_name: str, hint: str, timeout: float = START_TIMEOUT
     ) -> TopicEndpointInfo | None:
+        """Wait for the student's endpoint of kind on topic and add the criterion that it has type_name.
+
+        The endpoint when it passed, else None; hint explains a failure when none shows up in timeout s.
+        """
         verb = 'publishes' if kind == 'publishers' else 'subscribes to'
         text = f'{verb} {type_name} on {topic}'
         self.wait(lambda: bool(self.endpoints(topic, kind)), timeout)
@@ -269,6 +294,7 @@ class Session:
         return received
 
     def call(self, srv_type: Any, service: str, request: Any, timeout: float = 10.0) -> Any | None:
+        """The service's response to request; None when it is not ready or does not answer in timeout s."""
         client = self.node.create_client(srv_type, service)
         try:
             if not self.wait(lambda: client.service_is_ready(), timeout):
@@ -285,10 +311,12 @@ class Session:
             self.node.destroy_client(client)
 
     def parameters(self, node: str) -> list[str]:
+        """The names of a node's parameters; [] when its list_parameters service does not answer."""
         response = self.call(ListParameters, f'/{node}/list_parameters', ListParameters.Request())
         return list(response.result.names) if response else []
 
     def get_parameter(self, node: str, name: str) -> Any:
+        """The value of one parameter of a node; None when the node does not answer."""
         return self.get_parameters(node, [name]).get(name)
 
     def get_parameters(self, node: str, names: list[str]) -> dict[str, Any]:
@@ -304,6 +332,7 @@ class Session:
         return self.get_parameters(node, names) if names else {}
 
     def set_parameter(self, node: str, name: str, value: Any) -> tuple[bool, str]:
+        """Set a node's parameter: (successful, reason) as the node answers, or (False, why) without one."""
         request = SetParameters.Request(parameters=[Parameter(name, value=value).to_parameter_msg()])
         response = self.call(SetParameters, f'/{node}/set_parameters', request)
         if response is None:
@@ -315,10 +344,12 @@ class Session:
 def values_since(
     received: list[tuple[float, Any]], since: float, value: Callable[[Any], float]
 ) -> list[float]:
+    """value(message) of the messages from collect() that arrived at monotonic time since or later."""
     return [value(message) for stamp, message in received if stamp >= since]
 
 
 def launch_files(package: str) -> list[Path]:
+    """The launch files (.py, .xml, .yaml) in the installed package's share/<package>/launch, sorted."""
     from ament_index_python.packages import get_package_share_directory
 
     folder = Path(get_package_share_directory(package)) / 'launch'
@@ -326,6 +357,7 @@ def launch_files(package: str) -> list[Path]:
 
 
 def workspace() -> Path:
+    """The student's workspace as `owl check` hands it over (OWL_CHECK_WORKSPACE), else the current folder."""
     return Path(os.environ.get(WORKSPACE_VARIABLE, '.'))
 
 

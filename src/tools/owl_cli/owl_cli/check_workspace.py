@@ -20,6 +20,8 @@ class WorkspaceError(Exception):
 
 @dataclass
 class Package:
+    """A package of the workspace as its package.xml gives it: name, folder, build type, dependencies."""
+
     name: str
     path: Path
     build_type: str
@@ -56,6 +58,11 @@ def _package_files(root: Path, max_depth: int) -> list[Path]:
 
 
 def read_package(manifest: Path) -> Package:
+    """The package a package.xml describes; WorkspaceError when the file is not valid XML.
+
+    The build type is ament_cmake unless the file exports another; depends holds the names of its
+    depend, build_depend, exec_depend and buildtool_depend tags.
+    """
     try:
         root = ElementTree.parse(manifest).getroot()
     except ElementTree.ParseError as error:
@@ -93,6 +100,7 @@ def needed(name: str, available: dict[str, Package]) -> list[str]:
 
 
 def newest_source_time(package: Path) -> float:
+    """The newest modification time (s since the epoch) of the package folder's source files; 0.0 for none."""
     newest = 0.0  # files only: Python's __pycache__ folders change folder times without a change
     for folder, subfolders, files in os.walk(package):
         subfolders[:] = [s for s in subfolders if s not in SKIPPED_FOLDERS and not s.endswith('.egg-info')]
@@ -124,6 +132,7 @@ def stale(workspace: Path, names: list[str], available: dict[str, Package]) -> l
 
 
 def build_command(names: list[str]) -> list[str]:
+    """The colcon command that builds just these packages (symlink install, as the course does)."""
     return ['colcon', 'build', '--symlink-install', '--packages-select', *sorted(names)]
 
 
@@ -163,8 +172,10 @@ ROLE_WORDS = {'server': ('server', 'service', 'srv'), 'client': ('client', 'cli'
 
 
 def find_executable(names: list[str], subject: str, role: str) -> str | None:
-    """The executable for a subject ('currency') and role ('server'): the reference name
-    (currency_server) if there is one, else the first whose name has a word of each.
+    """The executable for a subject ('currency') and role ('server') among names; None when none fits.
+
+    The reference name (currency_server) if there is one, else the first whose name has a word of
+    each (SUBJECT_WORDS, ROLE_WORDS).
     """
     if f'{subject}_{role}' in names:
         return f'{subject}_{role}'
@@ -176,8 +187,10 @@ def find_executable(names: list[str], subject: str, role: str) -> str | None:
 
 
 def parameter_files(workspace: Path, home: Path | None = None) -> list[Path]:
-    """YAML files with a `ros__parameters` key (what `ros2 param dump` writes): in the workspace
-    (outside build/install/log) and in ~/Documents, where section 3.7.1 saves turtlesim.yaml.
+    """YAML files with a `ros__parameters` key (what `ros2 param dump` writes).
+
+    They are looked for in the workspace (outside build/install/log) and, when home is given, in
+    ~/Documents, where section 3.7.1 saves turtlesim.yaml.
     """
     found = []
     roots = [(workspace, 4)] + ([(home / 'Documents', 1)] if home is not None else [])

@@ -25,6 +25,8 @@ ACK_TIMEOUT = 5.0  # seconds for the acknowledgements (Fast DDS asks for them ev
 
 @dataclass
 class ModuleReport:
+    """What `owl network --kit` learned of one Olive module; received and sent stay None when nothing went."""
+
     node: str
     module_type: str
     namespace: str
@@ -34,6 +36,7 @@ class ModuleReport:
 
     @property
     def prefix(self) -> str:
+        """The start of the module's topic names, /olive/<type>/<namespace>/ (with the last slash)."""
         return f'/olive/{self.module_type}/{self.namespace}/'
 
 
@@ -51,8 +54,9 @@ def distribution(type_hash_versions: list[int]) -> str:
 
 
 def node_distribution(node: Any, name: str, namespace: str) -> str:
-    """The distribution of another node, from the type hashes of its publishers (an rclpy Node asks);
-    'unknown' for a node that has left meanwhile.
+    """The ROS 2 distribution of another node, from the type hashes of its publishers.
+
+    node is the rclpy Node that asks; 'unknown' for a node that has left meanwhile.
     """
     from rclpy.node import NodeNameNonExistentError
 
@@ -84,8 +88,11 @@ def kit_verdicts(reports: list[ModuleReport]) -> list[tuple[bool, str]]:
 
 
 def check_kit(domain_id: int, seconds: float, expected: list[str]) -> list[ModuleReport]:
-    """Find the modules in the domain (waiting up to ACK_TIMEOUT more for the expected nodes, which
-    `owl network` found a moment ago) and exchange one message each way with all of them at once.
+    """Find the Olive modules in the domain and exchange one message each way with all of them at once.
+
+    Discovery takes seconds s, and up to ACK_TIMEOUT more while one of the expected nodes (which
+    `owl network` found a moment ago) is still missing; seconds also bounds the waits for the
+    modules' messages and for their readers.
     """
     import rclpy
     from rclpy.context import Context

@@ -16,6 +16,7 @@ from owl_cli import check, kit_check, network_check
 
 
 def positive_seconds(text: str) -> float:
+    """An argparse type: the text as seconds, more than 0 and at most 60 (else ArgumentTypeError)."""
     try:
         value = float(text)
     except ValueError:
@@ -26,6 +27,7 @@ def positive_seconds(text: str) -> float:
 
 
 def network(args: argparse.Namespace) -> int:
+    """Run `owl network`: gather the facts, print one verdict a line; exit code 0 when all are ok, else 1."""
     domain_text = os.environ.get('ROS_DOMAIN_ID', '0') or '0'
     if not domain_text.isdigit() or int(domain_text) > 232:
         print(f"owl network: problem: ROS_DOMAIN_ID '{domain_text}' is not a domain (0..232); "
@@ -64,6 +66,7 @@ WINDOWS_PORT = 8092  # rqt has 8090, robot_view 8091
 
 
 def windows(args: argparse.Namespace) -> int:
+    """Run `owl windows`: serve the windows' page until Ctrl-C; exit code 1 when it cannot start."""
     # Imported here: only this command needs the venv's start-up hook (the windows' folder).
     from owl_web.server import WebServer
 
@@ -99,6 +102,7 @@ def windows(args: argparse.Namespace) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """The `owl` command: run the sub-command argv names (None: sys.argv); its exit code, 130 at Ctrl-C."""
     parser = argparse.ArgumentParser(prog='owl', description=__doc__)
     commands = parser.add_subparsers(dest='command', metavar='COMMAND', required=True)
     check_network = commands.add_parser(

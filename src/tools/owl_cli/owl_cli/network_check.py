@@ -28,6 +28,8 @@ DDS_PORTS = 'UDP 7400-7700'
 
 @dataclass
 class Interface:
+    """One IPv4 address of a network interface of this machine, with its prefix length."""
+
     name: str
     address: str
     prefix: int
@@ -38,6 +40,8 @@ class Interface:
 
 @dataclass
 class NetworkFacts:
+    """Everything `owl network` gathered before judging: this shell's ROS set-up, the network, the nodes."""
+
     discovery_range: str            # ROS_AUTOMATIC_DISCOVERY_RANGE of this shell
     domain_id: int
     interfaces: list[Interface]
@@ -51,6 +55,8 @@ class NetworkFacts:
 
 @dataclass
 class Verdict:
+    """One line of `owl network`'s answer: ok, or a problem with its fix."""
+
     ok: bool
     text: str
 
@@ -59,6 +65,7 @@ class Verdict:
 
 
 def on_kit_subnet(interfaces: list[Interface]) -> list[Interface]:
+    """Those of the interfaces whose address is on the modules' subnet (KIT_SUBNET, 10.42.0.0/24)."""
     subnet = ipaddress.IPv4Network(KIT_SUBNET)
     return [i for i in interfaces if ipaddress.IPv4Address(i.address) in subnet]
 
@@ -134,8 +141,10 @@ def interfaces() -> list[Interface]:
 
 
 def answers(address: str, timeout: float) -> bool:
-    """Whether a host answers at address: any TCP answer counts, a refused connection too (its RST is
-    an answer), so no web server and no root are needed.
+    """Whether a host answers at address (TCP port 80) within timeout s.
+
+    Any TCP answer counts, a refused connection too (its RST is an answer), so no web server and no
+    root are needed.
     """
     try:
         with socket.create_connection((address, 80), timeout=timeout):
@@ -147,8 +156,9 @@ def answers(address: str, timeout: float) -> bool:
 
 
 def olive_nodes(domain_id: int, seconds: float) -> dict[str, str]:
-    """The Olive module nodes (olive_*) DDS discovers in a domain within seconds, each with its
-    ROS 2 distribution.
+    """The Olive module nodes (olive_*) DDS discovers in a domain within seconds, by name.
+
+    Each maps to its ROS 2 distribution (kit_check.node_distribution).
     """
     import time
 

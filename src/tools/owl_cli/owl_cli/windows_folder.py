@@ -23,6 +23,8 @@ MAX_FRAME_BYTES = 16 * 1024 * 1024  # a 4K frame as PNG is under this; anything 
 
 @dataclass(frozen=True)
 class Window:
+    """One headless window of a running program: whose it is, its kind and name, and its frame file."""
+
     program: str
     pid: int
     kind: str  # 'cv2' or 'pygame'
@@ -37,14 +39,17 @@ class Window:
 
     @property
     def content_type(self) -> str:
+        """The MIME type of the window's frames: PNG for a pygame display, JPEG for an OpenCV window."""
         return 'image/png' if self.kind == 'pygame' else 'image/jpeg'
 
     def summary(self) -> dict[str, object]:
+        """The window as the page's list shows it (JSON-ready): id, program, pid, kind and name."""
         return {'id': self.id, 'program': self.program, 'pid': self.pid, 'kind': self.kind,
                 'name': self.name}
 
 
 def running(pid: int) -> bool:
+    """Whether a process with this id exists (signal 0 asks without sending anything)."""
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
@@ -55,6 +60,7 @@ def running(pid: int) -> bool:
 
 
 def window_of(path: Path, program: str, pid: int) -> Window | None:
+    """The window a file of a program's folder shows; None for other files and one removed meanwhile."""
     name = path.name
     if name == 'pygame.png':
         kind, title = 'pygame', 'pygame'
@@ -70,8 +76,10 @@ def window_of(path: Path, program: str, pid: int) -> Window | None:
 
 
 def scan(root: Path) -> list[Window]:
-    """Every window of a running program under root, ordered by program, pid and name. Folders of
-    programs that ended without removing them (killed) are left out.
+    """Every window of a running program under root, ordered by program, pid and name.
+
+    Folders of programs that ended without removing them (killed) are left out; [] when root cannot
+    be read.
     """
     windows: list[Window] = []
     try:
@@ -102,8 +110,9 @@ def read_frame(window: Window) -> bytes | None:
 
 
 def key_event_line(event: str, key: str) -> str:
-    """'down'/'up' and a pygame key name as a line of the keys file; ValueError for anything else
-    (a key name is printable and on one line, and a key the windows know).
+    """'down'/'up' and a pygame key name as a line of the keys file; ValueError for anything else.
+
+    A key name is printable and on one line, and a key the windows know.
     """
     if not isinstance(event, str) or not isinstance(key, str):
         raise ValueError('event and key must be strings')
@@ -117,8 +126,9 @@ def key_event_line(event: str, key: str) -> str:
 
 
 def append_key_event(window: Window, event: str, key: str) -> None:
-    """Append one key event to the keys file of the window's program (ValueError: a bad event;
-    OSError: the program has gone).
+    """Append one key event to the keys file of the window's program.
+
+    ValueError for a bad event (see key_event_line); OSError when the program has gone.
     """
     line = key_event_line(event, key)
     keys = window.path.parent / 'keys'

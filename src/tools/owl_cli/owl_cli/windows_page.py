@@ -38,10 +38,12 @@ class WindowsPage:
         server.command('key', self._key)
 
     def start(self) -> None:
+        """Look at the folder once, then start the thread that watches it every POLL_PERIOD s."""
         self._look()
         self._thread.start()
 
     def stop(self) -> None:
+        """Stop the watching thread (waiting up to 2 s for it)."""
         self._stop.set()
         if self._thread.is_alive():
             self._thread.join(timeout=2)

@@ -23,7 +23,8 @@ def test_every_exercise_has_a_check_or_a_reason_and_a_unique_id():
 def test_the_plugins_come_in_the_courses_section_order():
     sections = [catalogue.section_order(e.section.split()[0].rstrip(','))[:2] for e in catalogue.EXERCISES]
     assert sections == sorted(sections)
-    assert catalogue.EXERCISES[0].id == 'test_package' and catalogue.EXERCISES[-1].id == 'robot_camera_launch'
+    assert catalogue.EXERCISES[0].id == 'test_package'
+    assert catalogue.EXERCISES[-1].id == 'robot_camera_launch'
 
 
 def test_two_plugins_that_declare_one_id_are_refused(monkeypatch):
@@ -281,10 +282,13 @@ def test_the_layout_of_ros2_pkg_create(tmp_path):
 def test_fahrenheit_names_the_listing_typo():
     assert judge.fahrenheit(100.0, 212.0).passed
     typo = judge.fahrenheit(100.0, 482.0)
-    assert not typo.passed and "listing's temp_c * 9 / 2" in typo.hint
+    assert not typo.passed
+    assert "listing's temp_c * 9 / 2" in typo.hint
     other = judge.fahrenheit(100.0, 300.0)
-    assert not other.passed and 'formula 1' in other.hint
-    assert judge.kelvin(0.0, 273.15).passed and not judge.kelvin(0.0, 273.0).passed
+    assert not other.passed
+    assert 'formula 1' in other.hint
+    assert judge.kelvin(0.0, 273.15).passed
+    assert not judge.kelvin(0.0, 273.0).passed
 
 
 def test_the_turtle_judgement_tells_a_swap_from_a_sign_from_nothing():
@@ -295,16 +299,20 @@ def test_the_turtle_judgement_tells_a_swap_from_a_sign_from_nothing():
     assert 'swapped' in judge.turtle_response('pitch', 0.0, 0.4).hint
     assert 'swapped' in judge.turtle_response('yaw', 0.5, 0.0).hint
     still = judge.turtle_response('pitch', 0.0, 0.0)
-    assert not still.passed and 'does not move when the IMU pitches forward' in still.hint
-    assert judge.standing_still(0.01, -0.01).passed and not judge.standing_still(0.3, 0.0).passed
+    assert not still.passed
+    assert 'does not move when the IMU pitches forward' in still.hint
+    assert judge.standing_still(0.01, -0.01).passed
+    assert not judge.standing_still(0.3, 0.0).passed
 
 
 def test_bounds_rate_and_sine():
     assert judge.bounded_goal('pan', [0.0, 1.0, 1.5708], -1.5708, 1.5708, 'Left is held').passed
     unbounded = judge.bounded_goal('pan', [0.0, 2.0, 4.8], -1.5708, 1.5708, 'Left is held')
-    assert not unbounded.passed and '+4.80' in unbounded.hint
+    assert not unbounded.passed
+    assert '+4.80' in unbounded.hint
     assert not judge.bounded_goal('pan', [], -1, 1, 'Left is held').passed
-    assert judge.rate([0.0, 0.5, 1.0]) == 2.0 and judge.rate([1.0]) == 0.0
+    assert judge.rate([0.0, 0.5, 1.0]) == 2.0
+    assert judge.rate([1.0]) == 0.0
     assert judge.oscillates([0.0, 0.3, 0.6, 0.5])
     assert not judge.oscillates([0.0, 0.3, 0.6, 0.9])  # a ramp
     assert not judge.oscillates([0.0, 0.05, 0.0])  # too small
@@ -318,11 +326,13 @@ def test_currency_and_factorial_answers():
     one_rate = judge.currency_answers([116.0, 116.0, 116.0], [290.0, 290.0, 290.0])
     assert [c.passed for c in one_rate] == [True, True, False]
     fixed = judge.currency_answers([116.0, 88.0, 93.0], [116.0, 88.0, 93.0])
-    assert not fixed[1].passed and 'fixed rate' in fixed[1].hint
+    assert not fixed[1].passed
+    assert 'fixed rate' in fixed[1].hint
     assert not judge.currency_answers([116.0], [290.0])[0].passed
     assert judge.factorial_answer(5, [True, 120]).passed
     zero = judge.factorial_answer(0, [0])
-    assert not zero.passed and 'empty product' in zero.hint
+    assert not zero.passed
+    assert 'empty product' in zero.hint
     assert judge.factorial_answer(10, [3628800]).passed
 
 
@@ -344,7 +354,8 @@ def test_numbers_printed_and_the_slope_of_held_keys():
 def test_exit_codes_json_and_the_summary_table():
     good = ExerciseResult('imu_turtle', [Criterion('a', True)], 9.5)
     bad = ExerciseResult('temp_server', [Criterion('a', True), Criterion('b', False, 'hint')], 2.0)
-    assert exit_code([good]) == 0 and exit_code([good, bad]) == 1
+    assert exit_code([good]) == 0
+    assert exit_code([good, bad]) == 1
     assert exit_code([good, ExerciseResult('x', error='no package')]) == 2
     report = json.loads(to_json([good, bad], '/ws'))
     assert report['passed'] is False

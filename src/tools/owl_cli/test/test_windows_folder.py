@@ -51,14 +51,14 @@ def test_a_frame_gone_since_the_scan_reads_as_none(root):
     assert read_frame(window) is None
 
 
-@pytest.mark.parametrize('event, key, line', [
+@pytest.mark.parametrize(('event', 'key', 'line'), [
     ('down', 'left', 'down left\n'), ('up', 'left shift', 'up left shift\n'), ('down', 'a', 'down a\n'),
     ('down', '7', 'down 7\n'), ('down', 'f12', 'down f12\n'), ('up', 'space', 'up space\n')])
 def test_key_event_lines(event, key, line):
     assert key_event_line(event, key) == line
 
 
-@pytest.mark.parametrize('event, key, problem', [
+@pytest.mark.parametrize(('event', 'key', 'problem'), [
     ('sideways', 'left', "expected 'down <key>'"), ('down', 'nokey', 'unknown key'),
     ('down', 'left\ndown right', 'is not a key name'), ('down', 'A', 'unknown key'),
     ('down', '', "expected 'down <key>'"), ('down', ' left', 'is not a key name'),
@@ -74,7 +74,7 @@ def test_key_events_go_to_the_programs_keys_file(root):
     append_key_event(window, 'down', 'left')
     append_key_event(window, 'up', 'left')
     assert (window.path.parent / 'keys').read_text() == 'down left\nup left\n'
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match='unknown key'):
         append_key_event(window, 'down', 'nokey')
     assert (window.path.parent / 'keys').read_text() == 'down left\nup left\n'  # nothing half-written
 
@@ -84,5 +84,5 @@ def test_a_key_for_a_program_that_has_gone_is_an_os_error(root):
     for path in window.path.parent.iterdir():
         path.unlink()
     window.path.parent.rmdir()
-    with pytest.raises(OSError):
+    with pytest.raises(FileNotFoundError):
         append_key_event(window, 'down', 'left')

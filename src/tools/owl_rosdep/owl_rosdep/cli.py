@@ -39,6 +39,7 @@ class Plan:
 
 
 def build_parser() -> argparse.ArgumentParser:
+    """The command line of rosdep: install, check and keys with upstream's options; init and update."""
     parser = argparse.ArgumentParser(
         prog='rosdep', description='Install and check the dependencies of ROS packages. Keys resolve '
         'to installed ROS packages, Python modules, or the pinned ros-<name> wheels (pip).')
@@ -80,6 +81,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """The rosdep command: its exit code for argv (None: sys.argv), 130 at Ctrl-C."""
     try:
         return run(argv)
     except KeyboardInterrupt:
@@ -87,6 +89,7 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def run(argv: list[str] | None) -> int:
+    """Parse the command line, read the selected packages' keys and run the command; its exit code."""
     parser = build_parser()
     args = parser.parse_args(argv)
     if args.command is None:
@@ -121,6 +124,7 @@ def run(argv: list[str] | None) -> int:
 
 
 def make_plan(keys_by_package: dict[str, list[str]], resolver: Resolver) -> Plan:
+    """Resolve the keys of each package: the pip requirements to install and the keys that failed."""
     plan = Plan()
     resolved: dict[str, Resolution] = {}
     for package, keys in keys_by_package.items():
@@ -134,6 +138,7 @@ def make_plan(keys_by_package: dict[str, list[str]], resolver: Resolver) -> Plan
 
 
 def print_errors(plan: Plan) -> None:
+    """Print the keys that did not resolve to stderr, under upstream rosdep's heading."""
     print('ERROR: the following packages/stacks could not have their rosdep keys resolved\n'
           'to system dependencies:', file=sys.stderr)
     for line in plan.errors:
@@ -141,6 +146,7 @@ def print_errors(plan: Plan) -> None:
 
 
 def check(plan: Plan) -> int:
+    """`rosdep check`: print what is missing as upstream does; exit code 0 when nothing is, else 1."""
     if plan.errors:
         print_errors(plan)
     if plan.pip:
@@ -159,6 +165,11 @@ def pip_command(requirements: list[str]) -> list[str]:
 
 
 def install(plan: Plan, args: argparse.Namespace) -> int:
+    """`rosdep install`: run pip for the plan (or print its commands with -s); the exit code.
+
+    1 when a key did not resolve (after installing the others with -r), pip failed or the user did
+    not confirm; without -y confirmation is asked at a terminal only, else refused.
+    """
     failed = 1 if plan.errors else 0
     if plan.errors:
         print_errors(plan)

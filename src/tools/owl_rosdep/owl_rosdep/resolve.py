@@ -86,6 +86,7 @@ def load_pins(requirements: Path | None) -> dict[str, str]:
 
 
 def load_wheel_table(path: Path = WHEEL_TABLE) -> dict[str, str]:
+    """The table of ROS wheels this package ships (canonical name -> version), for keys not pinned."""
     table: dict[str, str] = {}
     for line in path.read_text(encoding='utf-8').splitlines():
         if line and not line.startswith('#'):
@@ -101,6 +102,7 @@ def default_requirements() -> Path | None:
 
 
 def module_available(module: str) -> bool:
+    """Whether a Python module can be imported here (found without importing it)."""
     try:
         return importlib.util.find_spec(module) is not None
     except (ImportError, ValueError):
@@ -122,6 +124,7 @@ class Resolver:
         self.has_program = has_program
 
     def resolve(self, key: str) -> Resolution:
+        """What the key needs: installed ROS package, tool on PATH, Python module, else a pin or wheel."""
         if key in self.installed:
             return Resolution(key, satisfied=True)
         if key in TOOL_KEYS:

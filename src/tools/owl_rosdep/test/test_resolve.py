@@ -30,17 +30,20 @@ def test_pins_follow_markers_and_only_exact_versions(tmp_path):
         '-r other.txt\n'
         'not a requirement !!\n')
     assert load_pins(requirements) == {'ros-rclpy': '9.1.2', 'numpy': '2.0.0', 'pyyaml': '6.0.3'}
-    assert load_pins(tmp_path / 'missing.txt') == {} and load_pins(None) == {}
+    assert load_pins(tmp_path / 'missing.txt') == {}
+    assert load_pins(None) == {}
 
 
 def test_wheel_table_ships_the_jazzy_wheels():
     table = load_wheel_table()
-    assert table['ros-rclpy'] == '7.1.6' and 'ros-nav-msgs' in table
+    assert table['ros-rclpy'] == '7.1.6'
+    assert 'ros-nav-msgs' in table
     assert not any(name.startswith(('ros-jazzy-', 'ros-cdk-')) for name in table)
 
 
 def test_wheel_names():
-    assert wheel_name('nav_msgs') == 'ros-nav-msgs' and wheel_name('rclpy') == 'ros-rclpy'
+    assert wheel_name('nav_msgs') == 'ros-nav-msgs'
+    assert wheel_name('rclpy') == 'ros-rclpy'
 
 
 def test_installed_packages_tools_and_modules_are_satisfied():

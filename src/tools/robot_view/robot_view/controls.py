@@ -1,5 +1,6 @@
-"""The robot view's servo controls as plain data (node-free): what a page's `set_gains`, `torque` and
-`goal` commands may ask, checked before anything reaches ROS. Each refusal is one ApiError line.
+"""The robot view's servo controls as plain data (node-free), checked before anything reaches ROS.
+
+What a page's `set_gains`, `torque` and `goal` commands may ask; each refusal is one ApiError line.
 
 The limits are the kit's own: the gains' ranges are the kit's (olive_kit.description.GAIN_LIMITS,
 the ranges its parameters declare), a goal's range is the one the kit's launch gives each servo
@@ -30,6 +31,7 @@ def servo_node(servo: str) -> str:
 
 
 def servo_name(arguments: dict[str, Any]) -> str:
+    """The command's "servo", one of SERVOS; else ApiError 404 naming the known ones (and a near miss)."""
     servo = arguments['servo']
     if servo not in SERVOS:
         near = servo.lower() if isinstance(servo, str) else None
@@ -50,8 +52,9 @@ def number(value: Any, what: str, low: float, high: float) -> float:
 
 
 def gains_request(arguments: dict[str, Any]) -> tuple[str, dict[str, float]]:
-    """A `set_gains` command ({"servo": "pan", "kp": 1.0, "ki": 0, "kd": 0}, at least one gain):
-    (servo, {gain: value}).
+    """A `set_gains` command as (servo, {gain: value}), each gain within its range.
+
+    The command is {"servo": "pan", "kp": 1.0, "ki": 0, "kd": 0}, with at least one gain.
     """
     codec.check_keys(arguments, ('servo', *GAINS), required=('servo',))
     servo = servo_name(arguments)
@@ -69,8 +72,9 @@ def torque_request(arguments: dict[str, Any]) -> tuple[str, bool]:
 
 
 def goal_request(arguments: dict[str, Any]) -> tuple[str, float]:
-    """A `goal` command ({"servo": "pan", "position": 1.57}): (servo, position in rad), within the
-    servo's range.
+    """A `goal` command ({"servo": "pan", "position": 1.57}) as (servo, position in rad).
+
+    The position must be within the servo's range.
     """
     codec.check_keys(arguments, ('servo', 'position'), required=('servo', 'position'))
     servo = servo_name(arguments)
@@ -79,8 +83,9 @@ def goal_request(arguments: dict[str, Any]) -> tuple[str, float]:
 
 
 def appendix_goals(servo: str) -> list[float]:
-    """The appendix's goals, 0 and 1.57 rad, each brought within the servo's range (the tilt
-    servo's top is 0.9 rad: the camera would hit the base).
+    """The appendix's goals, 0 and 1.57 rad, each brought within the servo's range.
+
+    The tilt servo's top is 0.9 rad: the camera would hit the base.
     """
     low, high = SERVO_BOUNDS[servo]
     return [min(high, max(low, goal)) for goal in APPENDIX_GOALS]

@@ -1,5 +1,7 @@
-"""What the robot view shows of the kit, as plain data (node-free): joint angles and the IMU's
-orientation, and the commands a page may send to hold the simulated IMU.
+"""What the robot view shows of the kit, as plain data (node-free).
+
+The joint angles and the IMU's orientation, and the commands a page may send to hold the
+simulated IMU.
 """
 
 from __future__ import annotations

@@ -17,6 +17,7 @@ STATIC_DIR = Path(__file__).parent / 'static'
 
 
 def parse_arguments(argv: list[str]) -> argparse.Namespace:
+    """The robot view's own options (--port), from the arguments after the program's name, ROS's removed."""
     parser = argparse.ArgumentParser(
         prog='robot_view', description='The Owl Kit as a live 3D model, its camera, and the '
                                        'simulated IMU turned with the mouse, on one local page.')
@@ -26,6 +27,10 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
 
 
 def main(argv: list[str] | None = None) -> None:
+    """Serve the robot view's page and spin its node until Ctrl-C; exit code 1 when it cannot serve.
+
+    argv is the whole command line, ROS arguments included (None: sys.argv).
+    """
     argv = sys.argv if argv is None else argv
     args = parse_arguments(remove_ros_args(argv)[1:])
     try:

@@ -1,6 +1,8 @@
-"""RobotViewNode: subscribes to the kit's servo joints and goals, IMU and camera and pushes them to
-the robot view page over owl_web's WebSocket (the model's state, the live plots, the camera's
-frames, the servos' gains and torque); carries out the page's commands: "hold_imu" / "level" on the
+"""RobotViewNode: the kit's servos, IMU and camera on the robot view page, and the page's commands.
+
+It subscribes to the kit's servo joints and goals, IMU and camera and pushes them to the robot
+view page over owl_web's WebSocket (the model's state, the live plots, the camera's frames, the
+servos' gains and torque); it carries out the page's commands: "hold_imu" / "level" on the
 simulated IMU's true_orientation, and "set_gains", "torque" and "goal" on the servos.
 """
 
@@ -53,6 +55,7 @@ ASK_GAINS_EVERY = 1.0  # s between two questions to a servo whose gains are not 
 
 
 class RobotViewNode(Node):
+    """The robot_view node: serves the page's channels and commands on server (see the module's text)."""
 
     def __init__(self, server: WebServer) -> None:
         super().__init__('robot_view')
@@ -143,8 +146,9 @@ class RobotViewNode(Node):
         self._update_servo(servo, **gains)
 
     def _call(self, client: Client, request: Any, what: str) -> Any:
-        """A service's response, waited for in this (web worker) thread while the executor spins;
-        a missing or silent service is one ApiError line. Every request here is idempotent, so it
+        """A service's response, waited for in this (web worker) thread while the executor spins.
+
+        A missing or silent service is one ApiError line. Every request here is idempotent, so it
         goes out again when no answer came within RESEND_EVERY: a server that has not discovered
         this client yet drops the request or its response.
         """
@@ -191,9 +195,10 @@ class RobotViewNode(Node):
         watcher.send(message)
 
     def _ask_for_unknown_gains(self) -> None:
-        """Ask each servo whose gains are not known yet for them (a servo that started before
-        robot_view announced them on /parameter_events before robot_view listened). Never waits:
-        this runs on the executor.
+        """Ask each servo whose gains are not known yet for them; never waits (it runs on the executor).
+
+        A servo that started before robot_view announced its gains on /parameter_events before
+        robot_view listened.
         """
         for servo, client in self._get_parameters.items():
             with self._lock:

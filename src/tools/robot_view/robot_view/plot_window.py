@@ -1,6 +1,7 @@
-"""The robot view's live plots as plain data (node-free): samples of the servos' goal, position and
-effort and of the IMU's roll, pitch and yaw, decimated into buckets and kept for a rolling window,
-and the columns a page is sent.
+"""The robot view's live plots as plain data (node-free), decimated into buckets.
+
+Samples of the servos' goal, position and effort and of the IMU's roll, pitch and yaw, decimated
+into buckets and kept for a rolling window, and the columns a page is sent.
 
 Why buckets: the joints and the IMU come at 100 Hz each; a plot 10 s wide and a few hundred pixels
 across shows no more than 50 points a second, and the page's WebSocket should carry only what it
@@ -36,9 +37,10 @@ DECIMALS = 4    # of a value sent (0.1 mrad, 0.1 mN*m: finer than any plot shows
 
 
 def sample_time(stamp_ns: int | None, now: float) -> float:
-    """The time (s) to plot a sample at: its stamp (ns since the epoch), or `now` (time.time())
-    when it has none or when the stamp is more than STAMP_TRUSTED away from now (another machine's
-    clock, a module that was never set).
+    """The time (s) to plot a sample at: its stamp (ns since the epoch), or `now` (time.time()).
+
+    `now` is taken when the sample has no stamp or when the stamp is more than STAMP_TRUSTED away
+    from now (another machine's clock, a module that was never set).
     """
     if stamp_ns is None:
         return now
@@ -48,6 +50,8 @@ def sample_time(stamp_ns: int | None, now: float) -> float:
 
 @dataclass
 class Bucket:
+    """One time slice of a PlotWindow: the sums and counts of its samples, and the held series' values."""
+
     index: int  # start time / BUCKET
     sums: dict[str, float] = field(default_factory=dict)
     counts: dict[str, int] = field(default_factory=dict)
@@ -55,6 +59,7 @@ class Bucket:
     held_here: set[str] = field(default_factory=set)  # held series whose value changed in this bucket
 
     def value(self, series: str) -> float | None:
+        """The series' value in this bucket: the held value, else the mean of its samples; None for none."""
         if series in self.held:
             return self.held[series]
         count = self.counts.get(series, 0)
@@ -62,8 +67,10 @@ class Bucket:
 
 
 class PlotWindow:
-    """Samples of named series in time order, decimated into buckets of `bucket` seconds, kept for
-    `window` (+ OVERLAP) seconds. Times are any clock's seconds (the node uses time.monotonic).
+    """Samples of named series in time order, decimated into buckets of `bucket` seconds.
+
+    They are kept for `window` (+ OVERLAP) seconds. Times are any clock's seconds (the node uses
+    time.time(), the clock of the messages' stamps, see sample_time).
     """
 
     def __init__(self, series: Iterable[str], held: Iterable[str] = (), bucket: float = BUCKET,
@@ -80,10 +87,12 @@ class PlotWindow:
         self._buckets: deque[Bucket] = deque()
 
     def add(self, time: float, values: dict[str, float]) -> None:
-        """Samples taken at `time` (seconds). Samples may come a little out of order (each topic's
-        own messages are in order, different topics' are not): one up to LATE behind the newest
-        bucket goes in its own bucket, an older one in the newest. Non-finite values and unknown
-        series are refused with ValueError (the node checks what it takes from ROS).
+        """Add samples taken at `time` (seconds), one value per series.
+
+        Samples may come a little out of order (each topic's own messages are in order, different
+        topics' are not): one up to LATE behind the newest bucket goes in its own bucket, an older
+        one in the newest. Non-finite values and unknown series are refused with ValueError (the
+        node checks what it takes from ROS).
         """
         for name, value in values.items():
             if name not in self.series:
@@ -118,8 +127,9 @@ class PlotWindow:
         return position
 
     def _hold(self, position: int, name: str, value: float) -> None:
-        """A held series changes to value in the bucket at `position` and in every later one up to
-        the next change of it.
+        """Set a held series to value in the bucket at `position` and in every later one.
+
+        The later ones stop at the next bucket where the series changed again.
         """
         buckets = self._buckets
         buckets[position].held_here.add(name)
@@ -138,8 +148,10 @@ class PlotWindow:
         return self._buckets[-1].index * self.bucket if self._buckets else None
 
     def columns(self, since: float = -math.inf) -> dict[str, list[float | None]]:
-        """{'t': bucket start times, <series>: values (None where a bucket has no sample)} of the
-        buckets that start at or after `since`, oldest first: what a page's plot (uPlot) takes.
+        """The columns of the buckets that start at or after `since`, oldest first: a page's plot data.
+
+        {'t': bucket start times, <series>: values (None where a bucket has no sample)}, the shape
+        uPlot takes.
         """
         chosen = [b for b in self._buckets if b.index * self.bucket >= since - 1e-9]
         columns: dict[str, list[float | None]] = {'t': [round(b.index * self.bucket, 3) for b in chosen]}
@@ -150,8 +162,10 @@ class PlotWindow:
 
 
 class PushCursor:
-    """Where one page's pushes are: the first push sends the whole window, each later one what is
-    new plus OVERLAP seconds of what was sent (see the module's docstring).
+    """Where one page's pushes are, so each push sends what is new and a little overlap.
+
+    The first push sends the whole window, each later one what is new plus OVERLAP seconds of what
+    was sent (see the module's docstring).
     """
 
     def __init__(self) -> None:

@@ -26,7 +26,7 @@ def test_gains_within_servo_sims_ranges():
     assert gains_request({'servo': 'pan', 'ki': 1000}) == ('pan', {'ki': 1000.0})
 
 
-@pytest.mark.parametrize('arguments, error', [
+@pytest.mark.parametrize(('arguments', 'error'), [
     ({'servo': 'pan', 'kp': 100.5}, 'pan kp must be within 0..100, got 100.5'),
     ({'servo': 'pan', 'kp': -1}, 'pan kp must be within 0..100, got -1'),
     ({'servo': 'pan', 'ki': 1001}, 'pan ki must be within 0..1000, got 1001'),

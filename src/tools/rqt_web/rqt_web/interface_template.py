@@ -12,7 +12,8 @@ class RosMessage(Protocol):
     """A generated ROS message (rosidl), as far as the forms and publishers here use it."""
 
     @classmethod
-    def get_fields_and_field_types(cls) -> dict[str, str]: ...
+    def get_fields_and_field_types(cls) -> dict[str, str]:
+        """{field name: type text} of the message, in declaration order, as rosidl generates it."""
 
 
 def field_template(message: RosMessage) -> list[dict[str, Any]]:

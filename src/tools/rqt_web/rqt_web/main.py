@@ -22,6 +22,7 @@ PLUGINS = {'rqt_graph': 'node-graph', 'rqt_publisher': 'message-publisher',
 
 
 def parse_arguments(argv: list[str]) -> argparse.Namespace:
+    """The options of rqt (--port, --no-browser, -s), from the arguments after the program's name."""
     parser = argparse.ArgumentParser(
         prog='rqt', description='rqt in a web browser: Node Graph, Message Publisher, Service Caller '
                                 'and Image View on one local page.')
@@ -48,6 +49,10 @@ def open_browser(url: str) -> None:
 
 
 def main(argv: list[str] | None = None) -> None:
+    """Serve the rqt page and spin its node until Ctrl-C; exit code 1 when it cannot serve.
+
+    argv is the whole command line, ROS arguments included (None: sys.argv).
+    """
     argv = sys.argv if argv is None else argv
     args = parse_arguments(remove_ros_args(argv)[1:])
     try:

@@ -1,5 +1,7 @@
-"""The rqt node: answers the page's requests from the ROS graph, publishes, calls, subscribes,
-and pushes the graph and image frames to the page over its WebSocket (owl_web).
+"""The rqt node: the backend of the rqt page, on the ROS graph.
+
+It answers the page's requests from the ROS graph, publishes, calls, subscribes, and pushes the
+graph and image frames to the page over its WebSocket (owl_web).
 
 Its methods are called from the web server's threads while rclpy spins the node in the main
 thread; they take plain data (parsed JSON) and return plain data, raising ApiError for bad input.
@@ -53,6 +55,7 @@ class MessagePublisher:
     published: int = 0
 
     def as_dict(self) -> dict[str, Any]:
+        """The row as the page shows it (JSON-ready): its settings, the message and how many went out."""
         return {'id': self.id, 'topic': self.topic, 'type': self.type_name, 'rate': self.rate,
                 'enabled': self.enabled, 'fields': self.fields,
                 'message': message_fields(self.message), 'published': self.published}
@@ -134,16 +137,19 @@ class RqtWebNode(Node):
         server.route('POST', '/api/call', lambda request: self.call_service(request.json()))
 
     def destroy_node(self) -> None:
+        """Stop the web server, then destroy the node as rclpy does."""
         self._server.stop()
         super().destroy_node()
 
     # ---- graph -------------------------------------------------------------------------------
 
     def topic_types(self) -> dict[str, list[str]]:
+        """Every topic of the graph with its types, hidden topics left out."""
         return {name: types for name, types in self._graph_queries.topic_names_and_types()
                 if not is_hidden_name(name)}
 
     def service_types(self) -> dict[str, list[str]]:
+        """Every service of the graph with its types, hidden services left out."""
         return {name: types for name, types in self._graph_queries.service_names_and_types()
                 if not is_hidden_name(name)}
 
@@ -178,10 +184,16 @@ class RqtWebNode(Node):
     # ---- Message Publisher ---------------------------------------------------------------------
 
     def message_publishers(self) -> list[dict[str, Any]]:
+        """The rows of Message Publisher, in the order they were added (see MessagePublisher.as_dict)."""
         with self._state_lock:
             return [entry.as_dict() for entry in self._message_publishers.values()]
 
     def add_message_publisher(self, body: dict[str, Any]) -> dict[str, Any]:
+        """Add a Message Publisher row from the page's request body and return it (as_dict).
+
+        The type may be left out for a topic the graph knows with one type; a given one must match
+        the topic's. The row publishes at its rate once enabled (off by default).
+        """
         check_keys(body, PUBLISHER_KEYS, required=('topic',))
         topic = api_input.name(body['topic'], 'topic')
         rate = api_input.rate(body.get('rate', 1.0))
@@ -231,6 +243,7 @@ class RqtWebNode(Node):
             return entry.as_dict()
 
     def remove_message_publisher(self, publisher_id: int) -> None:
+        """Remove a Message Publisher row, its timer and its publisher; ApiError 404 for an unknown id."""
         with self._state_lock:
             entry = self._message_publishers.pop(publisher_id, None)
             if entry is None:
@@ -267,6 +280,10 @@ class RqtWebNode(Node):
     # ---- Service Caller ------------------------------------------------------------------------
 
     def call_service(self, body: dict[str, Any]) -> dict[str, Any]:
+        """Call a service of the graph with the page's request: the response and how long it took (s).
+
+        ApiError for an unknown service or type, a bad request, or no answer within the timeout.
+        """
         check_keys(body, CALL_KEYS, required=('service',))
         service = api_input.name(body['service'], 'service')
         timeout = api_input.timeout(body.get('timeout', DEFAULT_CALL_TIMEOUT))
@@ -309,6 +326,7 @@ class RqtWebNode(Node):
     # ---- Image View ----------------------------------------------------------------------------
 
     def image_topic_types(self) -> dict[str, list[str]]:
+        """The topics Image View can show (a sensor_msgs Image or CompressedImage type), with their types."""
         return {name: types for name, types in self.topic_types().items()
                 if any(t in IMAGE_TYPES for t in types)}
 

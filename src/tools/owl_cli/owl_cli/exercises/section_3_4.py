@@ -22,6 +22,7 @@ SECTION = Section()
     'ros2 pkg create test_package --build-type ament_python: the package layout colcon builds',
 )
 def check_test_package(s: Session) -> None:
+    """Check test_package: in the workspace, ament_python, the layout ros2 pkg create gives, installed."""
     from ament_index_python.packages import PackageNotFoundError, get_package_prefix
 
     found = ws.packages(workspace()).get('test_package')

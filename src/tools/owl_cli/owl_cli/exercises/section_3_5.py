@@ -24,6 +24,7 @@ SECTION = Section()
     'publishes a random std_msgs/Int32 from 1 to 100 on random_numbers every second',
 )
 def check_random_number_publisher(s: Session) -> None:
+    """Run random_number_publisher: Int32 on random_numbers, one a second, random, within 1..100."""
     from std_msgs.msg import Int32
 
     numbers = s.collect(Int32, '/random_numbers')
@@ -73,6 +74,7 @@ def check_random_number_publisher(s: Session) -> None:
     'prints every number it receives on random_numbers',
 )
 def check_random_number_subscriber(s: Session) -> None:
+    """Run random_number_subscriber, publish 17, 42 and 93 to it, and look for them in its output."""
     from std_msgs.msg import Int32
 
     process = s.student('random_number_ps', 'random_number_subscriber')
@@ -112,6 +114,7 @@ def check_random_number_subscriber(s: Session) -> None:
     'publishes a number that grows by one each time on random_numbers',
 )
 def check_counter_publisher(s: Session) -> None:
+    """Run counter_publisher: the numbers on random_numbers grow by one each time."""
     from std_msgs.msg import Int32
 
     numbers = s.collect(Int32, '/random_numbers')
@@ -143,6 +146,7 @@ def check_counter_publisher(s: Session) -> None:
     "publishes random geometry_msgs/Twist velocities to turtlesim's /turtle1/cmd_vel",
 )
 def check_turtle_random_velocity(s: Session) -> None:
+    """Run turtle_random_velocity beside turtlesim: random Twist velocities on its cmd_vel move the turtle."""
     from geometry_msgs.msg import Twist
     from turtlesim.msg import Pose
 

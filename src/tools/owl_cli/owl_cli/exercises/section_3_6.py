@@ -38,6 +38,7 @@ SECTION.by_hand(
     'the temp_conversion service (olive_interfaces/srv/TempConv): Celsius to Kelvin and Fahrenheit',
 )
 def check_temp_server(s: Session) -> None:
+    """Run temp_server: it offers temp_conversion (TempConv) and answers 0 and 100 °C by formulas (1), (2)."""
     from olive_interfaces.srv import TempConv
 
     s.student('olive_srvcli', 'temp_server')
@@ -80,6 +81,7 @@ def check_temp_server(s: Session) -> None:
     'sends its command-line Celsius value to temp_conversion and prints the answer',
 )
 def check_temp_client(s: Session) -> None:
+    """Run `temp_client 100` against the check's own server: it asks for 100.0, prints the answer, ends."""
     from olive_interfaces.srv import TempConv
 
     requests = []
@@ -143,10 +145,12 @@ INTEGER_TYPES = ('int8', 'uint8', 'int16', 'uint16', 'int32', 'uint32', 'int64',
 
 
 def own_service(name: str) -> bool:
+    """Whether a service is one a node made itself, not one rclpy gives every node or an action's."""
     return not name.endswith(STANDARD_SERVICE_SUFFIXES) and '/_action/' not in name
 
 
 def fields(message: Any, kinds: tuple[str, ...]) -> list[str]:
+    """The names of the message's fields whose type is one of kinds ('double', 'int64', ...), in order."""
     return [name for name, kind in message.get_fields_and_field_types().items() if kind in kinds]
 
 
@@ -169,6 +173,12 @@ def find_student_executable(s: Session, subject: str, role: str) -> tuple[str, s
 
 
 def check_service_server(s: Session, subject: str) -> None:
+    """Check the student's server for subject ('currency' or 'factorial') through its own service type.
+
+    The service and its type are whatever the executable offers (the course leaves them to the
+    student): the first number field of the request carries the question, every number field of
+    the response is read as the answer.
+    """
     found = find_student_executable(s, subject, 'server')
     if found is None:
         return
@@ -250,6 +260,7 @@ def check_service_server(s: Session, subject: str) -> None:
     choice='3.6',
 )
 def check_currency_server(s: Session) -> None:
+    """Check the currency server: three amounts for 100 euros, 2.5 times as much for 250, three rates."""
     check_service_server(s, 'currency')
 
 
@@ -260,6 +271,11 @@ RATES = (1.25, 0.75, 1.5)  # the check's own server: different units per euro fo
 
 
 def check_service_client(s: Session, subject: str) -> None:
+    """Check the student's client for subject ('currency' or 'factorial') against the check's own server.
+
+    The client runs with CLIENT_ARGUMENT; the check serves the service and type the client asks for,
+    answers with RATES (currency) or the factorial, and looks for the answer in the client's output.
+    """
     found = find_student_executable(s, subject, 'client')
     if found is None:
         return
@@ -345,6 +361,7 @@ def check_service_client(s: Session, subject: str) -> None:
     choice='3.6',
 )
 def check_currency_client(s: Session) -> None:
+    """Check the currency client: it sends 100 euros, prints the three amounts and ends."""
     check_service_client(s, 'currency')
 
 
@@ -356,6 +373,7 @@ def check_currency_client(s: Session) -> None:
     choice='3.6',
 )
 def check_factorial_server(s: Session) -> None:
+    """Check the factorial server: it answers 5, 0 and 10 with their factorials."""
     check_service_server(s, 'factorial')
 
 
@@ -367,4 +385,5 @@ def check_factorial_server(s: Session) -> None:
     choice='3.6',
 )
 def check_factorial_client(s: Session) -> None:
+    """Check the factorial client: it sends 5, prints the answer and ends."""
     check_service_client(s, 'factorial')

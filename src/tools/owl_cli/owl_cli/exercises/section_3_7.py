@@ -48,6 +48,11 @@ PARAMETER_FILE_NODES = {
     'a parameter file (ros2 param dump, edited) that --ros-args --params-file loads at start-up',
 )
 def check_params_file(s: Session) -> None:
+    """Find the student's parameter file, check it changes a default, and start its node with it.
+
+    The file is looked for in the workspace and ~/Documents (turtlesim.yaml first); the node it
+    sets (turtlesim or random_number_publisher) must start with the file's values.
+    """
     files = ws.parameter_files(workspace(), Path.home())
     files.sort(key=lambda f: f.name != 'turtlesim.yaml')
     if not s.add(
@@ -133,6 +138,7 @@ def check_params_file(s: Session) -> None:
     "random_number_publisher's upper_limit parameter: default 100, changed with ros2 param set",
 )
 def check_upper_limit(s: Session) -> None:
+    """Run random_number_publisher: upper_limit is 100 at start, and set to 3 it bounds the numbers."""
     from std_msgs.msg import Int32
 
     numbers = s.collect(Int32, '/random_numbers')
@@ -175,6 +181,7 @@ def check_upper_limit(s: Session) -> None:
     'a parameter for the lower bound of random_number_publisher',
 )
 def check_lower_limit(s: Session) -> None:
+    """Run random_number_publisher: a lower-bound parameter set to 10 (upper_limit 12) bounds the numbers."""
     from std_msgs.msg import Int32
 
     numbers = s.collect(Int32, '/random_numbers')

@@ -19,6 +19,7 @@ SECTION = Section()
     "olive_launch's launch file starts two turtlesim nodes, turtle1 and turtle2",
 )
 def check_turtle_launch(s: Session) -> None:
+    """Launch olive_launch's launch file: it starts turtle1 and turtle2 and stops cleanly at Ctrl-C."""
     files = launch_files('olive_launch')
     names = [f.name for f in files]
     chosen = next(

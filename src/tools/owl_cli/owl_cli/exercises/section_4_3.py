@@ -33,6 +33,7 @@ SECTION.by_hand(
 
 
 def hold_imu(s: Session, roll: float, pitch: float, yaw: float) -> None:
+    """Turn the simulated IMU (motion:=command) to roll, pitch and yaw in rad: one message to imu_sim."""
     from geometry_msgs.msg import Quaternion
     from owl_common.quaternion import from_euler
 
@@ -68,6 +69,7 @@ def settle(
     "the IMU's pitch drives the turtle forward, its yaw turns it (/turtle1/cmd_vel)",
 )
 def check_imu_turtle(s: Session) -> None:
+    """Run imu_turtle on the simulated IMU: level it stands still, pitched it drives, turned it turns."""
     from geometry_msgs.msg import Twist
 
     s.kit('imu', imu_command=True)
@@ -127,6 +129,7 @@ def check_imu_turtle(s: Session) -> None:
     extra=True,
 )
 def check_imu_turtle_launch(s: Session) -> None:
+    """Launch olive_imu's launch file naming turtlesim and imu_turtle: the scripted IMU moves the turtle."""
     from turtlesim.msg import Pose
 
     files = [
@@ -167,6 +170,11 @@ def check_imu_turtle_launch(s: Session) -> None:
     extra=True,
 )
 def check_imu_turtle_speed(s: Session) -> None:
+    """Run imu_turtle and try its numeric parameters in turn: one must change the turtle's speed.
+
+    Each is doubled (or set to 1 from 0) while the IMU is pitched, then set back; a change of more
+    than 30 % in linear.x counts.
+    """
     from geometry_msgs.msg import Twist
 
     s.kit('imu', imu_command=True)
@@ -231,6 +239,7 @@ def feed_imu(s: Session, topic: str, pitch: float, seconds: float) -> None:
     extra=True,
 )
 def check_imu_turtle_topic(s: Session) -> None:
+    """Run imu_turtle: a parameter holds the IMU's topic, and set to another topic it follows that one."""
     from geometry_msgs.msg import Twist
 
     process = s.student('olive_imu', 'imu_turtle')

@@ -30,6 +30,10 @@ TORQUE_OFF_WARNING = 'ignored, torque is disabled'
 
 
 def torque_criterion(s: Session, servo: str, goals: list) -> None:
+    """Add the criterion that the node enabled the servo's torque before its first goal.
+
+    Read from the simulated servo's log: 'torque enabled', and no goal ignored while it was off.
+    """
     log = s.helpers[servo].output
     enabled = 'torque enabled' in log
     early = TORQUE_OFF_WARNING in log
@@ -54,12 +58,14 @@ def torque_criterion(s: Session, servo: str, goals: list) -> None:
 
 
 def joint_positions(s: Session, servo: str) -> list:
+    """The servo's JointState messages from now on, as (monotonic time, message) pairs (Session.collect)."""
     from sensor_msgs.msg import JointState
 
     return s.collect(JointState, f'/olive/servo/{servo}/joint')
 
 
 def moved(joints: list, since: float = 0.0) -> float:
+    """How far (rad) the servo's position spanned in the joint states from monotonic time since on."""
     values = [m.position[0] for t, m in joints if t >= since and m.position]
     return max(values) - min(values) if values else 0.0
 
@@ -71,6 +77,7 @@ def moved(joints: list, since: float = 0.0) -> float:
     'appendix 5.3: enables the pan torque, then goals 1.57 and 0.0 rad every 3 s',
 )
 def check_pid_testing(s: Session) -> None:
+    """Run pid_testing on the simulated pan servo: torque on, goals 1.57 and 0.0 rad every 3 s, it turns."""
     from std_msgs.msg import Float32
 
     s.kit('pan')
@@ -120,6 +127,10 @@ def check_pid_testing(s: Session) -> None:
     'enables the pan torque, then publishes a sine of goal positions every 0.01 s',
 )
 def check_control_servo(s: Session, torque_off_only: bool = False) -> None:
+    """Run control_servo on the simulated pan servo: a sine of goals, then the torque off at Ctrl-C.
+
+    With torque_off_only (the extra control_servo_torque_off) only the last criterion is added.
+    """
     from std_msgs.msg import Float32
 
     s.kit('pan')
@@ -194,6 +205,7 @@ def check_control_servo(s: Session, torque_off_only: bool = False) -> None:
     extra=True,
 )
 def check_control_servo_torque_off(s: Session) -> None:
+    """Run control_servo and stop it with Ctrl-C: it must disable the pan servo's torque first."""
     check_control_servo(s, torque_off_only=True)
 
 
@@ -208,6 +220,7 @@ def numeric_parameters(s: Session, node: str, preferred: tuple[str, ...]) -> lis
 
 
 def scaled(value: float, factor: float) -> float:
+    """The parameter value times factor, an int staying an int of at least 1; 1 for a value of 0."""
     if isinstance(value, int):
         return max(1, round(value * factor)) if value else 1
     return value * factor if value else 1.0
@@ -221,6 +234,10 @@ def scaled(value: float, factor: float) -> float:
     extra=True,
 )
 def check_control_servo_frequency(s: Session) -> None:
+    """Run control_servo and halve its numeric parameters in turn: one must change the goals' rate.
+
+    Those named like a frequency or period come first; a change of more than 30 % counts.
+    """
     from std_msgs.msg import Float32
 
     s.kit('pan')

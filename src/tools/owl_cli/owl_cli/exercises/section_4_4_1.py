@@ -73,6 +73,7 @@ def hold_keys(
     'arrow keys move the pan (left/right) and tilt (up/down) goals, within bounds',
 )
 def check_keyboard_servos(s: Session) -> None:
+    """Run keyboard_servos with a headless window: held arrow keys move pan and tilt goals, within bounds."""
     from std_msgs.msg import Float32
 
     s.kit('pan', 'tilt')
@@ -129,6 +130,7 @@ KEYBOARD_ENV_KEYS = ('DISPLAY', 'WAYLAND_DISPLAY')
 
 
 def start_keyboard_servos(s: Session) -> RosProcess:
+    """Start the student's keyboard_servos with its pygame window headless, in the session's folder."""
     env: dict[str, str | None] = {key: None for key in KEYBOARD_ENV_KEYS}
     env.update({'OWL_HEADLESS': '1', 'OWL_WINDOWS_DIR': s.temporary.name})
     return s.student('olive_servo', 'keyboard_servos', env=env)
@@ -142,6 +144,7 @@ def start_keyboard_servos(s: Session) -> RosProcess:
     extra=True,
 )
 def check_keyboard_servos_torque(s: Session) -> None:
+    """Run keyboard_servos: both servos' torque on before their goals, and off again at Ctrl-C."""
     from std_msgs.msg import Float32
 
     s.kit('pan', 'tilt')
@@ -173,6 +176,11 @@ def check_keyboard_servos_torque(s: Session) -> None:
     extra=True,
 )
 def check_keyboard_servos_speed(s: Session) -> None:
+    """Run keyboard_servos and double its numeric parameters in turn: one must change a held key's speed.
+
+    Those named like a speed or step come first, bounds are skipped; the speed is the pan goal's
+    rate of change while Left or Right is held, and a change of more than 30 % counts.
+    """
     from std_msgs.msg import Float32
 
     s.kit('pan', 'tilt')
@@ -234,6 +242,7 @@ def check_keyboard_servos_speed(s: Session) -> None:
     'the IMU points the pan/tilt head: goals follow yaw and pitch, within bounds',
 )
 def check_imu_control_robot(s: Session) -> None:
+    """Run imu_control_robot on the simulated IMU: pan follows yaw, tilt follows pitch, within bounds."""
     from std_msgs.msg import Float32
 
     s.kit('imu', 'pan', 'tilt', imu_command=True)

@@ -23,6 +23,7 @@ SECTION = Section()
     "shows the camera's CompressedImage frames with cv2.imshow, with a best-effort QoS",
 )
 def check_display_camera(s: Session) -> None:
+    """Run display_camera headless: a best-effort subscription to the camera, and its images shown."""
     from rclpy.qos import ReliabilityPolicy
 
     s.kit('camera')
@@ -77,6 +78,7 @@ def check_display_camera(s: Session) -> None:
     extra=True,
 )
 def check_robot_camera_launch(s: Session) -> None:
+    """Launch olive_camera's launch file: the IMU turns the head and the camera's images are shown."""
     from std_msgs.msg import Float32
 
     files = [
