@@ -1,5 +1,6 @@
-"""Graph queries answered from an rclpy node, as plain data (lists, dicts, strings), and the rules of
-node and topic names, shared by ros2cli, rqt_web and owl_web.
+"""Graph queries answered from an rclpy node as plain data, and the rules of node and topic names.
+
+The answers are lists, dicts and strings; ros2cli, rqt_web and owl_web share both parts.
 
 The same class serves a verb's own DirectNode and the daemon, whose XML-RPC server exports
 it: plain data is what XML-RPC can carry, so both modes give exactly the same answers.
@@ -49,48 +50,62 @@ class GraphQueries:
         self._node = node
 
     def node_names_and_namespaces(self) -> list[list[str]]:
+        """Every node in the graph, as [name, namespace] pairs."""
         return [[name, ns] for name, ns in self._node.get_node_names_and_namespaces()]
 
     def topic_names_and_types(self) -> NamesAndTypes:
+        """Every topic with its types, sorted by name: [[name, [type, ...]], ...]."""
         return _plain(self._node.get_topic_names_and_types())
 
     def service_names_and_types(self) -> NamesAndTypes:
+        """Every service with its types, sorted by name."""
         return _plain(self._node.get_service_names_and_types())
 
     def action_names_and_types(self) -> NamesAndTypes:
+        """Every action with its types, sorted by name."""
         from rclpy.action import get_action_names_and_types
         return _plain(get_action_names_and_types(self._node))
 
     def publishers_by_node(self, name: str, namespace: str) -> NamesAndTypes:
+        """The topics the node `name` in `namespace` publishes, with their types, sorted."""
         return _plain(self._node.get_publisher_names_and_types_by_node(name, namespace))
 
     def subscribers_by_node(self, name: str, namespace: str) -> NamesAndTypes:
+        """The topics the node subscribes to, with their types, sorted."""
         return _plain(self._node.get_subscriber_names_and_types_by_node(name, namespace))
 
     def services_by_node(self, name: str, namespace: str) -> NamesAndTypes:
+        """The services the node offers, with their types, sorted."""
         return _plain(self._node.get_service_names_and_types_by_node(name, namespace))
 
     def clients_by_node(self, name: str, namespace: str) -> NamesAndTypes:
+        """The services the node calls as a client, with their types, sorted."""
         return _plain(self._node.get_client_names_and_types_by_node(name, namespace))
 
     def action_servers_by_node(self, name: str, namespace: str) -> NamesAndTypes:
+        """The actions the node serves, with their types, sorted."""
         from rclpy.action import get_action_server_names_and_types_by_node
         return _plain(get_action_server_names_and_types_by_node(self._node, name, namespace))
 
     def action_clients_by_node(self, name: str, namespace: str) -> NamesAndTypes:
+        """The actions the node is a client of, with their types, sorted."""
         from rclpy.action import get_action_client_names_and_types_by_node
         return _plain(get_action_client_names_and_types_by_node(self._node, name, namespace))
 
     def publishers_info(self, topic: str) -> list[dict[str, Any]]:
+        """Each publisher on the topic as endpoint_to_dict gives it: node, type, gid and QoS."""
         return [endpoint_to_dict(i) for i in self._node.get_publishers_info_by_topic(topic)]
 
     def subscriptions_info(self, topic: str) -> list[dict[str, Any]]:
+        """Each subscription to the topic as endpoint_to_dict gives it: node, type, gid and QoS."""
         return [endpoint_to_dict(i) for i in self._node.get_subscriptions_info_by_topic(topic)]
 
     def count_publishers(self, topic: str) -> int:
+        """The number of publishers on the topic, in the whole graph."""
         return self._node.count_publishers(topic)
 
     def count_subscribers(self, topic: str) -> int:
+        """The number of subscriptions to the topic, in the whole graph."""
         return self._node.count_subscribers(topic)
 
 
@@ -107,6 +122,7 @@ def split_node_name(node_name: str) -> tuple[str, str]:
 
 
 def is_hidden_node(full_name: str) -> bool:
+    """Whether the node is hidden, as ros2cli hides it: its base name starts with '_'."""
     return full_name.rpartition('/')[2].startswith('_')
 
 

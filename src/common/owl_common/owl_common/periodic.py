@@ -24,10 +24,12 @@ def scheduled_time() -> float:
 
 
 def next_call(last_due: float, now: float, period: float, catch_up: float) -> tuple[float, float]:
-    """The next call's due time after the one due at last_due, and how long to wait for it (<= 0:
-    call at once). The schedule does not drift; calls the thread missed while the machine held it
-    up are made up back to back while they are at most catch_up (and always one period) late, so a
-    100 Hz sensor still gives 100 samples a second; further behind, the schedule restarts now.
+    """The next call's due time after the one due at last_due, and how long to wait for it.
+
+    A wait <= 0 means call at once. The schedule does not drift; calls the thread missed while the
+    machine held it up are made up back to back while they are at most catch_up (and always one
+    period) late, so a 100 Hz sensor still gives 100 samples a second; further behind, the schedule
+    restarts now.
     """
     due = last_due + period
     if now - due > max(period, catch_up):

@@ -34,6 +34,7 @@ class Probe:
             pass
 
     def close(self) -> None:
+        """Stop spinning and leave the domain: the node, the context and the spin thread end."""
         self.executor.shutdown(timeout_sec=1.0)
         self.node.destroy_node()
         rclpy.try_shutdown(context=self.context)

@@ -30,9 +30,11 @@ LEASE_DIR = Path(os.environ.get('OWL_DOMAIN_LEASE_DIR', '/tmp/owl-kit-lab-domain
 
 
 def try_lock_file(directory: Path, ids: Sequence[int], start: int = 0) -> tuple[int, IO[str]] | None:
-    """The first of ids, counting from index start and wrapping, whose lock file in directory no
-    process holds, locked until the returned handle is closed (or the process ends); None when all
-    are held. How concurrent runs on one machine share domains and test slots.
+    """The first free one of ids, with its lock file's handle; None when every one is held.
+
+    The search counts from index start and wraps; an id is free when no process holds its lock file
+    in directory, and it stays locked until the returned handle is closed (or the process ends). How
+    concurrent runs on one machine share domains and test slots.
     """
     directory.mkdir(parents=True, exist_ok=True)
     for offset in range(len(ids)):
@@ -58,6 +60,7 @@ class DomainLease:
         self._handle: IO[str] | None = handle
 
     def release(self) -> None:
+        """Give the domain back (close the lock file); a second call does nothing."""
         if self._handle is not None:
             self._handle.close()
             self._handle = None
@@ -65,8 +68,9 @@ class DomainLease:
 
 def isolated_env(domain_id: int, base: dict[str, str] | None = None,
                  discovery_range: str = 'LOCALHOST') -> dict[str, str]:
-    """The environment for processes that must only see each other (on other machines too, with
-    discovery_range SUBNET).
+    """The environment for processes that must only see each other.
+
+    With discovery_range SUBNET they see each other on other machines too.
     """
     env = dict(os.environ if base is None else base)
     env.update({
@@ -150,14 +154,17 @@ class RosProcess:
 
     @property
     def pid(self) -> int:
+        """The process id, which is also its process group id."""
         return self.popen.pid
 
     @property
     def output(self) -> str:
+        """All output read so far, as one string (lines joined by newlines)."""
         with self._changed:
             return '\n'.join(self.lines)
 
     def running(self) -> bool:
+        """Whether the process has not exited yet."""
         return self.popen.poll() is None
 
     def wait_for(self, pattern: str, timeout: float = 10.0, count: int = 1) -> list[re.Match]:
@@ -245,6 +252,7 @@ class RosSandbox:
         return process
 
     def close(self) -> None:
+        """Stop the processes still running (newest first) and the domain's ros2 daemon; free the domain."""
         for process in reversed(self.processes):
             if process.running():
                 process.stop(timeout=3.0)
@@ -259,8 +267,10 @@ class RosSandbox:
 
 
 def stop_ros2_daemon(domain_id: int, env: dict[str, str]) -> None:
-    """Stop the `ros2` daemon of a domain, if one runs, so the next user of the domain starts
-    with an empty graph cache instead of one remembering this sandbox's nodes.
+    """Stop the `ros2` daemon of a domain, if one runs.
+
+    The next user of the domain then starts with an empty graph cache instead of one remembering
+    this sandbox's nodes.
     """
     try:
         with socket.create_connection(('127.0.0.1', ROS2_DAEMON_BASE_PORT + domain_id), timeout=0.2):

@@ -15,6 +15,7 @@ IDENTITY: Quaternion = (0.0, 0.0, 0.0, 1.0)
 
 
 def multiply(a: Quaternion, b: Quaternion) -> Quaternion:
+    """The Hamilton product a * b: the rotation b, then a, both about the fixed axes."""
     ax, ay, az, aw = a
     bx, by, bz, bw = b
     return (aw * bx + ax * bw + ay * bz - az * by,
@@ -24,6 +25,7 @@ def multiply(a: Quaternion, b: Quaternion) -> Quaternion:
 
 
 def conjugate(q: Quaternion) -> Quaternion:
+    """Q with x, y and z negated: for a unit quaternion, the inverse rotation."""
     return (-q[0], -q[1], -q[2], q[3])
 
 
@@ -70,6 +72,7 @@ def rotate(q: Quaternion, v: Vector) -> Vector:
 
 
 def from_rotation_vector(r: Vector) -> Quaternion:
+    """The rotation by |r| rad about the direction of r (as a gyro reading times its time step)."""
     angle = math.sqrt(r[0] ** 2 + r[1] ** 2 + r[2] ** 2)
     if angle < 1e-12:
         return (r[0] / 2, r[1] / 2, r[2] / 2, 1.0)
@@ -78,6 +81,7 @@ def from_rotation_vector(r: Vector) -> Quaternion:
 
 
 def to_rotation_vector(q: Quaternion) -> Vector:
+    """Q's axis scaled by its angle in rad, the short way round (angle at most pi)."""
     x, y, z, w = q
     if w < 0:  # the short way round
         x, y, z, w = -x, -y, -z, -w
@@ -89,6 +93,7 @@ def to_rotation_vector(q: Quaternion) -> Vector:
 
 
 def angle_between(a: Quaternion, b: Quaternion) -> float:
+    """The angle in rad (0 to pi) of the rotation that turns a into b."""
     r = to_rotation_vector(multiply(conjugate(a), b))
     return math.sqrt(r[0] ** 2 + r[1] ** 2 + r[2] ** 2)
 

@@ -48,11 +48,13 @@ class StopRequest:
         self.polling = False
 
     def __call__(self, signum: int, frame: object) -> None:
+        """Record the stop request; raise KeyboardInterrupt too unless the main loop polls for it."""
         self.requested = True
         if not self.polling:
             raise KeyboardInterrupt
 
     def install(self) -> None:
+        """Make this the process's SIGINT and SIGTERM handler."""
         signal.signal(signal.SIGINT, self)
         signal.signal(signal.SIGTERM, self)
 

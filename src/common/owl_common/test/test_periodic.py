@@ -17,7 +17,8 @@ def test_calls_at_its_rate_until_stopped_then_finishes_on_its_own_thread():
     time.sleep(0.05)
     assert len(calls) == count  # no call after stop()
     assert count >= 1
-    assert set(calls) == set(finished_on) and finished_on[0] is not threading.current_thread()
+    assert set(calls) == set(finished_on)
+    assert finished_on[0] is not threading.current_thread()
 
 
 def test_a_failing_callback_ends_quietly_once_its_context_is_gone(capsys):

@@ -36,6 +36,8 @@ POLL_PERIOD = 0.02  # seconds between looks at the graph messages
 
 
 class DiscoveryBridge:
+    """Forwards Humble participants' graph messages into our partition, one writer per participant."""
+
     def __init__(self, participant: wire.Participant) -> None:
         self.participant = participant
         self.reader = participant.reader(
@@ -47,6 +49,7 @@ class DiscoveryBridge:
         self.last_seen_ours = time.monotonic()
 
     def step(self) -> None:
+        """One look at the graph: forward new messages, forget participants that left, note ours."""
         for sample in wire.take(self.reader):
             if sample.alive:
                 self.forward(sample.data)
@@ -68,6 +71,7 @@ class DiscoveryBridge:
         return partition is not None and JAZZY_GRAPH_PARTITION in partition.partitions
 
     def forward(self, data: bytes) -> None:
+        """Publish a graph message in our partition, in Jazzy's layout (not an unreadable one or our own)."""
         layout = info.layout_of(data)
         if layout is None:
             return
@@ -82,6 +86,7 @@ class DiscoveryBridge:
         wire.write(writer, info.encode(entities, info.Layout.JAZZY))
 
     def forget(self, gid: bytes) -> None:
+        """Empty and delete the writer of a participant that left, so our tools drop its nodes at once."""
         writer = self.writers.pop(gid, None)
         if writer is not None:
             # Emptied first: a process whose DDS has not yet seen the participant leave drops its nodes.
@@ -89,10 +94,12 @@ class DiscoveryBridge:
             writer.__del__()
 
     def alone_for(self) -> float:
+        """Seconds since a step last saw a graph writer of our processes (or since the bridge started)."""
         return time.monotonic() - self.last_seen_ours
 
 
 def main(argv: list[str] | None = None) -> None:
+    """The discovery_bridge command: bridge until SIGINT/SIGTERM or --alone-timeout s alone, then exit 0."""
     parser = argparse.ArgumentParser(
         prog='discovery_bridge',
         description="Shows Humble modules' nodes to our tools (see owl_humble/bridge.py).")

@@ -30,11 +30,14 @@ class Layout(Enum):
 
     @property
     def gid_size(self) -> int:
+        """The number of bytes of a gid in this layout."""
         return self.value
 
 
 @dataclass
 class NodeEntities:
+    """One node's entry: its namespace and name, and the gids of its readers and writers."""
+
     namespace: str
     name: str
     reader_gids: list[bytes] = field(default_factory=list)
@@ -42,17 +45,21 @@ class NodeEntities:
 
     @property
     def full_name(self) -> str:
+        """The node's name with its namespace, as `ros2 node list` shows it."""
         return self.namespace.rstrip('/') + '/' + self.name
 
 
 @dataclass
 class ParticipantEntities:
+    """One participant's graph message: its gid and the nodes it holds."""
+
     gid: bytes
     nodes: list[NodeEntities] = field(default_factory=list)
 
     def in_layout(self, layout: Layout) -> ParticipantEntities:
-        """The same information with every gid cut or zero-padded to the layout's size (a GUID is
-        16 bytes; Humble pads it with zeros).
+        """The same information with every gid cut or zero-padded to the layout's size.
+
+        A GUID is 16 bytes; Humble pads it with zeros.
         """
         def fit(gid: bytes) -> bytes:
             return gid[:layout.gid_size].ljust(layout.gid_size, b'\x00')
@@ -181,9 +188,10 @@ NODE_ENTITIES_SIZE_ARMHF = 72
 
 
 def humble_largest_allocation(data: bytes) -> int:
-    """The largest block, in bytes, that Humble's generated deserializer asks for while reading
-    the sample: it resizes each sequence to the length it reads before reading the elements, and
-    stops (throws) only when the bytes run out. 0 for a sample too short to hold a length.
+    """The largest block, in bytes, that Humble's generated deserializer asks for while reading the sample.
+
+    It resizes each sequence to the length it reads before reading the elements, and stops (throws)
+    only when the bytes run out. 0 for a sample too short to hold a length.
     """
     body = _Reader(bytes(data[4:]), ENCAPSULATIONS.get(bytes(data[:2]), '<'))
     largest = 0

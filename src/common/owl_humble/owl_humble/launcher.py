@@ -17,9 +17,10 @@ import sys
 
 
 def bridge_address(environ: dict[str, str] | None = None, local_twin: bool = False) -> str | None:
-    """The abstract socket name that one bridge per user, domain and discovery range holds, or None
-    where no bridge is wanted: discovery off, another rmw than Fast DDS, private mode without static
-    peers (unless for a local twin).
+    """The abstract socket name that the one bridge per user, domain and discovery range holds.
+
+    None where no bridge is wanted: discovery off, another rmw than Fast DDS, private mode without
+    static peers (unless for a local twin).
     """
     env = os.environ if environ is None else environ
     discovery_range = (env.get('ROS_AUTOMATIC_DISCOVERY_RANGE') or 'SUBNET').upper()
@@ -32,8 +33,9 @@ def bridge_address(environ: dict[str, str] | None = None, local_twin: bool = Fal
 
 
 def ensure_discovery_bridge(environ: dict[str, str] | None = None, local_twin: bool = False) -> bool:
-    """Start the bridge in the background unless one holds the address or none is wanted (see
-    bridge_address); True if this call started it.
+    """Start the bridge in the background unless one runs or none is wanted; True if started here.
+
+    One runs when a process holds the address that bridge_address gives (None: no bridge wanted).
 
     The address is bound here and handed to the child, so two callers racing cannot both start one.
     """

@@ -40,16 +40,19 @@ SERVO_SPEED = 3.0  # rad/s towards the goal, about the simulated servo's no-load
 
 
 def ros_type(name: str) -> str:
+    """The DDS type name of a ROS type: 'std_msgs/msg/Bool' -> 'std_msgs::msg::dds_::Bool_'."""
     package, kind, message = name.split('/')
     return f'{package}::{kind}::dds_::{message}_'
 
 
 def node_name(module_type: str, namespace: str) -> str:
+    """The node name of the module of this type and namespace, as on the real kit."""
     # The Olive firmware's naming (specs: /olive_servo_pan_dcm_srv), as olive_sim names its nodes.
     return f'olive_{module_type}_{namespace}_dcm_srv'
 
 
 def say(text: str) -> None:
+    """Print a line with the program's name, flushed at once: tests and demos read it as it comes."""
     print(f'{PREFIX}: {text}', flush=True)
 
 
@@ -61,6 +64,7 @@ class DiscoveryCheck:
         self.malformed = 0
 
     def check(self, data: bytes, own_gid: bytes) -> None:
+        """Count a received graph message (not the twin's own) and report one Humble would misread."""
         try:
             sample = info.decode(data, info.Layout.HUMBLE)
         except info.MalformedSample as error:
@@ -76,10 +80,13 @@ class DiscoveryCheck:
             self.received += 1
 
     def summary(self) -> str:
+        """The closing line: how many graph messages came and how many Humble would misread."""
         return f'discovery samples received: {self.received}, malformed in Humble\'s layout: {self.malformed}'
 
 
 class Twin:
+    """One module as a Humble module is on the wire: its participant, topics and graph message."""
+
     def __init__(self, module_type: str, namespace: str, rate: float, pitch: float) -> None:
         self.module_type = module_type
         self.prefix = f'/olive/{module_type}/{namespace}/'
@@ -118,6 +125,7 @@ class Twin:
             info.Layout.HUMBLE))
 
     def step(self) -> None:
+        """One tick: check the graph messages, follow the LED, publish the IMU reading or the joint state."""
         for sample in wire.take(self.discovery_reader):
             if sample.alive:
                 self.check.check(sample.data, self.gid)
@@ -164,6 +172,7 @@ class Twin:
 
 
 def parse_args(argv: list[str] | None) -> argparse.Namespace:
+    """The checked command line; a bad value exits with code 2 and one error line, as argparse does."""
     parser = argparse.ArgumentParser(
         prog=PREFIX, description='One Olive module as a ROS 2 Humble module is on the wire.')
     parser.add_argument('--module', choices=MODULE_TYPES, default='imu', help='the module type (default imu)')
@@ -181,6 +190,7 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
 
 
 def main(argv: list[str] | None = None) -> None:
+    """The humble_twin command: be the module until SIGINT or SIGTERM, then print the check's summary."""
     args = parse_args(sys.argv[1:] if argv is None else argv)
     stopping: list[int] = []
 

@@ -76,11 +76,13 @@ def opaque_type(typename: str) -> type:
 
 
 def discovery_writer_qos() -> Qos:
+    """The QoS of a ros_discovery_info writer: reliable, transient local, the last sample only."""
     return Qos(Policy.Reliability.Reliable(max_blocking_time=SECOND), Policy.Durability.TransientLocal,
                Policy.History.KeepLast(1))
 
 
 def discovery_reader_qos() -> Qos:
+    """The QoS of a ros_discovery_info reader: reliable, transient local, every sample kept."""
     return Qos(Policy.Reliability.Reliable(max_blocking_time=SECOND), Policy.Durability.TransientLocal,
                Policy.History.KeepAll)
 
@@ -93,6 +95,8 @@ def topic_qos(depth: int = 10) -> Qos:
 
 @dataclass
 class RawSample:
+    """A taken sample as serialized bytes; alive is False for one without data (an instance that left)."""
+
     data: bytes
     alive: bool
 
@@ -114,22 +118,26 @@ class Participant:
         return self.dds.guid.bytes
 
     def topic(self, name: str, typename: str) -> Topic:
+        """The participant's topic of this name, made once, with the opaque type of typename."""
         if name not in self._topics:
             self._topics[name] = Topic(self.dds, name, opaque_type(typename))
         return self._topics[name]
 
     def writer(self, name: str, typename: str, qos: Qos, partition: str | None = None) -> DataWriter:
+        """A new writer on the topic, in partition if given (else the default partition)."""
         publisher = Publisher(self.dds, qos=Qos(Policy.Partition([partition]))) if partition else self.dds
         return DataWriter(publisher, self.topic(name, typename), qos=qos)
 
     def reader(self, name: str, typename: str, qos: Qos, partition: str | None = None) -> DataReader:
+        """A new reader of the topic, in partition if given (else the default partition)."""
         subscriber = Subscriber(self.dds, qos=Qos(Policy.Partition([partition]))) if partition else self.dds
         return DataReader(subscriber, self.topic(name, typename), qos=qos)
 
 
 def take(reader: DataReader, limit: int = 256) -> Iterator[RawSample]:
-    """The reader's new samples as bytes, none deserialized (a typed read would drop or choke on a
-    sample in the other layout).
+    """The reader's new samples (up to limit) as bytes, none deserialized.
+
+    A typed read would drop or choke on a sample in the other layout.
     """
     result: Any = ddspy_take(reader._ref, ANY_SAMPLE, limit)
     if isinstance(result, int):
@@ -146,4 +154,5 @@ def write(writer: DataWriter, data: bytes) -> None:
 
 
 def entity_gid(entity: DataReader | DataWriter) -> bytes:
+    """The reader's or writer's GUID (16 bytes), the gid a graph message lists it by."""
     return entity.guid.bytes

@@ -20,7 +20,8 @@ def sample(layout: Layout, nodes: int = 2) -> info.ParticipantEntities:
 def test_a_sample_reads_back_in_its_own_layout(layout, nodes):
     entities = sample(layout, nodes)
     data = info.encode(entities, layout)
-    assert data[:4] == b'\x00\x01\x00\x00' and len(data) % 4 == 0
+    assert data[:4] == b'\x00\x01\x00\x00'
+    assert len(data) % 4 == 0
     assert info.decode(data, layout) == entities
     assert info.layout_of(data) is layout
 
@@ -48,7 +49,7 @@ def test_a_humble_sample_read_in_jazzy_layout_has_trailing_bytes():
         info.decode(data, Layout.JAZZY)
 
 
-@pytest.mark.parametrize('data, problem', [
+@pytest.mark.parametrize(('data', 'problem'), [
     (b'', 'encapsulation'),
     (b'\x00\x07\x00\x00' + bytes(24), 'encapsulation'),
     (b'\x00\x01\x00\x00' + bytes(10), 'gid needs'),

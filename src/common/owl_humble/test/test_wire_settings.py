@@ -12,7 +12,8 @@ def test_the_discovery_range_and_static_peers_become_cyclone_settings():
     assert wire.ros_discovery_settings(env) == (7, 'LOCALHOST', ['10.42.0.8', 'x'])
     assert wire.ros_discovery_settings({'ROS_AUTOMATIC_DISCOVERY_RANGE': 'SYSTEM_DEFAULT'})[1] == 'SUBNET'
     local = wire.cyclone_config('LOCALHOST', ['10.42.0.8'])
-    assert '<NetworkInterface address="127.0.0.1"/>' in local and '<Peer address="10.42.0.8"/>' in local
+    assert '<NetworkInterface address="127.0.0.1"/>' in local
+    assert '<Peer address="10.42.0.8"/>' in local
     assert '<AllowMulticast>false</AllowMulticast>' in local
     assert wire.cyclone_config('SUBNET', []) is None
     assert '<Peer address="10.42.0.9"/>' in wire.cyclone_config('SUBNET', ['10.42.0.9'])
@@ -24,7 +25,8 @@ def test_one_bridge_per_user_domain_and_range_and_none_where_it_cannot_help():
     assert bridge_address(local, local_twin=True) is not None
     assert bridge_address({**local, 'ROS_STATIC_PEERS': '10.42.0.8'}) is not None
     subnet = bridge_address({'ROS_DOMAIN_ID': '3', 'ROS_AUTOMATIC_DISCOVERY_RANGE': 'SUBNET'})
-    assert subnet is not None and bridge_address(local, local_twin=True) != subnet
+    assert subnet is not None
+    assert bridge_address(local, local_twin=True) != subnet
     assert bridge_address({'ROS_DOMAIN_ID': '3'}) != bridge_address({'ROS_DOMAIN_ID': '4'})
     assert bridge_address({'ROS_AUTOMATIC_DISCOVERY_RANGE': 'OFF'}) is None
     assert bridge_address({'RMW_IMPLEMENTATION': 'rmw_cyclonedds_cpp'}) is None
@@ -37,7 +39,7 @@ def test_opaque_types_are_made_once_per_name():
     assert twin.ros_type('sensor_msgs/msg/Imu') == 'sensor_msgs::msg::dds_::Imu_'
 
 
-@pytest.mark.parametrize('argv, problem', [
+@pytest.mark.parametrize(('argv', 'problem'), [
     (['--module', 'camera'], "invalid choice: 'camera'"),
     (['--namespace', '1x'], "--namespace '1x' is not a ROS name"),
     (['--namespace', 'a/b'], 'is not a ROS name'),
@@ -51,4 +53,5 @@ def test_bad_twin_arguments_get_one_line_and_exit_2(argv, problem, capsys):
         twin.parse_args(argv)
     assert exit_info.value.code == 2
     error = capsys.readouterr().err.splitlines()[-1]
-    assert error.startswith('humble_twin: error: ') and problem in error
+    assert error.startswith('humble_twin: error: ')
+    assert problem in error

@@ -49,6 +49,8 @@ COMMON_TYPES = {'led': 'std_msgs/msg/Bool', 'status': 'diagnostic_msgs/msg/Diagn
 
 @dataclass(frozen=True)
 class KitModule:
+    """One module of the kit: its type, namespace, executable, address and parameters of its own."""
+
     module_type: str
     namespace: str
     executable: str
@@ -62,6 +64,7 @@ class KitModule:
 
     @property
     def node(self) -> str:
+        """The module's node name, olive_<type>_<namespace>_dcm_srv."""
         return node_name(self.module_type, self.namespace)
 
     def page_url(self, port: int | str = WEB_PORT) -> str:

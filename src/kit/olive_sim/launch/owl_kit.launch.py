@@ -1,5 +1,6 @@
-"""The whole Owl Kit: IMU, servos pan and tilt, camera eye, each module its own process with its
-own web page (http://127.42.0.N:<web_port>/ for the module at 10.42.0.N).
+"""The whole Owl Kit: IMU, servos pan and tilt, camera eye, each module its own process.
+
+Each has its own web page (http://127.42.0.N:<web_port>/ for the module at 10.42.0.N).
 """
 
 from launch import LaunchContext, LaunchDescription

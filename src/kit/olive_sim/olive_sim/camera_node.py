@@ -23,6 +23,7 @@ DEFAULT_FOV_DEG = 48.66
 
 
 class CameraModule(OliveModule):
+    """The camera_sim node: JPEG images of the scene where the pan/tilt head points it, and its IMU."""
 
     def __init__(self, namespace: str) -> None:
         super().__init__('camera', namespace, serial='1715257918934')
@@ -120,6 +121,7 @@ class CameraModule(OliveModule):
         return info
 
     def publish_frame(self) -> None:
+        """Render, encode and publish one frame and its camera info (the frame thread calls it at fps)."""
         self._poll_joints()
         self.frames += 1
         now = self.now_ns()
@@ -136,13 +138,16 @@ class CameraModule(OliveModule):
         self.frame_traffic.sent += len(msg.data) + len(info) + 64  # 64: the image's header and format
 
     def imu_orientation(self) -> Quaternion | None:
+        """The orientation the camera's IMU last published (None before its first reading)."""
         return self.output.latest
 
     def temperature(self) -> float:
+        """The camera board's temperature in deg C, a constant 42."""
         return 42.0
 
 
 def main(args: list[str] | None = None) -> None:
+    """camera_sim's entry point: one camera module, in namespace `eye` by default."""
     run_module(CameraModule, 'eye', args)
 
 

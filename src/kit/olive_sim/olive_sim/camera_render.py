@@ -140,8 +140,9 @@ class CaptionWriter:
 
 
 def encode_jpeg(frame: np.ndarray, quality: int) -> bytes:
-    """A packed RGBX frame as baseline JPEG with 4:2:0 chroma and a restart marker after each
-    block row, which makes every block row a separately coded piece of the file.
+    """A packed RGBX frame as baseline JPEG with 4:2:0 chroma and a restart marker after each block row.
+
+    The markers make every block row a separately coded piece of the file (see SplicedJpeg).
     """
     height, width = frame.shape
     image = Image.frombuffer('RGB', (width, height), frame, 'raw', 'RGBX', 0, 1)
@@ -182,8 +183,9 @@ class SplicedJpeg:
         self._rows: list[bytes] = []
 
     def encode(self, frame: np.ndarray, quality: int, rest_unchanged: bool) -> bytes:
-        """Frame (packed RGBX) as JPEG; rest_unchanged says its rows from `top` on are the last
-        full encoding's.
+        """Frame (packed RGBX) as JPEG, encoding only its top rows when it can.
+
+        rest_unchanged says its rows from `top` on are the last full encoding's.
         """
         if rest_unchanged and quality == self._quality and self.top < self._height:
             top_rows = split_jpeg(encode_jpeg(frame[:self.top], quality))[1]

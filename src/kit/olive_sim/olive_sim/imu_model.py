@@ -26,7 +26,9 @@ MOTION_SOURCES = ('scripted', 'command', 'file')
 class Motion(Protocol):
     """Where the IMU's true orientation comes from."""
 
-    def orientation(self, t: float) -> Quaternion: ...
+    def orientation(self, t: float) -> Quaternion:
+        """The IMU's true orientation in the world (ENU) frame at time t in s."""
+        ...
 
 
 class ScriptedMotion:
@@ -41,6 +43,7 @@ class ScriptedMotion:
     """
 
     def orientation(self, t: float) -> Quaternion:
+        """The hand-held orientation at t s: roll, pitch and yaw each swing on a period of their own."""
         roll = 0.30 * math.sin(2 * math.pi * t / 15.0)
         pitch = 0.90 * math.cos(2 * math.pi * t / 10.0)
         yaw = 1.40 * math.sin(2 * math.pi * t / 12.0)
@@ -59,6 +62,7 @@ class CommandedMotion:
         self._time: float | None = None
 
     def command(self, target: Quaternion) -> None:
+        """Turn toward target from now on; ValueError for a zero or non-finite quaternion."""
         self.target = quat.normalize(target)
 
     def hold(self, orientation: Quaternion) -> None:
@@ -66,6 +70,7 @@ class CommandedMotion:
         self.target = self._current = quat.normalize(orientation)
 
     def orientation(self, t: float) -> Quaternion:
+        """The orientation at t s, turned toward the target at max_rate for the time since the last call."""
         if self._time is not None and t > self._time:
             remaining = quat.angle_between(self._current, self.target)
             reach = self.max_rate * (t - self._time)
@@ -112,6 +117,7 @@ class RecordedMotion:
             raise ValueError(f"motion file '{path}' needs at least two rows")
 
     def orientation(self, t: float) -> Quaternion:
+        """The file's orientation at t s, looped over the file's time span, slerped between rows."""
         start, end = self.times[0], self.times[-1]
         t = start + (t % (end - start))
         index = max(i for i, ti in enumerate(self.times) if ti <= t)
@@ -132,6 +138,7 @@ class ImuNoise:
     orientation_noise: float = 0.002    # rad, the fusion's jitter
 
     def problems(self) -> list[str]:
+        """One line per standard deviation that is negative or not finite; empty when all are usable."""
         return [f'{name} must be zero or positive, got {getattr(self, name)}'
                 for name in ('gyro_noise', 'gyro_bias', 'accel_noise', 'mag_noise', 'orientation_noise')
                 if not (math.isfinite(getattr(self, name)) and getattr(self, name) >= 0)]
@@ -139,6 +146,8 @@ class ImuNoise:
 
 @dataclass(frozen=True)
 class ImuReading:
+    """One sample of the IMU: the fused orientation and what the gyro, accelerometer and magnetometer read."""
+
     orientation: Quaternion
     angular_velocity: Vector      # rad/s, body frame, what the gyro reports
     linear_acceleration: Vector   # m/s^2, body frame, specific force: +g on z when level

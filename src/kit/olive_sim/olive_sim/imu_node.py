@@ -16,6 +16,7 @@ from olive_sim.module_node import OliveModule, describe, run_module
 
 
 class ImuModule(OliveModule):
+    """The imu_sim node: readings of a scripted, commanded or recorded motion, and the IMU's services."""
 
     def __init__(self, namespace: str) -> None:
         super().__init__('imu', namespace, serial=namespace.lstrip('x'))
@@ -82,12 +83,15 @@ class ImuModule(OliveModule):
         return self._answer(response, (ok, 'pose zeroed: orientation is now the identity'))
 
     def temperature(self) -> float:
+        """The IMU board's temperature in deg C, a constant 31.5."""
         return 31.5
 
     def imu_orientation(self) -> Quaternion | None:
+        """The orientation last published on the imu topic (None before the first reading)."""
         return self.output.latest
 
     def handover_state(self) -> dict[str, Any]:
+        """The base state, the motion's time and a commanded target: a restart goes on where it was."""
         state = {**super().handover_state(), 'imu_time': self.output.motion_time()}
         if isinstance(self.motion, CommandedMotion):
             state['held'] = list(self.motion.target)
@@ -95,6 +99,7 @@ class ImuModule(OliveModule):
 
 
 def main(args: list[str] | None = None) -> None:
+    """imu_sim's entry point: one IMU module, by default in the namespace of the course's IMU."""
     run_module(ImuModule, IMU_NAMESPACE, args)
 
 

@@ -28,6 +28,7 @@ RELIABILITIES = {'reliable': ReliabilityPolicy.RELIABLE, 'best_effort': Reliabil
 
 
 def reliability(name: str, parameter: str) -> ReliabilityPolicy:
+    """The policy named 'reliable' or 'best_effort'; ValueError naming the parameter for any other name."""
     if name not in RELIABILITIES:
         raise ValueError(f"{parameter} must be one of {', '.join(RELIABILITIES)}, got '{name}'")
     return RELIABILITIES[name]
@@ -71,8 +72,10 @@ class ImuOutput:
                                            catch_up=SENSOR_CATCH_UP)
 
     def _templates(self) -> tuple[SerializedTemplate, SerializedTemplate]:
-        """Serialized imu and magnetometer messages to fill: orientation, angular velocity and
-        linear acceleration (10 values), and the magnetic field (3 values).
+        """Serialized imu and magnetometer messages to fill with each reading.
+
+        The imu's fields are the orientation, angular velocity and linear acceleration (10 values), the
+        magnetometer's the magnetic field (3 values).
         """
         sec, nanosec = STAMP_MARKER
         values = markers(10)
@@ -94,6 +97,7 @@ class ImuOutput:
                 SerializedTemplate(serialize_message(mag), values[:3]))
 
     def publish(self) -> None:
+        """Sample the sensor at its due time and publish the imu and magnetometer messages (IMU thread)."""
         # Sampled and stamped on the rate's schedule, however late the thread runs: the stamps of
         # a real IMU are its own clock's, so their spacing stays 1/imu_rate under any load.
         due = scheduled_time()

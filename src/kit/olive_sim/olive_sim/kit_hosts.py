@@ -23,12 +23,14 @@ from olive_sim.network_hosts import Lan, NetworkSetupError, address_problem, set
 
 
 def module_argv(lan: Lan, host: str, executable: str, parameters: dict) -> list[str]:
+    """The command that runs a module's executable with its parameters in the host's network namespace."""
     args = [arg for key, value in parameters.items() for arg in ('-p', f'{key}:={value}')]
     command = [sys.executable, str(installed_executable('olive_sim', executable))]
     return lan.exec_argv(host, [*command, *(['--ros-args', *args] if args else [])])
 
 
 def run(student_address: str, domain_id: int) -> int:
+    """Run the kit until Ctrl-C or SIGTERM (exit code 0) or until a module stops (1), then take it down."""
     lan = Lan(prefix='owlkit', subnet=KIT_SUBNET)
     processes: list[RosProcess] = []
     try:
@@ -61,6 +63,7 @@ def run(student_address: str, domain_id: int) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """The kit_hosts command; exit code 2 for a bad argument or no way to make namespaces, 1 on failure."""
     parser = argparse.ArgumentParser(prog='kit_hosts', description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument('--student-address', default=STUDENT_ADDRESS,

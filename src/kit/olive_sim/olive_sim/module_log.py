@@ -1,5 +1,7 @@
-"""A module's own log, for its Log Monitor page: every line its node logs (what it also sends to
-/rosout and prints), kept in a ring, and handed to whoever listens as it comes.
+"""A module's own log for its Log Monitor page: the lines its node logs, kept in a ring.
+
+Every line the node logs (what it also sends to /rosout and prints) is kept, and handed to whoever
+listens as it comes.
 
 Kept in the module's process (no /rosout subscription: that would take every node's lines over
 DDS to keep only ours). A restart empties it, as a reboot empties a device's log.
@@ -28,6 +30,7 @@ class LogBook:
         self._count = 0
 
     def add(self, level: str, message: str) -> None:
+        """Keep a line, numbered and timed, and hand it to every listener on the caller's thread."""
         with self._lock:
             self._count += 1
             line = {'n': self._count, 'time': self._clock(), 'level': level, 'message': message}
@@ -37,6 +40,7 @@ class LogBook:
             listener(line)
 
     def lines(self) -> list[dict[str, Any]]:
+        """The kept lines, oldest first, each a dict of n, time, level and message."""
         with self._lock:
             return list(self._lines)
 
@@ -47,6 +51,7 @@ class LogBook:
             return list(self._lines)
 
     def forget(self, listener: Callable[[dict[str, Any]], None]) -> None:
+        """Remove a listener (one not listening is ignored)."""
         with self._lock:
             if listener in self._listeners:
                 self._listeners.remove(listener)
@@ -74,19 +79,25 @@ class RecordingLogger:
         return logged
 
     def debug(self, message: Any, **kwargs: Any) -> bool:
+        """Log at debug level through rclpy and record the line if rclpy logged it; True if it did."""
         return self._record('debug', message, self._logger.debug(message, **kwargs))
 
     def info(self, message: Any, **kwargs: Any) -> bool:
+        """Log at info level through rclpy and record the line if rclpy logged it; True if it did."""
         return self._record('info', message, self._logger.info(message, **kwargs))
 
     def warning(self, message: Any, **kwargs: Any) -> bool:
+        """Log at warning level through rclpy and record the line if rclpy logged it; True if it did."""
         return self._record('warning', message, self._logger.warning(message, **kwargs))
 
     def warn(self, message: Any, **kwargs: Any) -> bool:
+        """The old name of warning, kept as rclpy keeps it: logged and recorded at warning level."""
         return self._record('warning', message, self._logger.warning(message, **kwargs))
 
     def error(self, message: Any, **kwargs: Any) -> bool:
+        """Log at error level through rclpy and record the line if rclpy logged it; True if it did."""
         return self._record('error', message, self._logger.error(message, **kwargs))
 
     def fatal(self, message: Any, **kwargs: Any) -> bool:
+        """Log at fatal level through rclpy and record the line if rclpy logged it; True if it did."""
         return self._record('fatal', message, self._logger.fatal(message, **kwargs))

@@ -95,9 +95,7 @@ def describe(description: str, read_only: bool = False, **ranges: Any) -> Parame
 
 
 class OliveModule(Node):
-    """Base class of the module nodes: the common topics, the `namespace` parameter, the module's
-    web page and its restart.
-    """
+    """Base class of the module nodes: common topics, the `namespace` parameter, web page, restart."""
 
     # What the process before this one handed over at a restart (restart.py); run_module sets it.
     handover: ClassVar[dict[str, Any]] = {}
@@ -138,6 +136,7 @@ class OliveModule(Node):
         self.status_timer = self.create_timer(STATUS_PERIOD, self._publish_status)
 
     def topic(self, name: str) -> str:
+        """The absolute name of the module's topic `name`: /olive/<type>/<namespace>/<name>."""
         return self.prefix + name
 
     def get_logger(self) -> Any:
@@ -186,8 +185,10 @@ class OliveModule(Node):
         return None
 
     def now_ns(self) -> int:
-        """The node's ROS time in ns, for stamps. Clock.now() costs as much as a publication, so
-        the system clock (which ROS time is without sim time) is read directly when it is the same.
+        """The node's ROS time in ns, for stamps.
+
+        Clock.now() costs as much as a publication, so the system clock (which ROS time is without sim
+        time) is read directly when it is the same.
         """
         clock = self.get_clock()
         if isinstance(clock, ROSClock) and clock.ros_time_is_active:  # a node's clock is a ROSClock
@@ -209,8 +210,9 @@ class OliveModule(Node):
 
     def create_periodic(self, rate: float, callback: Callable[[], None], name: str,
                         catch_up: float = 0.0) -> PeriodicThread:
-        """Run callback at rate Hz on a thread of its own until the node is destroyed (catch_up:
-        see PeriodicThread).
+        """Run callback at rate Hz on a thread of its own until the node is destroyed.
+
+        catch_up: see PeriodicThread.
         """
         periodic = PeriodicThread(rate, callback, f'{self.get_name()}.{name}', self.context.ok,
                                   catch_up=catch_up)
@@ -218,6 +220,7 @@ class OliveModule(Node):
         return periodic
 
     def destroy_node(self) -> None:
+        """Stop the page and the periodic threads, then destroy the node as rclpy does."""
         # spin_node already ignores a second Ctrl-C during this clean-up.
         if self.page is not None:
             self.page.stop()
@@ -236,13 +239,16 @@ class OliveModule(Node):
         return {}
 
     def status_level(self) -> tuple[bytes, str]:
+        """The status message's level and text: OK, 'running' unless a module says otherwise."""
         return DiagnosticStatus.OK, 'running'
 
     # -- common behaviour -------------------------------------------------------------------
 
     def warn(self, kind: str, message: str) -> None:
-        """Log a warning, at most once per WARN_EVERY s for each kind (a stream of bad goals
-        at 100 Hz must not flood the log, but a different problem is still reported at once).
+        """Log a warning, at most once per WARN_EVERY s for each kind.
+
+        A stream of bad goals at 100 Hz must not flood the log, but a different problem is still
+        reported at once.
         """
         now = time.monotonic()
         if now - self._last_warning.get(kind, -math.inf) >= WARN_EVERY:
@@ -291,8 +297,9 @@ class OliveModule(Node):
 
 
 def run_module(make_node: Any, default_namespace: str, args: list[str] | None = None) -> None:
-    """main() of a module executable: read the namespace, build the node, serve its page, spin
-    until Ctrl-C; after the page's Restart Services or Reboot Device, start again (restart.py).
+    """main() of a module executable: read the namespace, build the node, serve its page, spin.
+
+    Spins until Ctrl-C; after the page's Restart Services or Reboot Device, starts again (restart.py).
     """
     OliveModule.handover = take_handover()
     built: list[OliveModule] = []

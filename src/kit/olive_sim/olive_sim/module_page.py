@@ -1,6 +1,7 @@
-"""A simulated module's own web page, laid out on the real firmware's menus (spec §5): System
-Status (device fields, live CPU, memory and network charts, Network Settings, Device Control),
-Debug GUI (modules with an IMU: live Euler angles and a 3D view) and Log Monitor.
+"""A simulated module's own web page, laid out on the real firmware's menus (spec §5).
+
+The menus: System Status (device fields, live CPU, memory and network charts, Network Settings,
+Device Control), Debug GUI (modules with an IMU: live Euler angles and a 3D view) and Log Monitor.
 
 Served by owl_web from a thread of the module's own process at http://127.B.C.D:<port>/ for the
 module address A.B.C.D (network_settings.py says why). Nothing runs for the page while no browser
@@ -49,9 +50,7 @@ RESTART_GRACE = 0.3      # s between answering Restart/Reboot and stopping, for 
 
 
 class WatchedChannel:
-    """A channel whose data is made and pushed at `rate` on a thread that runs only while at
-    least one page subscribes.
-    """
+    """A channel whose data is made and pushed at `rate` by a thread that runs only while pages watch."""
 
     def __init__(self, name: str, rate: float, make: Callable[[], dict[str, Any]],
                  alive: Callable[[], bool], first: Callable[[Subscription], None] | None = None) -> None:
@@ -65,6 +64,7 @@ class WatchedChannel:
         self._lock = threading.Lock()
 
     def open(self, subscription: Subscription) -> None:
+        """Add a page: send it `first`'s data, then the pushes; the first page starts the thread."""
         if self.first is not None:
             self.first(subscription)
         with self._lock:
@@ -73,6 +73,7 @@ class WatchedChannel:
                 self._thread = PeriodicThread(self.rate, self._push, f'page {self.name}', self.alive)
 
     def close(self, subscription: Subscription) -> None:
+        """Remove a page; the last one to leave stops the thread."""
         with self._lock:
             self._watchers.discard(subscription)
             thread = self._thread if not self._watchers else None
@@ -82,6 +83,7 @@ class WatchedChannel:
             thread.stop()
 
     def stop(self) -> None:
+        """Drop every page and stop the thread (the module's page is closing)."""
         with self._lock:
             thread, self._thread = self._thread, None
             self._watchers.clear()
@@ -90,6 +92,7 @@ class WatchedChannel:
 
     @property
     def watched(self) -> bool:
+        """Whether any page watches the channel now."""
         return bool(self._watchers)
 
     def _push(self) -> None:
@@ -118,12 +121,15 @@ class ModulePage:
 
     @property
     def url(self) -> str:
+        """The page's address, http://127.B.C.D:<port>/ for the module address A.B.C.D."""
         return f'http://{page_host(self.settings.address)}:{self.port}/'
 
     def start(self) -> None:
+        """Serve the page at the module's address; OSError when that address and port are taken."""
         self.server = self._serve(page_host(self.settings.address))
 
     def stop(self) -> None:
+        """Stop the live channels, the log listeners and the server."""
         self.system.stop()
         self.orientation.stop()
         for subscription in list(self._log_listeners):

@@ -94,8 +94,9 @@ class Lan:
         return local
 
     def add_host(self, name: str, address: str | None) -> str:
-        """A host with its loopback up and the address on its link to the bridge (no link at all
-        with address None: a machine not on this LAN); returns its namespace.
+        """Add a host, loopback up and the address on its link to the bridge; returns its namespace.
+
+        With address None the host has no link at all: a machine not on this LAN.
         """
         if address is not None:
             self._check_address(address)
@@ -108,8 +109,9 @@ class Lan:
         return namespace
 
     def join_this_machine(self, address: str) -> str:
-        """Plug this machine itself into the bridge with the address (a student's PC on the kit's
-        bridge); returns the name of its new network interface.
+        """Plug this machine itself into the bridge with the address; returns its new interface's name.
+
+        Like a student's PC on the kit's bridge.
         """
         self._check_address(address)
         self.joined_link = self._plug('this machine', address, None)
@@ -124,6 +126,7 @@ class Lan:
         return ['ip', 'netns', 'exec', self.hosts[host], *argv]
 
     def close(self) -> None:
+        """Delete this machine's link, the hosts and the bridge; what fails or is gone already is skipped."""
         if self.joined_link is not None:
             subprocess.run(['ip', 'link', 'del', self.joined_link], capture_output=True, timeout=10,
                            check=False)

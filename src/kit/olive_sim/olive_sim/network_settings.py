@@ -23,21 +23,26 @@ LABELS = {'address': 'Network IP', 'mask': 'Network Mask', 'gateway': 'Host PC /
 
 @dataclass(frozen=True)
 class NetworkSettings:
+    """A module's address, mask and Host PC / gateway, as dotted IPv4 text."""
+
     address: str
     mask: str
     gateway: str
 
     def as_dict(self) -> dict[str, str]:
+        """The settings as JSON-ready text fields: address, mask and gateway."""
         return asdict(self)
 
     @property
     def subnet(self) -> ipaddress.IPv4Network:
+        """The network the address is on under the mask."""
         return ipaddress.IPv4Network(f'{self.address}/{self.mask}', strict=False)
 
 
 def default_settings(address: str) -> NetworkSettings:
-    """The settings of a module at address: a /24 whose first host is the host PC (10.42.0.1 for
-    the course's modules, the student's address on the kit's link).
+    """The settings of a module at address: a /24 whose first host is the host PC.
+
+    That is 10.42.0.1 for the course's modules, the student's address on the kit's link.
     """
     ip = parse_address(address, 'address')
     subnet = ipaddress.IPv4Network(f'{ip}/{DEFAULT_MASK}', strict=False)

@@ -1,5 +1,6 @@
-"""What a module's System Status page charts: the CPU and memory of the module's own process, and
-its network traffic, the bytes of the ROS messages it sends and takes.
+"""What a module's System Status page charts: its process's CPU and memory, and its traffic.
+
+The traffic is the bytes of the ROS messages the module sends and takes.
 
 The real module charts its whole board; a simulated module is one process on the student's PC, so
 its charts are that process's. On one machine DDS carries the messages through shared memory, not
@@ -29,6 +30,7 @@ def resident_bytes(statm: str = '/proc/self/statm') -> int:
 
 
 def total_memory_bytes() -> int:
+    """The machine's physical memory in bytes."""
     return os.sysconf('SC_PHYS_PAGES') * os.sysconf('SC_PAGE_SIZE')
 
 
@@ -47,6 +49,7 @@ class TrafficMeter:
         self._counters: list[ByteCounter] = []
 
     def counter(self) -> ByteCounter:
+        """A new counter, for one thread to add its bytes to; totals() includes it."""
         counter = ByteCounter()
         self._counters.append(counter)
         return counter
@@ -59,6 +62,8 @@ class TrafficMeter:
 
 @dataclass
 class Sample:
+    """One point of the System Status charts."""
+
     time: float          # s since the epoch, for the chart's axis
     cpu: float           # % of one core since the previous sample
     memory: float        # % of the machine's memory resident in this process
@@ -82,6 +87,7 @@ class ProcessSampler:
         self._last: tuple[float, float, int, int] | None = None
 
     def sample(self) -> Sample:
+        """The current sample: memory now, CPU and traffic as rates since the previous call."""
         now, cpu = self.clock(), self.cpu_seconds()
         sent, received = self.traffic.totals()
         resident = self.memory()

@@ -25,8 +25,9 @@ BOOT_DELAY = 5.0  # s a rebooting module is away (page and node), as a device's 
 
 
 def take_handover() -> dict[str, Any]:
-    """What the process before this one handed over ({} on a first start); removed from the
-    environment so that nothing this process starts inherits it.
+    """What the process before this one handed over ({} on a first start).
+
+    It is removed from the environment so that nothing this process starts inherits it.
     """
     text = os.environ.pop(HANDOVER_VARIABLE, '')
     if not text:

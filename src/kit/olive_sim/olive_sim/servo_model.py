@@ -62,6 +62,8 @@ class ServoParams:
 
 @dataclass
 class PidGains:
+    """The position PID's gains, for an error in rad and u in [-1, 1]: kp 1/rad, ki 1/(rad*s), kd s/rad."""
+
     kp: float = 1.0
     ki: float = 0.0
     kd: float = 0.0
@@ -76,6 +78,7 @@ class Pid:
     integral: float = 0.0       # the integral term's contribution to the output
 
     def update(self, error: float, measured_velocity: float, dt: float) -> float:
+        """The output u in [-1, 1] for the error (rad) and measured velocity (rad/s), dt s after the last."""
         g = self.gains
         proportional_and_derivative = g.kp * error - g.kd * measured_velocity
         unsaturated = proportional_and_derivative + self.integral
@@ -87,15 +90,19 @@ class Pid:
         return clamp(proportional_and_derivative + self.integral, -1.0, 1.0)
 
     def reset(self) -> None:
+        """Clear the integral term, for a fresh start (a mode change, torque switched on)."""
         self.integral = 0.0
 
 
 def clamp(value: float, low: float, high: float) -> float:
+    """Value limited to the range low..high."""
     return low if value < low else high if value > high else value
 
 
 @dataclass
 class ServoState:
+    """The servo's physical state at the output shaft, which ServoSim advances."""
+
     position: float = 0.0      # rad
     velocity: float = 0.0      # rad/s
     torque: float = 0.0        # N*m from the motor, the `effort` of the joint state
@@ -135,6 +142,7 @@ class ServoSim:
     # -- commands (the node validates; these only store) ------------------------------------
 
     def set_mode(self, mode: str) -> None:
+        """Switch to one of CONTROL_MODES (the controller starts afresh); ValueError for any other."""
         if mode not in CONTROL_MODES:
             raise ValueError(f"unknown control mode '{mode}' (expected one of {', '.join(CONTROL_MODES)})")
         if mode != self.mode:
@@ -142,6 +150,7 @@ class ServoSim:
             self._reset_controller()
 
     def enable_torque(self, enabled: bool) -> None:
+        """Switch the motor driver on or off; switched on, the servo holds the joint where it is."""
         if enabled and not self.torque_enabled:
             # Hold where the joint is, as a servo does when its torque comes on.
             self.goal_position = self.clamp_goal(self.state.position)
@@ -151,6 +160,7 @@ class ServoSim:
         self.torque_enabled = enabled
 
     def clamp_goal(self, position: float) -> float:
+        """A position goal limited to the servo's range, min_position..max_position."""
         return clamp(position, self.params.min_position, self.params.max_position)
 
     def _reset_controller(self) -> None:
@@ -230,6 +240,8 @@ class ServoSim:
 
 @dataclass(frozen=True)
 class StepMetrics:
+    """The step-response numbers the course's PID exercise observes, for one move."""
+
     rise_time: float              # s from 10 % to 90 % of the step (inf if never reached)
     overshoot: float              # rad beyond the goal, 0 if none
     steady_state_error: float     # rad, |goal - mean position| over the last 0.2 s
@@ -264,8 +276,10 @@ def step_metrics(times: list[float], positions: list[float], start: float, goal:
 def simulate_step(gains: PidGains, goal: float = 1.57, duration: float = 3.0,
                   params: ServoParams | None = None, physics_rate: float = 1000.0,
                   pid_rate: float = 500.0, sample_rate: float = 100.0) -> StepMetrics:
-    """The course's PID exercise (section 4.4 with the appendix 5.3 script): torque on at 0 rad,
-    then a goal step to `goal`, watched for `duration` s (the script flips the goal every 3 s).
+    """The step-response numbers of the course's PID exercise (section 4.4, the appendix 5.3 script).
+
+    Torque on at 0 rad, then a goal step to `goal`, watched for `duration` s (the script flips the goal
+    every 3 s).
     """
     sim = ServoSim(params, physics_rate, pid_rate, gains)
     sim.enable_torque(True)
@@ -295,8 +309,9 @@ def course_exercise(sequence: tuple[tuple[str, PidGains], ...] = COURSE_GAIN_SEQ
                     goals: tuple[float, float] = (1.57, 0.0), period: float = 3.0,
                     params: ServoParams | None = None, sample_rate: float = 100.0
                     ) -> list[tuple[str, StepMetrics]]:
-    """One servo running the appendix 5.3 script (goal flips every `period` s), the gains changed
-    before each flip as the exercise goes: the step-response numbers of every flip.
+    """The step-response numbers of every goal flip of one servo running the appendix 5.3 script.
+
+    The goal flips every `period` s; the gains are changed before each flip as the exercise goes.
     """
     sim = ServoSim(params)
     sim.enable_torque(True)

@@ -46,6 +46,7 @@ PHYSICAL_PARAMETERS = {
 
 
 class ServoModule(OliveModule):
+    """The servo_sim node: the servo model paced to the wall clock, with its topics, services and PID."""
 
     def __init__(self, namespace: str) -> None:
         super().__init__('servo', namespace, serial=f'srv-{namespace}')
@@ -108,8 +109,10 @@ class ServoModule(OliveModule):
         self.diagnostics_timer = self.create_timer(1.0, self._publish_diagnostics)
 
     def _take_over(self, state: Any) -> None:
-        """The shaft where the process before a restart left it, and after Restart Services its
-        torque and goal (restart.py); a reboot hands over the shaft only.
+        """Put the shaft where the process before a restart left it.
+
+        After Restart Services the torque and goal are taken over too (restart.py); a reboot hands
+        over the shaft only.
         """
         if not isinstance(state, dict):
             return
@@ -127,6 +130,10 @@ class ServoModule(OliveModule):
             self.sim.goal_position = goal
 
     def handover_state(self) -> dict[str, Any]:
+        """What the next process keeps: the base state and the shaft's position and temperature.
+
+        After Restart Services (no restart delay) the motor driver's torque and goal too.
+        """
         with self.lock:
             self._advance_to_now()
             servo = {'position': self.sim.state.position, 'temperature': self.sim.state.temperature}
@@ -296,18 +303,22 @@ class ServoModule(OliveModule):
         }
 
     def temperature(self) -> float:
+        """The motor's temperature in deg C, from the model (it heats with the torque)."""
         return self.sim.state.temperature
 
     def status_level(self) -> tuple[bytes, str]:
+        """WARN 'motor hot' above 70 deg C, else OK saying whether the torque is enabled."""
         if self.sim.state.temperature > 70.0:
             return DiagnosticStatus.WARN, 'motor hot'
         return DiagnosticStatus.OK, 'torque enabled' if self.sim.torque_enabled else 'torque disabled'
 
     def status_values(self) -> dict[str, str]:
+        """The status message's torque_enabled and control_mode entries."""
         return {'torque_enabled': str(self.sim.torque_enabled).lower(), 'control_mode': self.sim.mode}
 
 
 def main(args: list[str] | None = None) -> None:
+    """servo_sim's entry point: one servo module, in namespace `pan` by default."""
     run_module(ServoModule, 'pan', args)
 
 

@@ -58,9 +58,11 @@ def test_looking_behind_shows_the_blue_landmark(renderer):
 def test_jpeg_decodes_to_the_image_size(renderer):
     data = renderer.jpeg(0.2, -0.1, '#1 12:00:00.000', quality=60)
     image = Image.open(io.BytesIO(data))
-    assert image.format == 'JPEG' and image.size == (640, 480)
+    assert image.format == 'JPEG'
+    assert image.size == (640, 480)
     corner = np.asarray(image.convert('RGB'))[4:20, 6:40]
-    assert corner.max() > 200 and corner.min() < 50  # caption: white text on black
+    assert corner.max() > 200
+    assert corner.min() < 50  # caption: white text on black
 
 
 def test_focal_length_and_bad_sizes():
@@ -95,7 +97,8 @@ def direct_lookup(width, height, fov, pan, tilt):
     return np.clip(rows, 0, PANORAMA_HEIGHT - 1).astype(np.int64), columns
 
 
-@pytest.mark.parametrize('width, height, fov_deg', [(640, 480, 48.66), (17, 23, 90.0), (100, 60, 150.0)])
+@pytest.mark.parametrize(('width', 'height', 'fov_deg'),
+                         [(640, 480, 48.66), (17, 23, 90.0), (100, 60, 150.0)])
 def test_every_pixel_samples_the_panorama_where_its_ray_points(width, height, fov_deg):
     # The renderer computes one half of the view and mirrors it: the result must be exact.
     fov = math.radians(fov_deg)
@@ -114,9 +117,12 @@ def test_caption_is_white_on_a_black_box_and_leaves_the_rest():
     writer.draw(frame, '#12', 6, 4)
     rgb = frame.view(np.uint8).reshape(40, 120, 4)[..., :3]
     box = rgb[2:4 + writer.line_height + 2, 3:40]
-    assert box.max() > 200 and box.min() == 0
-    assert (rgb[..., 0] == rgb[..., 1]).all() and (rgb[..., 1] == rgb[..., 2]).all()  # grey only
-    assert (rgb[:, 60:] == 128).all() and (rgb[4 + writer.line_height + 2:] == 128).all()
+    assert box.max() > 200
+    assert box.min() == 0
+    assert (rgb[..., 0] == rgb[..., 1]).all()
+    assert (rgb[..., 1] == rgb[..., 2]).all()  # grey only
+    assert (rgb[:, 60:] == 128).all()
+    assert (rgb[4 + writer.line_height + 2:] == 128).all()
 
 
 def test_a_caption_wider_than_the_frame_is_cut_off():
@@ -164,4 +170,5 @@ def test_spliced_jpeg_replaces_only_the_top_rows():
     rgb[:32] = (220, 200, 10)
     assert encoder.encode(frame, 80, rest_unchanged=True) == encode_jpeg(frame, 80)
     decoded = np.asarray(Image.open(io.BytesIO(encode_jpeg(frame, 80))))
-    assert decoded[5, 5, 0] > 200 and decoded[60, 5, 0] < 50
+    assert decoded[5, 5, 0] > 200
+    assert decoded[60, 5, 0] < 50

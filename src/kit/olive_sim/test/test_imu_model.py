@@ -57,8 +57,10 @@ def test_scripted_motion_sweeps_the_kit_ranges_and_repeats_every_minute():
     motion = ScriptedMotion()
     angles = [quat.to_euler(motion.orientation(k / 10)) for k in range(600)]
     pitches, yaws = [a[1] for a in angles], [a[2] for a in angles]
-    assert min(pitches) < -0.85 and max(pitches) > 0.85  # of the tilt servo's -1.3..0.9 rad
-    assert min(yaws) < -1.35 and max(yaws) > 1.35        # of the pan servo's +-1.57 rad
+    assert min(pitches) < -0.85
+    assert max(pitches) > 0.85  # of the tilt servo's -1.3..0.9 rad
+    assert min(yaws) < -1.35
+    assert max(yaws) > 1.35     # of the pan servo's +-1.57 rad
     for t in (0.0, 3.3, 17.0):
         assert quat.angle_between(motion.orientation(t), motion.orientation(t + 60.0)) < 1e-9
 
@@ -66,8 +68,10 @@ def test_scripted_motion_sweeps_the_kit_ranges_and_repeats_every_minute():
 @pytest.mark.parametrize(('speed', 'turn'), [(1.0, 1.0), (1.5, 1.5), (3.0, 0.4), (0.5, 2.5)])
 @pytest.mark.parametrize('start', [0.0, 7.0, 41.0])
 def test_a_turtle_driven_by_pitch_and_yaw_comes_back_after_a_minute(speed, turn, start):
-    """The scripted motion's promise to the course's imu_turtle: speed = f * pitch and turn rate =
-    g * yaw give a closed path for any f and g, from any moment the turtle starts.
+    """The scripted motion's promise to the course's imu_turtle: a closed path, however it is driven.
+
+    Speed = f * pitch and turn rate = g * yaw give a closed path for any f and g, from any moment the
+    turtle starts.
     """
     motion, dt = ScriptedMotion(), 0.005
     x = y = heading = 0.0
@@ -130,7 +134,7 @@ def test_commanded_motion_turns_at_its_rate_limit():
     motion.command(quat.from_euler(0, 0, 1.5))
     assert quat.to_euler(motion.orientation(0.5))[2] == pytest.approx(0.5)
     assert quat.to_euler(motion.orientation(3.0))[2] == pytest.approx(1.5)
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match='not a rotation'):
         motion.command((math.nan, 0.0, 0.0, 1.0))
 
 

@@ -1,6 +1,4 @@
-"""The node-free parts of a module's page: process samples, traffic counters, the log book, the
-restart handover.
-"""
+"""The node-free parts of a module's page: process samples, traffic counters, log book, restart handover."""
 
 import json
 
@@ -24,7 +22,9 @@ def test_samples_are_rates_since_the_previous_one():
     second = sampler.sample()
     assert second.cpu == pytest.approx(25.0)   # 0.5 s of CPU in 2 s
     assert (second.tx, second.rx) == (2000, 50)
-    assert second.memory == pytest.approx(5.0) and second.memory_mb == 50.0 and second.time == 99.0
+    assert second.memory == pytest.approx(5.0)
+    assert second.memory_mb == 50.0
+    assert second.time == 99.0
 
 
 def test_this_process_has_resident_memory():

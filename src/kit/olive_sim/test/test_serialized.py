@@ -33,7 +33,8 @@ def test_a_filled_joint_state_serializes_like_the_message():
     again = deserialize_message(template.fill(5, (1.0, 2.0, 3.0)), JointState)
     assert (again.header.stamp.sec, again.header.stamp.nanosec) == (0, 5)
     assert [list(again.position), list(again.velocity), list(again.effort)] == [[1.0], [2.0], [3.0]]
-    assert list(again.name) == ['pan_joint'] and again.header.frame_id == 'pan_rotor_link'
+    assert list(again.name) == ['pan_joint']
+    assert again.header.frame_id == 'pan_rotor_link'
 
 
 def test_an_imu_keeps_its_constant_fields():
@@ -63,11 +64,11 @@ def test_a_marker_must_occur_exactly_once():
 
 def test_fill_needs_one_value_per_field():
     template = SerializedTemplate(struct.pack('=iId', *STAMP_MARKER, 1.5), [1.5])
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match='argument 2 is longer than argument 1'):
         template.fill(0, (1.0, 2.0))
 
 
-@pytest.mark.parametrize('names, positions, frame_id', [
+@pytest.mark.parametrize(('names', 'positions', 'frame_id'), [
     (['pan_joint'], [0.75], 'pan_rotor_link'),
     (['a', 'bb', 'ccc'], [-1.5, 2.0, 3.0], ''),
     ([], [1e-300], 'x' * 7),

@@ -55,7 +55,8 @@ def test_the_whole_exercise_on_one_servo_shows_the_four_observations():
     # As a student does it: one running servo, gains changed between the script's goal flips.
     (_, p_only), (_, fast), (_, with_i), (_, with_d) = course_exercise()
     assert p_only.steady_state_error > 0.03
-    assert fast.rise_time < p_only.rise_time and fast.overshoot > p_only.overshoot + 0.05
+    assert fast.rise_time < p_only.rise_time
+    assert fast.overshoot > p_only.overshoot + 0.05
     assert with_i.steady_state_error < 0.01
     assert with_d.overshoot < with_i.overshoot / 2
 
@@ -204,5 +205,7 @@ def test_a_batch_of_steps_is_exactly_the_single_steps(mode):
         single.step()
     for count in (7, 13, 0, 480, 1000):  # batches that start and end between controller ticks
         batched.advance(min(count, 1500 - batched.steps))
-    assert batched.steps == single.steps == 1500 and batched.time == single.time
-    assert batched.state == single.state and batched.effort == single.effort
+    assert batched.steps == single.steps == 1500
+    assert batched.time == single.time
+    assert batched.state == single.state
+    assert batched.effort == single.effort

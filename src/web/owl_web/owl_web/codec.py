@@ -71,6 +71,7 @@ def check_keys(body: dict[str, Any], allowed: tuple[str, ...], required: tuple[s
 
 
 def boolean(value: Any, what: str) -> bool:
+    """Value if it is a JSON true or false, else a 400 ApiError naming `what` (no truthy numbers)."""
     if not isinstance(value, bool):
         raise ApiError(400, f'{what} must be true or false, got {json.dumps(value)}')
     return value
@@ -105,14 +106,17 @@ def encode(message: dict[str, Any]) -> str:
 
 
 def update(subscription_id: int | str, data: dict[str, Any]) -> dict[str, Any]:
+    """The "update" message that carries new data to a subscription."""
     return {'type': 'update', 'id': subscription_id, 'data': data}
 
 
 def done(command_id: int | str | None) -> dict[str, Any]:
+    """The "done" message: the command with this id was carried out."""
     return {'type': 'done', 'id': command_id}
 
 
 def error(subscription_id: int | str | None, message: str) -> dict[str, Any]:
+    """The "error" message: one line for the subscription or command with this id (None: no id)."""
     return {'type': 'error', 'id': subscription_id, 'error': message}
 
 
@@ -154,8 +158,10 @@ QUATERNION_NORM_TOLERANCE = 0.01  # a page's float32/float64 rounding, not a dif
 
 
 def unit_quaternion(value: Any, what: str = 'the orientation') -> tuple[float, float, float, float]:
-    """(x, y, z, w) of a rotation sent as {"x", "y", "z", "w"}: finite numbers of norm 1 (within
-    QUATERNION_NORM_TOLERANCE), returned normalised; anything else is a one-line ApiError.
+    """(x, y, z, w) of a rotation sent as {"x", "y", "z", "w"}, returned normalised.
+
+    The parts must be finite numbers of norm 1 (within QUATERNION_NORM_TOLERANCE); anything else is a
+    one-line ApiError.
     """
     if not isinstance(value, dict):
         raise ApiError(400, f'{what} must be an object {{"x", "y", "z", "w"}}, got {json.dumps(value)[:80]}')

@@ -1,5 +1,7 @@
-"""The ROS graph as our pages show it: one model (build_model, node-free) and the 'graph' channel
-that pushes it to every subscribed page when it changes (GraphChannel).
+"""The ROS graph as our pages show it: one node-free model and the 'graph' channel that pushes it.
+
+The model is build_model's; the channel (GraphChannel) pushes it to every subscribed page when it
+changes.
 
 Like rqt_graph's "Nodes/Topics (all)" view: a box per node and per topic, an arrow from a
 publishing node to its topic and from a topic to each subscribing node. The page lays it out.
@@ -36,6 +38,7 @@ class GraphModel:
     edges: list[tuple[str, str]] = field(default_factory=list)  # (from, to), names of boxes
 
     def as_json(self) -> dict[str, Any]:
+        """The model as a page gets it: node names, topics with their types, edges as from/to pairs."""
         return {'nodes': self.nodes,
                 'topics': [{'name': name, 'types': types} for name, types in self.topics.items()],
                 'edges': [{'from': source, 'to': target} for source, target in self.edges]}
@@ -98,8 +101,9 @@ def graph_options(params: dict[str, Any]) -> tuple[bool, bool]:
 
 
 class GraphChannel:
-    """The 'graph' channel of a server: a page subscribes with {"channel": "graph", "hide_debug":
-    true, "hide_leaf_topics": false} and gets the model at once and again at every change.
+    """The 'graph' channel of a server: a page gets the model at once and again at every change.
+
+    A page subscribes with {"channel": "graph", "hide_debug": true, "hide_leaf_topics": false}.
     """
 
     def __init__(self, node: Node, server: WebServer) -> None:
@@ -112,6 +116,7 @@ class GraphChannel:
         self._timer = node.create_timer(GRAPH_CHECK_PERIOD, self._check)
 
     def model(self, hide_debug: bool, hide_leaf_topics: bool) -> GraphModel:
+        """The graph as it is now, leaving out the server's own node, for the given options."""
         return build_model(read_endpoints(self._queries, self._own_name), hide_debug, hide_leaf_topics)
 
     def _open(self, subscription: Subscription) -> None:

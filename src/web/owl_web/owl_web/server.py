@@ -1,5 +1,6 @@
-"""The server of our pages: static files, the pages' npm libraries, a JSON API and one WebSocket,
-on a loopback address only, run by aiohttp in a thread of its own beside an rclpy node.
+"""The server of our pages: static files, the pages' npm libraries, a JSON API and one WebSocket.
+
+It listens on a loopback address only and runs aiohttp in a thread of its own beside an rclpy node.
 
     server = WebServer('rqt', STATIC_DIR, port=8090)        # binds now: a busy port is an OSError here
     server.route('GET', '/api/topics', list_topics)          # handler(Request) -> data or (status, data)
@@ -71,6 +72,7 @@ def library_packages(web: Path | None) -> list[str]:
 
 
 def is_loopback_name(hostname: str) -> bool:
+    """Whether a URL's host name is this machine: 'localhost' or a loopback IP address."""
     if hostname == 'localhost':
         return True
     try:
@@ -103,6 +105,7 @@ class OneLineLog(logging.Handler):
         self.log = log
 
     def emit(self, record: logging.LogRecord) -> None:
+        """Hand the record to log as one line, with its exception's reason if it has one."""
         line = record.getMessage().strip().splitlines()[0] if record.getMessage().strip() else record.name
         error = record.exc_info[1] if record.exc_info else None
         if error is not None:
@@ -133,11 +136,14 @@ class Request:
     body: bytes
 
     def json(self) -> dict[str, Any]:
+        """The body as a JSON object ({} when empty); a 400 ApiError saying what is wrong otherwise."""
         return codec.parse_json_object(self.body)
 
 
 @dataclass
 class Route:
+    """A route as route() registered it: method, path, the path's regex and the handler."""
+
     method: str
     path: str  # as given, e.g. '/api/publishers/{id}'
     pattern: re.Pattern
@@ -146,15 +152,18 @@ class Route:
 
 @dataclass
 class Channel:
+    """A channel as channel() registered it: its name and its open and close callbacks."""
+
     name: str
     open: Callable[['Subscription'], None]
     close: Callable[['Subscription'], None] | None
 
 
 class Subscription:
-    """One page's subscription to a channel. send*/error may be called from any thread; they never
-    block: an update not yet sent is replaced by a newer one (a page wants the newest state, and a
-    slow page must not hold up ROS callbacks), errors wait in order.
+    """One page's subscription to a channel; send*/error may be called from any thread and never block.
+
+    An update not yet sent is replaced by a newer one (a page wants the newest state, and a slow page
+    must not hold up ROS callbacks); errors wait in order.
     """
 
     def __init__(self, connection: 'Connection', subscription_id: int | str, channel: str,
@@ -166,12 +175,15 @@ class Subscription:
         self.active = True
 
     def send(self, data: dict[str, Any]) -> None:
+        """Push data to the page as an "update", in place of one of this subscription not yet sent."""
         self.connection.offer(self, codec.encode(codec.update(self.id, data)))
 
     def send_binary(self, data: dict[str, Any], payload: bytes) -> None:
+        """Push data with a binary payload (an image, say) as a frame, in place of one not yet sent."""
         self.connection.offer(self, codec.pack_frame(codec.update(self.id, data), payload))
 
     def error(self, message: str) -> None:
+        """Send the page an error line for this subscription, in order with other errors (none once ended)."""
         if self.active:
             self.connection.error(self.id, message)
 
@@ -190,6 +202,7 @@ class Connection:
         self.closed = False
 
     def offer(self, subscription: Subscription, message: str | bytes) -> None:
+        """Queue a subscription's message in place of one not yet sent; nothing once either has ended."""
         with self._lock:
             if not subscription.active or self.closed:
                 return
@@ -197,6 +210,7 @@ class Connection:
         self._notify()
 
     def error(self, subscription_id: int | str | None, message: str) -> None:
+        """Queue an error line after the others (beyond MAX_PENDING_ERRORS the oldest go)."""
         with self._lock:
             if self.closed:
                 return
@@ -212,12 +226,14 @@ class Connection:
         self._notify()
 
     def forget(self, subscription: Subscription) -> None:
+        """End a subscription: its pending update is dropped and nothing more is sent for it."""
         with self._lock:
             subscription.active = False
             self._updates.pop(subscription.id, None)
             self.subscriptions.pop(subscription.id, None)
 
     def close(self) -> None:
+        """Mark the connection closed: nothing more is queued for the page."""
         with self._lock:
             self.closed = True
 
@@ -228,8 +244,9 @@ class Connection:
             pass
 
     async def send_pending(self) -> None:
-        """The connection's sender: waits for messages and sends them (errors first) until the
-        page goes away (then the receiving side ends the connection).
+        """The connection's sender: wait for messages and send them, errors first.
+
+        It runs until the page goes away (then the receiving side ends the connection).
         """
         try:
             while True:
@@ -260,8 +277,10 @@ class WebServer:
 
     def __init__(self, name: str, static_dir: Path, port: int = 0, host: str = '127.0.0.1',
                  log: Callable[[str], None] | None = None) -> None:
-        """Binds at once (OSError for a busy port). name prefixes the lines the server prints;
-        log (default: stderr) gets one line for each internal error.
+        """Binds at once (OSError for a busy port).
+
+        name prefixes the lines the server prints; log (default: stderr) gets one line for each
+        internal error.
         """
         address = ipaddress.ip_address(host)
         if address.version != 4 or not address.is_loopback:
@@ -290,6 +309,7 @@ class WebServer:
 
     @property
     def url(self) -> str:
+        """The address the server answers at, e.g. http://127.0.0.1:8090/ (the bound port, if 0 was asked)."""
         host, port = self._socket.getsockname()[:2]
         return f'http://{host}:{port}/'
 
@@ -313,15 +333,18 @@ class WebServer:
 
     def channel(self, name: str, open: Callable[[Subscription], None],
                 close: Callable[[Subscription], None] | None = None) -> None:
-        """open(subscription) starts pushing to it (ApiError refuses the subscription); close is
-        called once when the page unsubscribes or goes away.
+        """Add a channel: open(subscription) starts pushing to it (ApiError refuses the subscription).
+
+        close is called once when the page unsubscribes or goes away.
         """
         self._channels[name] = Channel(name, open, close)
 
     def command(self, name: str, handler: Callable[[dict[str, Any]], None]) -> None:
-        """handler(arguments) carries out a page's {"type": "command", "name": name, ...arguments}
-        (the message without type, id and name); it raises ApiError to refuse, before anything
-        reaches ROS. Runs in a worker thread; the page gets {"type": "done"} or the error line.
+        """Add a command: handler(arguments) carries out a page's {"type": "command", "name": name, ...}.
+
+        The arguments are the message without type, id and name; the handler raises ApiError to refuse,
+        before anything reaches ROS. Runs in a worker thread; the page gets {"type": "done"} or the
+        error line.
         """
         self._commands[name] = handler
 
@@ -390,8 +413,10 @@ class WebServer:
             await self._runner.cleanup()
 
     async def _in_thread(self, function: Callable[..., Any], *args: Any) -> Any:
-        """function(*args) in a daemon thread of its own: a handler blocked on ROS holds neither the
-        event loop nor the process's exit (a thread pool's workers would hold both).
+        """function(*args) in a daemon thread of its own.
+
+        A handler blocked on ROS then holds neither the event loop nor the process's exit (a thread
+        pool's workers would hold both).
         """
         loop = asyncio.get_running_loop()
         future = loop.create_future()
@@ -587,5 +612,6 @@ def _flat_file(folder: Path, name: str) -> Path | None:
 
 
 def json_response(status: int, data: Any) -> web.Response:
+    """An HTTP answer of JSON data with the status, never cached."""
     return web.Response(status=status, text=json.dumps(data), content_type='application/json',
                         headers={'Cache-Control': 'no-store'})

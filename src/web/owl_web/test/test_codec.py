@@ -11,7 +11,8 @@ from std_msgs.msg import Float64
 def refused(call, *args) -> ApiError:
     with pytest.raises(ApiError) as caught:
         call(*args)
-    assert caught.value.message and '\n' not in caught.value.message
+    assert caught.value.message
+    assert '\n' not in caught.value.message
     return caught.value
 
 
@@ -82,4 +83,5 @@ def test_unit_quaternions():
              'the orientation must be a unit quaternion (norm 1), got norm 0')]:
         with pytest.raises(ApiError) as refused:
             codec.unit_quaternion(value)
-        assert refused.value.message == error and refused.value.status == 400
+        assert refused.value.message == error
+        assert refused.value.status == 400

@@ -73,8 +73,9 @@ def web(tmp_path, monkeypatch):
 
 
 def run(coroutine):
-    """The coroutine's result, from an event loop in a thread of its own (the main thread may have
-    one running already: a browser test's Playwright in the same session).
+    """The coroutine's result, from an event loop in a thread of its own.
+
+    The main thread may have one running already: a browser test's Playwright in the same session.
     """
     with ThreadPoolExecutor(1) as thread:
         return thread.submit(asyncio.run, asyncio.wait_for(coroutine, 30)).result()
@@ -95,7 +96,8 @@ def fetch(server, method, path, body=None):
 def error_line(answer):
     status, content_type, body = answer
     data = json.loads(body)
-    assert content_type.startswith('application/json') and list(data) == ['error'], body
+    assert content_type.startswith('application/json'), body
+    assert list(data) == ['error'], body
     assert '\n' not in data['error']
     return status, data['error']
 
@@ -113,7 +115,8 @@ def test_files_libraries_and_nothing_else(web):
     for path in ('/static/../index.html', '/lib/plotlib/../../secret.js', '/lib/plotlib/package.json',
                  '/lib/other/dist/plot.js', '/static/.hidden.js', '/owl/', '/nothing.html'):
         status, line = error_line(fetch(server, 'GET', path))
-        assert status == 404 and line.startswith("no page '"), (path, line)
+        assert status == 404, (path, line)
+        assert line.startswith("no page '"), (path, line)
 
 
 def test_missing_libraries_are_named(tmp_path, monkeypatch):
@@ -170,8 +173,9 @@ def test_routes_and_their_errors(web):
 
 
 async def exchange(server, *messages, receive=1):
-    """Send messages on one WebSocket; return what came back (frames as (header, payload)) and the
-    close code (None while open).
+    """Send messages on one WebSocket; return what came back and the close code (None while open).
+
+    Frames come back as (header, payload).
     """
     received = []
     async with aiohttp.ClientSession() as session, session.ws_connect(server.url + 'ws') as socket_:
@@ -197,8 +201,11 @@ def test_subscriptions_push_updates_frames_and_errors(web):
                                receive=1))
     # updates are state: a newer one may replace one not sent yet, never reorder
     numbers = [message['data']['n'] for message in received]
-    assert numbers and numbers == sorted(numbers) and set(numbers) <= {10, 11, 12}
-    assert received[0]['type'] == 'update' and received[0]['id'] == 'c'
+    assert numbers
+    assert numbers == sorted(numbers)
+    assert set(numbers) <= {10, 11, 12}
+    assert received[0]['type'] == 'update'
+    assert received[0]['id'] == 'c'
     wait_for(lambda: len(closed) == 1, 'the channel to hear the page left')
     received, _ = run(exchange(server, {'type': 'subscribe', 'id': 7, 'channel': 'frames'}, receive=2))
     assert {'type': 'error', 'id': 7, 'error': 'frame 2 cannot be shown'} in received
@@ -261,9 +268,11 @@ def test_bad_messages_get_one_line_and_the_connection_lives_on(web, message, err
     server, _, _ = web
     then = {'type': 'subscribe', 'id': 'ok', 'channel': 'counter'}
     received, close_code = run(exchange(server, message, then, receive=2))
-    assert received[0]['type'] == 'error' and received[0]['error'] == error, received[0]
+    assert received[0]['type'] == 'error', received[0]
+    assert received[0]['error'] == error, received[0]
     assert '\n' not in received[0]['error']
-    assert received[1]['type'] == 'update' and received[1]['id'] == 'ok'  # the same connection still works
+    assert received[1]['type'] == 'update'
+    assert received[1]['id'] == 'ok'  # the same connection still works
     assert close_code is None
 
 
@@ -297,11 +306,14 @@ def test_a_huge_message_closes_only_its_connection(web):
     received, close_code = run(exchange(server, huge, receive=1))
     # "message too big"; or, when the kernel resets the connection (the rest of the message is never
     # read) before the client reads the close frame, an abnormal closure
-    assert received == [] and close_code in (aiohttp.WSCloseCode.MESSAGE_TOO_BIG,
-                                             aiohttp.WSCloseCode.ABNORMAL_CLOSURE)
+    assert received == []
+    assert close_code in (aiohttp.WSCloseCode.MESSAGE_TOO_BIG,
+                          aiohttp.WSCloseCode.ABNORMAL_CLOSURE)
     # the client may see the close before the server's handler has read the error and logged it
     wait_for(lambda: log, 'the log line')
-    assert len(log) == 1 and log[0].startswith('closed a WebSocket connection: ') and '\n' not in log[0]
+    assert len(log) == 1
+    assert log[0].startswith('closed a WebSocket connection: ')
+    assert '\n' not in log[0]
     received, _ = run(exchange(server, {'type': 'subscribe', 'id': 1, 'channel': 'frames'}, receive=1))
     assert received  # the server serves the next page
 
@@ -361,7 +373,8 @@ def test_only_this_machines_pages_may_use_the_server(web):
         connection = http.client.HTTPConnection(host, int(port), timeout=10)
         connection.request('POST', '/api/echo/imu', body=b'{}', headers=headers)
         response = connection.getresponse()
-        assert response.status == 403 and json.loads(response.read())['error'].startswith('refused: ')
+        assert response.status == 403
+        assert json.loads(response.read())['error'].startswith('refused: ')
         connection.close()
 
     async def open_socket(origin):
