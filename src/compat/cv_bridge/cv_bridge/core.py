@@ -17,16 +17,19 @@ OTHER_METHOD = {Image: ' (for an Image, use imgmsg_to_cv2)',
 
 
 def require_message(msg: object, kind: type, method: str) -> None:
+    """Raise CvBridgeError unless msg is a kind; for the other image type it names the method to use."""
     if not isinstance(msg, kind):
         raise CvBridgeError(f'{method} takes a sensor_msgs/msg/{kind.__name__}, not '
                             f'{type(msg).__name__}{OTHER_METHOD.get(type(msg), "")}')
 
 
 def plural(count: int, noun: str) -> str:
+    """'1 channel' or '3 channels': a count with its noun, for error messages."""
     return f'{count} {noun}' if count == 1 else f'{count} {noun}s'
 
 
 def target_encoding(desired_encoding: object, source_name: str) -> object:
+    """The encoding to convert to: the source's own for 'passthrough', else desired_encoding as given."""
     return source_name if desired_encoding == PASSTHROUGH else desired_encoding
 
 
@@ -37,8 +40,9 @@ class CvBridge:
     """
 
     def imgmsg_to_cv2(self, img_msg: Image, desired_encoding: str = PASSTHROUGH) -> np.ndarray:
-        """A new array of a sensor_msgs/msg/Image's pixels, in desired_encoding's channel order
-        and depth ('passthrough': as the message has them).
+        """A new array of a sensor_msgs/msg/Image's pixels, in desired_encoding's layout.
+
+        desired_encoding fixes the channel order and depth; 'passthrough' keeps them as the message has them.
         """
         require_message(img_msg, Image, 'imgmsg_to_cv2')
         source = parse_encoding(img_msg.encoding)
@@ -49,9 +53,10 @@ class CvBridge:
 
     def cv2_to_imgmsg(self, cvim: np.ndarray, encoding: str = PASSTHROUGH,
                       header: Header | None = None) -> Image:
-        """A sensor_msgs/msg/Image of an array. The pixels go as they are: encoding names what they
-        already are (bgr8 for OpenCV's colour images) and must fit the array's type and channels;
-        'passthrough' names the array's OpenCV type, such as 8UC3.
+        """A sensor_msgs/msg/Image of an array, its pixels as they are.
+
+        encoding names what the pixels already are (bgr8 for OpenCV's colour images) and must fit the
+        array's type and channels; 'passthrough' names the array's OpenCV type, such as 8UC3.
         """
         image = check_image(cvim)
         cv_type = cv_type_of(image)
@@ -70,8 +75,9 @@ class CvBridge:
 
     def compressed_imgmsg_to_cv2(self, cmprs_img_msg: CompressedImage,
                                  desired_encoding: str = PASSTHROUGH) -> np.ndarray:
-        """The image in a sensor_msgs/msg/CompressedImage ('passthrough': as decoded, BGR(A) for
-        colour), or converted to desired_encoding.
+        """The image in a sensor_msgs/msg/CompressedImage, converted to desired_encoding.
+
+        With 'passthrough' it comes as decoded: BGR(A) for colour.
         """
         require_message(cmprs_img_msg, CompressedImage, 'compressed_imgmsg_to_cv2')
         image = decode(cmprs_img_msg.data, cmprs_img_msg.format)
@@ -79,8 +85,9 @@ class CvBridge:
         return convert(image, source, parse_encoding(target_encoding(desired_encoding, source.name)))
 
     def cv2_to_compressed_imgmsg(self, cvim: np.ndarray, dst_format: str = 'jpg') -> CompressedImage:
-        """A sensor_msgs/msg/CompressedImage of an array (BGR(A) if colour), as jpg, jpeg or png;
-        its format field is dst_format, as upstream sets it.
+        """A sensor_msgs/msg/CompressedImage of an array (BGR(A) if colour), as jpg, jpeg or png.
+
+        Its format field is dst_format, as upstream sets it.
         """
         data = encode(check_image(cvim), dst_format)
         return CompressedImage(format=dst_format, data=data)

@@ -36,6 +36,8 @@ SUPPORTED = f'{", ".join(NAMED)}, {PASSTHROUGH} or an OpenCV type such as 8UC3 o
 
 @dataclass(frozen=True)
 class Encoding:
+    """A parsed encoding: its name, numpy dtype, channel count and, for a named one, colour order."""
+
     name: str
     dtype: np.dtype  # native byte order
     channels: int
@@ -43,6 +45,7 @@ class Encoding:
 
     @property
     def cv_type(self) -> str:
+        """The OpenCV type with this dtype and channel count, e.g. 8UC3 for bgr8."""
         return f'{DEPTHS[(self.dtype.kind, self.dtype.itemsize)]}C{self.channels}'
 
 
@@ -59,6 +62,7 @@ def parse_encoding(name: object) -> Encoding:
 
 
 def depth_of(dtype: np.dtype) -> str:
+    """OpenCV's depth name for a dtype (8U, 32F, ...); CvBridgeError if OpenCV has none for it."""
     depth = DEPTHS.get((dtype.kind, dtype.itemsize))
     if depth is None:
         raise CvBridgeError(f'an image array of {dtype} has no OpenCV type; use uint8, int8, uint16, '
@@ -82,6 +86,7 @@ def check_image(image: object) -> np.ndarray:
 
 
 def channels_of(image: np.ndarray) -> int:
+    """The channel count of an image array: 1 for a 2-D one, else the size of its third axis."""
     return 1 if image.ndim == 2 else image.shape[2]
 
 

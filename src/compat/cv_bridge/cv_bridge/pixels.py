@@ -43,6 +43,7 @@ def image_from_buffer(data: object, height: int, width: int, step: int, encoding
 
 
 def is_big_endian(dtype: np.dtype) -> bool:
+    """Whether a dtype stores big-endian, native order resolved: the value for is_bigendian."""
     return dtype.byteorder == '>' or (dtype.byteorder == '=' and sys.byteorder == 'big')
 
 

@@ -38,7 +38,8 @@ def test_named_encodings_round_trip(encoding, shape, dtype):
     msg = over_the_wire(BRIDGE.cv2_to_imgmsg(image, encoding))
     channels = 1 if len(shape) == 2 else shape[2]
     assert (msg.encoding, msg.height, msg.width) == (encoding, 4, 5)
-    assert msg.step == 5 * channels * np.dtype(dtype).itemsize and not msg.is_bigendian
+    assert msg.step == 5 * channels * np.dtype(dtype).itemsize
+    assert not msg.is_bigendian
     for desired in ('passthrough', encoding):
         back = BRIDGE.imgmsg_to_cv2(msg, desired)
         assert back.dtype == dtype
@@ -72,7 +73,8 @@ def test_the_array_is_a_copy_of_the_data():
     msg = BRIDGE.cv2_to_imgmsg(np.zeros((2, 2), np.uint8), 'mono8')
     image = BRIDGE.imgmsg_to_cv2(msg)
     image[0, 0] = 9
-    assert msg.data[0] == 0 and image.flags.writeable
+    assert msg.data[0] == 0
+    assert image.flags.writeable
 
 
 def test_cv2_to_imgmsg_writes_the_pixels_as_they_are():
@@ -98,13 +100,16 @@ def test_big_endian_data_is_read_and_written():
     msg = Image(height=1, width=3, encoding='mono16', step=6, is_bigendian=True,
                 data=values.astype('>u2').tobytes())
     back = BRIDGE.imgmsg_to_cv2(msg)
-    assert back.dtype == np.uint16 and back.dtype.isnative
+    assert back.dtype == np.uint16
+    assert back.dtype.isnative
     np.testing.assert_array_equal(back, values)
     big = BRIDGE.cv2_to_imgmsg(values.astype('>u2'), 'mono16')
-    assert big.is_bigendian and bytes(big.data) == values.astype('>u2').tobytes()
+    assert big.is_bigendian
+    assert bytes(big.data) == values.astype('>u2').tobytes()
     np.testing.assert_array_equal(BRIDGE.imgmsg_to_cv2(big), values)
     little = BRIDGE.cv2_to_imgmsg(values, 'mono16')
-    assert not little.is_bigendian and bytes(little.data) == values.astype('<u2').tobytes()
+    assert not little.is_bigendian
+    assert bytes(little.data) == values.astype('<u2').tobytes()
 
 
 def test_header_is_copied_in():
@@ -122,7 +127,8 @@ def test_header_is_copied_in():
 def test_png_round_trips_exactly(shape, dtype, dst_format):
     image = random_image(shape, dtype)
     msg = over_the_wire(BRIDGE.cv2_to_compressed_imgmsg(image, dst_format))
-    assert msg.format == 'png' and bytes(msg.data).startswith(PNG_MAGIC)
+    assert msg.format == 'png'
+    assert bytes(msg.data).startswith(PNG_MAGIC)
     back = BRIDGE.compressed_imgmsg_to_cv2(msg)
     assert back.dtype == dtype
     np.testing.assert_array_equal(back, image)
@@ -134,9 +140,11 @@ def test_jpeg_round_trips_closely(dst_format, shape):
     image = np.full(shape, 100, np.uint8)
     image[4:12, 4:12] = 180
     msg = BRIDGE.cv2_to_compressed_imgmsg(image, dst_format)
-    assert msg.format == dst_format and bytes(msg.data).startswith(JPEG_MAGIC)
+    assert msg.format == dst_format
+    assert bytes(msg.data).startswith(JPEG_MAGIC)
     back = BRIDGE.compressed_imgmsg_to_cv2(over_the_wire(msg))
-    assert back.shape == image.shape and back.dtype == np.uint8
+    assert back.shape == image.shape
+    assert back.dtype == np.uint8
     assert np.abs(back.astype(int) - image).mean() < 3
 
 
@@ -166,7 +174,9 @@ def test_the_simulated_cameras_frames_decode():
     frame = BRIDGE.compressed_imgmsg_to_cv2(CompressedImage(format='jpeg', data=buffer.getvalue()))
     assert frame.shape == (24, 32, 3)
     blue, green, red = frame[12, 16].astype(int)
-    assert red > 240 and blue < 15 and green < 15  # BGR order, as cv2.imshow wants
+    assert red > 240
+    assert blue < 15
+    assert green < 15  # BGR order, as cv2.imshow wants
 
 
 IMAGE = np.zeros((2, 3, 3), np.uint8)

@@ -1,5 +1,7 @@
-"""What upstream launch documents, checked on ours: its module paths, the actions and frontend
-pieces added for issue 13, and the behaviours that used to differ.
+"""What upstream launch documents, checked on ours.
+
+Its module paths, the actions and frontend pieces added for issue 13, and the behaviours that used to
+differ.
 """
 
 import asyncio
@@ -192,7 +194,8 @@ def test_parser_load_reads_paths_and_streams(tmp_path):
     stream = io.StringIO('launch:\n- arg: {name: b}\n')
     root, parser = Parser.load(stream)
     assert [a.name for a in parser.parse_description(root).get_launch_arguments()] == ['b']
-    assert Parser.is_filename_valid('a.launch.yaml') and not Parser.is_filename_valid('a.launch.py')
+    assert Parser.is_filename_valid('a.launch.yaml')
+    assert not Parser.is_filename_valid('a.launch.py')
 
 
 def test_parser_load_of_a_missing_file_says_so(tmp_path):
@@ -200,7 +203,7 @@ def test_parser_load_of_a_missing_file_says_so(tmp_path):
         Parser.load(str(tmp_path / 'nope.xml'))
 
 
-@pytest.mark.parametrize('text, expected', [
+@pytest.mark.parametrize(('text', 'expected'), [
     ('yes', True), ('on', True), ('True', True), ('no', False), ('off', False), ('false', False)])
 def test_yaml_booleans_as_upstream_types_them(text, expected):
     assert coerce_to_type(text, bool) is expected
@@ -236,7 +239,7 @@ def test_bare_condition_is_false(capsys):
     assert user_lines(capsys) == []
 
 
-@pytest.mark.parametrize('left, right, expected', [
+@pytest.mark.parametrize(('left', 'right', 'expected'), [
     (None, None, 'true'), (None, '', 'true'), (True, 'true', 'true'), (True, '1', 'true'),
     (1.0, '1', 'true'), ('a', 'b', 'false'), (False, None, 'false')])
 def test_equals_substitution_compares_any_values(left, right, expected):

@@ -28,6 +28,11 @@ class ParameterValue:
         self.value_type = value_type
 
     def evaluate(self, context: LaunchContext) -> Any:
+        """The value for the node, forced to value_type when one is given.
+
+        Text under value_type=str stays the performed text as it is; other values are evaluated as in a
+        parameters dict, then coerced (TypeError if they cannot be).
+        """
         from launch_ros.parameters import coerce_value, evaluate_value
 
         if self.value_type is str and _is_text(self.value):
@@ -79,4 +84,5 @@ class Parameter:
                       else ParameterValue(value, value_type=value_type))
 
     def evaluate(self, context: LaunchContext) -> tuple[str, Any]:
+        """(name, value) with the substitutions performed and the value typed, for `-p name:=value`."""
         return perform_substitutions(context, self.name), self.value.evaluate(context)

@@ -54,6 +54,11 @@ def uniform_list(items: list[Any], name: str = '') -> list[Any]:
 
 
 def evaluate_value(context: LaunchContext, value: Any, name: str = '') -> Any:
+    """A parameter value as the node gets it: see the module's rules; name is only for error messages.
+
+    Substitutions are performed and read as YAML, text and substitutions side by side make one string,
+    lists must be uniform; TypeError for any other type.
+    """
     from launch_ros.parameter_descriptions import ParameterValue
 
     if isinstance(value, ParameterValue):

@@ -37,6 +37,10 @@ class ROSAdapter:
             self.start()
 
     def start(self) -> None:
+        """Create the context and node, and start the thread spinning them.
+
+        Raises RuntimeError if already started; SIGINT and SIGTERM are left to launch.
+        """
         if self.__thread is not None:
             raise RuntimeError('ROSAdapter already started')
         import rclpy
@@ -57,6 +61,7 @@ class ROSAdapter:
             self.__executor.spin_once(timeout_sec=SPIN_PERIOD)
 
     def shutdown(self) -> None:
+        """Stop the spinning thread, destroy the node and shut the context down; nothing if not started."""
         if self.__thread is None:
             return
         self.__stop.set()
@@ -68,14 +73,17 @@ class ROSAdapter:
 
     @property
     def ros_context(self) -> Any:
+        """The adapter's own rclpy Context; None until started."""
         return self.__context
 
     @property
     def ros_node(self) -> Any:
+        """The adapter's rclpy node (None until started), which lifecycle nodes' actions use."""
         return self.__node
 
     @property
     def ros_executor(self) -> Any:
+        """The SingleThreadedExecutor that spins the node; None until started."""
         return self.__executor
 
 

@@ -1,5 +1,7 @@
-"""XML and YAML launch_ros tags: what <node>, <param>, <remap>, <push_ros_namespace>,
-<set_parameter>, <set_remap> and <set_parameters_from_file> turn into on the command line.
+"""XML and YAML launch_ros tags: what each turns into on the command line.
+
+The tags are <node>, <param>, <remap>, <push_ros_namespace>, <set_parameter>, <set_remap> and
+<set_parameters_from_file>.
 """
 
 import textwrap

@@ -169,6 +169,7 @@ def test_upstream_module_paths_used_by_launch_files():
     from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
     from launch_ros.descriptions import ParameterValue as DescribedValue
 
-    assert DescribedValue is ParameterValue and SomeSubstitutionsType is not None
+    assert DescribedValue is ParameterValue
+    assert SomeSubstitutionsType is not None
     context = LaunchContext()
     assert perform_substitutions(context, normalize_to_list_of_substitutions(['a', 'b'])) == 'ab'

@@ -21,7 +21,8 @@ def test_duplicate_node_names_are_warned_about_on_the_process_label(capsys):
     assert run(Node(executable='true', name='twin', namespace='ns'),
                Node(executable='true', name='twin', exec_name='second', namespace='ns')) == 0
     out = capsys.readouterr().out
-    assert ('[WARNING] [second-' in out and 'there are now at least 2 nodes with the name /ns/twin created '
+    assert '[WARNING] [second-' in out, out
+    assert ('there are now at least 2 nodes with the name /ns/twin created '
             'within this launch context' in out), out
     assert "cmd 'true --ros-args" not in out  # both exited cleanly
     assert out.count('process has finished cleanly') == 2

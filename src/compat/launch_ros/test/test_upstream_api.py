@@ -1,5 +1,7 @@
-"""launch_ros as upstream documents it: module paths, $(param), SetUseSimTime, SetROSLogDir, the
-lifecycle pieces' checks, and what is refused (composition, bare parameter values).
+"""launch_ros as upstream documents it, checked on ours.
+
+Module paths, $(param), SetUseSimTime, SetROSLogDir, the lifecycle pieces' checks, and what is refused
+(composition, bare parameter values).
 """
 
 import importlib
@@ -139,7 +141,8 @@ def test_composable_node_container_refuses_in_one_line(tmp_path):
     with pytest.raises(CompositionUnavailableError) as error:
         ComposableNodeContainer(name='c', namespace='', package='rclcpp_components',
                                 executable='component_container')
-    assert '\n' not in str(error.value) and 'rclcpp_components' in str(error.value)
+    assert '\n' not in str(error.value)
+    assert 'rclcpp_components' in str(error.value)
     path = tmp_path / 'c.launch.xml'
     path.write_text('<launch><node_container pkg="p" exec="e" name="c" namespace=""/></launch>')
     root, parser = Parser.load(path)

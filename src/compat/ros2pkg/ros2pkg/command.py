@@ -1,5 +1,7 @@
-"""`ros2 pkg <verb>`: the command and its verbs, found by `ros2` through this package's entry points
-('ros2cli.command' and 'ros2pkg.verb' in setup.py).
+"""`ros2 pkg <verb>`: the command and its verbs.
+
+`ros2` finds them through this package's entry points ('ros2cli.command' and 'ros2pkg.verb' in
+setup.py).
 """
 
 from __future__ import annotations
@@ -38,6 +40,7 @@ class CreateVerb(VerbExtension):
     """Create a new ROS 2 package."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add create's arguments; the build type is checked in main_create, to suggest a fix for a typo."""
         from ros2pkg.create import BUILD_TYPES, DEFAULT_LICENSE
         from ros2pkg.templates import LICENSES
 
@@ -67,6 +70,7 @@ class CreateVerb(VerbExtension):
         parser.add_argument('--library-name', help='name of the empty library')
 
     def main(self, *, args: argparse.Namespace) -> int | str:
+        """Create the package: see main_create."""
         return main_create(args)
 
 
@@ -74,11 +78,13 @@ class ExecutablesVerb(VerbExtension):
     """Output a list of package specific executables."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add an optional package name (none: every package) and --full-path."""
         _package_argument(parser, nargs='?')
         parser.add_argument('--full-path', action='store_true', default=False,
                             help='Show full path of each executable')
 
     def main(self, *, args: argparse.Namespace) -> int | str:
+        """List the executables: see main_executables."""
         return main_executables(args)
 
 
@@ -86,6 +92,7 @@ class ListVerb(VerbExtension):
     """Output a list of available packages."""
 
     def main(self, *, args: argparse.Namespace) -> int:
+        """List the packages: see main_list."""
         return main_list(args)
 
 
@@ -93,10 +100,12 @@ class PrefixVerb(VerbExtension):
     """Output the prefix path of a package."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the package name and --share."""
         _package_argument(parser)
         parser.add_argument('--share', action='store_true', help='Show share directory for the package')
 
     def main(self, *, args: argparse.Namespace) -> int | str:
+        """Print the package's prefix: see main_prefix."""
         return main_prefix(args)
 
 
@@ -104,14 +113,17 @@ class XmlVerb(VerbExtension):
     """Output the XML of the package manifest or a specific tag."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """Add the package name and -t/--tag."""
         _package_argument(parser)
         parser.add_argument('-t', '--tag', help="The package's xml's tag to print")
 
     def main(self, *, args: argparse.Namespace) -> int | str:
+        """Print the manifest or a tag's text: see main_xml."""
         return main_xml(args)
 
 
 def main_list(args: argparse.Namespace) -> int:
+    """Print the name of every package on AMENT_PREFIX_PATH, one a line, sorted; always 0."""
     from ros2pkg import api
     for name in api.get_package_names():
         print(name)
@@ -119,6 +131,10 @@ def main_list(args: argparse.Namespace) -> int:
 
 
 def main_executables(args: argparse.Namespace) -> int | str:
+    """Print '<package> <executable>' (or the full path) for one package's executables, or every package's.
+
+    Returns an error message for a package that is not found.
+    """
     from ros2pkg import api
     names = [args.package_name] if args.package_name else api.get_package_names()
     for name in names:
@@ -132,6 +148,7 @@ def main_executables(args: argparse.Namespace) -> int | str:
 
 
 def main_prefix(args: argparse.Namespace) -> int | str:
+    """Print a package's install prefix, or its share directory with --share; PACKAGE_NOT_FOUND if missing."""
     from ros2pkg import api
     lookup = api.get_share_directory if args.share else api.get_prefix_path
     path = lookup(args.package_name)
@@ -142,6 +159,10 @@ def main_prefix(args: argparse.Namespace) -> int | str:
 
 
 def main_xml(args: argparse.Namespace) -> int | str:
+    """Print a package's package.xml, or the text of each element that --tag finds in it.
+
+    Returns an error message when the package, its manifest or the tag is not found, or it cannot be read.
+    """
     import xml.etree.ElementTree as ET
 
     from ros2pkg import api
@@ -170,6 +191,11 @@ def main_xml(args: argparse.Namespace) -> int | str:
 
 
 def main_create(args: argparse.Namespace) -> int | str:
+    """Create a package as the arguments say, printing what upstream's `ros2 pkg create` prints.
+
+    Returns 0 on success.  A refused request returns the CreateError's message (exit code 1) or, for
+    a usage error, prints it to stderr as argparse would and returns its exit code (2).
+    """
     from ros2pkg.create import (
         EMAIL,
         CreateError,

@@ -53,6 +53,10 @@ def closest(word: str, choices: tuple[str, ...] | list[str]) -> str | None:
 
 
 def check_build_type(build_type: str) -> str:
+    """The build type if this environment can build it, else CreateError with exit code 2.
+
+    The error suggests the closest known build type, as argparse's choices would not.
+    """
     if build_type in BUILD_TYPES:
         return build_type
     choices = ', '.join(f"'{b}'" for b in BUILD_TYPES)
@@ -71,6 +75,7 @@ def suggested_package_name(name: str) -> str:
 
 
 def check_package_name(name: str) -> None:
+    """Refuse a name that breaks REP 144 with CreateError, suggesting a valid name close to it."""
     if PACKAGE_NAME.fullmatch(name) and '__' not in name:
         return
     suggestion = suggested_package_name(name)
@@ -81,6 +86,7 @@ def check_package_name(name: str) -> None:
 
 
 def check_identifier(what: str, name: str) -> None:
+    """Refuse a node or library name that is not a Python identifier (or is a keyword) with CreateError."""
     if not IDENTIFIER.fullmatch(name) or keyword.iskeyword(name):
         raise CreateError(
             f"invalid {what} '{name}': use letters, digits and underscores, not starting with a digit")
@@ -164,6 +170,7 @@ class Step:
 
     @property
     def message(self) -> str | None:
+        """The line create prints for this step (`creating ...`), or None for a quiet step."""
         if self.quiet:
             return None
         return {'note': self.path, 'folder': f'creating folder {self.path}',
@@ -238,6 +245,7 @@ def summary(p: PackageSettings, destination: str) -> list[str]:
 
 
 def unknown_license_warning(license_name: str) -> str:
+    """The warning printed after creating a package with a license ament does not know, and those it does."""
     return (f"\n[WARNING]: Unknown license '{license_name}'.  This has been set in the package.xml, "
             'but no LICENSE file has been created.\nIt is recommended to use one of the ament license '
             'identifiers:\n' + '\n'.join(LICENSES))

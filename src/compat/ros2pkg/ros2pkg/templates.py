@@ -30,16 +30,19 @@ class PackageSettings:
 
     @property
     def buildtool_depends(self) -> list[str]:
+        """['ament_cmake'] for a CMake package, none for a Python one: package.xml's buildtool_depend."""
         # Upstream uses ament_cmake_ros for libraries; it needs gtest/gmock, which are not
         # installable here, so libraries get ament_cmake with BUILD_SHARED_LIBS on instead.
         return ['ament_cmake'] if self.build_type == 'ament_cmake' else []
 
     @property
     def test_depends(self) -> list[str]:
+        """The test_depend entries: pytest and ruff for Python, ament_cmake_test and catkin_pkg for CMake."""
         return list(PYTHON_TEST_DEPENDS if self.build_type == 'ament_python' else CMAKE_TEST_DEPENDS)
 
     @property
     def maintainer(self) -> str:
+        """'name <email>', as package.xml and the summary name the maintainer."""
         return f'{self.maintainer_name} <{self.maintainer_email}>'
 
     @property
@@ -49,6 +52,7 @@ class PackageSettings:
 
 
 def package_xml(p: PackageSettings) -> str:
+    """package.xml, in the format asked for, with the text values XML-escaped."""
     lines = [
         '<?xml version="1.0"?>',
         f'<?xml-model href="http://download.ros.org/schema/package_format{p.package_format}.xsd" '
@@ -77,6 +81,7 @@ def package_xml(p: PackageSettings) -> str:
 # ---------------------------------------------------------------------------- ament_python
 
 def setup_py(p: PackageSettings) -> str:
+    """setup.py of an ament_python package, with a console script for the node if one was asked for."""
     scripts = [f'{p.node_name} = {p.name}.{p.node_name}:main'] if p.node_name else []
     script_lines = ''.join(f'            {s!r},\n' for s in scripts)
     return (
@@ -110,12 +115,14 @@ def setup_py(p: PackageSettings) -> str:
 
 
 def setup_cfg(p: PackageSettings) -> str:
+    """setup.cfg, which installs the scripts in lib/<package>."""
     # Scripts go to lib/<package>, where `ros2 run` looks for them.
     return (f'[develop]\nscript_dir=$base/lib/{p.name}\n'
             f'[install]\ninstall_scripts=$base/lib/{p.name}\n')
 
 
 def python_node(p: PackageSettings) -> str:
+    """The Python node: a main() that prints a greeting."""
     return (
         f'"""The {p.node_name} executable of {p.name}."""\n'
         '\n'
@@ -151,6 +158,7 @@ def _ruff_test(summary: str, options: str) -> str:
 
 
 def flake8_test(p: PackageSettings) -> str:
+    """test/test_flake8.py: ament_flake8's checks, run with ruff."""
     return _ruff_test(
         'Code style: the pycodestyle, pyflakes and quote rules of ament_flake8, checked by ruff.',
         """['--select', 'E,W,F,Q', '--line-length', '99',\n"""
@@ -158,6 +166,7 @@ def flake8_test(p: PackageSettings) -> str:
 
 
 def pep257_test(p: PackageSettings) -> str:
+    """test/test_pep257.py: the pep257 docstring checks of ament_pep257, run with ruff."""
     return _ruff_test(
         'Docstrings follow PEP 257 where there are any (checked by ruff).',
         """['--select', 'D', '--config', "lint.pydocstyle.convention='pep257'",\n"""
@@ -167,6 +176,10 @@ def pep257_test(p: PackageSettings) -> str:
 # ---------------------------------------------------------------------------- ament_cmake
 
 def cmakelists(p: PackageSettings) -> str:
+    """CMakeLists.txt of an ament_cmake package: its dependencies, library, node and tests.
+
+    The tests check that package.xml parses and, with a node, that the node starts and greets.
+    """
     out = [
         'cmake_minimum_required(VERSION 3.8)',
         f'project({p.name})',
@@ -248,6 +261,7 @@ def cmakelists(p: PackageSettings) -> str:
 
 
 def cpp_node(p: PackageSettings) -> str:
+    """The C++ node: a main() that prints `hello world <package> package`."""
     include = f'#include "{p.name}/{p.library_name}.hpp"\n' if p.library_name else ''
     return (
         '#include <cstdio>\n'
@@ -265,6 +279,7 @@ def cpp_node(p: PackageSettings) -> str:
 
 
 def cpp_header(p: PackageSettings) -> str:
+    """include/<package>/<library>.hpp: the library's class, its constructor and destructor exported."""
     guard = f'{p.name}__{p.library_name}_HPP_'.upper()
     return (
         f'#ifndef {guard}\n'
@@ -289,6 +304,7 @@ def cpp_header(p: PackageSettings) -> str:
 
 
 def cpp_library(p: PackageSettings) -> str:
+    """The library's source, src/<library>.cpp: the class's default constructor and destructor."""
     return (
         f'#include "{p.name}/{p.library_name}.hpp"\n'
         '\n'
@@ -304,6 +320,7 @@ def cpp_library(p: PackageSettings) -> str:
 
 
 def visibility_control(p: PackageSettings) -> str:
+    """include/<package>/visibility_control.h: the <PACKAGE>_PUBLIC export macro."""
     macro = p.name.upper()
     return (
         f'#ifndef {macro}__VISIBILITY_CONTROL_H_\n'
@@ -336,6 +353,10 @@ COMMON_LICENSE_FILES = {'Apache-2.0': 'Apache-2.0', 'GPL-3.0-only': 'GPL-3', 'LG
 
 
 def license_file(p: PackageSettings) -> str:
+    """The LICENSE file: the SPDX identifier and a link to the text.
+
+    The full text follows when the system has a copy in /usr/share/common-licenses.
+    """
     text = (f'SPDX-License-Identifier: {p.license}\n'
             f'Full text: https://spdx.org/licenses/{p.license}.html\n')
     system_copy = os.path.join(COMMON_LICENSES_DIR, COMMON_LICENSE_FILES.get(p.license, ''))

@@ -57,7 +57,8 @@ def test_invalid_package_names_are_refused_with_a_rep144_suggestion(name, sugges
     with pytest.raises(CreateError) as error:
         check_package_name(name)
     message = str(error.value)
-    assert message.startswith(f"invalid package name '{name}'") and 'REP 144' in message
+    assert message.startswith(f"invalid package name '{name}'")
+    assert 'REP 144' in message
     assert (f"did you mean '{suggestion}'?" in message) == bool(suggestion)
 
 
@@ -154,16 +155,19 @@ def test_package_xml_parses_with_escaped_text():
     p = PackageSettings(name='p', build_type='ament_python', description='a < b & "c"',
                         maintainer_name='A & B', maintainer_email='a@b.example', dependencies=['rclpy'])
     package = parse_package_string(package_xml(p))
-    assert package.name == 'p' and ET.fromstring(package_xml(p)).findtext('description') == 'a < b & "c"'
+    assert package.name == 'p'
+    assert ET.fromstring(package_xml(p)).findtext('description') == 'a < b & "c"'
     assert [str(d) for d in package.build_depends] == ['rclpy']
-    assert package.maintainers[0].name == 'A & B' and package.get_build_type() == 'ament_python'
+    assert package.maintainers[0].name == 'A & B'
+    assert package.get_build_type() == 'ament_python'
 
 
 def test_setup_py_is_valid_python_even_with_quotes_in_values():
     p = PackageSettings(name='p', build_type='ament_python', description="it's \"quoted\"",
                         node_name='n')
     tree = ast.parse(setup_py(p))
-    assert "'n = p.n:main'" in setup_py(p) and tree.body
+    assert "'n = p.n:main'" in setup_py(p)
+    assert tree.body
 
 
 def test_cmakelists_declares_dependencies_node_library_and_tests():
@@ -178,7 +182,9 @@ def test_cmakelists_declares_dependencies_node_library_and_tests():
 
 
 def test_license_list_is_upstreams():
-    assert LICENSES[0] == 'Apache-2.0' and 'LGPL-3.0-only' in LICENSES and len(LICENSES) == 9
+    assert LICENSES[0] == 'Apache-2.0'
+    assert 'LGPL-3.0-only' in LICENSES
+    assert len(LICENSES) == 9
 
 
 def test_python_library_is_a_subpackage(tmp_path):
@@ -191,5 +197,6 @@ def test_python_library_is_a_subpackage(tmp_path):
 
 def test_package_format_2_is_declared(tmp_path):
     text = package_xml(settings(tmp_path, package_format=2))
-    assert '<package format="2">' in text and 'package_format2.xsd' in text
+    assert '<package format="2">' in text
+    assert 'package_format2.xsd' in text
     assert parse_package_string(text).package_format == 2

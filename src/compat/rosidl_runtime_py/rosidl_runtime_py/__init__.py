@@ -1,5 +1,7 @@
-"""Owl Kit Lab's one message library, under upstream rosidl_runtime_py's names (the pinned Jazzy
-wheels do not ship rosidl_runtime_py), so that code written against upstream runs:
+"""Owl Kit Lab's one message library, under upstream rosidl_runtime_py's names.
+
+The pinned Jazzy wheels do not ship rosidl_runtime_py; this package stands in for it, so that code
+written against upstream runs:
 
 - convert: message_to_yaml, message_to_ordereddict, message_to_csv
 - set_message: set_message_fields (one-line FieldError on a misfit)

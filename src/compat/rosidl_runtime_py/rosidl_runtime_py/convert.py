@@ -95,8 +95,10 @@ def _plain_value(value: Any, slot_type: Any, truncate_length: int | None, no_arr
 
 def message_to_ordereddict(msg: Any, *, truncate_length: int | None = None, no_arr: bool = False,
                            no_str: bool = False) -> OrderedDict[str, Any]:
-    """The message as nested OrderedDicts/lists/scalars in field declaration order; strings and
-    sequences longer than truncate_length are cut ('...'), no_arr/no_str show placeholders instead.
+    """The message as nested OrderedDicts/lists/scalars, in field declaration order.
+
+    Strings and sequences longer than truncate_length are cut ('...'); no_arr/no_str show
+    placeholders instead of them.
     """
     message = msg
     return _Fields(

@@ -46,20 +46,25 @@ def get_interfaces(package_names: list[str] | None = None) -> dict[str, list[str
 
 
 def get_message_interfaces(package_names: list[str] | None = None) -> dict[str, list[str]]:
+    """{package: ['msg/Name', ...]}: the messages only, as get_interfaces lists them."""
     return _interfaces(('msg',), package_names)
 
 
 def get_service_interfaces(package_names: list[str] | None = None) -> dict[str, list[str]]:
+    """{package: ['srv/Name', ...]}: the services only, as get_interfaces lists them."""
     return _interfaces(('srv',), package_names)
 
 
 def get_action_interfaces(package_names: list[str] | None = None) -> dict[str, list[str]]:
+    """{package: ['action/Name', ...]}: the actions only, as get_interfaces lists them."""
     return _interfaces(('action',), package_names)
 
 
 def get_interface_path(interface_name: str) -> str:
-    """The installed file of 'pkg/msg/Name' (its .msg/.srv/.action, else its .idl), or of a name
-    with its extension ('pkg/msg/Name.idl'); LookupError when there is none.
+    """The installed definition file of an interface; LookupError when there is none.
+
+    For 'pkg/msg/Name' that is its .msg/.srv/.action, else its .idl; a name with its extension
+    ('pkg/msg/Name.idl') gives that file.  ValueError for a name of another shape.
     """
     from ament_index_python.packages import PackageNotFoundError, get_package_share_directory
     parts = interface_name.split('/')

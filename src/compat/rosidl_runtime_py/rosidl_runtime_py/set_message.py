@@ -1,5 +1,6 @@
-"""Filling a message from plain data (parsed YAML), as upstream rosidl_runtime_py.set_message does,
-with one-line errors that name the field, the expected type and the closest valid field name.
+"""Filling a message from plain data (parsed YAML), as upstream rosidl_runtime_py.set_message does.
+
+Its errors take one line, naming the field, the expected type and the closest valid field name.
 
 Stricter than upstream where upstream silently changes a value: integers refuse non-integral numbers
 (upstream truncates 2.7 to 2), booleans refuse strings (upstream makes 'false' True), numbers are
@@ -185,8 +186,9 @@ def _fill(message: Any, values: Any, path: str, stamps: _Stamps | None) -> Any:
 
 def set_message_fields(msg: Any, values: Any, expand_header_auto: bool = False,
                        expand_time_now: bool = False) -> list[StampSetter]:
-    """Set the message's fields from a mapping (e.g. parsed YAML), recursively; FieldError (a
-    ValueError) with one line naming the field on a misfit. None sets nothing.
+    """Set the message's fields from a mapping (e.g. parsed YAML), recursively; None sets nothing.
+
+    A misfit raises FieldError (a ValueError) with one line naming the field.
 
     With expand_header_auto, `header: auto` (a std_msgs/Header) is accepted, and with
     expand_time_now, `stamp: now` (a builtin_interfaces/Time); for each such field a setter is

@@ -1,6 +1,8 @@
-"""Interface types by name: upstream rosidl_runtime_py.utilities (get_message, get_service,
-get_action, get_interface, get_namespaced_type, is_message/is_service/is_action), on a lookup that
-says in one line why a name is wrong, with the closest installed name.
+"""Interface types by name: upstream rosidl_runtime_py.utilities.
+
+get_message, get_service, get_action, get_interface, get_namespaced_type and
+is_message/is_service/is_action, on a lookup that says in one line why a name is wrong, with the
+closest installed name.
 """
 
 import importlib
@@ -13,8 +15,9 @@ KIND_WORDS = {'msg': 'message', 'srv': 'service', 'action': 'action'}
 
 
 class InvalidType(ValueError):
-    """A type name that names no installed interface of the wanted kind; str() says why (a
-    ValueError, as upstream's lookups raise).
+    """A type name that names no installed interface of the wanted kind; str() says why.
+
+    A ValueError, as upstream's lookups raise.
     """
 
 
@@ -30,6 +33,7 @@ def split_type(type_name: str, kind: str) -> tuple[str, str, str]:
 
 
 def canonical_type(type_name: str, kind: str) -> str:
+    """'pkg/kind/Name' for 'pkg/Name' or 'pkg/kind/Name'; InvalidType for other shapes."""
     package, kind, name = split_type(type_name, kind)
     return f'{package}/{kind}/{name}'
 
@@ -75,11 +79,13 @@ def is_message(msg_or_type: Any) -> bool:
 
 
 def is_service(srv_or_type: Any) -> bool:
+    """A generated service class or instance: its Request and Response are messages."""
     return is_message(getattr(srv_or_type, 'Request', None)) and \
         is_message(getattr(srv_or_type, 'Response', None))
 
 
 def is_action(action_or_type: Any) -> bool:
+    """A generated action class or instance: its Goal, Result and Feedback are messages."""
     return all(is_message(getattr(action_or_type, part, None)) for part in ('Goal', 'Result', 'Feedback'))
 
 

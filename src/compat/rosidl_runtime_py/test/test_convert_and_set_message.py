@@ -65,7 +65,8 @@ def test_header_auto_is_expanded_only_when_asked_for():
 
 def test_ordereddict_is_in_declaration_order_and_nested():
     values = message_to_ordereddict(Twist(linear=Vector3(x=1.0)))
-    assert isinstance(values, OrderedDict) and list(values) == ['linear', 'angular']
+    assert isinstance(values, OrderedDict)
+    assert list(values) == ['linear', 'angular']
     assert values['linear'] == {'x': 1.0, 'y': 0.0, 'z': 0.0}
     assert message_to_ordereddict(String(data='abcdef'), truncate_length=3) == {'data': 'abc...'}
 
@@ -77,7 +78,8 @@ def test_csv_flattens_leaves():
 
 def test_fill_converts_ints_to_floats_and_nested_messages():
     twist = filled(Twist(), parse_yaml('{linear: {x: 2}, angular: {z: 1}}'))
-    assert twist.linear.x == 2.0 and twist.angular.z == 1.0
+    assert twist.linear.x == 2.0
+    assert twist.angular.z == 1.0
     assert filled(UInt8(), {'data': 255.0}).data == 255
     assert filled(String(), {'data': 5}).data == '5'
     assert filled(Twist(), None) == Twist()

@@ -37,8 +37,10 @@ def test_names():
     assert full_node_name('/ns', 'talker') == '/ns/talker'
     assert split_node_name('ns/talker') == ('/ns', 'talker')
     assert split_node_name('/talker') == ('/', 'talker')
-    assert is_hidden_node('/ns/_hidden') and not is_hidden_node('/_ns/visible')
-    assert is_hidden_name('/fibonacci/_action/status') and not is_hidden_name('/chatter')
+    assert is_hidden_node('/ns/_hidden')
+    assert not is_hidden_node('/_ns/visible')
+    assert is_hidden_name('/fibonacci/_action/status')
+    assert not is_hidden_name('/chatter')
     assert did_you_mean('/chatt', ['/chatter', '/rosout']) == " (did you mean '/chatter'?)"
     assert did_you_mean('/xyz', ['/chatter']) == ''
 
@@ -59,19 +61,24 @@ def test_upstream_lookups_return_the_generated_classes():
     from std_msgs.msg import String
     from std_srvs.srv import SetBool
     from turtlesim.action import RotateAbsolute
-    assert get_message('std_msgs/msg/String') is String and get_message('std_msgs/String') is String
+    assert get_message('std_msgs/msg/String') is String
+    assert get_message('std_msgs/String') is String
     assert get_service('std_srvs/srv/SetBool') is SetBool
     assert get_action('turtlesim/action/RotateAbsolute') is RotateAbsolute
     assert get_interface('std_srvs/srv/SetBool') is SetBool
-    assert is_message(String) and is_message(String()) and not is_message(SetBool)
-    assert is_service(SetBool) and not is_service(String)
-    assert is_action(RotateAbsolute) and not is_action(SetBool)
+    assert is_message(String)
+    assert is_message(String())
+    assert not is_message(SetBool)
+    assert is_service(SetBool)
+    assert not is_service(String)
+    assert is_action(RotateAbsolute)
+    assert not is_action(SetBool)
     namespaced = get_namespaced_type('std_msgs/msg/String')
     assert (namespaced.namespaces, namespaced.name) == (['std_msgs', 'msg'], 'String')
     assert import_message_from_namespaced_type(namespaced) is String
 
 
-@pytest.mark.parametrize('call, name, message', [
+@pytest.mark.parametrize(('call', 'name', 'message'), [
     (get_message, 'std_msgs/msg/Strng', "did you mean 'String'"),
     (get_message, 'nonexistent_pkg/msg/X', "unknown package 'nonexistent_pkg'"),
     (get_service, 'std_msgs/msg/String', 'is not a service type name'),
@@ -97,7 +104,8 @@ def test_installed_interfaces_as_upstream_lists_them():
 
 def test_interface_path_is_the_installed_definition():
     path = get_interface_path('std_msgs/msg/String')
-    assert path.endswith(os.path.join('std_msgs', 'msg', 'String.msg')) and os.path.isfile(path)
+    assert path.endswith(os.path.join('std_msgs', 'msg', 'String.msg'))
+    assert os.path.isfile(path)
     assert get_interface_path('std_msgs/msg/String.idl').endswith('String.idl')
     with pytest.raises(LookupError, match="Could not find the interface 'std_msgs/msg/Nope'"):
         get_interface_path('std_msgs/msg/Nope')

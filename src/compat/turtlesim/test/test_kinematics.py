@@ -118,7 +118,8 @@ def test_pen_draws_the_trail_and_teleport_honours_pen_off(new_turtle):
     row = round((world.HEIGHT - 2.0) * world.METER_PX)
     assert canvas.sample((135, row)) == (0xB3, 0xB8, 0xFF)
     turtle.set_pen(10, 20, 30, 0, 1)  # off: nothing else changes
-    assert turtle.pen.color == (0xB3, 0xB8, 0xFF) and turtle.pen.width == 3
+    assert turtle.pen.color == (0xB3, 0xB8, 0xFF)
+    assert turtle.pen.width == 3
     turtle.teleport_absolute(4.0, 5.0, 0.0)
     run(turtle, 1, canvas)
     assert canvas.sample((180, row - 60)) == (255, 255, 255)

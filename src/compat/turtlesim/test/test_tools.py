@@ -24,7 +24,8 @@ def test_teleop_keys(key, expected):
 def test_teleop_cancel_and_quit_are_lowercase_only():
     assert isinstance(action_for(ord('f')), Cancel)
     assert isinstance(action_for(ord('q')), Quit)
-    assert action_for(ord('F')) is None and action_for(ord('Q')) is None
+    assert action_for(ord('F')) is None
+    assert action_for(ord('Q')) is None
 
 
 def test_mimic_copies_speed_magnitude_and_turn_rate():

@@ -40,6 +40,8 @@ class SpriteView:
 
 
 class Canvas:
+    """One simulator's drawing surface: the path layer of trails (size x size pixels) and the frames."""
+
     def __init__(self, size: int = world.CANVAS_PX) -> None:
         self.size = size
         self.path = Image.new('RGBA', (size, size), TRANSPARENT_WHITE)
@@ -86,6 +88,7 @@ class Canvas:
 
 
 def encode_png(image: Image.Image) -> bytes:
+    """The image as PNG bytes, as the simulator's CompressedImage frames carry it."""
     buffer = io.BytesIO()
     image.save(buffer, format='PNG')
     return buffer.getvalue()

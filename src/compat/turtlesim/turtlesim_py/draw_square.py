@@ -27,6 +27,8 @@ HUMBLE_QOS_DEPTH = 1
 
 
 class State(enum.Enum):
+    """The four phases of one side of the square, in the order the timer goes through them."""
+
     FORWARD = 0
     STOP_FORWARD = 1
     TURN = 2
@@ -35,6 +37,8 @@ class State(enum.Enum):
 
 @dataclass(frozen=True)
 class Goal:
+    """Where a phase should end: position in m and heading in rad, in the simulator's frame."""
+
     x: float
     y: float
     theta: float
@@ -46,19 +50,23 @@ def wrap(angle: float) -> float:
 
 
 def reached(pose: Pose, goal: Goal) -> bool:
+    """Whether the pose is within 0.1 m and 0.01 rad of the goal, as upstream checks (angles not wrapped)."""
     return (abs(pose.x - goal.x) < 0.1 and abs(pose.y - goal.y) < 0.1
             and abs(pose.theta - goal.theta) < 0.01)
 
 
 def stopped(pose: Pose) -> bool:
+    """Whether the turtle has come to a standstill (both velocities below 0.0001)."""
     return pose.linear_velocity < 0.0001 and pose.angular_velocity < 0.0001
 
 
 def goal_ahead(pose: Pose) -> Goal:
+    """The goal SIDE metres straight ahead of the pose, with the same heading."""
     return Goal(pose.x + SIDE * math.cos(pose.theta), pose.y + SIDE * math.sin(pose.theta), pose.theta)
 
 
 def goal_turned(pose: Pose) -> Goal:
+    """The goal a quarter turn to the left of the pose, on the same spot."""
     return Goal(pose.x, pose.y, wrap(pose.theta + PI / 2.0))
 
 
@@ -80,6 +88,8 @@ def step(state: State, pose: Pose, goal: Goal) -> tuple[State, Goal, tuple[float
 
 
 class DrawSquare(Node):
+    """Node `draw_square`: resets the simulator, then drives turtle1 around the square with a 16 ms timer."""
+
     def __init__(self) -> None:
         super().__init__('draw_square')
         self._cmd = self.create_publisher(Twist, 'turtle1/cmd_vel', HUMBLE_QOS_DEPTH)
@@ -126,6 +136,7 @@ class DrawSquare(Node):
 
 
 def main(args: list[str] | None = None) -> None:
+    """Run the node until Ctrl-C; args is the command line rclpy reads (None: sys.argv)."""
     spin_node(DrawSquare, args)
 
 

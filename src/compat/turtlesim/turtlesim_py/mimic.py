@@ -16,6 +16,7 @@ HUMBLE_QOS_DEPTH = 1
 
 
 def twist_for(pose: Pose) -> Twist:
+    """The Twist that repeats a pose's motion: its speed forwards and its turn rate."""
     twist = Twist()
     twist.linear.x = float(pose.linear_velocity)
     twist.angular.z = float(pose.angular_velocity)
@@ -23,6 +24,8 @@ def twist_for(pose: Pose) -> Twist:
 
 
 class Mimic(Node):
+    """Node `turtle_mimic`: a Twist on output/cmd_vel for every Pose on input/pose."""
+
     def __init__(self) -> None:
         super().__init__('turtle_mimic')
         self._publisher = self.create_publisher(Twist, 'output/cmd_vel', HUMBLE_QOS_DEPTH)
@@ -33,6 +36,7 @@ class Mimic(Node):
 
 
 def main(args: list[str] | None = None) -> None:
+    """Run the node until Ctrl-C; args is the command line rclpy reads (None: sys.argv)."""
     spin_node(Mimic, args)
 
 

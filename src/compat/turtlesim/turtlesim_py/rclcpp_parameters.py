@@ -15,6 +15,7 @@ PREFIX = 'qos_overrides./parameter_events.publisher.'
 
 
 def declare_parameter_events_qos(node: Node) -> None:
+    """Declare the four read-only qos_overrides./parameter_events.publisher.* parameters on the node."""
     profile = qos_profile_parameter_events
     values = {
         'depth': profile.depth,

@@ -20,8 +20,13 @@ GOAL_SPEED = 1.0  # rad/s
 
 
 class Logger(Protocol):
-    def info(self, message: str) -> object: ...
-    def warning(self, message: str) -> object: ...
+    """The logging a Turtle does: an rclpy logger, or a test's stand-in."""
+
+    def info(self, message: str) -> object:
+        """Log an informational line."""
+
+    def warning(self, message: str) -> object:
+        """Log a warning line."""
 
 
 @dataclass(frozen=True)
@@ -37,6 +42,8 @@ class Pose:
 
 @dataclass
 class Pen:
+    """The turtle's pen: RGB colour, width in pixels, and whether it is down (drawing)."""
+
     color: tuple[int, int, int] = DEFAULT_PEN_COLOR
     width: int = DEFAULT_PEN_WIDTH
     on: bool = True
@@ -51,6 +58,7 @@ class RotationGoal:
         self.delta = 0.0  # the result so far
 
     def cancel_requested(self) -> bool:
+        """Whether the client asked to cancel the goal; the node's subclass answers, this base never does."""
         return False
 
     def publish_feedback(self, remaining: float) -> None:
@@ -62,6 +70,8 @@ class RotationGoal:
 
 @dataclass
 class TickResult:
+    """What one tick gives the node: the pose and colour-sensor reading to publish, and whether to repaint."""
+
     pose: Pose
     color: tuple[int, int, int]
     modified: bool  # something visible changed: repaint
@@ -77,6 +87,11 @@ class _Teleport:
 
 @dataclass
 class Turtle:
+    """One turtle: internal position (metres from the left and top), heading, velocities, pen and goal.
+
+    Commands change it as they arrive; update() moves it one tick.
+    """
+
     name: str
     x: float  # internal coordinates: metres from the left and from the top
     y_down: float
@@ -100,6 +115,7 @@ class Turtle:
 
     @property
     def world_y(self) -> float:
+        """The turtle's y in the world frame: metres up from the bottom edge."""
         return world.HEIGHT - self.y_down
 
     # --- commands, applied as they arrive ---------------------------------------------------
@@ -113,9 +129,11 @@ class Turtle:
         self.last_command_time = now
 
     def teleport_absolute(self, x: float, y: float, theta: float) -> None:
+        """Queue a teleport to world (x, y, theta), done at the start of the next tick."""
         self._teleports.append(_Teleport(False, x, y, theta))
 
     def teleport_relative(self, linear: float, angular: float) -> None:
+        """Queue a move of linear m along the heading after turning by angular rad, done at the next tick."""
         self._teleports.append(_Teleport(True, linear, angular))
 
     def set_pen(self, r: int, g: int, b: int, width: int, off: int) -> None:

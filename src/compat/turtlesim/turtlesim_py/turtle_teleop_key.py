@@ -45,20 +45,28 @@ HEADINGS = {'g': 0.0, 't': 0.7854, 'r': 1.5708, 'e': 2.3562, 'd': 3.1416,
 
 @dataclass(frozen=True)
 class Drive:
+    """An arrow key: one Twist, its speeds as multiples of the scale parameters."""
+
     linear: float  # multiples of scale_linear
     angular: float  # multiples of scale_angular
 
 
 @dataclass(frozen=True)
 class Rotate:
+    """A key of the ring around F: a RotateAbsolute goal to heading theta (rad)."""
+
     theta: float
 
 
 class Cancel:
+    """The f key: cancel the last accepted rotation goal."""
+
     pass
 
 
 class Quit:
+    """The q key: quit."""
+
     pass
 
 
@@ -118,6 +126,8 @@ class RawTerminal:
 
 
 class TeleopTurtle(Node):
+    """Node `teleop_turtle`: publishes the keys' Twists and sends and cancels their rotation goals."""
+
     def __init__(self) -> None:
         super().__init__('teleop_turtle')
         self.declare_parameter('scale_angular', 2.0, ParameterDescriptor(
@@ -135,6 +145,7 @@ class TeleopTurtle(Node):
         self.create_timer(0.05, self._send_pending_goal)
 
     def perform(self, action: Action) -> None:
+        """Carry out one key's action; Quit is the caller's to handle."""
         if isinstance(action, Drive):
             self.drive(action)
         elif isinstance(action, Rotate):
@@ -143,6 +154,7 @@ class TeleopTurtle(Node):
             self.cancel()
 
     def drive(self, drive: Drive) -> None:
+        """Publish the arrow's Twist on turtle1/cmd_vel, scaled by scale_linear and scale_angular."""
         twist = Twist()
         twist.linear.x = drive.linear * self.get_parameter('scale_linear').value
         twist.angular.z = drive.angular * self.get_parameter('scale_angular').value
@@ -150,6 +162,7 @@ class TeleopTurtle(Node):
             self._twist_pub.publish(twist)
 
     def rotate(self, theta: float) -> None:
+        """Send a rotation goal to heading theta (rad), or keep it until the action server is there."""
         with self._pending_lock:
             self._pending_theta = theta
         self._send_pending_goal()
@@ -169,12 +182,18 @@ class TeleopTurtle(Node):
             self._goal_handle = handle
 
     def cancel(self) -> None:
+        """Ask to cancel the last accepted rotation goal, if there is one; the answer is not awaited."""
         if self._goal_handle is not None:
             self.get_logger().debug('Sending cancel request')
             self._goal_handle.cancel_goal_async()  # whatever the answer, there is nothing to do
 
 
 def main(args: list[str] | None = None) -> None:
+    """Run the node, reading keys until q, Ctrl-C or the terminal hangs up; then exit.
+
+    args is the command line rclpy reads (None: sys.argv).  Exits with code 2 when standard input is
+    not a terminal, 1 on a read error.
+    """
     stdin = sys.stdin.fileno()
     if not os.isatty(stdin):
         print('turtle_teleop_key: standard input is not a terminal; run it in an interactive terminal',

@@ -62,6 +62,7 @@ Callback = TypeVar('Callback', bound=Callable[..., Any])
 
 
 def background_descriptor(channel: str) -> ParameterDescriptor:
+    """The descriptor of a background_r/g/b parameter: an integer 0..255."""
     return ParameterDescriptor(
         description=f'{channel} channel of the background color',
         integer_range=[IntegerRange(from_value=0, to_value=255, step=1)])
@@ -87,12 +88,15 @@ class GoalOfHandle(RotationGoal):
         self._wake = wake
 
     def cancel_requested(self) -> bool:
+        """Whether the action client asked to cancel the goal."""
         return self.handle.is_cancel_requested
 
     def publish_feedback(self, remaining: float) -> None:
+        """Send the remaining angle (rad) to the action client as feedback."""
         self.handle.publish_feedback(RotateAbsolute.Feedback(remaining=remaining))
 
     def finish(self, status: str, delta: float) -> None:
+        """End the goal handle with status and resolve `done` with the rotated delta (rad)."""
         {'succeeded': self.handle.succeed, 'canceled': self.handle.canceled,
          'aborted': self.handle.abort}[status]()
         self.done.set_result(RotateAbsolute.Result(delta=delta))
@@ -134,6 +138,7 @@ class TurtleEndpoints:
             raise
 
     def destroy(self) -> None:
+        """Abort the turtle's goal and destroy its endpoints, newest first: the turtle leaves ROS."""
         self.turtle.abort_goal()
         for entity in reversed(self._entities):
             if isinstance(entity, ActionServer):
@@ -147,6 +152,7 @@ class TurtleEndpoints:
         self._entities.clear()
 
     def publish(self, result: TickResult) -> None:
+        """Publish one tick's pose and colour-sensor reading."""
         pose, color = self._pose, self._color  # reused: building messages costs more than filling them
         p = result.pose
         pose.x, pose.y, pose.theta = p.x, p.y, p.theta
@@ -203,6 +209,12 @@ class TurtleEndpoints:
 
 
 class TurtlesimNode(Node):
+    """Node `turtlesim`: the pond, its turtles' endpoints, and the 16 ms tick that moves them.
+
+    canvas_png is where the hidden ~/_save_canvas service writes the canvas; publish_image sends frames on
+    ~/canvas/compressed; window opens a Tk window when there is a display.
+    """
+
     def __init__(self, canvas_png: Path = Path('turtlesim.png'), publish_image: bool = False,
                  window: bool = False) -> None:
         # Set first: rclpy destroys a half-built node (bad --ros-args parameter) via destroy_node().
@@ -285,11 +297,13 @@ class TurtlesimNode(Node):
             self.window = None
 
     def destroy_node(self) -> None:
+        """Stop the tick thread (which closes the window), then destroy the node."""
         if self._ticks is not None:
             self._ticks.stop()  # closes the window on the tick thread
         super().destroy_node()
 
     def now(self) -> float:
+        """The node clock's time in seconds: simulated time when use_sim_time is set."""
         return self.get_clock().now().nanoseconds * 1e-9
 
     # --- turtles -----------------------------------------------------------------------
@@ -363,9 +377,11 @@ class TurtlesimNode(Node):
             self._mark_changed()
 
     def background(self) -> tuple[int, int, int]:
+        """The background colour (r, g, b) from the background_r/g/b parameters."""
         return tuple(self.get_parameter(f'background_{c}').value for c in 'rgb')
 
     def render(self) -> Image.Image:
+        """The canvas as it looks now: background, trails, then the turtles."""
         views = [SpriteView(name, *world.to_pixels(e.turtle.x, e.turtle.y_down), e.turtle.theta,
                             e.turtle.sprite) for name, e in self.turtles.items()]
         return self.canvas.render(self.background(), views)
@@ -438,6 +454,7 @@ class TurtlesimNode(Node):
 
 
 def parse_options(argv: list[str]) -> argparse.Namespace:
+    """The node's own options (--headless, --canvas-png, --publish-image), with the ROS arguments removed."""
     parser = argparse.ArgumentParser(prog='turtlesim_node', description=__doc__.splitlines()[0])
     parser.add_argument('--headless', action='store_true', help='never open a window')
     parser.add_argument('--canvas-png', type=Path, default=Path('turtlesim.png'),
@@ -449,6 +466,7 @@ def parse_options(argv: list[str]) -> argparse.Namespace:
 
 
 def main(args: list[str] | None = None) -> None:
+    """Run the simulator until Ctrl-C; args is the command line, program first (None: sys.argv)."""
     argv = sys.argv if args is None else args
     options = parse_options(argv)
     spin_node(lambda: TurtlesimNode(options.canvas_png, options.publish_image,

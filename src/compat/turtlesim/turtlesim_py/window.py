@@ -16,6 +16,8 @@ from turtlesim_py import world
 
 
 class CanvasWindow:
+    """The TurtleSim window, showing the canvas; on_close runs when the user closes it."""
+
     def __init__(self, on_close: Callable[[], None]) -> None:
         """Raises tkinter.TclError when no display can be opened."""
         self._root = tkinter.Tk()
@@ -28,6 +30,7 @@ class CanvasWindow:
         self._root.protocol('WM_DELETE_WINDOW', on_close)
 
     def show(self, frame: Image.Image) -> None:
+        """Show a rendered frame, repainting the window's one image in place."""
         self._photo.paste(frame)
 
     def pump(self) -> None:
@@ -35,4 +38,5 @@ class CanvasWindow:
         self._root.update()
 
     def close(self) -> None:
+        """Destroy the window; it cannot be used again."""
         self._root.destroy()

@@ -25,9 +25,10 @@ TICK_CATCH_UP = 0.5
 
 
 def tick_time(last_tick: float, now: float) -> float:
-    """The time of the tick after the one at last_tick, when the clock reads now: its due time
-    while it is at most TICK_CATCH_UP late (a made-up tick), else now (the clock jumped, stopped
-    under sim time, or the ticks fell too far behind).
+    """The time of the tick after the one at last_tick, when the clock reads now.
+
+    That is its due time while it is at most TICK_CATCH_UP late (a made-up tick), else now (the
+    clock jumped, stopped under sim time, or the ticks fell too far behind).
     """
     due = last_tick + TICK_DT
     return due if due <= now <= due + TICK_CATCH_UP else now
@@ -63,10 +64,12 @@ def integrate(x: float, y_down: float, theta: float, vx: float, vy: float, omega
 
 
 def outside_world(x: float, y_down: float) -> bool:
+    """Whether an internal position lies beyond the walls (Turtle.update then warns and clamps it)."""
     return x < 0.0 or x > WIDTH or y_down < 0.0 or y_down > HEIGHT
 
 
 def clamp_to_world(x: float, y_down: float) -> tuple[float, float]:
+    """An internal position moved onto the nearest point inside the walls."""
     return min(max(x, 0.0), WIDTH), min(max(y_down, 0.0), HEIGHT)
 
 

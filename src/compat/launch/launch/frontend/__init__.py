@@ -76,9 +76,9 @@ class Parser:
 
     @classmethod
     def load(cls, file: str | os.PathLike | TextIO) -> tuple[Entity, Parser]:
-        """The root entity of an XML or YAML launch file and a parser for it, as upstream's
-        `root, parser = Parser.load(path)` then `parser.parse_description(root)`.
+        """The root entity of an XML or YAML launch file and a parser for it.
 
+        As upstream's `root, parser = Parser.load(path)` then `parser.parse_description(root)`.
         file is a path or an open text file; the extension picks the format, and a file with
         another extension is tried as XML, then as YAML.
         """
@@ -132,7 +132,8 @@ class Parser:
         raise TypeError(f'expected a text value, got {value!r}')
 
     def boolean(self, entity: Entity, name: str) -> bool | None:
-        """A true/false attribute, read with YAML's rules as upstream's typed attributes are:
+        """A true/false attribute, read with YAML's rules as upstream's typed attributes are.
+
         true/false, yes/no, on/off in any case (YAML booleans pass as they are).
         """
         from launch.utilities.type_utils import coerce_to_type

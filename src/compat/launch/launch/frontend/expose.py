@@ -12,8 +12,10 @@ if TYPE_CHECKING:
 
 
 class ParsesEntity(Protocol):
-    """An action class a tag builds: its parse classmethod reads the tag into the class to make and
-    that class's constructor arguments (whose types only that class knows).
+    """An action class a tag builds.
+
+    Its parse classmethod reads the tag into the class to make and that class's constructor arguments
+    (whose types only that class knows).
     """
 
     def parse(self, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]: ...

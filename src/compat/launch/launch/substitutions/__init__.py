@@ -321,8 +321,10 @@ def _is_number_text(text: str) -> bool:
 
 
 class EqualsSubstitution(Substitution):
-    """'true' when both sides are equal: as booleans if both are true/false/1/0, as numbers (close
-    enough) if both are numbers, else as text.  Sides may be any value: None, bools, numbers.
+    """'true' when both sides are equal, else 'false'.
+
+    They are compared as booleans if both are true/false/1/0, as numbers (close enough) if both are
+    numbers, else as text.  Sides may be any value: None, bools, numbers.
     """
 
     def __init__(self, left: object, right: object) -> None:

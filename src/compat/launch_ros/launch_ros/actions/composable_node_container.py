@@ -29,21 +29,27 @@ def _refuse(what: str) -> NoReturn:
 
 @expose_action('node_container')
 class ComposableNodeContainer(Action):
+    """Upstream's container of composable nodes: refused when constructed, with the reason and what to use."""
+
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         _refuse('ComposableNodeContainer')
 
     @classmethod
     def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        """Refuse a <node_container> tag, in the file's own error, before anything starts."""
         raise entity.error(COMPOSITION_UNAVAILABLE.format(what='<node_container>'))
 
 
 @expose_action('load_composable_node')
 class LoadComposableNodes(Action):
+    """Upstream's action that loads composable nodes into a container: refused like the container."""
+
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         _refuse('LoadComposableNodes')
 
     @classmethod
     def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        """Refuse a <load_composable_node> tag, in the file's own error, before anything starts."""
         raise entity.error(COMPOSITION_UNAVAILABLE.format(what='<load_composable_node>'))
 
 

@@ -53,6 +53,7 @@ class LifecycleNode(Node):
 
     @classmethod
     def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        """Read a <lifecycle_node> tag: a <node>'s arguments, plus the optional boolean autostart."""
         _cls, kwargs = super().parse(entity, parser)
         autostart = parser.boolean(entity, 'autostart')
         if autostart is not None:
@@ -61,13 +62,16 @@ class LifecycleNode(Node):
 
     @property
     def is_lifecycle_node(self) -> bool:
+        """Always True: the mark OnStateTransition checks its target_lifecycle_node for."""
         return True
 
     @property
     def node_autostart(self) -> bool:
+        """Whether launch configures and then activates the node itself (the autostart argument)."""
         return self.__autostart
 
     def describe(self) -> str:
+        """'LifecycleNode(package=..., executable=...)'."""
         return 'Lifecycle' + super().describe()
 
     def _on_transition_message(self, context: LaunchContext, msg: Any) -> None:
@@ -128,6 +132,11 @@ class LifecycleNode(Node):
         return []
 
     def execute(self, context: LaunchContext) -> None:
+        """Start the node as a Node does, then watch its transitions and drive its change_state service.
+
+        With autostart, request the configure transition at once (the activate one follows it).
+        Raises RuntimeError if the node's full name could not be worked out.
+        """
         super().execute(context)  # expands the name, starts the process
         if '<unknown>' in self.node_name:
             raise RuntimeError(f'lifecycle node name could not be expanded: {self.node_name}')

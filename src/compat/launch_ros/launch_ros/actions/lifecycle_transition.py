@@ -26,9 +26,11 @@ _TRANSITION = lifecycle_msgs.msg.Transition
 
 
 class LifecycleTransition(Action):
-    """Request transition_ids[0] of every named node; each node's next transition is requested
-    when the node has reached the goal state of the previous one.  A node that ends up in
-    'errorprocessing' gets no further transitions.  The sequence must be possible.
+    """Request transition_ids of every named node, in order, each once the previous one succeeded.
+
+    The first transition is requested at once; each node's next one when the node has reached the
+    goal state of the previous one.  A node that ends up in 'errorprocessing' gets no further
+    transitions.  The sequence must be possible.
     """
 
     # transition id -> the StateTransition (start, goal) labels that mean it succeeded
@@ -71,6 +73,10 @@ class LifecycleTransition(Action):
                 pass
 
     def execute(self, context: LaunchContext) -> list[Action]:
+        """Register the handlers that chain each node's transitions, then request the first ones.
+
+        Raises ValueError for a transition id that is not an integer or has no known goal state.
+        """
         names = [perform_substitutions(context, name) for name in self.lifecycle_node_names]
         ids = []
         for item in self.transition_ids:

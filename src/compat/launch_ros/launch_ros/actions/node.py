@@ -64,6 +64,7 @@ def validate_namespace(namespace: str) -> None:
 
 
 def make_namespace_absolute(namespace: str) -> str:
+    """The namespace with exactly one leading '/' and no trailing one; '/' for an empty one."""
     namespace = '/' + namespace.strip('/') if namespace.strip('/') else '/'
     return namespace
 
@@ -114,6 +115,7 @@ class Node(ExecuteProcess):
     # ---- frontend ----
     @classmethod
     def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        """Read a <node> tag: process attributes, pkg, exec, name, namespace, args, <param>, <remap>."""
         kwargs = cls._parse_process_attributes(entity, parser)
         kwargs.pop('name', None)  # in <node>, name is the node name, not the process label
         kwargs['executable'] = parser.substitutions(entity.get_attr('exec'))
@@ -148,13 +150,16 @@ class Node(ExecuteProcess):
 
     @property
     def expanded_node_namespace(self) -> str | None:
+        """The node's absolute namespace, pushed ones included; None before execute or when none was given."""
         return self.__expanded_namespace
 
     @property
     def expanded_remapping_rules(self) -> list[tuple[str, str]] | None:
+        """The (from, to) remappings passed on the command line, scoped ones first; None until then."""
         return self.__expanded_remappings
 
     def describe(self) -> str:
+        """'Node(package=..., executable=...)': its line in LaunchIntrospector's tree."""
         package = describe_substitutions(self.__package) if self.__package else None
         return f'Node(package={package}, executable={describe_substitutions(self.__executable)})'
 
@@ -183,6 +188,10 @@ class Node(ExecuteProcess):
         self.__expanded_namespace = namespace
 
     def execute(self, context: LaunchContext) -> None:
+        """Expand and check the node's name and namespace, then start the process.
+
+        Warns when another node of this launch already has the same full name.
+        """
         self._expand_names(context)
         super().execute(context)
         label = self.process_description.final_name

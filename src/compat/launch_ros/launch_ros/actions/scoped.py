@@ -32,9 +32,11 @@ class PushROSNamespace(Action):
 
     @classmethod
     def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        """Read a <push_ros_namespace> tag's namespace attribute."""
         return cls, {'namespace': parser.substitutions(entity.get_attr('namespace'))}
 
     def execute(self, context: LaunchContext) -> None:
+        """Push the namespace, under the one already pushed if relative; ValueError if it is not valid."""
         pushed = context.launch_configurations.get('ros_namespace')
         namespace = make_namespace_absolute(
             join_namespaces(pushed, perform_substitutions(context, self.namespace)))
@@ -56,11 +58,13 @@ class SetParameter(Action):
 
     @classmethod
     def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        """Read a <set_parameter> tag's name and value (a non-text YAML value passes as it is)."""
         value = entity.get_attr('value')
         return cls, {'name': parser.substitutions(entity.get_attr('name')),
                      'value': parser.substitutions(value) if isinstance(value, str) else value}
 
     def execute(self, context: LaunchContext) -> None:
+        """Add name:=value to the parameters the scope's later Nodes get."""
         name = perform_substitutions(context, self.name)
         value = evaluate_value(context, self.value, name)
         # A new list, not an append: the enclosing scope keeps its own.
@@ -78,9 +82,11 @@ class SetParametersFromFile(Action):
 
     @classmethod
     def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        """Read a <set_parameters_from_file> tag's filename attribute."""
         return cls, {'filename': parser.substitutions(entity.get_attr('filename'))}
 
     def execute(self, context: LaunchContext) -> None:
+        """Add the file, as an absolute path, to the parameters the scope's later Nodes get."""
         path = os.path.abspath(perform_substitutions(context, self.filename))
         context.launch_configurations['global_params'] = [
             *context.launch_configurations.get('global_params', []), path]
@@ -97,10 +103,12 @@ class SetRemap(Action):
 
     @classmethod
     def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        """Read a <set_remap> tag's from and to attributes."""
         return cls, {'src': parser.substitutions(entity.get_attr('from')),
                      'dst': parser.substitutions(entity.get_attr('to'))}
 
     def execute(self, context: LaunchContext) -> None:
+        """Add the rule to the remappings the scope's later Nodes get."""
         rule = (perform_substitutions(context, self.src), perform_substitutions(context, self.dst))
         context.launch_configurations['ros_remaps'] = [
             *context.launch_configurations.get('ros_remaps', []), rule]

@@ -21,8 +21,10 @@ if TYPE_CHECKING:
 
 @expose_action('set_ros_log_dir')
 class SetROSLogDir(Action):
-    """Set ROS_LOG_DIR in launch's environment; a relative new_log_dir goes below the current one
-    ($ROS_LOG_DIR, else rcl's default $ROS_HOME/log or ~/.ros/log).  Scoped by a GroupAction.
+    """Set ROS_LOG_DIR in launch's environment.  Scoped by a GroupAction.
+
+    A relative new_log_dir goes below the current one ($ROS_LOG_DIR, else rcl's default $ROS_HOME/log
+    or ~/.ros/log); an absolute one replaces it.
     """
 
     def __init__(self, new_log_dir: SomeSubstitutionsType, **kwargs: Any) -> None:
@@ -31,9 +33,11 @@ class SetROSLogDir(Action):
 
     @classmethod
     def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        """Read a <set_ros_log_dir> tag's new_log_dir attribute."""
         return cls, {'new_log_dir': parser.substitutions(entity.get_attr('new_log_dir'))}
 
     def execute(self, context: LaunchContext) -> None:
+        """Set ROS_LOG_DIR for the processes started after it; ValueError for an empty directory."""
         new_log_dir = perform_substitutions(context, self.log_dir)
         if not new_log_dir:
             raise ValueError('SetROSLogDir needs a directory, got an empty one')

@@ -28,9 +28,11 @@ class SetUseSimTime(SetParameter):
 
     @classmethod
     def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        """Read a <set_use_sim_time> tag's value attribute."""
         return cls, {'value': parser.substitutions(entity.get_attr('value'))}
 
     def execute(self, context: LaunchContext) -> None:
+        """Check the value and add use_sim_time to the scope's parameters; ValueError unless true/false."""
         text = perform_substitutions(context, self.value).strip().lower()
         if text not in ('true', 'false'):
             raise ValueError(f"SetUseSimTime value must be 'true' or 'false', got {text!r}")

@@ -34,13 +34,17 @@ def package_prefix(package: str) -> str:
 
 
 class FindPackage(Substitution):
+    """Base of the package look-ups: the package name is performed, then find() gives the path."""
+
     def __init__(self, package: SomeSubstitutionsType) -> None:
         self.package = normalize_to_list_of_substitutions(package)
 
     def find(self, package: str) -> str:
+        """The path this look-up gives for a package name; each subclass implements it."""
         raise NotImplementedError
 
     def perform(self, context: LaunchContext) -> str:
+        """The path for the performed package name; SubstitutionFailure if the package is not installed."""
         return self.find(perform_substitutions(context, self.package))
 
 
@@ -48,9 +52,11 @@ class FindPackagePrefix(FindPackage):
     """<prefix> of the package."""
 
     def find(self, package: str) -> str:
+        """The package's install prefix."""
         return package_prefix(package)
 
     def describe(self) -> str:
+        """'FindPackagePrefix(pkg=...)': a readable form without a context."""
         return f'FindPackagePrefix(pkg={describe_substitutions(self.package)})'
 
 
@@ -58,9 +64,11 @@ class FindPackageShare(FindPackage):
     """<prefix>/share/<package>."""
 
     def find(self, package: str) -> str:
+        """The package's share directory, <prefix>/share/<package> (whether it exists is not checked)."""
         return os.path.join(package_prefix(package), 'share', package)
 
     def describe(self) -> str:
+        """'FindPackageShare(pkg=...)': a readable form without a context."""
         return f'FindPackageShare(pkg={describe_substitutions(self.package)})'
 
 
@@ -72,6 +80,10 @@ class ExecutableInPackage(Substitution):
         self.package = normalize_to_list_of_substitutions(package)
 
     def perform(self, context: LaunchContext) -> str:
+        """The executable's full path.
+
+        Raises SubstitutionFailure if the package, its lib/<package> directory or the executable is missing.
+        """
         package = perform_substitutions(context, self.package)
         executable = perform_substitutions(context, self.executable)
         prefix = package_prefix(package)
@@ -86,6 +98,7 @@ class ExecutableInPackage(Substitution):
         return path
 
     def describe(self) -> str:
+        """'ExecInPkg(pkg=..., exec=...)': a readable form without a context."""
         return (f'ExecInPkg(pkg={describe_substitutions(self.package)}, '
                 f'exec={describe_substitutions(self.executable)})')
 

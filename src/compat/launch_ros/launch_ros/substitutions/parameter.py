@@ -29,9 +29,11 @@ class Parameter(Substitution):
         self.name = normalize_to_list_of_substitutions(name)
 
     def describe(self) -> str:
+        """'Parameter(name=...)': a readable form without a context."""
         return f'Parameter(name={describe_substitutions(self.name)})'
 
     def perform(self, context: LaunchContext) -> str:
+        """The latest value set for the name in scope; SubstitutionFailure if there is none."""
         from launch_ros.parameters import yaml_text
 
         name = perform_substitutions(context, self.name)

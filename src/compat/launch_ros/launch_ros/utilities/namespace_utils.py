@@ -8,6 +8,7 @@ __all__ = ['is_root_namespace', 'make_namespace_absolute', 'prefix_namespace']
 
 
 def is_root_namespace(namespace: str) -> bool:
+    """Whether a namespace is the root one: '' or '/'."""
     return namespace in ('', '/')
 
 

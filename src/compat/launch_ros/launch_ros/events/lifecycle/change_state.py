@@ -38,8 +38,10 @@ VALID_STATES = {
 
 
 class ChangeState(Event):
-    """Every LifecycleNode action for which lifecycle_node_matcher(action) is true calls its
-    node's change_state service with transition_id (a lifecycle_msgs Transition constant).
+    """A request that the matching lifecycle nodes make a transition.
+
+    Every LifecycleNode action for which lifecycle_node_matcher(action) is true calls its node's
+    change_state service with transition_id (a lifecycle_msgs Transition constant).
     """
 
     name = 'launch_ros.events.lifecycle.ChangeState'

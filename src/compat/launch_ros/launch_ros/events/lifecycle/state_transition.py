@@ -8,9 +8,11 @@ from launch.event import Event
 
 
 class StateTransition(Event):
-    """transition, start_state and goal_state are the labels of the node's TransitionEvent message:
-    a configure is announced twice, start 'unconfigured' -> goal 'configuring', then start
-    'configuring' -> goal 'inactive' once the node's on_configure succeeded.
+    """A TransitionEvent message that a LifecycleNode action's node published.
+
+    transition, start_state and goal_state are the labels of the message: a configure is announced
+    twice, start 'unconfigured' -> goal 'configuring', then start 'configuring' -> goal 'inactive'
+    once the node's on_configure succeeded.
     """
 
     name = 'launch_ros.events.lifecycle.StateTransition'
