@@ -1,5 +1,7 @@
-"""How long `ros2 launch` takes: to start a process, to bring up the course's two turtlesim nodes,
-and to bring everything down after Ctrl-C (SIGINT to launch).
+"""How long `ros2 launch` takes to start a process, to bring up turtlesim nodes and to stop on Ctrl-C.
+
+Three times are measured: to start one process, to bring up the course's two turtlesim nodes, and to
+bring everything down after Ctrl-C (SIGINT to launch).
 
 Each measurement is repeated; prints median and max in milliseconds. The baseline, measured in the
 same run, starts and stops the same two turtlesim nodes directly, without launch (what launch adds
@@ -25,6 +27,7 @@ SLEEPER = '<launch><executable cmd="sleep 60"/></launch>\n'
 
 
 def ms(seconds: float) -> float:
+    """Seconds in milliseconds, the unit of the printed table."""
     return seconds * 1000.0
 
 
@@ -66,6 +69,7 @@ def start_and_stop_directly(sandbox: RosSandbox) -> tuple[float, float]:
 
 
 def report(name: str, samples: list[float], baseline: list[float] | None = None) -> None:
+    """Print one row: median and max of samples (s) in ms, and with a baseline the ratio of medians."""
     values = [ms(s) for s in samples]
     line = f'{name:<42} median {statistics.median(values):7.1f} ms   max {max(values):7.1f} ms'
     if baseline is not None:
@@ -74,6 +78,7 @@ def report(name: str, samples: list[float], baseline: list[float] | None = None)
 
 
 def main() -> None:
+    """Time a one-process launch, turtle.launch.py and the direct baseline --repeat times each; print."""
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument('--repeat', type=int, default=5)
     args = parser.parse_args()

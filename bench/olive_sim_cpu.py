@@ -65,6 +65,7 @@ def cpu_percent(processes: list[RosProcess], warmup: float, seconds: float) -> f
 
 
 def module_args(parameters: dict) -> list[str]:
+    """The `--ros-args -p name:=value ...` arguments that start a module with these parameters."""
     args = ['--ros-args']
     for name, value in parameters.items():
         args += ['-p', f'{name}:={value}']
@@ -72,6 +73,11 @@ def module_args(parameters: dict) -> list[str]:
 
 
 def measure_cpu(args: argparse.Namespace) -> dict[str, float]:
+    """CPU (% of one core) by case: the baseline node, each module alone, and the whole kit three ways.
+
+    The kit runs with its web pages, without them (web_port 0), and with every page watched by a
+    PageWatcher; each case in a ROS sandbox of its own.
+    """
     results = {}
     singles = {'imu_sim': [], 'servo_sim': [], 'camera_sim': []}
     with RosSandbox() as sandbox:
@@ -98,14 +104,17 @@ def measure_cpu(args: argparse.Namespace) -> dict[str, float]:
 
 
 def free_port() -> int:
+    """A TCP port free on 127.0.0.1 when asked, for the kit's web pages (not reserved: it may be taken)."""
     with socket.socket() as probe:
         probe.bind(('127.0.0.1', 0))
         return probe.getsockname()[1]
 
 
 class PageWatcher:
-    """A browser's share of the work, without a browser: each module page's WebSocket subscribed to
-    System Status, and the IMU's and camera's to their Debug GUI orientation.
+    """A browser's share of the work, without a browser: a WebSocket client on every module page.
+
+    Each module page's WebSocket is subscribed to System Status, and the IMU's and camera's to their
+    Debug GUI orientation.
     """
 
     def __init__(self, port: int) -> None:
@@ -147,12 +156,14 @@ class PageWatcher:
                 self.updates += 1
 
     def stop(self) -> int:
+        """Stop watching; the number of updates the pages sent in all, for the bench's report."""
         self.loop.call_soon_threadsafe(self.stopping.set)
         self.thread.join(10)
         return self.updates
 
 
 def camera_render_rate(frames: int, moving: bool) -> float:
+    """Frames per second of render + JPEG encode at 640x480 in this process (no ROS), head moving or not."""
     renderer = CameraRenderer(640, 480)
     renderer.jpeg(0.0, 0.0, 'warm-up')
     started = time.perf_counter()
@@ -165,6 +176,10 @@ def camera_render_rate(frames: int, moving: bool) -> float:
 
 
 def camera_delivered_rate(seconds: float) -> float:
+    """Frames per second a best-effort subscriber receives from camera_sim asked for 240 fps.
+
+    Counted over `seconds` after the first frames arrive; 0.0 if fewer than two came in that time.
+    """
     with RosSandbox() as sandbox:
         sandbox.run('olive_sim', 'camera_sim', '--ros-args', '-p', 'fps:=240.0')
         context = Context()
@@ -191,6 +206,7 @@ def camera_delivered_rate(seconds: float) -> float:
 
 
 def servo_step_times(steps: int) -> list[float]:
+    """Durations in us, sorted, of `steps` servo physics steps following the course's 0 / 1.57 rad goals."""
     sim = ServoSim(gains=PidGains(5.0, 10.0, 0.3))
     sim.enable_torque(True)
     durations = []
@@ -204,6 +220,7 @@ def servo_step_times(steps: int) -> list[float]:
 
 
 def main() -> int:
+    """Run every measurement and print its table (exit code 0); with --baseline-node, be that node."""
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument('--seconds', type=float, default=10.0, help='CPU measuring window per case')

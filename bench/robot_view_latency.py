@@ -1,5 +1,7 @@
-"""Latency from a drag of the IMU in the robot view to the pan servo moving, against a baseline
-measured in the same run: the same turn of the simulated IMU published straight on DDS.
+"""Latency from a drag of the IMU in the robot view to the pan servo moving, against a DDS baseline.
+
+The baseline is measured in the same run: the same turn of the simulated IMU published straight on
+DDS.
 
 One private ROS domain runs robot_view.launch.py (the kit with its IMU in command mode, and
 robot_view) and the course's imu_control_robot (the head points where the IMU points). Chromium
@@ -76,6 +78,7 @@ class Timings:
 
 
 def yaw_quaternion(yaw: float) -> Quaternion:
+    """The level orientation turned by `yaw` rad about z, as published on imu_sim's true_orientation."""
     return Quaternion(x=0.0, y=0.0, z=math.sin(yaw / 2), w=math.cos(yaw / 2))
 
 
@@ -112,11 +115,13 @@ def measure_direct(probe: Probe, timings: Timings, samples: int, pause: float) -
 
 
 def line(what: str, values: list[float]) -> str:
+    """One printed row: p50, p99 and max of values (ms), and how many samples there were."""
     return (f'{what:<38} p50 {percentile(values, 0.5):6.1f} ms   p99 {percentile(values, 0.99):6.1f} ms   '
             f'max {max(values):6.1f} ms   ({len(values)} samples)')
 
 
 def main() -> int:
+    """Time both paths in a private domain and print them; exit code 0, or 1 when Chromium is missing."""
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument('--samples', type=int, default=100, help='turns per path (default 100)')

@@ -1,5 +1,6 @@
-"""How long `ros2 -h` (and a command's and a verb's help) takes, now that commands and verbs are
-found through Python entry points.
+"""How long `ros2 -h` (and a command's and a verb's help) takes, with commands found by entry points.
+
+Commands and verbs are now found through Python entry points.
 
 Prints the median and max wall time in milliseconds of each, over --runs runs, and the ratio of the
 median to the baseline's, measured in the same invocation: `python -c pass` in the same environment
@@ -36,6 +37,7 @@ def checkout_env(checkout: str) -> dict[str, str]:
 
 
 def wall_times(argv: list[str], runs: int, env: dict[str, str] | None = None) -> list[float]:
+    """Wall times (s) of `runs` runs of argv in env; a failed run exits the bench (SystemExit)."""
     times = []
     for _ in range(runs):
         started = time.perf_counter()
@@ -47,6 +49,7 @@ def wall_times(argv: list[str], runs: int, env: dict[str, str] | None = None) ->
 
 
 def main() -> int:
+    """Time every case --runs times, interleaved, and print the table; exit code 0, or 1 without ros2."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument('--runs', type=int, default=15, help='runs of each command (default 15)')
     parser.add_argument('--before', metavar='CHECKOUT',

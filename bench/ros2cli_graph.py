@@ -40,6 +40,7 @@ print('\\n'.join(sorted(node.get_node_names())))
 
 
 def timed(sandbox: RosSandbox, argv: list[str]) -> tuple[float, str]:
+    """(wall time in s, stdout) of one run of argv in the sandbox's environment."""
     started = time.perf_counter()
     result = subprocess.run(argv, env=sandbox.env, capture_output=True, text=True, timeout=60, check=False)
     return time.perf_counter() - started, result.stdout
@@ -47,8 +48,9 @@ def timed(sandbox: RosSandbox, argv: list[str]) -> tuple[float, str]:
 
 def sample(sandbox: RosSandbox, argv: list[str], runs: int, complete: re.Pattern[str],
            before: list[list[str]] | None = None) -> tuple[float, int]:
-    """Median wall time over runs, and how many runs saw all NODES entities; the commands in before
-    run (untimed) ahead of each run.
+    """Median wall time of argv over runs, and how many of the runs saw all NODES entities.
+
+    The commands in before run (untimed) ahead of each run.
     """
     times, full = [], 0
     for _ in range(runs):
@@ -61,6 +63,7 @@ def sample(sandbox: RosSandbox, argv: list[str], runs: int, complete: re.Pattern
 
 
 def wait_for_graph(sandbox: RosSandbox) -> None:
+    """Return once `ros2 node list` shows all NODES graph nodes; exit the bench if not within 60 s."""
     deadline = time.monotonic() + 60
     while time.monotonic() < deadline:
         _, output = timed(sandbox, ['ros2', 'node', 'list'])
@@ -71,6 +74,7 @@ def wait_for_graph(sandbox: RosSandbox) -> None:
 
 
 def latency(sandbox: RosSandbox, runs: int) -> None:
+    """Print the baseline, then each verb's cold, fresh-daemon and warm wall time against its target."""
     node_pattern = re.compile(r'^/graph_node_\d+$', re.M)
     topic_pattern = re.compile(r'^/graph_topic_\d+$', re.M)
     verbs = [
@@ -100,6 +104,7 @@ def latency(sandbox: RosSandbox, runs: int) -> None:
 
 
 def hz(sandbox: RosSandbox, seconds: float) -> None:
+    """Print the last rate `ros2 topic hz` reports for a 100 Hz counter after `seconds`, against 100 +- 1."""
     counter = sandbox.run(FIXTURES, 'counter', '--ros-args', '-p', 'rate:=100.0', '-r', 'count:=/hz_count')
     process = sandbox.command(['ros2', 'topic', 'hz', '/hz_count'])
     time.sleep(seconds)
@@ -114,6 +119,7 @@ def hz(sandbox: RosSandbox, seconds: float) -> None:
 
 
 def pub_rate(sandbox: RosSandbox, seconds: float) -> None:
+    """Print the rate of `ros2 topic pub -r 100` that a subscriber here measures, after its first second."""
     import rclpy
     from rclpy.context import Context
     from rclpy.executors import SingleThreadedExecutor
@@ -148,6 +154,7 @@ def pub_rate(sandbox: RosSandbox, seconds: float) -> None:
 
 
 def echo_loss(sandbox: RosSandbox, count: int) -> None:
+    """Print how many of `count` Int32 messages at 1 kHz a reliable `ros2 topic echo` did not print."""
     # The counter's own policies: a late-matching echo still gets the first messages of the burst,
     # so any loss is echo falling more than 1000 messages behind.
     echo = sandbox.command(['ros2', 'topic', 'echo', '--qos-reliability', 'reliable', '--qos-durability',
@@ -166,6 +173,7 @@ def echo_loss(sandbox: RosSandbox, count: int) -> None:
 
 
 def main() -> None:
+    """Bring up the 20-node graph and run every measurement on it; the daemon is stopped at the end."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument('--runs', type=int, default=20, help='runs per latency measurement')
     parser.add_argument('--seconds', type=float, default=8.0, help='length of the hz / pub measurements')

@@ -45,6 +45,7 @@ def echo_server() -> None:
 
 
 def count_at_least(least: int) -> Callable[[str], int]:
+    """An argparse type: a whole number of at least `least`, else argparse's one-line usage error."""
     def count(text: str) -> int:
         if not text.isdigit() or int(text) < least:
             raise argparse.ArgumentTypeError(f"'{text}' is not a whole number of at least {least}")
@@ -53,10 +54,12 @@ def count_at_least(least: int) -> Callable[[str], int]:
 
 
 def spin_until_complete(executor: SingleThreadedExecutor, future: Any) -> None:
+    """Await a call with executor.spin_until_future_complete (10 s timeout): one awaiting style."""
     executor.spin_until_future_complete(future, timeout_sec=10.0)
 
 
 def spin_once_loop(executor: SingleThreadedExecutor, future: Any) -> None:
+    """Await a call with executor.spin_once in a loop until it is done, for up to 10 s: the other style."""
     deadline = time.monotonic() + 10.0
     while not future.done() and time.monotonic() < deadline:
         executor.spin_once(timeout_sec=0.1)
@@ -103,6 +106,7 @@ def interleaved(context: Context, services: list[str], calls: int) -> list[list[
 
 def long_run(context: Context, service: str, calls: int,
              wait: Callable[[SingleThreadedExecutor, Any], None]) -> list[float]:
+    """Latencies (ms) of `calls` sequential calls to service from a fresh client, after WARM_UP calls."""
     node, executor, [client] = fresh_client(context, [service])
     try:
         latencies = [call(client, executor, index, wait) for index in range(calls + WARM_UP)]
@@ -113,6 +117,7 @@ def long_run(context: Context, service: str, calls: int,
 
 
 def main() -> int:
+    """Run both parts and print their tables (exit code 0); with --echo-server, be the baseline server."""
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument('--calls', type=count_at_least(1), default=1000, help='calls per server, part 1')
     parser.add_argument('--long-calls', type=count_at_least(10), default=10_000,

@@ -113,8 +113,9 @@ def course_main(make_node: Callable[[], Node], options: SignalHandlerOptions, co
 
 
 def owl_common_main(make_node: Callable[[], Node]) -> None:
-    """The main() the course's nodes had before: owl_common.run's stop request (never raises inside
-    rclpy while it spins; polls every 0.1 s) and teardown watchdog.
+    """The main() the course's nodes had before: owl_common.run's stop request and teardown watchdog.
+
+    The stop request never raises inside rclpy while it spins; it polls every 0.1 s.
     """
     stop = init_with_stop_request()
     node = None
@@ -132,8 +133,9 @@ def owl_common_main(make_node: Callable[[], Node]) -> None:
 
 
 def flood_imu() -> None:
-    """Publish a level IMU's messages on imu_turtle's topic as fast as Python can (--flood): the
-    nodes then take a message most of the time, where a KeyboardInterrupt can land in rclpy.
+    """Publish a level IMU's messages on imu_turtle's topic as fast as Python can (--flood).
+
+    The nodes then take a message most of the time, where a KeyboardInterrupt can land in rclpy.
     """
     rclpy.init()
     node = Node('imu_flood')
@@ -151,6 +153,7 @@ def flood_imu() -> None:
 
 
 def raise_keyboard_interrupt() -> None:
+    """The `guard` variant's guard condition callback: Ctrl-C leaves rclpy.spin between two callbacks."""
     raise KeyboardInterrupt
 
 
@@ -183,6 +186,12 @@ CHILDREN: dict[str, Callable[[], None]] = {
 
 @dataclass
 class Kind:
+    """A kind of node under test: how to start it, the line saying it works, and its results so far.
+
+    servo: check that a torque it enabled is disabled again. counts: the outcomes by phase ('steady',
+    'start-up'); shown: the outcomes whose first output has been printed already.
+    """
+
     label: str
     start: Callable[[RosSandbox], RosProcess]
     ready: str
@@ -194,22 +203,30 @@ class Kind:
     shown: set[str] = field(default_factory=set)
 
     def startup_window(self) -> float:
+        """Seconds the kind takes to get working (median so far): where its start-up stops land."""
         return statistics.median(self.ready_times) if self.ready_times else FIRST_STARTUP_GUESS
 
 
 def child_starter(label: str) -> Callable[[RosSandbox], RosProcess]:
+    """A starter running this script as the child `label`: one of the main() variants in CHILDREN."""
     def start(sandbox: RosSandbox) -> RosProcess:
         return sandbox.command([sys.executable, __file__, '--child', label], label=label)
     return start
 
 
 def installed_starter(package: str, executable: str) -> Callable[[RosSandbox], RosProcess]:
+    """A starter running the package's installed executable in the sandbox, whatever main() it has."""
     def start(sandbox: RosSandbox) -> RosProcess:
         return sandbox.run(package, executable)
     return start
 
 
 def classify(kind: Kind, process: RosProcess) -> str:
+    """The outcome of a stop, once the process that was sent SIGINT has ended (killed after KILL_AFTER).
+
+    The outcomes are those of the module docstring; the first output of each that is not clean is
+    printed.
+    """
     sent = time.monotonic()
     while process.running() and time.monotonic() - sent < KILL_AFTER:
         time.sleep(POLL)
@@ -239,6 +256,7 @@ def classify(kind: Kind, process: RosProcess) -> str:
 
 
 def show(kind: Kind, what: str, process: RosProcess, text: str) -> str:
+    """Return what; the first time the kind has that outcome, print text's first and last lines too."""
     if what not in kind.shown:
         kind.shown.add(what)
         lines = text.splitlines()
@@ -250,6 +268,10 @@ def show(kind: Kind, what: str, process: RosProcess, text: str) -> str:
 
 
 def stop_once(kind: Kind, sandbox: RosSandbox, startup: bool, start_timeout: float) -> None:
+    """Start the kind once, SIGINT it in its start-up or steady phase, and count the outcome.
+
+    A steady stop whose node does not get working within start_timeout counts as a start failure.
+    """
     started = time.monotonic()
     process = kind.start(sandbox)
     if startup:
@@ -276,6 +298,7 @@ def stop_once(kind: Kind, sandbox: RosSandbox, startup: bool, start_timeout: flo
 
 
 def start_simulators(sandbox: RosSandbox) -> list[RosProcess]:
+    """Start imu_sim and the pan servo_sim in the sandbox: what the nodes under test talk to."""
     return [sandbox.run('olive_sim', 'imu_sim'),
             sandbox.run('olive_sim', 'servo_sim', '--ros-args', *SERVO_PARAMETERS, label='servo_sim pan')]
 
@@ -293,11 +316,13 @@ def check_simulators(sandbox: RosSandbox, simulators: list[RosProcess]) -> list[
 
 
 def not_clean(kind: Kind) -> int:
+    """How many of the kind's stops so far were not clean, not counting interruptions before main()."""
     return sum(n for counts in kind.counts.values() for name, n in counts.items()
                if name not in NOT_COUNTED and not name.startswith('('))
 
 
 def report(kind: Kind) -> None:
+    """Print the kind's outcomes per phase, with a 95 % upper bound of the not-clean rate, and stop times."""
     for phase, counts in kind.counts.items():
         total = sum(n for name, n in counts.items() if not name.startswith('(') and name != BEFORE_MAIN)
         if not total:
@@ -313,6 +338,7 @@ def report(kind: Kind) -> None:
 
 
 def main() -> int:
+    """Stop each chosen kind --stops times per phase, kinds interleaved, and print their reports."""
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument('--stops', type=int, default=50,

@@ -72,11 +72,13 @@ def baseline_node(name: str) -> None:
 
 
 def start_turtlesim(sandbox: RosSandbox, name: str) -> RosProcess:
+    """A headless turtlesim_node named `name` in the sandbox: the node that once hung."""
     return sandbox.run('turtlesim', 'turtlesim_node', '--headless', '--ros-args', '-r', f'__node:={name}',
                        label=name)
 
 
 def start_baseline(sandbox: RosSandbox, name: str) -> RosProcess:
+    """This script as the baseline node `name` (--baseline-node) in the sandbox."""
     return sandbox.command([sys.executable, __file__, '--baseline-node', name], label=name)
 
 
@@ -96,8 +98,9 @@ def upper_bound(count: int, total: int, confidence: float = 0.95) -> float:
 
 
 def native_stacks(pid: int) -> str:
-    """Every thread's innermost native frames (Fast DDS threads are not Python threads, so the
-    watchdog's dump cannot show them).
+    """Every thread's innermost native frames, from gdb, or one line saying why there are none.
+
+    Fast DDS threads are not Python threads, so the watchdog's dump cannot show them.
     """
     gdb = shutil.which('gdb')
     if gdb is None:
@@ -118,6 +121,7 @@ def native_stacks(pid: int) -> str:
 
 
 def exit_name(code: int) -> str:
+    """How a process ended, for the report: a signal's name (e.g. SIGKILL) if code < 0, else 'exit N'."""
     return signal.Signals(-code).name if code < 0 else f'exit {code}'
 
 
@@ -143,6 +147,7 @@ class Graph:
             time.sleep(0.05)
 
     def close(self) -> None:
+        """Destroy the observer node and shut its context down."""
         self.node.destroy_node()
         rclpy.try_shutdown(context=self.context)
 
@@ -165,6 +170,7 @@ class PairLoop:
 
     def show_once(self, kind: str, process: RosProcess, what: str, text: str,
                   limit: int | None = SHOWN_LINES) -> None:
+        """Print text's first `limit` lines (all with None) the first time `kind` happens; else nothing."""
         if kind in self.shown:
             return
         self.shown.add(kind)
@@ -173,6 +179,10 @@ class PairLoop:
               f'first {len(lines)} lines:', *lines, '---', sep='\n', flush=True)
 
     def run_pair(self, index: int, start_timeout: float) -> None:
+        """Start two nodes, SIGINT both at once when both spin and are in the graph, and classify them.
+
+        A pair not up within start_timeout is counted as a start failure and stopped.
+        """
         names = [f'{self.label.replace(" ", "_")}_{index}_{side}' for side in 'ab']
         processes = [self.start(self.sandbox, name) for name in names]
         try:
@@ -206,6 +216,7 @@ class PairLoop:
             self.classify(process, elapsed)
 
     def classify(self, process: RosProcess, elapsed: float | None) -> None:
+        """Count how one process ended, `elapsed` s after the SIGINT; None: alive at KILL_AFTER, so killed."""
         self.counts['processes'] += 1
         if elapsed is None:
             self.counts['alive'] += 1
@@ -228,13 +239,16 @@ class PairLoop:
 
     @property
     def hung(self) -> int:
+        """Processes that hung in clean-up: ended by the watchdog or alive at KILL_AFTER."""
         return self.counts['watchdog'] + self.counts['alive']
 
     @property
     def hung_rate(self) -> float:
+        """Hung processes as a fraction of all the processes stopped."""
         return self.hung / self.counts['processes']
 
     def report(self) -> None:
+        """Print the tally: hung rate with its 95 % upper bound, other exits, clean and slow ones, stops."""
         total = self.counts['processes']
         if total == 0:
             print(f'{self.label}: no process got as far as the stop '
@@ -252,8 +266,10 @@ class PairLoop:
 
 
 def version(*distributions: str) -> str:
-    """The version of the first of these wheels that is installed (Fast DDS 3 is ros-fastdds, 2.x
-    ros-fastrtps; the ros-rclpy wheel's version, not that of the rclpy egg-info inside it).
+    """The version of the first of these wheels that is installed, '?' when none is.
+
+    Fast DDS 3 is ros-fastdds, 2.x ros-fastrtps. For rclpy it is the ros-rclpy wheel's version, not
+    that of the rclpy egg-info inside it.
     """
     for distribution in distributions:
         try:
@@ -264,6 +280,7 @@ def version(*distributions: str) -> str:
 
 
 def main() -> int:
+    """Stop --pairs pairs of each kind, interleaved, and print the reports; --baseline-node: be that node."""
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument('--pairs', type=int, default=150, help='pairs stopped per kind of node')

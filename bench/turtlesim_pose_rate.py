@@ -36,6 +36,12 @@ QOS = QoSProfile(depth=7)
 
 @dataclass
 class Measurement:
+    """What one publisher did over a measuring window, as one row of the printed table.
+
+    rate_hz: /turtle1/pose messages a second; p50_ms, p99_ms: interval percentiles; p99_jitter_ms: p99
+    of |interval - 16 ms|; cpu_percent: the publisher process's CPU in % of one core.
+    """
+
     rate_hz: float
     p50_ms: float
     p99_ms: float
@@ -74,15 +80,18 @@ class Observer:
         self.executor.add_node(self.node)
 
     def close(self) -> None:
+        """Shut the executor down, then the context."""
         self.executor.shutdown()  # before its context (Jazzy's Executor.__del__ would print a traceback)
         rclpy.try_shutdown(context=self.context)
 
     def spin_for(self, seconds: float) -> None:
+        """Spin the bench's node for `seconds`."""
         deadline = time.monotonic() + seconds
         while time.monotonic() < deadline:
             self.executor.spin_once(timeout_sec=0.05)
 
     def wait_for(self, condition, seconds: float, what: str) -> None:
+        """Spin until condition() is true; after `seconds`, exit the bench (SystemExit) naming `what`."""
         deadline = time.monotonic() + seconds
         while not condition():
             if time.monotonic() > deadline:
@@ -90,6 +99,7 @@ class Observer:
             self.executor.spin_once(timeout_sec=0.05)
 
     def spawn(self, count: int) -> None:
+        """Spawn `count` more turtles through /spawn, one call at a time, in a row along y = 2."""
         client = self.node.create_client(Spawn, '/spawn')
         self.wait_for(client.service_is_ready, 30, '/spawn')
         for index in range(count):
@@ -98,6 +108,7 @@ class Observer:
         self.node.destroy_client(client)
 
     def measure(self, pid: int, turtles: int, moving: bool, seconds: float) -> Measurement:
+        """/turtle1/pose's timing and process pid's CPU over `seconds`; with moving, every turtle circles."""
         stamps: list[int] = []
         subscription = self.node.create_subscription(
             Pose, '/turtle1/pose', lambda _msg, info: stamps.append(info['source_timestamp']), QOS)
@@ -132,6 +143,7 @@ class Observer:
 
 
 def run_scenario(turtles: int, moving: bool, seconds: float, window: bool) -> dict[str, Measurement]:
+    """One scenario's measurements: turtlesim_node's, then the baseline's, each in a sandbox of its own."""
     results = {}
     for publisher in ('turtlesim_node', 'baseline'):
         with RosSandbox() as sandbox:
@@ -152,6 +164,7 @@ def run_scenario(turtles: int, moving: bool, seconds: float, window: bool) -> di
 
 
 def main() -> int:
+    """Run both scenarios and print each publisher's row and the ratios; --baseline N: be that publisher."""
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument('--seconds', type=float, default=30.0, help='measuring window per run')

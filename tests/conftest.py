@@ -29,8 +29,10 @@ def ros():
 
 @pytest.fixture(scope='module')
 def browser():
-    """Headless Chromium (Debian's, through Playwright), started once per test module: while it runs,
-    Playwright's event loop is the main thread's, where no other test could run one (asyncio.run).
+    """Headless Chromium (Debian's, through Playwright), started once per test module.
+
+    While it runs, Playwright's event loop is the main thread's, where no other test could run one
+    (asyncio.run).
     """
     missing = chromium_missing()
     if missing:
@@ -54,8 +56,9 @@ def page(browser):
 
 @pytest.hookimpl(wrapper=True)
 def pytest_runtest_call(item: pytest.Item):
-    """A test that passed fails if its page logged a console error or threw: a page that works
-    only on the surface is not working.
+    """A test that passed fails if its page logged a console error or threw.
+
+    A page that works only on the surface is not working.
     """
     result = yield
     page = item.funcargs.get('page') if hasattr(item, 'funcargs') else None
@@ -67,8 +70,9 @@ def pytest_runtest_call(item: pytest.Item):
 
 @pytest.hookimpl(hookwrapper=True)
 def pytest_runtest_makereport(item, call):
-    """A failed test also shows what each of its ROS processes printed last and whether it exited:
-    a node that crashed or hung at start-up is otherwise invisible behind a graph timeout.
+    """A failed test also shows what each of its ROS processes printed last and whether it exited.
+
+    A node that crashed or hung at start-up is otherwise invisible behind a graph timeout.
     """
     outcome = yield
     report = outcome.get_result()
@@ -105,8 +109,9 @@ SLOT_DIR = Path(os.environ.get('OWL_TEST_SLOT_DIR', LEASE_DIR.parent / 'owl-kit-
 @pytest.hookimpl(wrapper=True, tryfirst=True)
 def pytest_runtest_protocol(item: pytest.Item,
                             nextitem: pytest.Item | None) -> Generator[None, object, object]:
-    """A system test runs (with its rerun, fixtures and timeout) only while it holds a slot; the
-    wait is outside its timeout.
+    """A system test runs (with its rerun, fixtures and timeout) only while it holds a slot.
+
+    The wait is outside its timeout.
     """
     if not item.path.is_relative_to(SYSTEM_TESTS):
         return (yield)
@@ -167,8 +172,9 @@ RAISED = re.compile(r'\b[A-Z]\w*(Error|Exception|Interrupt): ')
 
 
 def first_line(report: pytest.TestReport) -> str:
-    """A failure report's exception in one line, as in pytest's short test summary. When the
-    assertion's message is a process's output (a launch's starts with its log folder), the last
+    """A failure report's exception in one line, as in pytest's short test summary.
+
+    When the assertion's message is a process's output (a launch's starts with its log folder), the last
     exception that output names says more than its first line, so that one is shown.
     """
     crash = getattr(report.longrepr, 'reprcrash', None)
@@ -184,8 +190,9 @@ def first_line(report: pytest.TestReport) -> str:
 
 @pytest.hookimpl(wrapper=True, tryfirst=True)
 def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> Generator[None, None, None]:
-    """A flake is never silent: after every other summary, just above the final counts line (which
-    CI reads), one line per test that needed its second run.
+    """A flake is never silent: one line per test that needed its second run, after every other summary.
+
+    The lines come just above the final counts line, which CI reads.
     """
     result = yield
     if RERUNS:

@@ -104,8 +104,9 @@ class VirtualDisplay:
         raise AssertionError(f'no window (name {name!r}, pid {pid}) on {self.name} within {timeout} s')
 
     def press(self, window: str, key: str, seconds: float) -> None:
-        """Hold an X key (e.g. 'Left') in a window for the given time, as a keyboard does (XTEST to
-        the focused window; Xvfb has no window manager to give the focus, so it is set first).
+        """Hold an X key (e.g. 'Left') in a window for the given time, as a keyboard does.
+
+        XTEST to the focused window; Xvfb has no window manager to give the focus, so it is set first.
         """
         self.xdotool('windowfocus', '--sync', window)
         self.xdotool('keydown', key)
@@ -113,8 +114,10 @@ class VirtualDisplay:
         self.xdotool('keyup', key)
 
     def type(self, window: str, *keys: str) -> None:
-        """Type X keys (Left, a, Escape) into a window as a keyboard does (XTEST, not XSendEvent,
-        which Qt ignores): the window gets the focus first (Xvfb has no window manager).
+        """Type X keys (Left, a, Escape) into a window as a keyboard does.
+
+        XTEST, not XSendEvent, which Qt ignores; the window gets the focus first (Xvfb has no window
+        manager).
         """
         self.xdotool('windowfocus', '--sync', window)
         self.xdotool('key', '--delay', '50', *keys)
@@ -148,8 +151,10 @@ X_CLIENT_MESSAGE = 33  # ClientMessage in X11/X.h
 
 
 def send_close_request(display_name: str, window: int) -> None:
-    """Send a window the WM_PROTOCOLS/WM_DELETE_WINDOW message that a window manager sends when its
-    close button is clicked (xdotool 3.2016 can only destroy a window or kill its client).
+    """Send a window the WM_PROTOCOLS/WM_DELETE_WINDOW message, as a click on its close button does.
+
+    A window manager sends it when the close button is clicked; xdotool 3.2016 can only destroy a window
+    or kill its client.
     """
     library = ctypes.util.find_library('X11')
     if library is None:

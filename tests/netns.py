@@ -32,8 +32,10 @@ class TestLan(Lan):
         self.processes: list[RosProcess] = []
 
     def run(self, host: str, command: str, env: dict[str, str], label: str | None = None) -> RosProcess:
-        """A shell command on a host after `source env.sh`; env sets OWL_NETWORK, ROS_DOMAIN_ID... as a
-        user's shell would (the test's own discovery range is not passed on).
+        """A shell command run on a host after `source env.sh`, as in a user's shell.
+
+        env sets OWL_NETWORK, ROS_DOMAIN_ID... as a user's shell would (the test's own discovery range is
+        not passed on).
         """
         process_env = {k: v for k, v in os.environ.items() if not k.startswith('ROS_AUTOMATIC_DISCOVERY')}
         process_env.update(env, PYTHONUNBUFFERED='1', RCUTILS_LOGGING_BUFFERED_STREAM='1')

@@ -35,10 +35,11 @@ class Probe(owl_common.probe.Probe):
         wait_until(lambda: name in self.node.get_node_names(), timeout, f'node {name}')
 
     def wait_until_spinning(self, name: str, timeout: float = 10.0) -> None:
-        """Wait until the node (no namespace) answers on its parameter services. A node is in the
-        graph from the first line of its constructor, and a Ctrl-C there fails the rest of it
-        ("rcl node's context is invalid"); a node that answers has been built and spins, which is
-        where a user's Ctrl-C lands.
+        """Wait until the node (no namespace) answers on its parameter services.
+
+        A node is in the graph from the first line of its constructor, and a Ctrl-C there fails the rest of
+        it ("rcl node's context is invalid"); a node that answers has been built and spins, which is where a
+        user's Ctrl-C lands.
         """
         self.wait_for_node(name, timeout)
         self.get_parameters(f'/{name}', 'use_sim_time', timeout=timeout)
@@ -121,8 +122,10 @@ def wait_for_messages(received: list[Any], count: int, timeout: float = 15.0, wh
 
 def endpoints(probe: Probe, topic: str, kind: str = 'publishers', count: int = 1,
               timeout: float = 15.0) -> list[Any]:
-    """The graph's TopicEndpointInfo list of a topic's publishers or subscriptions, once it has count
-    whose node is known (an endpoint can be discovered before its participant's node names).
+    """The graph's TopicEndpointInfo list of a topic's publishers or subscriptions, once it has count.
+
+    Only endpoints whose node is known count: an endpoint can be discovered before its participant's
+    node names.
     """
     lookup = (probe.node.get_publishers_info_by_topic if kind == 'publishers'
               else probe.node.get_subscriptions_info_by_topic)

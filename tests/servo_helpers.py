@@ -1,5 +1,7 @@
-"""Helpers of the system tests that drive olive_sim's servos: start a kit servo, watch its topics,
-check that it never saw a goal before its torque was on nor one outside its bounds.
+"""Helpers of the system tests that drive olive_sim's servos.
+
+They start a kit servo, watch its topics, and check that it never saw a goal before its torque was
+on nor one outside its bounds.
 """
 
 from typing import Any

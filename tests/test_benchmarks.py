@@ -48,5 +48,6 @@ def test_benchmark_runs(script):
 def test_service_roundtrip_refuses_counts_it_cannot_measure_in_one_line(argv):
     result = subprocess.run([sys.executable, str(BENCH / 'service_roundtrip.py'), *argv], capture_output=True,
                             text=True, timeout=30, check=False)
-    assert result.returncode == 2 and 'Traceback' not in result.stderr
+    assert result.returncode == 2
+    assert 'Traceback' not in result.stderr
     assert result.stderr.splitlines()[-1].startswith('service_roundtrip.py: error: argument --')

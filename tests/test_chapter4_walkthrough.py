@@ -1,6 +1,8 @@
-"""Chapter 4 as a student works through it: a fresh workspace, `ros2 pkg create`, the scripts written
-as the course describes them, package.xml and setup.py edits, `rosdep install`, `colcon build`, then
-every project run with `ros2 run`/`ros2 launch` against the simulated kit, with and without a display.
+"""Chapter 4 as a student works through it, from a fresh workspace to every project running.
+
+A fresh workspace, `ros2 pkg create`, the scripts written as the course describes them, package.xml
+and setup.py edits, `rosdep install`, `colcon build`, then every project run with
+`ros2 run`/`ros2 launch` against the simulated kit, with and without a display.
 
 The student's code below is written from the course's bullet points, not from our reference
 solutions, so what it shows is that a course reader's own code works here. It is Jazzy-correct
@@ -294,8 +296,8 @@ def workspace(tmp_path_factory):
     # Were a key missing, pip must fail here rather than change the venv.
     env = dict(os.environ, PIP_NO_INDEX='1', PIP_TARGET=str(workspace / 'pip_target'))
     rosdep = shell(workspace, 'rosdep install -i --from-paths src -y', env=env)
-    assert rosdep.returncode == 0 and '#All required rosdeps installed successfully' in rosdep.stdout, (
-        rosdep.stdout + rosdep.stderr)
+    assert rosdep.returncode == 0, rosdep.stdout + rosdep.stderr
+    assert '#All required rosdeps installed successfully' in rosdep.stdout, rosdep.stdout + rosdep.stderr
     build = shell(workspace, 'colcon build')
     assert build.returncode == 0, build.stdout + build.stderr
     return workspace

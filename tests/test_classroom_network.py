@@ -1,6 +1,7 @@
-"""Classroom networks over real DDS between network namespaces: two students' laptops on one LAN, both
-in the ROS 2 default domain 0, see each other only when they open their network mode (env.sh's
-OWL_NETWORK); a wrong mode changes nothing.
+"""Classroom networks over real DDS between network namespaces: two students' laptops on one LAN.
+
+Both laptops are in the ROS 2 default domain 0 and see each other only when they open their network
+mode (env.sh's OWL_NETWORK); a wrong mode changes nothing.
 """
 
 import subprocess
@@ -26,8 +27,9 @@ def classroom():
 
 
 def publisher_and_listener(lan: TestLan, mode: str):
-    """laptop_a publishes random numbers; laptop_b and laptop_a itself listen. Returns (when the
-    publisher's process started, laptop_b's listener, laptop_a's own listener).
+    """laptop_a publishes random numbers; laptop_b and laptop_a itself listen.
+
+    Returns (when the publisher's process started, laptop_b's listener, laptop_a's own listener).
     """
     env = {'OWL_NETWORK': mode}
     listener_b = lan.run('laptop_b', LISTENER, env, label='laptop_b listener')

@@ -128,8 +128,9 @@ def test_ctrl_c_at_any_moment_ends_a_listing_cleanly(ros: RosHarness, listing: L
 
 
 def test_the_listings_are_the_courses_own_lines():
-    """Each line of a listing is a line of the course (the course is beside the repository while
-    it is written; a clean clone alone has only the listings).
+    """Each line of a listing is a line of the course.
+
+    The course is beside the repository while it is written; a clean clone alone has only the listings.
     """
     course_dir = Path(__file__).resolve().parents[2] / 'shared' / 'course'
     if not course_dir.is_dir():

@@ -58,7 +58,8 @@ def test_without_libgl_cv2_is_the_headless_build_with_one_line_saying_so(tmp_pat
     assert (version, headless, encoded, on_path) == (PINNED, 'True', 'True', 'True')
     assert Path(path).is_relative_to(HEADLESS)
     [line] = result.stderr.splitlines()
-    assert line.startswith("cv2: OpenCV's GUI build cannot load here (") and 'libGL.so.1' in line
+    assert line.startswith("cv2: OpenCV's GUI build cannot load here (")
+    assert 'libGL.so.1' in line
     assert line.endswith(APT)
 
 
@@ -85,6 +86,7 @@ def test_the_setup_check_prints_the_notice_only_when_falling_back(tmp_path):
     falling_back = python('-m', 'owl_gui_hook', broken_libgl=tmp_path / 'lib')
     assert falling_back.returncode == 0
     [line] = falling_back.stdout.splitlines()
-    assert line.startswith("OpenCV's GUI build cannot load here (") and line.endswith(APT)
+    assert line.startswith("OpenCV's GUI build cannot load here (")
+    assert line.endswith(APT)
     if desktop_libraries_load():
         assert python('-m', 'owl_gui_hook').stdout == ''

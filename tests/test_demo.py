@@ -27,12 +27,15 @@ def test_demo_runs_the_robot_reports_it_and_stops_every_node_cleanly():
     assert len(statuses) >= 3, result.stdout
     # The head follows the IMU: the servos reach their goals, and the camera streams.
     pan_goal, pan_at, tilt_goal, tilt_at, fps = map(float, statuses[-1].groups())
-    assert abs(pan_goal - pan_at) < 0.3 and abs(tilt_goal - tilt_at) < 0.3, statuses[-1].group(0)
+    assert abs(pan_goal - pan_at) < 0.3, statuses[-1].group(0)
+    assert abs(tilt_goal - tilt_at) < 0.3, statuses[-1].group(0)
     assert fps > 10, statuses[-1].group(0)
-    assert "display_camera says:" in result.stdout and 'no display' in result.stdout, result.stdout
+    assert "display_camera says:" in result.stdout, result.stdout
+    assert 'no display' in result.stdout, result.stdout
     # the robot view's address, printed before the status lines (robot_view stops cleanly too)
     address = re.search(r'^== robot view: open http://127\.0\.0\.1:(\d+)/ in a browser', result.stdout, re.M)
-    assert address and 0 < int(address.group(1)) < 65536, result.stdout
+    assert address, result.stdout
+    assert 0 < int(address.group(1)) < 65536, result.stdout
     assert result.stdout.index(address.group(0)) < result.stdout.index('== running')
     assert 'every node stopped cleanly' in result.stdout
     assert 'Traceback' not in result.stdout + result.stderr

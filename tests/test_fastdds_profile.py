@@ -1,6 +1,8 @@
-"""config/fastdds.xml reaches Fast DDS: env.sh names it in a variable the installed Fast DDS reads,
-and Fast DDS parses it without complaint. Both failures are otherwise silent: the move to Jazzy kept
-Fast DDS 3's variable name, which Fast DDS 2.14 ignores, and everything ran on its defaults unnoticed.
+"""config/fastdds.xml reaches Fast DDS, and Fast DDS parses it without complaint.
+
+env.sh names the file in a variable the installed Fast DDS reads. Both failures are otherwise silent:
+the move to Jazzy kept Fast DDS 3's variable name, which Fast DDS 2.14 ignores, and everything ran on
+its defaults unnoticed.
 """
 
 from __future__ import annotations

@@ -36,8 +36,9 @@ def test_a_missing_prerequisite_skips_here_and_fails_in_ci(tmp_path: Path, ci: b
 
 
 def machine_without_the_programs(tmp_path: Path) -> Path:
-    """A PATH with only what the script needs to run, none of the programs it looks for, and an
-    apt-get that fails (as on a machine whose package mirror is unreachable).
+    """A PATH with only what the script needs to run and none of the programs it looks for.
+
+    Its apt-get fails, as on a machine whose package mirror is unreachable.
     """
     path = tmp_path / 'bin'
     path.mkdir()
@@ -60,4 +61,5 @@ def test_the_prerequisite_script_fails_a_ci_run_when_chromium_is_absent(tmp_path
                             timeout=60)
     output = result.stdout + result.stderr
     assert result.returncode == code, output
-    assert 'chromium' in output and says in output, output
+    assert 'chromium' in output, output
+    assert says in output, output

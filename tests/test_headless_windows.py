@@ -76,7 +76,8 @@ def test_cv2_viewer_seam_gets_the_latest_frames_and_sends_keys(ros, tmp_path):
     wait_until(frame_file.exists, 30, 'the first frame in the seam')
     assert viewer.lines == [f'{CV2_NOTICE} (its frames go to {folder})']
     frame = read_image(frame_file)
-    assert frame.shape == (120, 160, 3) and close_to(frame[60, 40], RED)
+    assert frame.shape == (120, 160, 3)
+    assert close_to(frame[60, 40], RED)
     greys = set()
     wait_until(lambda: greys.add(int(read_image(frame_file)[60, 120, 0]) // 16) or len(greys) >= 3, 10,
                'three different frames')  # the image changes with every frame: the file follows
@@ -116,7 +117,8 @@ def test_pygame_keys_without_a_display_says_so_in_one_line_runs_on_and_stops_at_
     keys_file = default_folder(tmp_path, keys) / 'keys'
     assert notice == f"{PYGAME_NOTICE}; or append key events to {keys_file} ('down left', 'up left')"
     assert int(re.fullmatch(r'ran (\d+) loops', summary)[1]) > 20
-    assert 'ALSA' not in keys.output and 'XDG' not in keys.output  # SDL on its dummy drivers
+    assert 'ALSA' not in keys.output  # SDL on its dummy drivers
+    assert 'XDG' not in keys.output
 
 
 def test_pygame_keys_seam_sends_key_events_and_held_keys_and_gets_the_window(ros, tmp_path):
@@ -178,7 +180,8 @@ def test_cv2_viewer_with_a_display_opens_a_real_window_that_gets_keys(ros, x_dis
     viewer.wait_for(r'^key 97$', timeout=10)
     viewer.stop_cleanly(timeout=10)
     # No notice, nothing from Qt (its font warnings are silenced): the keys and the summary.
-    assert viewer.lines[:2] == ['key 81', 'key 97'] and len(viewer.lines) == 3, viewer.output
+    assert viewer.lines[:2] == ['key 81', 'key 97'], viewer.output
+    assert len(viewer.lines) == 3, viewer.output
     assert list(tmp_path.iterdir()) == []  # nothing patched: no seam
 
 

@@ -44,7 +44,8 @@ def unprotected_profile(tmp_path):
     text = PROFILE.read_text()
     stripped = re.sub(r'\s*<data_(writer|reader) profile_name="ros_discovery_info">.*?</data_\1>', '',
                       text, flags=re.S)
-    assert 'ros_discovery_info"' not in stripped and stripped != text, 'the profile has no graph partition'
+    assert 'ros_discovery_info"' not in stripped, 'the profile has no graph partition'
+    assert stripped != text, 'the profile has no graph partition'
     path = tmp_path / 'unprotected.xml'
     path.write_text(stripped)
     return str(path)
@@ -59,8 +60,9 @@ def stop_twin(twin):
 
 
 def seconds_until_listing(sandbox, condition, timeout=10.0):
-    """Seconds from now to the start of the first `ros2 node list` whose answer meets the condition
-    (each call takes a while itself; what counts is when it was asked).
+    """Seconds from now to the start of the first `ros2 node list` whose answer meets the condition.
+
+    Each call takes a while itself; what counts is when it was asked.
     """
     started = time.monotonic()
     while time.monotonic() < started + timeout:
@@ -95,7 +97,8 @@ def test_a_humble_module_beside_the_kit_and_chapter_4_nodes_is_safe_listed_and_t
         assert listed_after <= 2.0, f'the first call to list the Humble nodes began {listed_after:.2f} s ' \
                                     'after they started'
         info = ros2(sandbox, 'topic', 'info', '-v', '/olive/imu/humble/imu').stdout
-        assert f'Node name: {IMU_NODE[1:]}' in info and 'Topic type hash: INVALID' in info, info
+        assert f'Node name: {IMU_NODE[1:]}' in info, info
+        assert 'Topic type hash: INVALID' in info, info
         assert '/olive/imu/humble/imu' in ros2(sandbox, 'node', 'info', IMU_NODE).stdout
 
         # IMU -> the course's imu_turtle: the twin's fixed 0.3 rad pitch drives the turtle forward.
@@ -133,7 +136,8 @@ def test_a_humble_module_beside_the_kit_and_chapter_4_nodes_is_safe_listed_and_t
         assert stop_twin(servo)[1] == 0, servo.output
         for process in (imu_turtle, robot, kit, turtlesim):
             process.send_signal(signal.SIGINT)
-        assert robot.wait(30) == 0 and kit.wait(30) == 0, robot.tail() + kit.tail()
+        assert robot.wait(30) == 0, robot.tail() + kit.tail()
+        assert kit.wait(30) == 0, robot.tail() + kit.tail()
 
 
 def test_without_the_graph_partition_a_humble_module_gets_messages_it_misreads(tmp_path):
@@ -146,13 +150,15 @@ def test_without_the_graph_partition_a_humble_module_gets_messages_it_misreads(t
         ros2(sandbox, 'node', 'list', '--no-daemon', env=unprotected)
         twin.wait_for('malformed discovery sample #1 .*Jazzy layout', timeout=20)
         received, malformed = stop_twin(twin)
-        assert malformed > 0 and malformed == received, twin.output
+        assert malformed > 0, twin.output
+        assert malformed == received, twin.output
 
 
 def test_a_stock_jazzy_install_beside_ours_sees_our_topics_not_our_node_names_and_we_see_its_nodes(tmp_path):
-    """A student's normal Jazzy (no profile of ours) beside our processes: nothing breaks; it lists
-    our topics but not our nodes (our graph messages are in our partition), and our tools list its
-    node through the discovery bridge.
+    """A student's normal Jazzy (no profile of ours) beside our processes: nothing breaks.
+
+    It lists our topics but not our nodes (our graph messages are in our partition), and our tools list
+    its node through the discovery bridge.
     """
     stock_script = tmp_path / 'stock_jazzy.py'
     stock_script.write_text(
@@ -175,7 +181,8 @@ def test_a_stock_jazzy_install_beside_ours_sees_our_topics_not_our_node_names_an
         topics = stock.wait_for(r'^topics: (.*)', timeout=30)[0].group(1)
         nodes = stock.wait_for(r'^nodes: (.*)', timeout=10)[0].group(1)
         assert "'/turtle1/pose'" in topics
-        assert 'turtlesim' not in nodes and 'stock_jazzy_node' in nodes
+        assert 'turtlesim' not in nodes
+        assert 'stock_jazzy_node' in nodes
         wait_until(lambda: {'/stock_jazzy_node', '/turtlesim'} <= node_list(sandbox), 10,
                    'the stock node and ours in our ros2 node list')
         stock.stop(timeout=5)

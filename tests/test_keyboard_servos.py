@@ -1,7 +1,9 @@
-"""keyboard_servos over real DDS against olive_sim's servos: arrow keys pressed in its real window
-under Xvfb, and key events through the headless seam (src/tools/owl_venv_hooks/owl_gui_hook.py); which arrow turns
-which servo which way, goals within the bounds, torque on before the first goal and off after
-Ctrl-C, the speed and bound parameters and their bad values.
+"""keyboard_servos over real DDS against olive_sim's servos, through its real window and its seam.
+
+Arrow keys pressed in its real window under Xvfb, and key events through the headless seam
+(src/tools/owl_venv_hooks/owl_gui_hook.py); which arrow turns which servo which way, goals within
+the bounds, torque on before the first goal and off after Ctrl-C, the speed and bound parameters
+and their bad values.
 """
 
 import signal
@@ -95,7 +97,8 @@ def drive_the_head(head: Head, keys) -> None:
     """Each arrow moves its servo the documented way, only while held, and never past a bound."""
     wait_for_messages(head.goals['pan'], 20, timeout=20, what='pan goals')
     wait_for_messages(head.goals['tilt'], 20, timeout=20, what='tilt goals')
-    assert head.goal('pan') == 0.0 and head.goal('tilt') == 0.0  # the head starts at its centre
+    assert head.goal('pan') == 0.0  # the head starts at its centre
+    assert head.goal('tilt') == 0.0
     pan_upper = BOUNDS['pan'][1]
     tilt_lower = BOUNDS['tilt'][0]
 
@@ -113,7 +116,8 @@ def drive_the_head(head: Head, keys) -> None:
     released = len(head.goals['pan'])
     time.sleep(0.5)
     after = [g.data for g in head.goals['pan'][released:]]
-    assert after and all(g == pytest.approx(pan_upper, abs=1e-6) for g in after)  # released: it stays
+    assert after
+    assert all(g == pytest.approx(pan_upper, abs=1e-6) for g in after)  # released: it stays
 
     # Right: back to the right, negative pan.
     keys.down('right')
@@ -191,7 +195,8 @@ def test_ctrl_c_while_it_waits_for_the_servos_exits_cleanly(ros):
     node = ros.run('olive_servo', 'keyboard_servos', env=HEADLESS)
     node.wait_for(r'waiting for service /olive/servo/pan/setTorqueEnable', timeout=30)
     node.stop_cleanly(timeout=10)
-    assert 'Traceback' not in node.output and 'torque disabled' not in node.output, node.output
+    assert 'Traceback' not in node.output, node.output
+    assert 'torque disabled' not in node.output, node.output
 
 
 def test_sigterm_while_it_waits_for_the_servos_ends_it(ros):
@@ -214,7 +219,8 @@ def test_sigterm_while_it_waits_for_the_servos_ends_it(ros):
 def test_bad_startup_parameters_end_with_one_line_and_code_2(ros, args, message):
     node = ros.run('olive_servo', 'keyboard_servos', '--ros-args', *args, env=HEADLESS)
     assert node.wait(30) == 2
-    assert len(node.lines) == 1 and node.lines[0].startswith('keyboard_servos: error: '), node.output
+    assert len(node.lines) == 1, node.output
+    assert node.lines[0].startswith('keyboard_servos: error: '), node.output
     assert message in node.output
 
 
@@ -230,7 +236,8 @@ def test_speed_and_bounds_change_at_runtime_and_bad_values_are_refused_with_a_re
                            ({'tilt_max': -1.5}, 'tilt_min (-1.3) must be less than tilt_max (-1.5)'),
                            ({'pan_max': 3.5}, 'out of range'), ({'tilt_min': 'low'}, 'type')):
         [result] = probe.set_parameters('/keyboard_servos', **values)
-        assert not result.successful and reason in result.reason, (values, result.reason)
+        assert not result.successful, (values, result.reason)
+        assert reason in result.reason, (values, result.reason)
     names = ('speed', 'pan_min', 'pan_max', 'tilt_min', 'tilt_max')
     assert probe.get_parameters('/keyboard_servos', *names) == [SPEED, -1.5708, 1.5708, -1.3, 0.9]
 

@@ -22,16 +22,18 @@ PULLED_FOR = 12.0      # s: longer than the participants' 10 s lease (config/fas
 
 
 def positions(process) -> list[float]:
-    """Joint positions a `ros2 topic echo ... --field position` process has printed so far (a
-    float64[] field prints as Python's array, `array('d', [0.25])`, as upstream's echo does).
+    """Joint positions a `ros2 topic echo ... --field position` process has printed so far.
+
+    A float64[] field prints as Python's array, `array('d', [0.25])`, as upstream's echo does.
     """
     return [float(v) for v in re.findall(r"^array\('d', \[([-+0-9.e]+)\]\)$", process.output, re.M)]
 
 
 @pytest.fixture
 def classroom():
-    """A student's PC and, not on the kit's bridge, a second machine (both namespaces); the PC runs
-    kit_hosts, which joins it to the kit's bridge at 10.42.0.1.
+    """A student's PC and, not on the kit's bridge, a second machine (both namespaces).
+
+    The PC runs kit_hosts, which joins it to the kit's bridge at 10.42.0.1.
     """
     lan = TestLan()
     try:
@@ -78,8 +80,10 @@ def descendants(pid: int) -> list[int]:
 
 
 def set_module_link(kit, module_argument: str, state: str) -> None:
-    """Pull out (down) or plug in (up) a module host's cable. kit_hosts made its namespaces inside
-    the PC's own mount namespace, so they are entered through the module process's /proc entry.
+    """Pull out (down) or plug in (up) a module host's cable.
+
+    kit_hosts made its namespaces inside the PC's own mount namespace, so they are entered through the
+    module process's /proc entry.
     """
     for pid in descendants(kit.pid):
         try:
@@ -106,7 +110,8 @@ def test_a_module_whose_cable_is_pulled_is_seen_again_within_5_s(classroom):
     count = len(positions(pan))
     wait_until(lambda: len(positions(pan)) > count + 5, RECONNECT_LIMIT, 'pan joint states again')
     print(f'pan joint states back {time.monotonic() - plugged:.2f} s after the cable was plugged in')
-    assert classroom.kit.running() and pan.running()
+    assert classroom.kit.running()
+    assert pan.running()
     assert 'Traceback' not in classroom.kit.output + pan.output
 
 
@@ -119,24 +124,28 @@ def owl_network(classroom, host: str, env: dict) -> tuple[int, list[str]]:
 def test_owl_network_on_a_good_set_up_and_three_broken_ones(classroom):
     code, lines = owl_network(classroom, 'pc', OPEN)
     print('\n'.join(['good set-up:', *lines]))
-    assert code == 0 and all(': ok: ' in line for line in lines), lines
+    assert code == 0, lines
+    assert all(': ok: ' in line for line in lines), lines
     assert any('discovers 4 Olive module node(s)' in line for line in lines), lines
     assert lines[-1].startswith('owl network: ok: Humble modules are safe beside this shell'), lines
 
     code, lines = owl_network(classroom, 'pc', {'ROS_DOMAIN_ID': '0'})  # OWL_NETWORK left at private
     print('\n'.join(['private mode:', *lines]))
-    assert code == 1 and 'fix: export OWL_NETWORK=open; source env.sh' in lines[0]
+    assert code == 1
+    assert 'fix: export OWL_NETWORK=open; source env.sh' in lines[0]
 
     code, lines = owl_network(classroom, 'pc', {**OPEN, 'ROS_DOMAIN_ID': '7'})
     print('\n'.join(['another domain:', *lines]))
-    assert code == 1 and lines[-2].endswith('this shell is in domain 7; fix: export ROS_DOMAIN_ID=0'), lines
+    assert code == 1, lines
+    assert lines[-2].endswith('this shell is in domain 7; fix: export ROS_DOMAIN_ID=0'), lines
 
     code, lines = owl_network(classroom, 'other', OPEN)
     print('\n'.join(['not on the bridge:', *lines]))
-    assert code == 1 and "no network interface on the modules' subnet 10.42.0.0/24" in lines[1], lines
+    assert code == 1, lines
+    assert "no network interface on the modules' subnet 10.42.0.0/24" in lines[1], lines
 
 
-@pytest.mark.parametrize('args, message', [
+@pytest.mark.parametrize(('args', 'message'), [
     (['--student-address', '192.168.1.5'], '192.168.1.5 is not a host address of the subnet 10.42.0.0/24'),
     (['--student-address', '10.42.0.8'], '10.42.0.8 is already taken on 10.42.0.0/24'),
     (['--student-address', 'tenfortytwo'], "'tenfortytwo' is not an IPv4 address"),
@@ -150,22 +159,24 @@ def test_kit_hosts_refuses_a_wrong_address_in_one_line_and_makes_nothing(args, m
     assert subprocess.run(['ip', 'netns', 'list'], capture_output=True, text=True).stdout == namespaces_before
 
 
-@pytest.mark.parametrize('args, message', [
+@pytest.mark.parametrize(('args', 'message'), [
     (['--timeout', 'soon'], "argument --timeout: 'soon' is not a number of seconds"),
     (['--discovery-time', '-1'], 'argument --discovery-time: -1 is not between 0 and 60 seconds'),
 ])
 def test_owl_network_refuses_bad_arguments_in_one_line(args, message):
     result = subprocess.run(['owl', 'network', *args], capture_output=True, text=True, timeout=60)
-    assert result.returncode == 2 and 'Traceback' not in result.stderr
+    assert result.returncode == 2
+    assert 'Traceback' not in result.stderr
     assert result.stderr.strip().splitlines()[-1] == f'owl network: error: {message}'
 
 
-@pytest.mark.parametrize('args, message', [
+@pytest.mark.parametrize(('args', 'message'), [
     (['network', '--what'], 'owl: error: unrecognized arguments: --what'),
     (['netwerk'], "owl: error: argument COMMAND: invalid choice: 'netwerk' "
                   "(choose from 'network', 'windows', 'check')"),
 ])
 def test_owl_refuses_unknown_words_in_one_line(args, message):
     result = subprocess.run(['owl', *args], capture_output=True, text=True, timeout=60)
-    assert result.returncode == 2 and 'Traceback' not in result.stderr
+    assert result.returncode == 2
+    assert 'Traceback' not in result.stderr
     assert result.stderr.strip().splitlines()[-1] == message

@@ -1,6 +1,8 @@
-"""`ros2 launch` end to end with small executables: actions, substitutions, conditions and event
-handlers in Python, XML and YAML files; process output, crashes, respawn, signal escalation,
-Ctrl-C; and every kind of bad input (one readable error, exit code 1, no process left behind).
+"""`ros2 launch` end to end with small executables, from Python, XML and YAML launch files.
+
+Actions, substitutions, conditions and event handlers in each format; process output, crashes,
+respawn, signal escalation, Ctrl-C; and every kind of bad input (one readable error, exit code 1, no
+process left behind).
 """
 
 import os
@@ -305,7 +307,8 @@ def test_respawn_restarts_with_the_same_label_until_shutdown(ros, tmp_path):
     process = launch(ros, path)
     assert finish(process) == 0, process.output
     labels = [label for label, _pid in re.findall(STARTED, process.output)]
-    assert len(labels) >= 2 and set(labels) == {labels[0]}, labels
+    assert len(labels) >= 2, labels
+    assert set(labels) == {labels[0]}, labels
     assert re.fullmatch(r'flaky-\d+', labels[0])
     # The start that shutdown meets can be stopped before `echo` runs (seen under load: 9 runs
     # for 10 starts), as upstream's would: every start but that last one prints.
@@ -445,7 +448,8 @@ def test_bad_launch_file_is_one_error_with_exit_code_1(ros, tmp_path, case):
 def test_bad_command_line_is_one_error_with_exit_code_1(ros, args, message):
     process = launch(ros, *args)
     assert finish(process) == 1
-    assert len(process.lines) == 1 and re.search(message, process.lines[0]), process.output
+    assert len(process.lines) == 1, process.output
+    assert re.search(message, process.lines[0]), process.output
     assert not started_pids(process)
 
 
@@ -518,8 +522,10 @@ time.sleep(1.0)
 
 
 def test_interactive_launch_leaves_ctrl_c_to_the_terminal(ros, tmp_path):
-    """With a terminal on stdin, the terminal's Ctrl-C reaches every child itself: launch must not
-    send a second SIGINT.  Without one (scripts, CI) launch forwards it, as upstream does.
+    """With a terminal on stdin, launch leaves Ctrl-C to the terminal, which signals every child itself.
+
+    Launch must not send a second SIGINT then. Without a terminal (scripts, CI) launch forwards it, as
+    upstream does.
     """
     script = write(tmp_path, 'count.py', COUNT_SIGINT)
     path = write(tmp_path, 'count.launch.xml', f'''
@@ -608,6 +614,7 @@ def test_includes_across_formats_and_package_substitutions(ros, tmp_path):
     lines = user_lines(process)
     share = lines[0].removeprefix('share: ')
     prefix = lines[1].removeprefix('prefix: ')
-    assert share == os.path.join(prefix, 'share', 'olive_launch') and os.path.isdir(share)
+    assert share == os.path.join(prefix, 'share', 'olive_launch')
+    assert os.path.isdir(share)
     assert lines[2:] == [f'xml got one and {share} {prefix}', f'python file {tmp_path}/w_launch.py',
                          f'yaml sees one and {share}', f'python file {tmp_path}/z_launch.py']

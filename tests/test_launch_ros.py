@@ -1,5 +1,7 @@
-"""`ros2 launch` of ROS nodes over real DDS: the course's turtlesim launch files (section 3.9) and a
-Node's name, namespace, parameters and remappings as the running node sees them.
+"""`ros2 launch` of ROS nodes over real DDS: the course's turtlesim launch files and a Node's settings.
+
+The course's turtlesim launch files (section 3.9), and a Node's name, namespace, parameters and
+remappings as the running node sees them.
 """
 
 import os
@@ -60,8 +62,10 @@ def test_course_launch_file_verbatim_starts_two_turtles_and_sigint_stops_them(ro
 
 
 def test_ctrl_c_in_a_terminal_stops_the_package_launch_file(ros, tmp_path):
-    """`ros2 launch olive_launch turtle_launch.py` in a terminal, then Ctrl-C: the terminal signals
-    launch and both nodes; launch does not repeat the SIGINT and everything is down within 5 s.
+    """`ros2 launch olive_launch turtle_launch.py` in a terminal, then Ctrl-C: all down within 5 s.
+
+    The terminal signals launch and both nodes; launch does not repeat the SIGINT and everything is down
+    within 5 s.
     """
     terminal, terminal_side = os.openpty()
     log = tmp_path / 'terminal.log'

@@ -1,5 +1,6 @@
-"""Launch files shaped like the ROS 2 launch tutorials (turtlesim mimic, substitutions, event
-handlers) run unchanged through `ros2 launch`, with turtlesim over real DDS.
+"""Launch files shaped like the ROS 2 launch tutorials run unchanged through `ros2 launch`.
+
+The tutorials' turtlesim mimic, substitutions and event handlers, with turtlesim over real DDS.
 """
 
 import os

@@ -1,6 +1,8 @@
-"""An upstream-style launch file runs under `ros2 launch` over real DDS: OnProcessExit imported from
-its upstream module path, a LifecycleNode that launch configures and activates through the node's
-real lifecycle services, and `$(param ...)` reading what SetParameter gave every node.
+"""An upstream-style launch file runs under `ros2 launch` over real DDS.
+
+It has OnProcessExit imported from its upstream module path, a LifecycleNode that launch configures
+and activates through the node's real lifecycle services, and `$(param ...)` reading what
+SetParameter gave every node.
 """
 
 import sys

@@ -69,8 +69,9 @@ def group_of(package: str) -> str:
 
 @cache
 def module_owners() -> dict[str, str]:
-    """Top-level Python module -> the package that installs it (interface packages generate a module
-    named after themselves).
+    """Top-level Python module -> the package that installs it.
+
+    Interface packages generate a module named after themselves.
     """
     owners = {name: name for name in packages()}
     for name, folder in packages().items():
@@ -96,8 +97,10 @@ def imports(package: str) -> list[tuple[Path, str, set[str]]]:
 
 
 def is_interface_package(package: str) -> bool:
-    """Messages and services only (olive_interfaces): `owl check` calls the course's services with
-    the course's own types, so the tools may import these, never the course's nodes.
+    """Whether a package is messages and services only (olive_interfaces), which the tools may import.
+
+    `owl check` calls the course's services with the course's own types, so the tools may import these,
+    never the course's nodes.
     """
     folder = packages()[package]
     return (folder / 'CMakeLists.txt').is_file() and any((folder / kind).is_dir() for kind in ('msg', 'srv'))
@@ -110,7 +113,8 @@ def ours(module: str) -> str | None:
 def test_every_package_sits_in_a_group_with_a_readme_of_its_rules():
     for name, folder in packages().items():
         parts = folder.relative_to(SRC).parts
-        assert len(parts) == 2 and parts[0] in MAY_IMPORT, f'{name}: {folder} is not src/<group>/<package>'
+        assert len(parts) == 2, f'{name}: {folder} is not src/<group>/<package>'
+        assert parts[0] in MAY_IMPORT, f'{name}: {folder} is not src/<group>/<package>'
     for group in MAY_IMPORT:
         readme = SRC / group / 'README.md'
         assert readme.is_file(), f'{readme} is missing'

@@ -1,6 +1,8 @@
-"""olive_camera over real DDS against olive_sim's camera: display_camera without a display (one line,
-the camera's images in its window's seam) and with one (a real window under Xvfb), the launch file
-with the kit, the QoS the course chose and why, bad input, Ctrl-C.
+"""olive_camera over real DDS against olive_sim's camera, with and without a display.
+
+display_camera without a display (one line, the camera's images in its window's seam) and with one
+(a real window under Xvfb), the launch file with the kit, the QoS the course chose and why, bad
+input, Ctrl-C.
 """
 
 import signal
@@ -62,7 +64,8 @@ def test_without_a_display_it_says_so_once_and_its_window_gets_the_cameras_image
     # What the window shows is the camera's picture: the red tower straight ahead, where the
     # camera's own images have it, and the same pixels give or take JPEG.
     tower = find_colour(shown, RED)
-    assert tower is not None and tower == pytest.approx(find_colour(decode(images[-1].data), RED), abs=3)
+    assert tower is not None
+    assert tower == pytest.approx(find_colour(decode(images[-1].data), RED), abs=3)
     assert min(np.abs(shown.astype(int) - decode(m.data).astype(int)).mean() for m in images[-5:]) < 6
     time.sleep(1.0)
     assert display_camera.running()
@@ -114,7 +117,8 @@ def test_it_says_which_topic_it_waits_for_and_skips_undecodable_images_with_a_wa
     window = tmp_path / f'display_camera-{display_camera.pid}' / 'cv2-camera.jpg'
     wait_until(window.exists, 10, "the window's image in the seam")
     shown = seam_image(window)
-    assert shown.shape == (48, 64, 3) and np.abs(shown[24, 10].astype(int) - (255, 0, 0)).max() < 30
+    assert shown.shape == (48, 64, 3)
+    assert np.abs(shown[24, 10].astype(int) - (255, 0, 0)).max() < 30
     assert display_camera.output.count('image skipped') == 1  # ten bad images in 0.5 s: one warning
     display_camera.wait_for(r'no image on /test/image for 2.0 s$', timeout=10)
     assert display_camera.running()
@@ -131,7 +135,8 @@ def test_bad_startup_parameters_end_with_one_line_and_code_2(ros, args, message)
     display_camera = ros.run('olive_camera', 'display_camera', '--ros-args', *args, env=NO_DISPLAY)
     assert display_camera.wait(30) == 2
     assert len(display_camera.lines) == 1, display_camera.output
-    assert display_camera.lines[0].startswith('display_camera: error: ') and message in display_camera.output
+    assert display_camera.lines[0].startswith('display_camera: error: ')
+    assert message in display_camera.output
 
 
 def test_the_courses_qos_receives_the_camera_and_a_reliable_subscription_receives_nothing(ros):

@@ -1,5 +1,7 @@
-"""olive_imu's imu_turtle over real DDS: which IMU tilt drives the turtle which way, the launch file,
-the scripted IMU driving it around, bad input, Ctrl-C.
+"""olive_imu's imu_turtle over real DDS: how the IMU's tilt drives the turtle, alone and launched.
+
+Which IMU tilt drives the turtle which way, the launch file, the scripted IMU driving it around, bad
+input, Ctrl-C.
 """
 
 import math
@@ -99,7 +101,8 @@ def test_speed_factors_change_at_runtime_and_bad_values_are_refused_with_a_reaso
                                 ('speed_factor', 'fast', 'type'), ('speed_factor', 2, 'type'),
                                 ('imu_topic', '/elsewhere', 'read-only')):
         [result] = probe.set_parameters('/imu_turtle', **{name: value})
-        assert not result.successful and reason in result.reason, (name, value, result.reason)
+        assert not result.successful, (name, value, result.reason)
+        assert reason in result.reason, (name, value, result.reason)
     assert probe.get_parameters('/imu_turtle', 'speed_factor', 'turn_factor', 'imu_topic') == [
         1.0, 3.0, IMU_TOPIC]
     settle(twists, 1.0 * 0.2, 3.0 * 0.4)
@@ -114,7 +117,8 @@ def test_bad_startup_parameters_end_with_one_line_and_code_2(ros, args, message)
     imu_turtle = ros.run('olive_imu', 'imu_turtle', '--ros-args', *args)
     assert imu_turtle.wait(30) == 2
     assert imu_turtle.lines == [line for line in imu_turtle.lines if line.startswith('imu_turtle: error: ')]
-    assert len(imu_turtle.lines) == 1 and message in imu_turtle.output, imu_turtle.output
+    assert len(imu_turtle.lines) == 1, imu_turtle.output
+    assert message in imu_turtle.output, imu_turtle.output
 
 
 def imu_message(x=0.0, y=0.0, z=0.0, w=1.0, covariance=0.0):
@@ -197,7 +201,11 @@ def test_the_scripted_imu_drives_the_turtle_around_inside_the_window(ros):
     time.sleep(20.0)
     path = poses[count:]
     xs, ys = [p.x for p in path], [p.y for p in path]
-    assert max(xs) - min(xs) > 1.5 and max(ys) - min(ys) > 1.5, (min(xs), max(xs), min(ys), max(ys))
+    assert max(xs) - min(xs) > 1.5, (min(xs), max(xs), min(ys), max(ys))
+    assert max(ys) - min(ys) > 1.5, (min(xs), max(xs), min(ys), max(ys))
     assert sum(abs(p.linear_velocity) for p in path) / len(path) > 0.3  # m/s on average
-    assert 0.5 < min(xs) and max(xs) < WINDOW - 0.5 and 0.5 < min(ys) and max(ys) < WINDOW - 0.5
+    assert 0.5 < min(xs)
+    assert max(xs) < WINDOW - 0.5
+    assert 0.5 < min(ys)
+    assert max(ys) < WINDOW - 0.5
     assert 'hit the wall' not in turtlesim.output

@@ -1,9 +1,10 @@
-"""Each simulated Olive module's own web page (olive_sim/module_page.py) over real DDS with the real
-kit processes, in Chromium (web_harness.py): every page loads with live data and no console error,
-Restart Services brings a servo back and imu_control_robot moves it again, an IP change moves the
-page (bad, outside and taken addresses are refused in one line), Reboot Device waits its boot, and
-bad input on every endpoint gets one line while the module keeps running.
-docs/screenshots/module_*.png are made here.
+"""Each simulated Olive module's own web page (olive_sim/module_page.py) over real DDS, in Chromium.
+
+The pages run with the real kit processes, in Chromium (web_harness.py): every page loads with live
+data and no console error, Restart Services brings a servo back and imu_control_robot moves it
+again, an IP change moves the page (bad, outside and taken addresses are refused in one line),
+Reboot Device waits its boot, and bad input on every endpoint gets one line while the module keeps
+running. docs/screenshots/module_*.png are made here.
 """
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ import re
 import time
 from typing import Any
 
+import pytest
 from olive_sim.restart import BOOT_DELAY
 from ros_harness import wait_until
 from sensor_msgs.msg import JointState
@@ -60,13 +62,16 @@ def test_every_module_page_loads_with_live_status_debug_view_and_log(ros, page):
         page.goto(url)
         page.wait_for_function('() => window.modulePage.device !== null', timeout=20_000)
         device = page.evaluate('window.modulePage.device')
-        assert device['device']['Device Type'] == kind and device['device']['Node'] == node
+        assert device['device']['Device Type'] == kind
+        assert device['device']['Node'] == node
         assert device['network'] == {'address': KIT_NODES[node], 'mask': '255.255.255.0',
                                      'gateway': '10.42.0.1'}
         # live charts: samples pushed at 1 Hz with the process's CPU and its traffic
         page.wait_for_function('() => window.modulePage.samples.length >= 3', timeout=20_000)
         last = page.evaluate('window.modulePage.samples.at(-1)')
-        assert 0 < last['cpu'] < 200 and last['memory'] > 0 and last['tx'] > 0
+        assert 0 < last['cpu'] < 200
+        assert last['memory'] > 0
+        assert last['tx'] > 0
         assert page.input_value('input[name=address]') == KIT_NODES[node]
         assert page.is_visible('#menu-debug') == (kind in ('imu', 'camera'))
         name = f"module_{kind}_{node.split('_')[2]}"
@@ -130,7 +135,8 @@ def test_restart_services_brings_the_servo_back_and_imu_control_robot_moves_it(r
     page.wait_for_function('() => window.modulePage.samples.length >= 2', timeout=20_000)
     assert 'started again' in page.text_content('#control-result')
     forgive_while_away(page)
-    assert robot.running() and 'Traceback' not in launch.output
+    assert robot.running()
+    assert 'Traceback' not in launch.output
     launch.stop_cleanly(timeout=15)  # Ctrl-C still stops the whole kit, restarted module too
 
 
@@ -181,7 +187,8 @@ def test_an_ip_change_moves_the_page_and_bad_addresses_change_nothing(ros, page)
     assert page_line(pan, 'olive_servo_pan_dcm_srv', 2) == moved
     page.wait_for_function('() => window.modulePage.restarts === 1', timeout=30_000)
     forgive_while_away(page)
-    assert pan.running() and tilt.running()
+    assert pan.running()
+    assert tilt.running()
 
 
 def test_reboot_device_is_away_for_its_boot_and_comes_back(ros):
@@ -191,7 +198,8 @@ def test_reboot_device_is_away_for_its_boot_and_comes_back(ros):
     url = page_line(imu, 'olive_imu_x1684267976913_dcm_srv', 1)
     boot = _get(url, 'api/device')['boot']
     status, _, body = http('POST', url + 'api/reboot', {})
-    assert status == 200 and b'Reboot Device' in body
+    assert status == 200
+    assert b'Reboot Device' in body
     rebooting = time.monotonic()
     wait_until(lambda: _refused(url), 5, 'the rebooting module away')
     imu.wait_for('olive_imu_x1684267976913_dcm_srv.*web page at', timeout=60, count=2)
@@ -229,7 +237,8 @@ def test_bad_input_on_every_endpoint_gets_one_line_and_the_module_keeps_running(
             ('GET', 'static/../../module_node.py', None, 404, 'no page')]:
         got, _, data = http(method, url + path, body)
         line = json.loads(data)
-        assert got == status and list(line) == ['error'], (path, body, line)
+        assert got == status, (path, body, line)
+        assert list(line) == ['error'], (path, body, line)
         assert line['error'].startswith(error), (path, body, line)
         assert '\n' not in line['error']
     with PageSocket(url) as socket:
@@ -243,18 +252,23 @@ def test_bad_input_on_every_endpoint_gets_one_line_and_the_module_keeps_running(
                 ({'type': 'nothing', 'id': 5}, 'unknown message type "nothing"')]:
             socket.send(message)
             answer = socket.receive_matching(lambda m: m['type'] == 'error', 'an error line')
-            assert answer['error'].startswith(error) and '\n' not in answer['error'], answer
+            assert answer['error'].startswith(error), answer
+            assert '\n' not in answer['error'], answer
         socket.send('x' * (2 << 20))  # over the WebSocket's limit: the connection closes, no more
-        try:
+
+        def read_until_closed():
             while True:
                 socket.receive(timeout=10)
-        except SocketClosed as closed:
-            assert closed.code in (1009, 1006, None)
+
+        with pytest.raises(SocketClosed) as closed:
+            read_until_closed()
+        assert closed.value.code in (1009, 1006, None)
     # the module is as it was: page, address and node
     assert _get(url, 'api/device')['network']['address'] == '10.42.0.8'
     count = len(joints)
     wait_until(lambda: len(joints) > count + 50, 10, 'the servo still publishing')
-    assert servo.running() and 'Traceback' not in servo.output
+    assert servo.running()
+    assert 'Traceback' not in servo.output
     servo.stop_cleanly()
 
 
@@ -274,7 +288,8 @@ def test_a_taken_address_and_a_bad_address_parameter_get_one_line(ros):
     launch = ros.command(['ros2', 'launch', 'olive_sim', 'owl_kit.launch.py', 'web_port:=http'])
     launch.wait(timeout=60)
     assert "web_port must be a TCP port number 0..65535 (0: no pages), got 'http'" in launch.output
-    assert 'Traceback' not in launch.output and 'process started' not in launch.output
+    assert 'Traceback' not in launch.output
+    assert 'process started' not in launch.output
 
 
 # ---- helpers ---------------------------------------------------------------------------------------

@@ -1,6 +1,7 @@
-"""olive_servo over real DDS against olive_sim's servos: control_servo's sine, the appendix's
-pid_testing, imu_control_robot; torque on before any goal and off after Ctrl-C, signs, bounds,
-bad input.
+"""olive_servo over real DDS against olive_sim's servos: its three nodes and their torque handling.
+
+control_servo's sine, the appendix's pid_testing, imu_control_robot; torque on before any goal and
+off after Ctrl-C, signs, bounds, bad input.
 """
 
 import itertools
@@ -44,12 +45,14 @@ def test_control_servo_waits_for_the_servo_enables_its_torque_before_any_goal_an
     assert values[0] == 0.0
     assert values == pytest.approx([math.sin(0.01 * k) for k in steps], abs=1e-6)
     gaps = [later - earlier for earlier, later in itertools.pairwise(steps)]
-    assert min(gaps) >= 1 and gaps.count(1) >= 0.9 * len(gaps), steps  # 0.01 rad per goal, in order
+    assert min(gaps) >= 1, steps  # 0.01 rad per goal, in order
+    assert gaps.count(1) >= 0.9 * len(gaps), steps
     wait_until(lambda: joints and joints[-1].position[0] > 0.5, 20, 'the pan joint turning left past 0.5 rad')
     wait_until(lambda: diagnostics and torque_enabled(diagnostics), 10, 'torque_enabled true')
     assert all(abs(g.data) <= 1.0 for g in goals)
     control_servo.stop_cleanly(timeout=10)
-    assert 'torque disabled: pan' in control_servo.output and 'Traceback' not in control_servo.output
+    assert 'torque disabled: pan' in control_servo.output
+    assert 'Traceback' not in control_servo.output
     servo.wait_for(r'\]: torque disabled$', timeout=10)
     count = len(diagnostics)
     wait_until(lambda: len(diagnostics) > count and not torque_enabled(diagnostics), 10,
@@ -79,7 +82,8 @@ def test_control_servo_frequency_and_amplitude_change_at_runtime_and_bad_values_
                                 ('amplitude', 1.6, 'out of range'), ('amplitude', -0.1, 'out of range'),
                                 ('frequency', 'fast', 'type'), ('frequency', 100, 'type')):
         [result] = probe.set_parameters('/control_servo', **{name: value})
-        assert not result.successful and reason in result.reason, (name, value, result.reason)
+        assert not result.successful, (name, value, result.reason)
+        assert reason in result.reason, (name, value, result.reason)
     assert probe.get_parameters('/control_servo', 'frequency', 'amplitude') == [10.0, 1.5]
     control_servo.stop_cleanly(timeout=10)
     assert_clean_servo(servo)
@@ -96,7 +100,8 @@ def test_control_servo_frequency_and_amplitude_change_at_runtime_and_bad_values_
 def test_bad_startup_parameters_end_with_one_line_and_code_2(ros, executable, args, message):
     node = ros.run('olive_servo', executable, '--ros-args', *args)
     assert node.wait(30) == 2
-    assert len(node.lines) == 1 and node.lines[0].startswith(f'{executable}: error: '), node.output
+    assert len(node.lines) == 1, node.output
+    assert node.lines[0].startswith(f'{executable}: error: '), node.output
     assert message in node.output
 
 
@@ -190,7 +195,8 @@ def test_imu_control_robot_bounds_change_at_runtime_and_bad_ones_are_refused(ros
                            ({'pan_max': 3.5}, 'out of range'), ({'tilt_min': 'low'}, 'type'),
                            ({'imu_topic': '/elsewhere'}, 'read-only')):
         [result] = probe.set_parameters('/imu_control_robot', **values)
-        assert not result.successful and reason in result.reason, (values, result.reason)
+        assert not result.successful, (values, result.reason)
+        assert reason in result.reason, (values, result.reason)
     assert probe.get_parameters('/imu_control_robot', 'pan_min', 'pan_max', 'tilt_min', 'tilt_max') == [
         -1.5708, 1.5708, -1.3, 0.5]
     robot.stop_cleanly(timeout=10)
@@ -249,4 +255,5 @@ def test_the_scripted_imu_sweeps_both_servos_through_most_of_their_range(ros):
     assert min(swept().values()) > 0.75, swept()
     robot.stop_cleanly(timeout=10)
     for servo in servos.values():
-        assert 'torque enabled' in servo.output and TORQUE_OFF_WARNING not in servo.output
+        assert 'torque enabled' in servo.output
+        assert TORQUE_OFF_WARNING not in servo.output

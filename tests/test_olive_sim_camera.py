@@ -70,12 +70,14 @@ def test_interface_qos_frames_and_rate(ros):
     rate = (len(window) - 1) / (stamp(window[-1]) - stamp(window[0]))
     assert rate == pytest.approx(30.0, rel=0.10)
     first = window[0]
-    assert first.format == 'jpeg' and first.header.frame_id == 'olive'
+    assert first.format == 'jpeg'
+    assert first.header.frame_id == 'olive'
     assert decode(first).shape == (480, 640, 3)
     wait_for_messages(infos, 1)
     info = infos[-1]
     assert (info.width, info.height) == (640, 480)
-    assert info.k[2] == pytest.approx(319.5) and info.k[5] == pytest.approx(239.5)
+    assert info.k[2] == pytest.approx(319.5)
+    assert info.k[5] == pytest.approx(239.5)
     assert info.k[0] == pytest.approx(320 / math.tan(math.radians(48.66) / 2), rel=1e-6)
 
 
@@ -98,9 +100,11 @@ def test_the_view_follows_pan_and_tilt(ros):
 
     x0, y0 = look(0.0, 0.0)
     x1, y1 = look(0.1, 0.0)
-    assert x1 > x0 + 40 and abs(y1 - y0) < 3        # pan left: the tower moves right
+    assert x1 > x0 + 40                             # pan left: the tower moves right
+    assert abs(y1 - y0) < 3
     x2, y2 = look(0.0, 0.1)
-    assert y2 < y0 - 30 and abs(x2 - x0) < 3        # tilt down: the tower moves up
+    assert y2 < y0 - 30                             # tilt down: the tower moves up
+    assert abs(x2 - x0) < 3
     assert look(math.pi, 0.0) is None               # behind: out of view
     wait_until(lambda: camera_imu and abs(camera_imu[-1].orientation.z) > 0.99, 5,
                'the camera IMU to show the head turned by pi')
@@ -127,7 +131,8 @@ def test_bad_input_is_refused_or_warned(ros):
     count = len(images)
     wait_for_messages(images, count + 2)
     assert find_colour(decode(images[-1]), RED)[0] == pytest.approx(319.5, abs=3)
-    assert camera.running() and 'Traceback' not in camera.output
+    assert camera.running()
+    assert 'Traceback' not in camera.output
 
 
 @pytest.mark.parametrize(('args', 'message'), [
@@ -138,4 +143,5 @@ def test_bad_input_is_refused_or_warned(ros):
 def test_bad_startup_parameters_exit_with_one_clear_line(ros, args, message):
     camera = ros.run('olive_sim', 'camera_sim', '--ros-args', *args)
     assert camera.wait(20) == 2
-    assert message in camera.output and 'Traceback' not in camera.output
+    assert message in camera.output
+    assert 'Traceback' not in camera.output

@@ -80,10 +80,12 @@ def test_interface_rate_and_gyro_integration_with_the_scripted_motion(ros):
     assert quat.angle_between(orientation(second[0]), orientation(second[-1])) > 0.05
     assert quat.angle_between(integrated, orientation(second[-1])) < 0.03  # rad
     last = window[-1]
-    assert last.orientation_covariance[0] > 0 and last.angular_velocity_covariance[4] > 0
+    assert last.orientation_covariance[0] > 0
+    assert last.angular_velocity_covariance[4] > 0
     assert last.linear_acceleration_covariance[8] > 0
     response = trigger(ros, 'setBias')
-    assert not response.success and 'moving' in response.message
+    assert not response.success
+    assert 'moving' in response.message
 
 
 def test_a_module_held_up_still_stamps_its_samples_at_its_rate(ros):
@@ -98,7 +100,8 @@ def test_a_module_held_up_still_stamps_its_samples_at_its_rate(ros):
     os.kill(module.pid, signal.SIGCONT)
     wait_for_messages(imu, 60, timeout=10)
     gaps = [stamp(later) - stamp(earlier) for earlier, later in itertools.pairwise(imu[:60])]
-    assert min(gaps) > 0.008 and max(gaps) < 0.012, [round(g, 4) for g in gaps]
+    assert min(gaps) > 0.008, [round(g, 4) for g in gaps]
+    assert max(gaps) < 0.012, [round(g, 4) for g in gaps]
 
 
 def test_commanded_motion_gravity_heading_and_zeroing(ros):
@@ -143,7 +146,8 @@ def test_recorded_motion_file_plays(ros, tmp_path):
     imu = ros.probe.collect(Imu, PREFIX + 'imu')
     wait_for_messages(imu, 250, timeout=20)
     yaws = [quat.to_euler(orientation(m))[2] for m in imu]
-    assert max(yaws) == pytest.approx(0.8, abs=0.03) and min(yaws) < 0.05
+    assert max(yaws) == pytest.approx(0.8, abs=0.03)
+    assert min(yaws) < 0.05
 
 
 def test_bad_commands_are_warned_and_ignored(ros):
@@ -158,12 +162,14 @@ def test_bad_commands_are_warned_and_ignored(ros):
     imu_sim.wait_for(r'true_orientation ignored: not a rotation', count=2)
     for name, value in (('imu_rate', 50.0), ('seed', 3), ('gyro_noise', -1.0), ('motion', 'file')):
         result = probe.set_parameters(NODE, **{name: value})[0]
-        assert not result.successful and result.reason, name
+        assert not result.successful, name
+        assert result.reason, name
     assert not probe.set_parameters(NODE, button_pressed='yes')[0].successful
     imu = probe.collect(Imu, PREFIX + 'imu')
     wait_for_messages(imu, 10)
     assert quat.angle_between(orientation(imu[-1]), quat.IDENTITY) < 0.02
-    assert imu_sim.running() and 'Traceback' not in imu_sim.output
+    assert imu_sim.running()
+    assert 'Traceback' not in imu_sim.output
 
 
 @pytest.mark.parametrize(('args', 'message'), [
@@ -176,4 +182,5 @@ def test_bad_commands_are_warned_and_ignored(ros):
 def test_bad_startup_parameters_exit_with_one_clear_line(ros, args, message):
     imu_sim = ros.run('olive_sim', 'imu_sim', '--ros-args', *args)
     assert imu_sim.wait(20) == 2
-    assert message in imu_sim.output and 'Traceback' not in imu_sim.output
+    assert message in imu_sim.output
+    assert 'Traceback' not in imu_sim.output

@@ -8,8 +8,9 @@ from std_srvs.srv import Trigger
 
 
 def first_answer(ros, argv):
-    """A fresh `ros2` process's answer: complete the first time (ros2cli waits until discovery of
-    every local participant has settled), as a student at the kit sees it.
+    """A fresh `ros2` process's answer, complete the first time, as a student at the kit sees it.
+
+    ros2cli waits until discovery of every local participant has settled.
     """
     process = ros.command(argv, label=argv[1])
     assert process.wait(30) == 0, process.output
@@ -33,13 +34,15 @@ def test_the_kit_launch_brings_up_four_modules_with_the_course_topics(ros):
     listing = first_answer(ros, ['ros2', 'topic', 'list', '-t'])
     assert course_lines <= set(listing.lines), listing.output
     info = first_answer(ros, ['ros2', 'topic', 'info', '/olive/camera/eye/image/compressed', '-v'])
-    assert '  Reliability: BEST_EFFORT' in info.lines and '  Durability: VOLATILE' in info.lines, info.output
+    assert '  Reliability: BEST_EFFORT' in info.lines, info.output
+    assert '  Durability: VOLATILE' in info.lines, info.output
     params = first_answer(ros, ['ros2', 'param', 'list'])
     pan_params = params.lines[params.lines.index('/olive_servo_pan_dcm_srv:') + 1:]
     assert {'  kp', '  ki', '  kd'} <= set(pan_params), params.output
     enable = ros.command(['ros2', 'service', 'call', '/olive/servo/pan/setTorqueEnable',
                           'std_srvs/srv/Trigger'], label='service_call')
-    assert enable.wait(30) == 0 and "message='torque enabled'" in enable.output, enable.output
+    assert enable.wait(30) == 0, enable.output
+    assert "message='torque enabled'" in enable.output, enable.output
     joints = probe.collect(JointState, '/olive/servo/pan/joint')
     publish = ros.command(['ros2', 'topic', 'pub', '--once', '/olive/servo/pan/goal/position',
                            'std_msgs/msg/Float32', '{data: 1.0}'], label='topic_pub')

@@ -87,9 +87,11 @@ def test_interface_matches_the_course(ros):
     wait_for_messages(switch, 1)
     rate = (len(joints) - 1) / (stamp(joints[-1]) - stamp(joints[0]))
     assert rate == pytest.approx(100.0, rel=0.05)
-    assert joints[-1].name == ['pan_joint'] and len(joints[-1].effort) == 1
+    assert joints[-1].name == ['pan_joint']
+    assert len(joints[-1].effort) == 1
     values = {kv.key: kv.value for kv in status[-1].values}
-    assert values['led'] == 'off' and values['torque_enabled'] == 'false'
+    assert values['led'] == 'off'
+    assert values['torque_enabled'] == 'false'
     led = probe.node.create_publisher(Bool, PREFIX + 'led', 10)
     wait_until(lambda: led.get_subscription_count() > 0, 10, 'led subscriber')
     led.publish(Bool(data=True))
@@ -112,7 +114,8 @@ def test_goals_ignored_with_torque_off_and_tracked_with_torque_on(ros):
     time.sleep(0.5)
     assert max(abs(p) for p in positions(joints)) < 0.01
     response = call(ros, 'setTorqueEnable')
-    assert response.success and response.message == 'torque enabled'
+    assert response.success
+    assert response.message == 'torque enabled'
     goal(ros, 1.0)
     wait_until(lambda: joints and abs(joints[-1].position[0] - 1.0) < 0.01, 10, 'the joint at 1.0 rad')
     assert call(ros, 'setTorqueEnable').message == 'torque already enabled'
@@ -143,7 +146,8 @@ def test_the_course_pid_exercise_over_dds(ros):
     assert p_only.steady_state_error > 0.03
     ros.probe.set_parameters(NODE, kp=5.0)
     fast = measure_step(ros, publisher, joints, 0.0)
-    assert fast.rise_time < p_only.rise_time and fast.overshoot > p_only.overshoot + 0.05
+    assert fast.rise_time < p_only.rise_time
+    assert fast.overshoot > p_only.overshoot + 0.05
     ros.probe.set_parameters(NODE, ki=10.0)
     with_i = measure_step(ros, publisher, joints, 1.57)
     assert with_i.steady_state_error < 0.01
@@ -201,7 +205,8 @@ def test_bad_input_is_refused_or_warned_and_never_moves_the_joint(ros):
     servo.wait_for(r'/olive/servo/pan/led is published as std_msgs/msg/String by /owl_test_probe: '
                    r'the LED expects std_msgs/msg/Bool', timeout=15)
     del led
-    assert servo.running() and 'Traceback' not in servo.output
+    assert servo.running()
+    assert 'Traceback' not in servo.output
     count = len(joints)
     wait_until(lambda: len(joints) > count + 10, 5, 'joint states still flowing')
 
@@ -215,4 +220,5 @@ def test_bad_input_is_refused_or_warned_and_never_moves_the_joint(ros):
 def test_bad_startup_parameters_exit_with_one_clear_line(ros, args, message):
     servo = ros.run('olive_sim', 'servo_sim', '--ros-args', *args)
     assert servo.wait(20) == 2
-    assert message in servo.output and 'Traceback' not in servo.output
+    assert message in servo.output
+    assert 'Traceback' not in servo.output

@@ -1,5 +1,7 @@
-"""owl check over real DDS: the reference solutions pass, and each broken variant a student might write
-(tests/owl_check_variants/, built into a student workspace of its own) fails with the right hint.
+"""owl check over real DDS: the reference solutions pass, and broken variants fail with the right hint.
+
+The variants are what a student might write (tests/owl_check_variants/), each built into a student
+workspace of its own.
 
 Each `owl check` leases a ROS domain of its own, as the `ros` fixture does; these tests drive the
 command as a student or teacher types it, so they need no harness of their own.
@@ -78,7 +80,8 @@ def test_list_gives_every_exercise_with_its_section_and_description():
     lines = done.stdout.splitlines()
     assert len(lines) == len(EXERCISES)
     imu_turtle = next(line for line in lines if line.startswith('imu_turtle '))
-    assert '4.3.2' in imu_turtle and 'pitch' in imu_turtle
+    assert '4.3.2' in imu_turtle
+    assert 'pitch' in imu_turtle
 
 
 def test_an_unknown_id_names_the_closest_one():
@@ -93,7 +96,8 @@ def test_outside_a_workspace_is_one_line_and_exit_code_2(tmp_path):
     done = owl_check('imu_turtle', cwd=tmp_path)
     assert done.returncode == 2
     [line] = done.stderr.strip().splitlines()
-    assert 'is not in a colcon workspace' in line and 'Traceback' not in done.stderr
+    assert 'is not in a colcon workspace' in line
+    assert 'Traceback' not in done.stderr
 
 
 def test_a_missing_package_is_one_line_and_exit_code_2(broken_too):
@@ -114,7 +118,8 @@ def test_a_failed_build_gives_its_last_error_line_and_exit_code_2(tmp_path):
     done = owl_check('imu_turtle', cwd=package, timeout=300)
     assert done.returncode == 2, done.stdout + done.stderr
     [line] = done.stderr.strip().splitlines()
-    assert line.startswith('owl check: colcon build failed: ') and 'SyntaxError' in line, line
+    assert line.startswith('owl check: colcon build failed: '), line
+    assert 'SyntaxError' in line, line
 
 
 @pytest.mark.timeout(600)
@@ -167,8 +172,10 @@ FRESH_DUMP = """/turtlesim:
 
 @pytest.mark.timeout(300)
 def test_all_in_a_workspace_of_ros2_pkg_create_and_an_unedited_parameter_file(tmp_path):
-    """Section 3.4's command makes a package that passes; ~/Documents/turtlesim.yaml straight from
-    ros2 param dump was never edited; --all checks just these two (3.6's choice: none attempted).
+    """Section 3.4's package passes and an unedited turtlesim.yaml fails; --all checks just these two.
+
+    The package is what section 3.4's command makes; ~/Documents/turtlesim.yaml comes straight from ros2
+    param dump and was never edited. Of 3.6's choice, none was attempted.
     """
     workspace, home = tmp_path / 'ws', tmp_path / 'home'
     (workspace / 'src').mkdir(parents=True)
@@ -203,10 +210,12 @@ def test_a_factorial_server_and_client_of_their_own_names_are_found_and_judged(b
     assert done.returncode == 1, done.stdout + done.stderr
     found = results(done)
     server = found['factorial_server']['criteria']
-    assert server[0]['passed'] and '/compute_factorial' in server[0]['detail'], server
+    assert server[0]['passed'], server
+    assert '/compute_factorial' in server[0]['detail'], server
     failed = [c for c in server if not c['passed']]
     assert [c['text'] for c in failed] == ['the factorial of 5 is 120', 'the factorial of 10 is 3628800']
-    assert '1 * 2 * ... * 5' in failed[0]['hint'] and 'answered 24' in failed[0]['detail']
+    assert '1 * 2 * ... * 5' in failed[0]['hint']
+    assert 'answered 24' in failed[0]['detail']
     assert found['factorial_client']['passed'], found['factorial_client']
 
 
@@ -239,7 +248,8 @@ def test_a_broken_variant_fails_with_the_right_hint(broken, exercise, criterion,
     assert done.returncode == 1, done.stdout + done.stderr
     failed = [c for c in results(done)[exercise]['criteria'] if not c['passed']]
     matching = [c for c in failed if criterion in c['text']]
-    assert matching and hint in matching[0]['hint'], failed
+    assert matching, failed
+    assert hint in matching[0]['hint'], failed
 
 
 @pytest.mark.timeout(300)
@@ -256,4 +266,5 @@ def test_a_crashing_node_fails_with_its_last_output_lines(broken_too):
     done = owl_check('random_number_publisher', '--workspace', str(broken_too), '--json', timeout=280)
     assert done.returncode == 1, done.stdout + done.stderr
     hints = ' '.join(c['hint'] for c in results(done)['random_number_publisher']['criteria'])
-    assert 'your node ended with exit code' in hints and 'ZeroDivisionError' in hints, hints
+    assert 'your node ended with exit code' in hints, hints
+    assert 'ZeroDivisionError' in hints, hints

@@ -1,6 +1,8 @@
-"""`owl windows` with real programs without a display: a student's OpenCV viewer and pygame key
-reader (tests/student_scripts/) show on the page in Chromium, live; keys pressed on the page reach
-the pygame program; bad input gets one line. docs/screenshots/owl_windows.png is made here.
+"""`owl windows` with real programs without a display, shown live on the page in Chromium.
+
+A student's OpenCV viewer and pygame key reader (tests/student_scripts/) show on the page, live; keys
+pressed on the page reach the pygame program; bad input gets one line.
+docs/screenshots/owl_windows.png is made here.
 """
 
 import re
@@ -98,7 +100,8 @@ def test_bad_input_gets_one_line_and_nothing_reaches_the_program(ros, tmp_path):
                 ({'name': 'press'}, 'unknown command "press"')]):
             page_socket.send({'type': 'command', 'id': number, **message})
             answer = page_socket.receive_matching(lambda m, n=number: m.get('id') == n, f'answer {number}')
-            assert answer['type'] == 'error' and answer['error'].startswith(error), answer
+            assert answer['type'] == 'error', answer
+            assert answer['error'].startswith(error), answer
         page_socket.subscribe(20, 'window', window='../../etc/passwd')
         answer = page_socket.receive_matching(lambda m: m.get('id') == 20, 'the refused subscription')
         assert answer['error'].startswith("no window '../../etc/passwd'"), answer

@@ -49,7 +49,8 @@ def test_lower_above_upper_is_refused_with_a_reason(ros):
     ros.run('random_number_ps', 'random_number_publisher')
     [result] = ros.probe.set_parameters('/random_number_publisher', lower_limit=500)
     assert not result.successful
-    assert 'lower_limit (500)' in result.reason and 'upper_limit (100)' in result.reason
+    assert 'lower_limit (500)' in result.reason
+    assert 'upper_limit (100)' in result.reason
     [result] = ros.probe.set_parameters('/random_number_publisher', upper_limit=0)
     assert not result.successful
     assert ros.probe.get_parameters('/random_number_publisher', 'lower_limit', 'upper_limit') == [1, 100]

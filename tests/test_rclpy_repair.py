@@ -100,12 +100,14 @@ def test_ctrl_c_inside_a_take_ends_the_node_cleanly(ros, tmp_path: Path, entity:
     finally:
         node.destroy_timer(timer)
     assert 'Traceback' not in listener.output, f'the listener ended with a traceback:\n{listener.output}'
-    assert 'stopped by Ctrl-C' in listener.output and code == 0, f'exit code {code}:\n{listener.output}'
+    assert 'stopped by Ctrl-C' in listener.output, f'exit code {code}:\n{listener.output}'
+    assert code == 0, f'exit code {code}:\n{listener.output}'
 
 
 def test_a_task_whose_construction_ctrl_c_cut_short_is_deleted_quietly():
-    """A Ctrl-C inside a Task's constructor (before its attributes are set) stops the node, and its
-    __del__ must not then print "Exception ignored ... has no attribute '_exception'".
+    """A Ctrl-C inside a Task's constructor (before its attributes are set) stops the node quietly.
+
+    The Task's __del__ must not then print "Exception ignored ... has no attribute '_exception'".
     """
     deleted = subprocess.run(
         [sys.executable, '-c', 'import gc, rclpy.executors\n'

@@ -1,5 +1,6 @@
-"""How make test runs tests: a failed system test gets exactly one more run, a unit test none, and
-every rerun is reported; suites on one machine share its system-test slots.
+"""How make test runs tests: a failed system test gets exactly one more run, a unit test none.
+
+Every rerun is reported; suites on one machine share its system-test slots.
 
 Each case runs small pytest sessions in subprocesses with the project's own configuration and a
 copy of tests/conftest.py, laid out like the repository (tests/ and src/<pkg>/test/), with a slot

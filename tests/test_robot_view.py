@@ -1,6 +1,8 @@
-"""robot_view over real DDS with the real kit processes, its page in Chromium (web_harness.py): the
-model follows the servos, the mouse holds the IMU and the head follows it (imu_control_robot), the
-camera shows at its rate, and bad input gets one line. docs/screenshots/robot_view.png is made here.
+"""robot_view over real DDS with the real kit processes, its page in Chromium (web_harness.py).
+
+The model follows the servos, the mouse holds the IMU and the head follows it (imu_control_robot),
+the camera shows at its rate, and bad input gets one line. docs/screenshots/robot_view.png is made
+here.
 """
 
 import math
@@ -145,7 +147,8 @@ def test_bad_websocket_input_gets_one_line_and_nothing_reaches_the_imu(ros):
                 ({'type': 'comand', 'id': 7}, 'unknown message type "comand" (did you mean \'command\'?)')]:
             page_socket.send(message)
             answer = page_socket.receive()
-            assert answer['type'] == 'error' and answer['error'].startswith(error), answer
+            assert answer['type'] == 'error', answer
+            assert answer['error'].startswith(error), answer
             assert '\n' not in answer['error']
         time.sleep(1.0)
         assert held == []  # nothing reached the simulated IMU

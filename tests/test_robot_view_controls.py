@@ -1,6 +1,7 @@
-"""robot_view's live plots and servo controls over real DDS with the kit's processes, its page in
-Chromium: a Kp change shows in the plotted step response, the goal buttons move the servo, the
-torque switch switches, Pause freezes the plots, and bad input gets one line and reaches no servo.
+"""robot_view's live plots and servo controls over real DDS with the kit's processes, in Chromium.
+
+A Kp change shows in the plotted step response, the goal buttons move the servo, the torque switch
+switches, Pause freezes the plots, and bad input gets one line and reaches no servo.
 docs/screenshots/robot_view_plots.png is made here.
 """
 
@@ -63,8 +64,9 @@ def torque_enabled(diagnostics: list[DiagnosticStatus]) -> bool | None:
 
 
 def step_response(plotted: dict[str, list[float | None]], goal: float) -> dict[str, float]:
-    """Rise time (10-90 %), overshoot and remaining error of the last step to `goal` in a plot read
-    from the page ({x, goal, position, effort}).
+    """Rise time (10-90 %), overshoot and remaining error of the last step to `goal` in a plot.
+
+    The plot is as read from the page ({x, goal, position, effort}).
     """
     x, goals, positions = plotted['x'], plotted['goal'], plotted['position']
     steps = [i for i in range(1, len(x)) if goals[i] == goal and goals[i - 1] != goal]
@@ -115,7 +117,8 @@ def test_a_kp_change_shows_in_the_plotted_step_response(ros, page):
     assert fast['overshoot'] > slow['overshoot'] + 0.05, responses
     assert fast['rise'] < slow['rise'], responses
     assert slow['remaining'] > fast['remaining'] + 0.02, responses
-    assert slow['seconds'] > 2.5 and fast['seconds'] > 2.5, responses  # the plot kept the whole step
+    assert slow['seconds'] > 2.5, responses  # the plot kept the whole step
+    assert fast['seconds'] > 2.5, responses
 
     # A picture with something in every plot: the IMU held a little off level.
     drag(page, 40, 25)
@@ -162,7 +165,8 @@ def test_goal_buttons_torque_switch_and_pause(ros, page):
     assert page.evaluate('window.robotView.plotted("imu")') == frozen
     assert page.evaluate('window.robotView.plotted("tilt").x.length') > 100
     assert page.evaluate('window.robotView.plots.batches') >= batches + 5  # still pushed
-    assert page.get_attribute('#pause', 'aria-pressed') == 'true' and page.inner_text('#pause') == 'Resume'
+    assert page.get_attribute('#pause', 'aria-pressed') == 'true'
+    assert page.inner_text('#pause') == 'Resume'
     page.click('#pause')
     wait_until(lambda: page.evaluate('window.robotView.plotted("imu")') != frozen, 5, 'the plots live again')
     # The window is 10 s: once the page has had more, nothing older is drawn.
@@ -217,7 +221,8 @@ def test_bad_control_input_gets_one_line_and_reaches_no_servo(ros, page):
         ]:
             page_socket.send(message)
             answer = page_socket.receive()
-            assert answer['type'] == 'error' and answer['error'].startswith(error), (answer, error)
+            assert answer['type'] == 'error', (answer, error)
+            assert answer['error'].startswith(error), (answer, error)
             assert '\n' not in answer['error']
         # A message over 1 MiB is not read at all: that connection closes ("message too big").
         page_socket.send('{"type": "command", "name": "goal", "pad": "' + 'x' * (1 << 20) + '"}')
@@ -229,7 +234,8 @@ def test_bad_control_input_gets_one_line_and_reaches_no_servo(ros, page):
 
     # Nothing reached a servo: no goal published, the gains and the torque are as they were.
     time.sleep(1.0)
-    assert pan_goals == [] and tilt_goals == []
+    assert pan_goals == []
+    assert tilt_goals == []
     assert ros.probe.get_parameters(PAN_NODE, 'kp', 'ki', 'kd') == factory
     assert ros.probe.get_parameters(TILT_NODE, 'kp') == [factory[0]]
     wait_until(lambda: diagnostics, 5, 'pan diagnostics')

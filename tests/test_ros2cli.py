@@ -88,7 +88,8 @@ def cli(ros):
 
 def test_help_at_every_level(graph):
     top = ros2(graph, '-h')
-    assert top.returncode == 0 and 'ros2 is an extensible command-line tool for ROS 2.' in top.stdout
+    assert top.returncode == 0
+    assert 'ros2 is an extensible command-line tool for ROS 2.' in top.stdout
     assert top.stdout.endswith('Commands:\n  action            Various action related sub-commands\n'
                                '  daemon            Various daemon related sub-commands\n'
                                '  extension_points  List extension points\n'
@@ -103,7 +104,8 @@ def test_help_at_every_level(graph):
                                '  topic             Various topic related sub-commands\n\n'
                                '  Call `ros2 <command> -h` for more detailed usage.\n')
     bare = ros2(graph)
-    assert bare.returncode == 0 and bare.stdout == top.stdout
+    assert bare.returncode == 0
+    assert bare.stdout == top.stdout
     for command in ('action', 'daemon', 'interface', 'node', 'param', 'service', 'topic'):
         assert ros2(graph, command, '-h').stdout.startswith(f'usage: ros2 {command}')
     topic = ros2(graph, 'topic')
@@ -118,7 +120,8 @@ def test_help_at_every_level(graph):
     for command, names in verbs.items():
         for name in names:
             verb = ros2(graph, command, name, '--help')
-            assert verb.returncode == 0 and verb.stdout.startswith(f'usage: ros2 {command} {name}'), verb
+            assert verb.returncode == 0, verb
+            assert verb.stdout.startswith(f'usage: ros2 {command} {name}'), verb
     assert ros2(graph, 'run', '-h').stdout.startswith('usage: ros2 run [-h] [--prefix PREFIX]')
 
 
@@ -140,7 +143,8 @@ def test_a_verb_whose_clean_up_hangs_ends_itself_with_every_stack(cli):
     pub.wait_for('publishing #1', timeout=30)
     pub.send_signal(signal.SIGINT)
     assert pub.wait(timeout=TEARDOWN_LIMIT + 3) == 1, pub.tail()
-    assert 'Timeout (0:00:05)!' in pub.output and 'in destroy_node' in pub.output, pub.tail()
+    assert 'Timeout (0:00:05)!' in pub.output, pub.tail()
+    assert 'in destroy_node' in pub.output, pub.tail()
 
 
 def test_a_verb_stopped_before_it_could_clean_up_cannot_hang_at_exit(cli):
@@ -160,7 +164,8 @@ def test_run_passes_arguments_and_exit_code(cli):
     assert "args: ['a b', '--ros-args', '-p', 'x:=1']" in result.stdout
     assert '[ros2run]: Process exited with failure 3' in result.stdout
     ok = ros2(cli, 'run', FIXTURES, 'exit_code', '0')
-    assert ok.returncode == 0 and '[ros2run]' not in ok.stdout
+    assert ok.returncode == 0
+    assert '[ros2run]' not in ok.stdout
 
 
 @pytest.mark.parametrize('to_group', [True, False], ids=['group', 'ros2-pid-only'])
@@ -224,7 +229,8 @@ def test_duplicate_node_names_are_reported(cli):
     assert listing.stderr == ('WARNING: Be aware that there are nodes in the graph that share an exact name, '
                               'which can have unintended side effects.\n')
     info = ros2(cli, 'node', 'info', '/talker')
-    assert info.returncode == 0 and lines(info)[0] == '/talker'
+    assert info.returncode == 0
+    assert lines(info)[0] == '/talker'
     assert info.stderr == ('There are 2 nodes in the graph with the exact name "/talker". '
                            'You are seeing information about only one of them.\n')
 
@@ -260,15 +266,18 @@ def test_topic_info_type_find(graph):
             'Endpoint type: PUBLISHER\n') in verbose
     assert re.search(r'GID: ([0-9a-f]{2}\.){15}[0-9a-f]{2}\nQoS profile:\n  Reliability: RELIABLE\n',
                      verbose)
-    assert 'Endpoint type: SUBSCRIPTION' in verbose and '  Durability: TRANSIENT_LOCAL' in verbose
+    assert 'Endpoint type: SUBSCRIPTION' in verbose
+    assert '  Durability: TRANSIENT_LOCAL' in verbose
     assert '  Lifespan: Infinite\n  Deadline: Infinite\n  Liveliness: AUTOMATIC\n' in verbose
     assert lines(ros2(graph, 'topic', 'type', '/chatter')) == ['std_msgs/msg/String']
     assert lines(ros2(graph, 'topic', 'find', 'rcl_interfaces/msg/Log')) == ['/rosout']
     assert lines(ros2(graph, 'topic', 'find', '-c', 'std_msgs/msg/String')) == ['1']
     nothing = ros2(graph, 'topic', 'find', 'std_msgs/String')
-    assert nothing.returncode == 0 and nothing.stdout == ''
+    assert nothing.returncode == 0
+    assert nothing.stdout == ''
     unknown = ros2(graph, 'topic', 'type', '/nope')
-    assert unknown.returncode == 1 and unknown.stdout == unknown.stderr == ''
+    assert unknown.returncode == 1
+    assert unknown.stdout == unknown.stderr == ''
     hidden = ros2(graph, 'topic', 'type', '/fibonacci/_action/status')
     assert hidden.returncode == 1
     shown = ros2(graph, 'topic', 'type', '--include-hidden-topics', '/fibonacci/_action/status')
@@ -314,7 +323,8 @@ def test_topic_echo_raw_info_timeout(graph):
                     r'reception_sequence_number: (\d+|null)\nsource_timestamp: \d+\n---\ndata: ',
                     info.stdout), info.stdout
     quiet = ros2(graph, 'topic', 'echo', '--timeout', '1', '/quiet', 'std_msgs/msg/String')
-    assert quiet.returncode == 0 and quiet.stdout == ''
+    assert quiet.returncode == 0
+    assert quiet.stdout == ''
 
 
 def test_topic_echo_no_arr_and_lossless_burst(cli):
@@ -378,7 +388,8 @@ def test_topic_pub_course_command_and_echo(cli):
                      '  z: 1.8', '---']
     pub.wait_for(r'^publishing #2: geometry_msgs\.msg\.Twist\(linear=geometry_msgs\.msg\.Vector3\(x=2\.0, '
                  r'y=0\.0, z=0\.0\), angular=geometry_msgs\.msg\.Vector3\(x=0\.0, y=0\.0, z=1\.8\)\)$')
-    assert pub.stop() in (0, 2) and echo.stop() in (0, 2)
+    assert pub.stop() in (0, 2)
+    assert echo.stop() in (0, 2)
     assert 'Traceback' not in pub.output + echo.output
 
 
@@ -432,7 +443,8 @@ def test_topic_hz_and_bw(graph):
     bw.wait_for(r'^Subscribed to \[/chatter\]$', timeout=20)
     bw.wait_for(r'^\d+ B/s from \d+ messages$', timeout=20)
     bw.wait_for(r'^\tMessage size mean: \d+ B min: \d+ B max: \d+ B$')
-    assert hz.stop() == 2 and bw.stop() == 2
+    assert hz.stop() == 2
+    assert bw.stop() == 2
     assert 'Traceback' not in hz.output + bw.output
     mistyped = graph.command(['ros2', 'topic', 'hz', '/chatt'])
     mistyped.wait_for(r'^WARNING: topic \[/chatt\] does not appear to be published yet$')
@@ -485,7 +497,8 @@ def test_interface_show_nesting_and_comment_modes(graph):
     assert action == ['# Goal: how many elements', 'int32 order', '---', '# Result: the whole sequence',
                       'int32[] sequence', '---', '# Feedback: the sequence so far', 'int32[] sequence']
     piped = ros2(graph, 'interface', 'show', '-', stdin='std_srvs/srv/SetBool\n')
-    assert lines(piped)[0] == 'bool data # e.g. for hardware enabling / disabling' and '---' in lines(piped)
+    assert lines(piped)[0] == 'bool data # e.g. for hardware enabling / disabling'
+    assert '---' in lines(piped)
 
 
 @pytest.mark.parametrize(('name', 'fragments'), [
@@ -499,10 +512,14 @@ def test_interface_show_bad_names(graph, name, fragments):
 
 def test_interface_list_package_packages_proto(graph):
     listing = lines(ros2(graph, 'interface', 'list'))
-    assert listing[0] == 'Messages:' and 'Services:' in listing and 'Actions:' in listing
-    assert f'    {FIXTURES}/action/Fibonacci' in listing and '    std_srvs/srv/SetBool' in listing
+    assert listing[0] == 'Messages:'
+    assert 'Services:' in listing
+    assert 'Actions:' in listing
+    assert f'    {FIXTURES}/action/Fibonacci' in listing
+    assert '    std_srvs/srv/SetBool' in listing
     only_actions = lines(ros2(graph, 'interface', 'list', '-a'))
-    assert only_actions[0] == 'Actions:' and all('/action/' in line for line in only_actions[1:])
+    assert only_actions[0] == 'Actions:'
+    assert all('/action/' in line for line in only_actions[1:])
     assert lines(ros2(graph, 'interface', 'package', FIXTURES)) == [
         f'{FIXTURES}/msg/Branch', f'{FIXTURES}/msg/Leaf', f'{FIXTURES}/msg/Tree',
         f'{FIXTURES}/action/Fibonacci']
@@ -510,7 +527,8 @@ def test_interface_list_package_packages_proto(graph):
     assert_one_line_error(ros2(graph, 'interface', 'package', 'std_srv'), "Unknown package 'std_srv'",
                           "did you mean 'std_srvs'?")
     packages = lines(ros2(graph, 'interface', 'packages', '-s'))
-    assert 'std_srvs' in packages and 'std_msgs' not in packages
+    assert 'std_srvs' in packages
+    assert 'std_msgs' not in packages
     assert ros2(graph, 'interface', 'proto', 'std_msgs/msg/String').stdout == '"data: \'\'\n"\n'
     assert ros2(graph, 'interface', 'proto', '--no-quotes', f'{FIXTURES}/action/Fibonacci').stdout == \
         'order: 0\n\n'
@@ -592,12 +610,14 @@ def test_service_list_type_find(graph):
     assert '/fibonacci/_action/send_goal' in hidden
     assert lines(ros2(graph, 'service', 'type', '/echo')) == ['std_srvs/srv/SetBool']
     unknown = ros2(graph, 'service', 'type', '/nope')
-    assert unknown.returncode == 1 and unknown.stdout == ''
+    assert unknown.returncode == 1
+    assert unknown.stdout == ''
     assert lines(ros2(graph, 'service', 'find', 'std_srvs/srv/SetBool')) == ['/echo']
     assert lines(ros2(graph, 'service', 'find', '-c', 'rcl_interfaces/srv/GetParameters')) == \
         [str(len(FIXTURE_NODES))]
     nothing = ros2(graph, 'service', 'find', 'std_srvs/SetBool')
-    assert nothing.returncode == 0 and nothing.stdout == ''
+    assert nothing.returncode == 0
+    assert nothing.stdout == ''
 
 
 def test_service_call_exact_output(graph):
@@ -635,7 +655,8 @@ def test_service_call_bad_input(graph, args, fragments):
 def test_service_call_unknown_service_says_so_while_waiting(graph):
     call = graph.command(['ros2', 'service', 'call', '/ech', 'std_srvs/srv/SetBool'])
     call.wait_for("No server for service '/ech' yet \\(did you mean '/echo'\\?\\); still waiting", timeout=20)
-    assert call.stop() == 2 and 'Traceback' not in call.output
+    assert call.stop() == 2
+    assert 'Traceback' not in call.output
 
 
 # ---- ros2 param -------------------------------------------------------------------------------
@@ -752,7 +773,8 @@ def test_param_describe(graph):
 
 def test_param_dump_exact_and_load_round_trip(graph, tmp_path):
     dump = ros2(graph, 'param', 'dump', '/parameter_node')
-    assert dump.returncode == 0 and dump.stdout == PARAMETER_DUMP
+    assert dump.returncode == 0
+    assert dump.stdout == PARAMETER_DUMP
     saved = tmp_path / 'params.yaml'
     changed = PARAMETER_DUMP.replace('/parameter_node:', '/mutable_params:').replace(
         'int_param: 42', 'int_param: -42').replace('str_param: Hello World', 'str_param: Bye World').replace(
@@ -799,8 +821,10 @@ def test_param_load_bad_files(graph, tmp_path):
     mixed = tmp_path / 'mixed.yaml'
     mixed.write_text('/mutable_params:\n  ros__parameters:\n    int_param: [1, a]\n')
     result = ros2(graph, 'param', 'load', '/mutable_params', str(mixed))
-    assert result.returncode == 0 and 'Traceback' not in result.stderr
-    assert result.stderr.startswith('Set parameter int_param failed: ') and result.stderr.count('\n') == 1
+    assert result.returncode == 0
+    assert 'Traceback' not in result.stderr
+    assert result.stderr.startswith('Set parameter int_param failed: ')
+    assert result.stderr.count('\n') == 1
 
 
 # ---- ros2 action ------------------------------------------------------------------------------
@@ -860,7 +884,8 @@ def test_action_send_goal_to_a_mistyped_action_says_so_while_waiting(graph):
     goal = graph.command(['ros2', 'action', 'send_goal', '/fibonaci', ACTION_TYPE, '{order: 1}'])
     goal.wait_for("No action server for '/fibonaci' yet \\(did you mean '/fibonacci'\\?\\); still waiting",
                   timeout=20)
-    assert goal.stop() == 2 and 'Traceback' not in goal.output
+    assert goal.stop() == 2
+    assert 'Traceback' not in goal.output
 
 
 # ---- shell completion -------------------------------------------------------------------------

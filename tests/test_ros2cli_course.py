@@ -121,7 +121,8 @@ def test_services(turtlesim):
         "turtlesim.srv.Spawn_Request(x=1.0, y=1.0, theta=0.0, name='olive_turtle')",
         '', 'response:', "turtlesim.srv.Spawn_Response(name='olive_turtle')", '']
     topics = lines(ros2(turtlesim, 'topic', 'list'))
-    assert '/olive_turtle/cmd_vel' in topics and '/olive_turtle/pose' in topics
+    assert '/olive_turtle/cmd_vel' in topics
+    assert '/olive_turtle/pose' in topics
 
 
 def test_parameters_and_file_round_trip(turtlesim, tmp_path):

@@ -43,7 +43,8 @@ def test_prefix_and_share():
     prefix = ros2('pkg', 'prefix', 'ros2cli')
     assert prefix.returncode == 0
     lines = prefix.stdout.splitlines()
-    assert len(lines) == 1 and Path(lines[0]).is_dir()
+    assert len(lines) == 1
+    assert Path(lines[0]).is_dir()
     share = ros2('pkg', 'prefix', '--share', 'ros2cli')
     assert share.stdout.strip() == str(Path(lines[0]) / 'share' / 'ros2cli')
 
@@ -57,7 +58,8 @@ def test_xml_prints_the_manifest_and_single_tags():
     result = ros2('pkg', 'xml', 'ros2cli')
     assert result.returncode == 0
     root = ET.fromstring(result.stdout)
-    assert root.tag == 'package' and root.findtext('name') == 'ros2cli'
+    assert root.tag == 'package'
+    assert root.findtext('name') == 'ros2cli'
     tag = ros2('pkg', 'xml', 'ros2pkg', '-t', 'exec_depend')
     assert tag.stdout.splitlines() == ['ros2cli', 'ament_index_python']
 
@@ -106,10 +108,12 @@ def test_create_prints_upstreams_lines_and_writes_the_files(tmp_path):
     package = tmp_path / 'a_test_package'
     assert (package / 'LICENSE').read_text().startswith('SPDX-License-Identifier: Apache-2.0')
     root = ET.parse(package / 'package.xml').getroot()
-    assert root.get('format') == '3' and root.findtext('name') == 'a_test_package'
+    assert root.get('format') == '3'
+    assert root.findtext('name') == 'a_test_package'
     assert root.find('maintainer').text == 'Nobody'
     assert root.find('maintainer').get('email') == 'nobody@nowhere.com'
-    assert root.findtext('license') == 'Apache-2.0' and root.findtext('depend') == 'ros2pkg'
+    assert root.findtext('license') == 'Apache-2.0'
+    assert root.findtext('depend') == 'ros2pkg'
     assert root.findtext('export/build_type') == 'ament_cmake'
 
 
@@ -154,7 +158,8 @@ def test_create_bad_input_one_line_and_nothing_written(tmp_path, args, code, mes
 @pytest.mark.parametrize('args', [[], ['p', '--package-format', '4']])
 def test_create_usage_errors_exit_2(tmp_path, args):
     result = ros2('pkg', 'create', *args, cwd=tmp_path)
-    assert result.returncode == 2 and 'ros2 pkg create: error:' in result.stderr
+    assert result.returncode == 2
+    assert 'ros2 pkg create: error:' in result.stderr
     assert 'Traceback' not in result.stderr
 
 

@@ -131,7 +131,8 @@ def test_simulate_resolves_a_missing_ros_package_to_its_pinned_wheel(tmp_path, p
     assert result.returncode == 0, result.stderr
     lines = result.stdout.splitlines()
     assert lines[0] == '#[pip] Installation commands:'
-    assert lines[1].endswith(f' -m pip install {FAKE_WHEEL}==0.1.0') and len(lines) == 2
+    assert lines[1].endswith(f' -m pip install {FAKE_WHEEL}==0.1.0')
+    assert len(lines) == 2
     check = rosdep('check', '-i', '--from-paths', 'src', cwd=tmp_path, env=env)
     assert check.returncode == 1
     assert check.stdout.splitlines() == ['System dependencies have not been satisfied:',
@@ -182,7 +183,8 @@ def test_every_unresolvable_key_is_listed_and_nothing_installed(tmp_path, pinned
     assert errors[2] == 'a_pkg: Cannot locate rosdep definition for [no_such_package]'
     assert errors[3].startswith('a_pkg: Cannot locate rosdep definition for [python3-no-such-module]')
     assert errors[4] == 'b_pkg: Cannot locate rosdep definition for [another_missing]'
-    assert result.stdout == '' and not (tmp_path / 'target').exists()
+    assert result.stdout == ''
+    assert not (tmp_path / 'target').exists()
 
 
 def test_robust_mode_goes_on_with_the_resolvable_keys(tmp_path, pinned_env):

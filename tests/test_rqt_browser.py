@@ -1,6 +1,7 @@
-"""rqt's page in a real browser (Debian's Chromium through Playwright, see web_harness.py): every tab
-loads with no console error, the graph is pushed and laid out live, the camera shows at its rate.
-The screenshots in docs/screenshots/ are made here.
+"""rqt's page in a real browser (Debian's Chromium through Playwright, see web_harness.py).
+
+Every tab loads with no console error, the graph is pushed and laid out live, the camera shows at
+its rate. The screenshots in docs/screenshots/ are made here.
 """
 
 import statistics
@@ -113,8 +114,10 @@ def test_rqt_image_view_shows_the_camera_at_its_rate(ros, page):
 
 
 def test_rqt_node_graph_draws_a_humble_module_and_drops_it_when_it_leaves(ros, page):
-    """A module on ROS 2 Humble (humble_twin: 24-byte gids in its graph messages) is named in the
-    graph through the discovery bridge that rqt starts, with its edge, and goes when it leaves.
+    """A module on ROS 2 Humble is named in the graph through the discovery bridge that rqt starts.
+
+    The module is humble_twin (24-byte gids in its graph messages); it shows with its edge, and goes
+    when it leaves.
     """
     twin = ros.run('owl_humble', 'humble_twin', '--module', 'imu')
     twin.wait_for('ready: node /olive_imu_humble_dcm_srv', timeout=20)

@@ -1,6 +1,7 @@
-"""`rqt` (package rqt_web) over real DDS: the page, Node Graph, Message Publisher, Service Caller and
-Image View through the HTTP API and the WebSocket the page uses, bad input, port handling and Ctrl-C.
-(test_rqt_browser.py drives the page itself in Chromium.)
+"""`rqt` (package rqt_web) over real DDS, through the HTTP API and the WebSocket the page uses.
+
+The page, Node Graph, Message Publisher, Service Caller and Image View, bad input, port handling and
+Ctrl-C. (test_rqt_browser.py drives the page itself in Chromium.)
 """
 
 import io
@@ -41,7 +42,8 @@ def edges_of(update: dict[str, Any]) -> set[tuple[str, str]]:
 def test_page_node_graph_and_ctrl_c(ros):
     rqt = start_turtlesim_and_rqt(ros)
     status, headers, page = http('GET', rqt.base)
-    assert status == 200 and headers['Content-Type'].startswith('text/html')
+    assert status == 200
+    assert headers['Content-Type'].startswith('text/html')
     assert all(name in page.decode() for name in PLUGINS)
     # the page's files, owl_web's socket and elkjs from web/node_modules: nothing from elsewhere
     for asset in ('static/app.js', 'static/style.css', 'owl/socket.js', 'lib/elkjs/lib/elk.bundled.js'):
@@ -180,7 +182,8 @@ def test_service_caller_spawns_a_turtle(ros):
     assert [field['name'] for field in form['request']] == ['x', 'y', 'theta', 'name']
     answer = rqt.ok('POST', '/api/call', {'service': '/spawn',
                                           'request': {'x': 2.0, 'y': 2.0, 'theta': 0.0, 'name': ''}})
-    assert answer['response'] == {'name': 'turtle2'} and answer['type'] == 'turtlesim/srv/Spawn'
+    assert answer['response'] == {'name': 'turtle2'}
+    assert answer['type'] == 'turtlesim/srv/Spawn'
     rqt.wait_for(lambda: '/turtle2/pose' in topic_names(rqt), '/turtle2/pose')
 
     # the course's servo safety switch: a Trigger with an empty request
@@ -235,7 +238,8 @@ def test_image_view_shows_the_camera_and_raw_images(ros):
     with rqt.socket() as socket:
         socket.subscribe('camera', 'image', topic=CAMERA_TOPIC)
         frame = socket.receive_matching(lambda m: 'payload' in m, 'a camera frame')
-        assert frame['id'] == 'camera' and frame['data']['content_type'] == 'image/jpeg', frame['data']
+        assert frame['id'] == 'camera', frame['data']
+        assert frame['data']['content_type'] == 'image/jpeg', frame['data']
         assert PilImage.open(io.BytesIO(frame['payload'])).size == (640, 480)
         later = socket.receive_matching(lambda m: 'payload' in m, 'the next camera frame')
         assert later['data']['frame'] > frame['data']['frame']  # pushed as they come, no asking

@@ -40,7 +40,8 @@ def test_temp_client_ctrl_c_while_waiting_exits_cleanly(ros):
 def test_temp_server_answers_nan_below_absolute_zero(ros):
     server = ros.run('olive_srvcli', 'temp_server')
     response = ros.probe.call(TempConv, 'temp_conversion', TempConv.Request(temp_c=-300.0))
-    assert math.isnan(response.temp_k) and math.isnan(response.temp_f)
+    assert math.isnan(response.temp_k)
+    assert math.isnan(response.temp_f)
     server.wait_for('below absolute zero')
     response = ros.probe.call(TempConv, 'temp_conversion', TempConv.Request(temp_c=-273.15))
     assert response.temp_k == pytest.approx(0.0)
@@ -74,7 +75,8 @@ def test_currency_round_trip_uses_the_rate_parameters(ros):
     [result] = ros.probe.set_parameters('/currency_service', usd_per_eur=2.0)
     assert result.successful
     response = ros.probe.call(CurrencyConv, 'currency_conversion', CurrencyConv.Request(euros=3.0))
-    assert response.success and response.dollars == 6.0
+    assert response.success
+    assert response.dollars == 6.0
 
 
 def test_currency_server_refuses_negative_amount_and_bad_rates(ros):

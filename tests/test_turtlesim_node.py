@@ -170,7 +170,8 @@ def test_spawn_naming_kill_clear_reset(ros, tmp_path):
     assert image.getpixel(pixel(3.0, 1.0)) == (69, 0, 255)  # trails gone, background kept
     assert ros.probe.get_parameters('turtlesim', 'background_g') == [0]
     assert spawn(ros) == 'turtle2'  # the counter starts again
-    assert sim.running() and 'Traceback' not in sim.output
+    assert sim.running()
+    assert 'Traceback' not in sim.output
 
 
 def test_bad_input_is_refused_and_logged_never_fatal(ros):
@@ -194,7 +195,8 @@ def test_bad_input_is_refused_and_logged_never_fatal(ros):
     settled(poses, lambda p: (p.x, p.y) == (pytest.approx(11.088889), 0.0), 'clamped to the corner')
     sim.wait_for(r'\[WARN\].*Oh no! I hit the wall! \(Clamping from \[x=')
     assert spawn(ros) == 'turtle2'  # still serving
-    assert sim.running() and 'Traceback' not in sim.output
+    assert sim.running()
+    assert 'Traceback' not in sim.output
 
 
 def test_background_parameters(ros, tmp_path):
@@ -246,8 +248,10 @@ def test_canvas_image_topic_is_opt_in_and_save_errors_are_reported(ros, tmp_path
     centre = _decode(images[-1]).getpixel(pixel(CENTER, CENTER))
     assert centre != (69, 86, 0)  # turtle1 is drawn
     response = ros.probe.call(Trigger, '/turtlesim/_save_canvas', Trigger.Request())
-    assert not response.success and 'cannot write' in response.message
-    assert sim.running() and 'Traceback' not in sim.output
+    assert not response.success
+    assert 'cannot write' in response.message
+    assert sim.running()
+    assert 'Traceback' not in sim.output
     sim.stop()
 
     plain = ros.run('turtlesim', 'turtlesim_node', '--headless', '--ros-args', '-r', '__node:=plain')

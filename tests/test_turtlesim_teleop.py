@@ -113,7 +113,8 @@ def test_keys_publish_twists_and_goals_and_q_restores_the_terminal(ros, terminal
         time.sleep(0.25)
         if twists:
             break
-    assert twists and twists[-1].linear.x == 2.0  # up
+    assert twists
+    assert twists[-1].linear.x == 2.0  # up
     time.sleep(0.25)
     twists.clear()
 
@@ -161,7 +162,8 @@ def test_keys_publish_twists_and_goals_and_q_restores_the_terminal(ros, terminal
 def test_ctrl_c_or_term_exits_cleanly_and_restores_the_terminal(ros, terminal, sig):
     teleop = terminal()
     raw = termios.tcgetattr(teleop.slave)
-    assert not raw[3] & termios.ICANON and not raw[3] & termios.ECHO
+    assert not raw[3] & termios.ICANON
+    assert not raw[3] & termios.ECHO
     os.killpg(teleop.popen.pid, sig)
     assert teleop.popen.wait(15) == 0
     assert termios.tcgetattr(teleop.slave) == teleop.mode_before

@@ -1,6 +1,8 @@
-"""The system tests' view of our browser pages: Debian's Chromium driven by Playwright (the `browser`
-and `page` fixtures of conftest.py), PageSocket, a page's WebSocket from Python for what a browser
-never sends (malformed JSON, oversized messages), and Rqt, a running `rqt` with its JSON API.
+"""The system tests' view of our browser pages: Chromium driven by Playwright, PageSocket and Rqt.
+
+Debian's Chromium driven by Playwright (the `browser` and `page` fixtures of conftest.py),
+PageSocket, a page's WebSocket from Python for what a browser never sends (malformed JSON, oversized
+messages), and Rqt, a running `rqt` with its JSON API.
 
 Playwright never downloads a browser here: it launches /usr/bin/chromium (`apt-get install
 chromium`; scripts/test_prereqs.sh installs it when `make test` runs as root).
@@ -61,8 +63,9 @@ class Browser:
 
 
 class BrowserPage:
-    """A Playwright page (its methods are this object's) that keeps every console error and
-    uncaught exception; conftest.py fails the test that leaves any.
+    """A Playwright page (its methods are this object's) that keeps console errors and uncaught exceptions.
+
+    conftest.py fails the test that leaves any.
     """
 
     def __init__(self, page: Any) -> None:
@@ -78,9 +81,10 @@ class BrowserPage:
         return getattr(self.page, name)
 
     def screenshot_to(self, name: str, full_page: bool = False) -> Path:
-        """A screenshot for the documentation: docs/screenshots/<name>.png (the whole page with
-        full_page, else the viewport). A picture that hardly differs from the one there (a live
-        page is never the same twice: the camera's clock, the plots' noise) leaves the file as it
+        """A screenshot for the documentation: docs/screenshots/<name>.png.
+
+        The whole page with full_page, else the viewport. A picture that hardly differs from the one there
+        (a live page is never the same twice: the camera's clock, the plots' noise) leaves the file as it
         is, so a test run does not dirty the tree when the page did not change; OWL_SCREENSHOTS=always
         writes it anyway (after a change too small for that test, say).
         """
@@ -101,8 +105,10 @@ VISIBLE_DIFFERENCE = 48  # of 255 in any colour channel
 
 
 def nearly_the_same(old_png: bytes, new_png: bytes) -> bool:
-    """Whether two screenshots show the same page: the same size, and at most SAME_PICTURE_PIXELS of
-    their pixels differ by more than VISIBLE_DIFFERENCE.
+    """Whether two screenshots show the same page.
+
+    They do when they have the same size and at most SAME_PICTURE_PIXELS of their pixels differ by more
+    than VISIBLE_DIFFERENCE.
     """
     import cv2  # here: only a test that takes a picture needs OpenCV loaded
     import numpy
@@ -123,8 +129,9 @@ class SocketClosed(Exception):
 
 
 class PageSocket:
-    """A page's WebSocket (/ws of an owl_web server) from a test, through aiohttp's client on an
-    event loop of its own thread.
+    """A page's WebSocket (/ws of an owl_web server) from a test, through aiohttp's client.
+
+    The client runs on an event loop of its own thread.
     """
 
     def __init__(self, base_url: str) -> None:
@@ -230,7 +237,9 @@ class Rqt:
         """The error line of a refused request; the server must still answer afterwards."""
         got, data = self.call(method, path, body)
         assert got == status, data
-        assert list(data) == ['error'] and '\n' not in data['error'] and data['error'], data
+        assert list(data) == ['error'], data
+        assert '\n' not in data['error'], data
+        assert data['error'], data
         assert self.call('GET', '/api/topics')[0] == 200
         return data['error']
 
