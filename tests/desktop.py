@@ -21,7 +21,8 @@ from gates import prerequisite_missing
 # A window in `xwininfo -root -tree`: its id and its title.
 WINDOW_LINE = re.compile(r'^\s*(0x[0-9a-f]+) "(.*)":', re.MULTILINE)
 # Environment entries (None removes one) for a process with no display at all, as on a server or
-# in a container, and none of the window hook's settings (src/tools/owl_venv_hooks/owl_gui_hook.py) from the shell.
+# in a container, and none of the window hook's settings (owl_venv_hooks/owl_gui_hook.py) from the
+# shell.
 NO_DISPLAY = {'DISPLAY': None, 'WAYLAND_DISPLAY': None, 'OWL_HEADLESS': None, 'OWL_WINDOWS_DIR': None,
               'OWL_WINDOWS_FPS': None}
 # With VirtualDisplay.env(): real windows, also when the shell has a Wayland session or OWL_HEADLESS.

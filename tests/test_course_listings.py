@@ -1,4 +1,4 @@
-"""The course's listings, typed verbatim, end every Ctrl-C cleanly on Jazzy (src/tools/owl_venv_hooks/owl_rclpy_repair.py).
+"""The course's listings, typed verbatim, end every Ctrl-C cleanly on Jazzy (owl_rclpy_repair.py).
 
 tests/course_listings/ holds each listing of the course as a student types it (see its README). Each
 runs in a private domain beside what it talks to, and gets one Ctrl-C (SIGINT to its process group,

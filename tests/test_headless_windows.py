@@ -2,8 +2,8 @@
 
 Without a display each says so in one line, runs on, and stops cleanly at Ctrl-C; with
 OWL_WINDOWS_DIR its windows' latest images go to files and key events come from a file (the seam
-of src/tools/owl_venv_hooks/owl_gui_hook.py). Under Xvfb the same programs open real windows and the hook stays out
-of the way. tests/student_scripts/ holds the programs, written as the course writes them.
+of src/tools/owl_venv_hooks/owl_gui_hook.py). Under Xvfb the same programs open real windows and
+the hook stays out of the way. tests/student_scripts/ holds the programs, written as the course writes them.
 """
 
 import os

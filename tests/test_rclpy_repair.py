@@ -1,4 +1,4 @@
-"""Ctrl-C while rclpy builds a message ends a course-shaped node cleanly (src/tools/owl_venv_hooks/owl_rclpy_repair.py).
+"""Ctrl-C while rclpy builds a message ends a course-shaped node cleanly (owl_rclpy_repair.py).
 
 Without the venv's repair, pybind11 turns the KeyboardInterrupt raised inside the message's Python
 constructor into "RuntimeError: Unable to convert call argument ..." and the node ends with a

@@ -26,15 +26,19 @@ OUTPUT = Path(__file__).resolve().with_name('canvas.png')
 
 
 class Artist:
+    """A node of our own that draws on turtlesim through its services and cmd_vel."""
+
     def __init__(self, domain_id: int) -> None:
         os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'  # as the sandbox's processes
         rclpy.init(domain_id=domain_id)
         self.node = Node('turtlesim_artist')
 
     def close(self) -> None:
+        """End the artist's ROS context."""
         rclpy.try_shutdown()
 
     def call(self, srv_type, name: str, request):
+        """The response of one service call; SystemExit when the service is missing or silent."""
         client = self.node.create_client(srv_type, name)
         if not client.wait_for_service(timeout_sec=30.0):
             raise SystemExit(f'{name} did not come up')
@@ -46,10 +50,12 @@ class Artist:
         return future.result()
 
     def pen(self, turtle: str, rgb: tuple[int, int, int], width: int, off: int = 0) -> None:
+        """Set a turtle's pen: colour, width, and off=1 to lift it."""
         r, g, b = rgb
         self.call(SetPen, f'/{turtle}/set_pen', SetPen.Request(r=r, g=g, b=b, width=width, off=off))
 
     def go(self, turtle: str, x: float, y: float, theta: float = 0.0) -> None:
+        """Teleport a turtle there, drawing with its pen on the way."""
         self.call(TeleportAbsolute, f'/{turtle}/teleport_absolute',
                   TeleportAbsolute.Request(x=x, y=y, theta=theta))
         # Teleports are applied at the next 16 ms tick, with the pen of that moment: let it pass
@@ -75,6 +81,7 @@ class Artist:
 
 
 def draw(artist: Artist) -> None:
+    """The picture: a yellow frame, a red star and a white circle."""
     # turtle1: a yellow square frame, pen lifted between moves.
     artist.pen('turtle1', (0, 0, 0), 1, off=1)
     artist.go('turtle1', 1.0, 1.0)
@@ -97,6 +104,7 @@ def draw(artist: Artist) -> None:
 
 
 def main() -> int:
+    """Draw on a headless turtlesim_node and save its canvas as canvas.png; the exit code."""
     with RosSandbox() as sandbox:
         sim = sandbox.run('turtlesim', 'turtlesim_node', '--headless', '--canvas-png', str(OUTPUT))
         sim.wait_for(r'Spawning turtle \[turtle1\]', timeout=30)

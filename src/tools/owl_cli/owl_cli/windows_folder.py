@@ -1,8 +1,8 @@
 """The headless windows' folder as `owl windows` reads it (node-free).
 
 Each running program with headless windows has a folder <root>/<program>-<pid>/ (written by the
-venv's start-up hook, src/tools/owl_venv_hooks/owl_gui_hook.py, which documents it): cv2-<window>.jpg per OpenCV
-window, pygame.png for a pygame display, and a `keys` file that the program reads key events from.
+venv's start-up hook, owl_venv_hooks/owl_gui_hook.py, which documents it): cv2-<window>.jpg per
+OpenCV window, pygame.png for a pygame display, and a `keys` file that the program reads key events from.
 """
 
 from __future__ import annotations
