@@ -64,7 +64,7 @@ def test_invalid_package_names_are_refused_with_a_rep144_suggestion(name, sugges
 
 def test_valid_package_names_pass():
     for name in ('random_number_ps', 'olive_interfaces', 'a1', 'x'):
-        check_package_name(name)
+        assert check_package_name(name) is None, name  # no CreateError
 
 
 def test_licenses_known_free_text_and_near_misses():

@@ -129,7 +129,9 @@ def make_plan(keys_by_package: dict[str, list[str]], resolver: Resolver) -> Plan
     resolved: dict[str, Resolution] = {}
     for package, keys in keys_by_package.items():
         for key in keys:
-            resolution = resolved.setdefault(key, resolver.resolve(key))
+            if key not in resolved:  # each key is looked up once, however many packages name it
+                resolved[key] = resolver.resolve(key)
+            resolution = resolved[key]
             if resolution.error:
                 plan.errors.append(f'{package}: {resolution.error}')
             elif resolution.pip and resolution.pip not in plan.pip:

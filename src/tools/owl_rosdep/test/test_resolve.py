@@ -113,6 +113,15 @@ def test_plan_installs_each_requirement_once_and_lists_every_error():
                            'b: Cannot locate rosdep definition for [other]']
 
 
+def test_plan_looks_each_key_up_once(monkeypatch):
+    r = resolver(installed={'rclpy'}, wheels={'ros-nav-msgs': '5.5.1'})
+    looked_up = []
+    resolve = r.resolve
+    monkeypatch.setattr(r, 'resolve', lambda key: looked_up.append(key) or resolve(key))
+    make_plan({'a': ['rclpy', 'nav_msgs'], 'b': ['nav_msgs', 'rclpy'], 'c': ['nav_msgs']}, r)
+    assert sorted(looked_up) == ['nav_msgs', 'rclpy']
+
+
 PACKAGE_XML = '''<?xml version="1.0"?>
 <package format="3">
   <name>{name}</name>
