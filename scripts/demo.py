@@ -73,6 +73,7 @@ def watch(probe: Probe) -> RobotState:
 
 
 def degrees(radians: float) -> str:
+    """An angle for the report: radians as signed whole degrees, e.g. ' +12°'."""
     return f'{math.degrees(radians):+4.0f}°'
 
 
@@ -94,8 +95,10 @@ def report_line(elapsed: float, state: RobotState, fps: float) -> str:
 
 
 def robot_view_port(preferred: int = ROBOT_VIEW_PORT) -> int:
-    """The preferred port when it is free on 127.0.0.1 (a robot_view or another demo may have it), else 0:
-    robot_view then picks a free one and prints it.
+    """The port to give robot_view: the preferred one when it is free on 127.0.0.1, else 0.
+
+    A robot_view or another demo may hold the preferred port; with 0, robot_view picks a free one and
+    prints it.
     """
     with socket.socket() as probe:
         try:
@@ -123,6 +126,7 @@ def start_robot(sandbox: RosSandbox) -> dict[str, RosProcess]:
 
 
 def robot_view_address(process: RosProcess) -> str:
+    """The robot view's address (http://127.0.0.1:PORT/), from the line robot_view printed at start."""
     return process.wait_for(ROBOT_VIEW_LINE, 1.0)[0].group(1)
 
 
@@ -132,6 +136,11 @@ def display_camera_lines(process: RosProcess) -> list[str]:
 
 
 def run_demo(seconds: float, report_every: float) -> int:
+    """Run the demo for seconds, a status line every report_every s; the exit code, 0 if all stopped cleanly.
+
+    Each process is stopped with SIGINT at the end; any exit code but 0 makes it 1, with that process's
+    last lines on stderr.
+    """
     # env.sh's network mode: private (LOCALHOST) unless the user opened it with OWL_NETWORK=open.
     with RosSandbox(discovery_range=os.environ.get('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')) as sandbox:
         print(f'== Owl Kit Lab demo: the simulated Owl Kit and the course\'s chapter 4 projects, '
@@ -176,6 +185,7 @@ def run_demo(seconds: float, report_every: float) -> int:
 
 
 def main() -> int:
+    """The demo from its command line (`make demo`); the exit code: 130 after Ctrl-C, 1 if it cannot start."""
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument('--seconds', type=float, default=20.0, help='how long to run (default 20)')
     parser.add_argument('--report-every', type=float, default=4.0, metavar='SECONDS',

@@ -39,6 +39,7 @@ def repair_tree(prefix: Path, include_dir: str, site_packages: str) -> list[Path
 
 
 def main() -> int:
+    """Repair the CMake files of the venv whose python runs this; exit code 2 outside a venv."""
     prefix = Path(sys.prefix)
     if prefix == Path(sys.base_prefix):
         print("repair_cmake_paths: run this with the venv's python, not the system one", file=sys.stderr)

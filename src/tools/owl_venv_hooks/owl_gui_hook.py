@@ -81,8 +81,28 @@ display.
   A line that is not `down <key>`/`up <key>` with a known key is skipped with one line on stderr.
 """
 
+from __future__ import annotations
+
 import os
 import sys
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # for the annotations only: this module is imported at every start of Python
+    from collections.abc import Callable, Mapping, Sequence
+    from importlib.abc import Loader
+    from importlib.machinery import ModuleSpec
+    from types import ModuleType
+    from typing import Any, TypedDict
+
+    from numpy import uint8
+    from numpy.typing import NDArray
+
+    class CvWindow(TypedDict):
+        """A headless cv2 window: its flags, the size of its last image, its trackbars' positions."""
+
+        flags: int
+        size: tuple[int, int]
+        trackbars: dict[str, int]
 
 HEADLESS_DIR = os.path.join(sys.prefix, 'opencv-headless')
 APT_HINT = "'sudo apt install libgl1 libglib2.0-0'"
@@ -104,7 +124,12 @@ class GuiImportHook:
     """A sys.meta_path entry that acts on the first `import cv2` and the first `import pygame`."""
 
     @classmethod
-    def find_spec(cls, fullname: str, path: object = None, target: object = None) -> object:
+    def find_spec(cls, fullname: str, path: Sequence[str] | None = None,
+                  target: ModuleType | None = None) -> ModuleSpec | None:
+        """At the first import of cv2 or pygame: its spec, with a loader that patches it; else None.
+
+        None leaves the import to the usual finders: any other module, a later import, nothing to patch.
+        """
         if path is not None or fullname not in ('cv2', 'pygame') or fullname in SEEN:
             return None
         SEEN.add(fullname)  # before anything else: cv2's own loader imports 'cv2' again
@@ -116,11 +141,13 @@ class GuiImportHook:
         spec = find_spec_after(cls, fullname, target)
         if spec is None or spec.loader is None:
             return None
-        spec.loader = PatchingLoader(spec.loader, patch)
+        # The loader is duck-typed (create_module, exec_module), as the import system asks no more.
+        spec.loader = PatchingLoader(spec.loader, patch)  # type: ignore[assignment]
         return spec
 
 
-def find_spec_after(finder: object, fullname: str, target: object, path: object = None) -> object:
+def find_spec_after(finder: object, fullname: str, target: ModuleType | None,
+                    path: Sequence[str] | None = None) -> ModuleSpec | None:
     """The spec the other finders on sys.meta_path give, as the import would find it without us."""
     for other in list(sys.meta_path):
         if other is finder or not hasattr(other, 'find_spec'):
@@ -134,19 +161,21 @@ def find_spec_after(finder: object, fullname: str, target: object, path: object 
 class PatchingLoader:
     """The module's own loader, then patch(module) once the module is complete."""
 
-    def __init__(self, loader: object, patch: object) -> None:
+    def __init__(self, loader: Loader, patch: Callable[[ModuleType], None]) -> None:
         self.loader = loader
         self.patch = patch
 
-    def create_module(self, spec: object) -> object:
+    def create_module(self, spec: ModuleSpec) -> ModuleType | None:
+        """The module object as the wrapped loader makes it (None: Python's default one)."""
         return self.loader.create_module(spec)
 
-    def exec_module(self, module: object) -> None:
+    def exec_module(self, module: ModuleType) -> None:
+        """Run the module with the wrapped loader, then apply the patch to the finished module."""
         self.loader.exec_module(module)
         # cv2's __init__ swaps modules around while loading; what `import` hands out is in sys.modules.
         self.patch(sys.modules.get(module.__name__, module))
 
-    def __getattr__(self, name: str) -> object:
+    def __getattr__(self, name: str) -> Any:
         return getattr(self.loader, name)
 
 
@@ -191,12 +220,13 @@ def gui_build_problem() -> str | None:
 
 
 def notice(problem: str) -> str:
+    """The fallback notice: why the GUI build cannot load here, and what to install for windows."""
     return (f"OpenCV's GUI build cannot load here ({problem}): cv2 is its headless build, "
             f'whose cv2.imshow opens no window; for windows: {APT_HINT}')
 
 
-def prepare_cv2() -> object:
-    """Before cv2 is imported: choose the build; the patch to apply after the import, or None."""
+def prepare_cv2() -> Callable[[ModuleType], None]:
+    """Before cv2 is imported: choose the build; the patch to apply after the import."""
     reason = headless_reason('cv2', os.environ)
     fell_back = False
     if os.path.isdir(HEADLESS_DIR):
@@ -213,12 +243,14 @@ def prepare_cv2() -> object:
     return lambda cv2: patch_cv2(cv2, reason if reason is not None else '')
 
 
-def keep_font_dir(before: str | None) -> object:
-    """The patch for real windows: fonts for the wheel's Qt. cv2's loader points QT_QPA_FONTDIR at a
-    folder the wheel does not ship, and Qt then prints ten lines per window about missing fonts.
+def keep_font_dir(before: str | None) -> Callable[[ModuleType], None]:
+    """The patch for real windows: QT_QPA_FONTDIR back on a font folder that exists, for the wheel's Qt.
+
+    cv2's loader points QT_QPA_FONTDIR at a folder the wheel does not ship, and Qt then prints ten
+    lines per window about missing fonts. before is the variable's value before the import.
     """
 
-    def patch(cv2: object) -> None:
+    def patch(cv2: ModuleType) -> None:
         if before and os.path.isdir(before):
             os.environ['QT_QPA_FONTDIR'] = before  # the user's choice, which the loader overwrote
         elif not os.path.isdir(os.environ.get('QT_QPA_FONTDIR', '')) and os.path.isdir(FONT_DIR):
@@ -230,7 +262,7 @@ def keep_font_dir(before: str | None) -> object:
 
 # --- job 2: headless windows, the pure parts ------------------------------------------------------
 
-def headless_reason(library: str, environ: dict[str, str]) -> str | None:
+def headless_reason(library: str, environ: Mapping[str, str]) -> str | None:
     """Why this library's windows cannot be shown (for the notice), or None when they can."""
     forced = environ.get('OWL_HEADLESS', '')
     if forced == '1':
@@ -248,7 +280,7 @@ def headless_reason(library: str, environ: dict[str, str]) -> str | None:
     return 'neither DISPLAY nor WAYLAND_DISPLAY is set'
 
 
-def setting_problems(environ: dict[str, str]) -> list[str]:
+def setting_problems(environ: Mapping[str, str]) -> list[str]:
     """One line per OWL_HEADLESS or OWL_WINDOWS_FPS value that is ignored."""
     problems = []
     forced = environ.get('OWL_HEADLESS', '')
@@ -262,6 +294,7 @@ def setting_problems(environ: dict[str, str]) -> list[str]:
 
 
 def is_number(text: str) -> bool:
+    """Whether float() reads the text as a number ('inf' and 'nan' included)."""
     try:
         float(text)
     except ValueError:
@@ -269,7 +302,7 @@ def is_number(text: str) -> bool:
     return True
 
 
-def windows_fps(environ: dict[str, str]) -> float:
+def windows_fps(environ: Mapping[str, str]) -> float:
     """OWL_WINDOWS_FPS if it is a usable rate, else the default."""
     text = environ.get('OWL_WINDOWS_FPS', '')
     fps = float(text) if is_number(text) else DEFAULT_FPS
@@ -285,6 +318,10 @@ def program_name(argv: list[str]) -> str:
 
 
 def cv2_notice(program: str, reason: str, window: str, windows_dir: str | None) -> str:
+    """The line said at a program's first cv2 window without a display, and where to see it instead.
+
+    With windows_dir (the process's folder) that is the browser view of `owl windows`, else rqt.
+    """
     line = (f"{program}: no display ({reason}), so the window {window!r} is not shown; the program "
             'runs on without it. ')
     if windows_dir:
@@ -293,6 +330,10 @@ def cv2_notice(program: str, reason: str, window: str, windows_dir: str | None) 
 
 
 def pygame_notice(program: str, reason: str, windows_dir: str | None) -> str:
+    """The line said at a program's first pygame window without a display, and how to drive it instead.
+
+    With windows_dir (the process's folder): `owl windows` or its keys file; else the servos' topics.
+    """
     line = (f'{program}: no display ({reason}), so the pygame window is not shown and gets no key '
             'presses; the program runs on without them. ')
     if windows_dir:
@@ -308,7 +349,7 @@ def default_windows_dir() -> str:
     return os.path.join(tempfile.gettempdir(), f'owl-windows-{os.getuid()}')
 
 
-def windows_root(environ: dict[str, str]) -> str | None:
+def windows_root(environ: Mapping[str, str]) -> str | None:
     """Where headless windows are written: OWL_WINDOWS_DIR; unset, the default; empty, nowhere."""
     root = environ.get('OWL_WINDOWS_DIR')
     if root is None:
@@ -317,8 +358,9 @@ def windows_root(environ: dict[str, str]) -> str | None:
 
 
 def private_root(root: str) -> None:
-    """Make the windows folder's root, only the user's (0700); OSError if it is someone else's: another
-    user could otherwise watch these windows or press their keys.
+    """Make the windows folder's root, only the user's (0700); OSError if it is someone else's.
+
+    Another user could otherwise watch these windows or press their keys.
     """
     os.makedirs(root, mode=0o700, exist_ok=True)
     if os.stat(root).st_uid != os.getuid():
@@ -345,7 +387,7 @@ def parse_key_event(line: str) -> tuple[bool, str]:
 
 # What opencv-python's Qt window gives waitKeyEx for a key (measured under Xvfb): characters give
 # their code, these named keys their X11 keysym; waitKey returns the low byte.
-CV2_NAMED_KEYS = {
+CV2_NAMED_KEYS: dict[str, int] = {
     'space': 32, 'return': 13, 'escape': 27, 'backspace': 8, 'tab': 9, 'delete': 0xffff,
     'left': 0xff51, 'up': 0xff52, 'right': 0xff53, 'down': 0xff54,
     'home': 0xff50, 'page up': 0xff55, 'page down': 0xff56, 'end': 0xff57, 'insert': 0xff63,
@@ -362,7 +404,7 @@ def cv2_key_code(key: str) -> int | None:
     return CV2_NAMED_KEYS.get(key)
 
 
-def displayable(image: object) -> object:
+def displayable(image: object) -> NDArray[uint8]:
     """The 8-bit image cv2.imshow would show for an array: 16-bit / 256, float x 255 (clipped)."""
     import numpy
 
@@ -390,6 +432,7 @@ SETTINGS_CHECKED: list[bool] = []
 
 
 def say(line: str) -> None:
+    """Print one line on stderr at once: the hook's notices and warnings."""
     print(line, file=sys.stderr, flush=True)
 
 
@@ -403,7 +446,7 @@ class WindowsFolder:
         self.path = os.path.join(root, f"{quote(program, safe='')}-{os.getpid()}")
         self.period = 1.0 / fps
         self.last_write: dict[str, float] = {}
-        self.pending: dict[str, object] = {}  # file name -> function returning the encoded bytes
+        self.pending: dict[str, Callable[[], bytes]] = {}  # file name -> function returning the encoded bytes
         self.made = False
         self.broken = False
 
@@ -429,11 +472,15 @@ class WindowsFolder:
 
     @property
     def keys_path(self) -> str:
+        """The keys file, where key events are appended."""
         return os.path.join(self.path, 'keys')
 
-    def show(self, file_name: str, frame: object, encode: object, copy: object) -> None:
-        """Write encode(frame) now if the rate allows, else keep copy(frame) to write when it does
-        (the program may draw into its frame again before then).
+    def show(self, file_name: str, frame: Any, encode: Callable[[Any], bytes],
+             copy: Callable[[Any], Any]) -> None:
+        """Write encode(frame) now if the rate allows, else keep copy(frame) to write when it does.
+
+        The copy is kept because the program may draw into its frame again before then. The folder is
+        made at the first call; nothing is written if it cannot be.
         """
         import time
 
@@ -447,13 +494,15 @@ class WindowsFolder:
             self.pending[file_name] = lambda: encode(kept)
 
     def flush_due(self) -> None:
+        """Write the frames held back by the rate limit whose interval is over."""
         import time
 
         now = time.monotonic()
         for file_name in [f for f in self.pending if now - self.last_write.get(f, -1e9) >= self.period]:
             self.write(file_name, self.pending.pop(file_name))
 
-    def write(self, file_name: str, encode: object) -> None:
+    def write(self, file_name: str, encode: Callable[[], bytes]) -> None:
+        """Replace the file with encode()'s bytes atomically; the first OSError is said, later ones not."""
         import time
 
         self.last_write[file_name] = time.monotonic()
@@ -469,6 +518,7 @@ class WindowsFolder:
                 say(f'owl_gui_hook: OWL_WINDOWS_DIR: cannot write {final} ({error.strerror})')
 
     def discard(self, file_name: str) -> None:
+        """Forget a closed window's file: its frame held back, its last write, the file itself."""
         self.pending.pop(file_name, None)
         self.last_write.pop(file_name, None)
         if self.made:
@@ -478,6 +528,7 @@ class WindowsFolder:
                 pass
 
     def remove(self) -> None:
+        """Delete this process's folder with all it holds (make() registers it for the exit)."""
         import shutil
 
         shutil.rmtree(self.path, ignore_errors=True)
@@ -487,7 +538,7 @@ class WindowsFolder:
 class KeyReader:
     """New lines of a keys file as (down, key name) events; bad lines are said once and skipped."""
 
-    def __init__(self, path: str, known: object) -> None:
+    def __init__(self, path: str, known: Callable[[str], bool]) -> None:
         self.path = path
         self.known = known  # key name -> True if this reader can deliver it
         self.offset = 0
@@ -495,6 +546,10 @@ class KeyReader:
         self.said: set[str] = set()
 
     def events(self) -> list[tuple[bool, str]]:
+        """The events of the lines appended since the last call; [] while the file cannot be read.
+
+        A last line without its newline yet is kept for the next call.
+        """
         try:
             size = os.stat(self.path).st_size
         except OSError:
@@ -545,7 +600,7 @@ class Seam:
         self.noticed = False
         self.reader: KeyReader | None = None
 
-    def first_window(self, notice_line: object) -> None:
+    def first_window(self, notice_line: Callable[[str | None], str]) -> None:
         """At every window: the notice once (unless silent), the folder made."""
         if self.folder is not None:
             self.folder.make()
@@ -555,7 +610,11 @@ class Seam:
                 folder = self.folder.path if self.folder is not None and self.folder.made else None
                 say(notice_line(folder))
 
-    def key_events(self, known: object) -> list[tuple[bool, str]]:
+    def key_events(self, known: Callable[[str], bool]) -> list[tuple[bool, str]]:
+        """The key events appended since the last call, [] before the folder is made.
+
+        known (a key name -> whether this library can deliver it) is fixed by the first call.
+        """
         if self.folder is None or not self.folder.made:
             return []
         if self.reader is None:
@@ -563,26 +622,30 @@ class Seam:
         return self.reader.events()
 
     def flush_due(self) -> None:
+        """Write the frames held back by the rate limit whose interval is over, if there is a folder."""
         if self.folder is not None and self.folder.made:
             self.folder.flush_due()
 
 
 # --- job 2: headless cv2 --------------------------------------------------------------------------
 
-def patch_cv2(cv2: object, reason: str) -> None:
+def patch_cv2(cv2: Any, reason: str) -> None:
     """Replace cv2's window functions with ones that need no display (see the module's docstring)."""
     HeadlessCv2(cv2, reason).install()
 
 
 class HeadlessCv2:
-    def __init__(self, cv2: object, reason: str) -> None:
+    """cv2's window functions without a display: windows kept as state, frames and keys through the seam."""
+
+    def __init__(self, cv2: Any, reason: str) -> None:
         self.cv2 = cv2
         self.seam = Seam(reason, 'cv2')
-        self.windows: dict[str, dict[str, object]] = {}  # name -> flags, size, trackbars
+        self.windows: dict[str, CvWindow] = {}  # name -> flags, size, trackbars
         self.keys: list[int] = []
         self.said_wait_forever = False
 
     def install(self) -> None:
+        """Put these window functions in cv2's place (nothing() for the others), where cv2 has them."""
         names = ('imshow', 'namedWindow', 'waitKey', 'waitKeyEx', 'pollKey', 'destroyWindow',
                  'destroyAllWindows', 'resizeWindow', 'moveWindow', 'setWindowTitle',
                  'setWindowProperty', 'getWindowProperty', 'getWindowImageRect', 'setMouseCallback',
@@ -596,7 +659,8 @@ class HeadlessCv2:
 
     # -- windows
 
-    def window(self, name: object, flags: int | None = None) -> dict[str, object]:
+    def window(self, name: object, flags: int | None = None) -> CvWindow:
+        """The named window's state; a new window is made (flags default 1) and counts for the notice."""
         name = str(name)
         if name not in self.windows:
             self.windows[name] = {'flags': flags if flags is not None else 1, 'size': (0, 0),
@@ -606,9 +670,11 @@ class HeadlessCv2:
         return self.windows[name]
 
     def namedWindow(self, winname: str, flags: int = 1) -> None:
+        """cv2.namedWindow: make the window, with its flags."""
         self.window(winname, flags)
 
     def imshow(self, winname: str, mat: object) -> None:
+        """cv2.imshow: cv2.error for what OpenCV refuses; else keep the size, send the image to the seam."""
         import numpy
 
         if isinstance(mat, self.cv2.UMat):
@@ -628,19 +694,27 @@ class HeadlessCv2:
         if self.seam.folder is not None:
             self.seam.folder.show(window_file('cv2', str(winname)), image, self.jpeg, lambda i: i.copy())
 
-    def jpeg(self, image: object) -> bytes:
+    def jpeg(self, image: NDArray[uint8]) -> bytes:
+        """The image as JPEG bytes (quality 90); b'' if OpenCV cannot encode it."""
         ok, data = self.cv2.imencode('.jpg', image, [int(self.cv2.IMWRITE_JPEG_QUALITY), 90])
         return data.tobytes() if ok else b''
 
     def destroyWindow(self, winname: str) -> None:
+        """cv2.destroyWindow: forget the window and remove its file from the seam."""
         if self.windows.pop(str(winname), None) is not None and self.seam.folder is not None:
             self.seam.folder.discard(window_file('cv2', str(winname)))
 
     def destroyAllWindows(self) -> None:
+        """cv2.destroyAllWindows: destroyWindow for every window."""
         for name in list(self.windows):
             self.destroyWindow(name)
 
     def getWindowProperty(self, winname: str, prop_id: int) -> float:
+        """cv2.getWindowProperty: visible while the window exists, its autosize flag; 0.0 for the others.
+
+        Visible is 1.0 or 0.0 (a loop waiting for the window's close runs on); any other property of an
+        unknown window is -1.0.
+        """
         window = self.windows.get(str(winname))
         if prop_id == getattr(self.cv2, 'WND_PROP_VISIBLE', 4):
             return 1.0 if window is not None else 0.0  # as if shown: a loop waiting for its close runs on
@@ -651,26 +725,33 @@ class HeadlessCv2:
         return 0.0
 
     def getWindowImageRect(self, winname: str) -> tuple[int, int, int, int]:
+        """cv2.getWindowImageRect: (0, 0, width, height) of the last image shown; all -1 for no window."""
         window = self.windows.get(str(winname))
         return (0, 0, *window['size']) if window is not None else (-1, -1, -1, -1)
 
     def startWindowThread(self) -> int:
+        """cv2.startWindowThread: 0, no thread to start without a window."""
         return 0
 
     def createTrackbar(self, trackbarName: str, windowName: str, value: int, count: int,
                        onChange: object = None) -> None:
+        """cv2.createTrackbar: keep its position; onChange is never called, as nothing can move it."""
         self.window(windowName)['trackbars'][str(trackbarName)] = int(value)
 
     def getTrackbarPos(self, trackbarname: str, winname: str) -> int:
+        """cv2.getTrackbarPos: the position last set, 0 for an unknown trackbar."""
         return self.window(winname)['trackbars'].get(str(trackbarname), 0)
 
     def setTrackbarPos(self, trackbarname: str, winname: str, pos: int) -> None:
+        """cv2.setTrackbarPos: keep the new position."""
         self.window(winname)['trackbars'][str(trackbarname)] = int(pos)
 
     def selectROI(self, *args: object, **kwargs: object) -> tuple[int, int, int, int]:
+        """cv2.selectROI: the empty rectangle at once, as when the user cancels the selection."""
         return (0, 0, 0, 0)  # as when the selection is cancelled
 
     def selectROIs(self, *args: object, **kwargs: object) -> tuple[()]:
+        """cv2.selectROIs: no rectangles at once, as when the user cancels the selection."""
         return ()
 
     def nothing(self, *args: object, **kwargs: object) -> None:
@@ -680,13 +761,18 @@ class HeadlessCv2:
     # -- keys
 
     def take_key(self) -> int:
+        """The next key pressed through the seam, as the GUI build's code; -1 if none is waiting.
+
+        Frames held back by the rate limit are written first: the program looks for keys between frames.
+        """
         self.seam.flush_due()
         for down, key in self.seam.key_events(lambda key: cv2_key_code(key) is not None):
             if down:
-                self.keys.append(cv2_key_code(key))
+                self.keys.append(cv2_key_code(key))  # type: ignore[arg-type]  # not None: known keys only
         return self.keys.pop(0) if self.keys else -1
 
     def waitKeyEx(self, delay: int = 0) -> int:
+        """cv2.waitKeyEx: the next key from the seam, waiting up to delay ms (0 or less: for ever); or -1."""
         import time
 
         key = self.take_key()
@@ -711,16 +797,18 @@ class HeadlessCv2:
                 return key
 
     def waitKey(self, delay: int = 0) -> int:
+        """cv2.waitKey: as waitKeyEx, with only the low byte of the key's code."""
         key = self.waitKeyEx(delay)
         return key & 0xff if key != -1 else -1
 
     def pollKey(self) -> int:
+        """cv2.pollKey: the next key from the seam without waiting, or -1."""
         return self.take_key()
 
 
 # --- job 2: headless pygame -----------------------------------------------------------------------
 
-def prepare_pygame() -> object:
+def prepare_pygame() -> Callable[[ModuleType], None] | None:
     """Before pygame is imported: SDL's dummy drivers without a display; the patch, or None."""
     reason = headless_reason('pygame', os.environ)
     if reason is None:
@@ -732,13 +820,16 @@ def prepare_pygame() -> object:
 
 
 class HeadlessPygame:
-    def __init__(self, pygame: object, reason: str) -> None:
+    """pygame's display, event and key functions for a process without a display, wired to the seam."""
+
+    def __init__(self, pygame: Any, reason: str) -> None:
         self.pygame = pygame
         self.seam = Seam(reason, 'pygame')
         self.held: set[int] = set()
-        self.real: dict[str, object] = {}
+        self.real: dict[str, Callable[..., Any]] = {}
 
     def install(self) -> None:
+        """Wrap pygame's display, event and key functions; the originals are kept in self.real."""
         pygame = self.pygame
         for module, names in ((pygame.display, ('set_mode', 'flip', 'update', 'quit')),
                               (pygame.event, ('get', 'poll', 'wait', 'peek', 'pump')),
@@ -746,9 +837,10 @@ class HeadlessPygame:
             for name in names:
                 self.real[f'{module.__name__}.{name}'] = getattr(module, name)
         real = self.real
+        key: Any  # declared for mypy, as the class PressedKeys below subclasses key.ScancodeWrapper
         display, event, key = pygame.display, pygame.event, pygame.key
 
-        def set_mode(*args: object, **kwargs: object) -> object:
+        def set_mode(*args: object, **kwargs: object) -> Any:
             surface = real['pygame.display.set_mode'](*args, **kwargs)
             self.seam.first_window(lambda folder: pygame_notice(self.seam.program, self.seam.reason, folder))
             self.capture()
@@ -774,17 +866,17 @@ class HeadlessPygame:
                 self.seam.folder.discard(window_file('pygame', ''))
             real_quit()
 
-        def reading(name: str) -> object:
+        def reading(name: str) -> Callable[..., Any]:
             function = real[f'pygame.event.{name}']
 
-            def read_keys_first(*args: object, **kwargs: object) -> object:
+            def read_keys_first(*args: object, **kwargs: object) -> Any:
                 self.inject()
                 return function(*args, **kwargs)
 
             read_keys_first.__doc__ = function.__doc__
             return read_keys_first
 
-        def wait(timeout: int = 0) -> object:
+        def wait(timeout: int = 0) -> Any:
             import time
 
             # SDL's own wait would block in C, where no key from the seam could reach it.
@@ -800,7 +892,7 @@ class HeadlessPygame:
 
         # The keyboard state changes only when events are pumped, as SDL's does: a key read from the
         # seam between a loop's event.get() and its get_pressed() is held only after its KEYDOWN.
-        def get_pressed() -> object:
+        def get_pressed() -> Any:
             pressed = PressedKeys(real['pygame.key.get_pressed']())
             pressed.held = frozenset(self.held)
             return pressed
@@ -811,9 +903,9 @@ class HeadlessPygame:
         class PressedKeys(key.ScancodeWrapper):
             """get_pressed()'s tuple, with the keys held through the seam pressed too."""
 
-            held: frozenset = frozenset()
+            held: frozenset[int] = frozenset()
 
-            def __getitem__(self, index: object) -> object:
+            def __getitem__(self, index: object) -> Any:
                 if isinstance(index, int) and index in self.held:
                     return True
                 return super().__getitem__(index)
@@ -826,13 +918,15 @@ class HeadlessPygame:
         key.get_pressed, key.get_mods = get_pressed, get_mods
 
     def capture(self) -> None:
+        """Send the display's content to the seam, once set_mode has made the window."""
         folder = self.seam.folder
         surface = self.pygame.display.get_surface()
         if folder is None or surface is None or not self.seam.noticed:
             return
         folder.show(window_file('pygame', ''), surface, self.png, lambda s: s.copy())
 
-    def png(self, surface: object) -> bytes:
+    def png(self, surface: Any) -> bytes:
+        """The surface as PNG bytes."""
         import io
 
         data = io.BytesIO()
@@ -840,6 +934,7 @@ class HeadlessPygame:
         return data.getvalue()
 
     def known(self, name: str) -> bool:
+        """Whether pygame has a key of that name (pygame.key.key_code)."""
         try:
             self.pygame.key.key_code(name)
         except ValueError:
@@ -847,6 +942,7 @@ class HeadlessPygame:
         return True
 
     def mods(self) -> int:
+        """The KMOD_ bits of the shift, ctrl and alt keys held through the seam."""
         pygame = self.pygame
         bits = {pygame.K_LSHIFT: pygame.KMOD_LSHIFT, pygame.K_RSHIFT: pygame.KMOD_RSHIFT,
                 pygame.K_LCTRL: pygame.KMOD_LCTRL, pygame.K_RCTRL: pygame.KMOD_RCTRL,
@@ -872,7 +968,7 @@ class HeadlessPygame:
                 text = text.upper()
             # SDL keycodes of keys without a character are their scancode with bit 30 set.
             scancode = code & ~(1 << 30) if code & (1 << 30) else 0
-            attributes = {'key': code, 'mod': mods, 'scancode': scancode, 'window': None}
+            attributes: dict[str, object] = {'key': code, 'mod': mods, 'scancode': scancode, 'window': None}
             if down:
                 attributes['unicode'] = text
             pygame.event.post(pygame.event.Event(pygame.KEYDOWN if down else pygame.KEYUP, attributes))

@@ -68,6 +68,8 @@ object has no attribute '_exception'" on the way out. Future.__del__ is made to 
 whose construction was interrupted (it has no exception to report).
 """
 
+from __future__ import annotations
+
 import os
 import signal
 import sys
@@ -76,9 +78,14 @@ import time
 import weakref
 from collections.abc import Callable
 from functools import wraps
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 from owl_gui_hook import PatchingLoader, find_spec_after
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from importlib.machinery import ModuleSpec
+    from types import FrameType, ModuleType
 
 TAKES = ('_take_subscription', '_take_client', '_take_service', '_take_waitable')
 SPINS_UNTIL_FUTURE = ('spin_until_future_complete', 'spin_once_until_future_complete')
@@ -94,7 +101,9 @@ class RclpyImportHook:
     patched: ClassVar[set[str]] = set()
 
     @classmethod
-    def find_spec(cls, fullname: str, path: object = None, target: object = None) -> object:
+    def find_spec(cls, fullname: str, path: Sequence[str] | None = None,
+                  target: ModuleType | None = None) -> ModuleSpec | None:
+        """At the first import of each module in patches(): its spec with a patching loader; else None."""
         patch = patches().get(fullname)
         if patch is None or fullname in cls.patched:
             return None
@@ -104,11 +113,12 @@ class RclpyImportHook:
         spec = find_spec_after(cls, fullname, target, path)
         if spec is None or spec.loader is None:
             return None
-        spec.loader = PatchingLoader(spec.loader, patch)
+        spec.loader = PatchingLoader(spec.loader, patch)  # type: ignore[assignment]  # duck-typed loader
         return spec
 
 
 def patches() -> dict[str, Callable[[Any], None]]:
+    """The modules this repair acts on, each with the function that patches it once it is imported."""
     return {'rclpy.signals': patch_signals, 'rclpy': patch_init,
             'rclpy.executors': patch_executors, 'rclpy.action.client': patch_action_client}
 
@@ -149,6 +159,10 @@ class CtrlCAsOnHumble:
 
     @classmethod
     def wake_executors(cls, read_end: int) -> None:
+        """The owl-ctrl-c thread: at each SIGINT on the wake-up fd, trigger every SIGINT guard condition.
+
+        That wakes the executors blocked in their wait, as rclpy's own handler does; it never returns.
+        """
         while True:
             if signal.SIGINT in os.read(read_end, 64):
                 for guard in list(cls.sigint_guards):
@@ -171,8 +185,10 @@ class CtrlCAsOnHumble:
             rclpy.try_shutdown()
 
 
-def raise_ctrl_c(signum: int, frame: object) -> None:
-    """One Ctrl-C, one CtrlC: the copy that `ros2 launch` passes on to a node that the terminal
+def raise_ctrl_c(signum: int, frame: FrameType | None) -> None:
+    """SIGINT's handler: raise CtrlC, unless this SIGINT follows the last within SAME_PRESS.
+
+    One Ctrl-C, one CtrlC: the copy that `ros2 launch` passes on to a node that the terminal
     already signalled must not cut the clean-up that the first one started.
     """
     now = time.monotonic()
@@ -184,6 +200,7 @@ def raise_ctrl_c(signum: int, frame: object) -> None:
 
 
 def patch_signals(signals: Any) -> None:
+    """Patch rclpy.signals: every SIGINT guard condition made is tracked, for wake_executors to trigger."""
     guard_init = signals.SignalHandlerGuardCondition.__init__
 
     @wraps(guard_init)
@@ -217,10 +234,14 @@ def install() -> None:
 
 
 def patch_executors(executors: Any) -> None:
+    """Patch rclpy.executors: takes keep Ctrl-C out, the spin-until-future methods leave no wake-ups.
+
+    Future.__del__ (rclpy.task) is patched here too, to skip the futures a Ctrl-C left half built.
+    """
     for name in TAKES:
         setattr(executors.Executor, name, keep_ctrl_c_out(getattr(executors.Executor, name)))
     from rclpy.task import Future
-    Future.__del__ = skip_half_built(Future.__del__)
+    Future.__del__ = skip_half_built(Future.__del__)  # type: ignore[method-assign]
     for cls in (executors.Executor, executors.SingleThreadedExecutor, executors.MultiThreadedExecutor):
         for name in SPINS_UNTIL_FUTURE:
             if name in vars(cls):
@@ -252,6 +273,7 @@ def patch_action_client(client: Any) -> None:
 
 
 def filing_under_lock(send: Callable[..., Any]) -> Callable[..., Any]:
+    """send, run under the client's filing lock: its Future is filed before execute() looks it up."""
     @wraps(send)
     def send_and_file(self: Any, *args: Any, **kwargs: Any) -> Any:
         with self._owl_filing:
@@ -298,7 +320,7 @@ def keep_ctrl_c_out(take: Callable[..., Any]) -> Callable[..., Any]:
 
     @wraps(take)
     def take_keeping_ctrl_c_out(executor: Any, entity: Any) -> Any:
-        python_handler = signal.getsignal(signal.SIGINT)
+        python_handler: Any = signal.getsignal(signal.SIGINT)  # callable past the check below
         if (threading.current_thread() is not threading.main_thread()
                 or python_handler not in (signal.default_int_handler, raise_ctrl_c)):
             return take(executor, entity)
@@ -330,6 +352,7 @@ def was_ctrl_c(error: Exception, context: Any) -> bool:
 
 
 def shut_down_soon(context: Any) -> bool:
+    """Whether the context goes down within SHUTDOWN_GRACE seconds (looked at every 10 ms)."""
     deadline = time.monotonic() + SHUTDOWN_GRACE
     while context.ok():
         if time.monotonic() > deadline:

@@ -1,6 +1,7 @@
-"""Unit tests of src/tools/owl_venv_hooks/owl_gui_hook.py's pure parts and of its headless cv2 on a stand-in module.
+"""Unit tests of owl_gui_hook.py's pure parts and of its headless cv2 on a stand-in module.
 
-The module is loaded from scripts/ (the copy in the venv is what processes run; tests/ runs those).
+The module is loaded from its source beside test/ (the copy in the venv is what processes run; tests/
+runs those).
 Its headless pygame needs SDL in a process of its own: tests/test_headless_windows.py.
 """
 
@@ -66,7 +67,8 @@ def test_notices_say_what_happened_and_where_to_look_instead():
     line = hook.pygame_notice('keyboard_servos', 'OWL_HEADLESS=1', None)
     assert line.startswith('keyboard_servos: no display (OWL_HEADLESS=1), so the pygame window is not '
                            'shown and gets no key presses; the program runs on without them.')
-    assert '/olive/servo/pan/goal/position' in line and 'setTorqueEnable' in line
+    assert '/olive/servo/pan/goal/position' in line
+    assert 'setTorqueEnable' in line
     line = hook.pygame_notice('keyboard_servos', 'OWL_HEADLESS=1', '/w/keyboard_servos-7')
     assert line.endswith("the program runs on without them. To see it and press its keys in a browser, run "
                          "'owl windows'; or append key events to /w/keyboard_servos-7/keys ('down left', "
@@ -169,7 +171,8 @@ def test_windows_folder_writes_at_a_limited_rate_atomically_and_keeps_the_last_f
         folder.show('cv2-camera.jpg', frame, encode, lambda f: f)
     path = Path(folder.path)
     assert sorted(p.name for p in path.iterdir()) == ['cv2-camera.jpg', 'keys']
-    assert (path / 'cv2-camera.jpg').read_bytes() == b'frame 0' and (path / 'keys').read_bytes() == b''
+    assert (path / 'cv2-camera.jpg').read_bytes() == b'frame 0'
+    assert (path / 'keys').read_bytes() == b''
     folder.flush_due()
     assert written == [0]
     time.sleep(0.06)
