@@ -1,6 +1,9 @@
 """servo_sim over real DDS: the course's interface, torque safety, the PID exercise, bad input."""
 
+import itertools
 import math
+import os
+import signal
 import time
 
 import pytest
@@ -104,6 +107,22 @@ def test_interface_matches_the_course(ros):
 
 def stamp(msg):
     return msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
+
+
+def test_a_servo_held_up_still_stamps_its_joint_states_at_their_rate(ros):
+    # As the IMU: a loaded machine delays the joint states, not their measurement, so a plot or a
+    # rise time read from their stamps stays true (robot_view plots them at their stamps).
+    servo = start_servo(ros)
+    joints = ros.probe.collect(JointState, PREFIX + 'joint', COLLECT_DEPTH)
+    wait_for_messages(joints, 20, timeout=20)
+    os.kill(servo.pid, signal.SIGSTOP)
+    time.sleep(0.08)
+    os.kill(servo.pid, signal.SIGCONT)
+    wait_for_messages(joints, 60, timeout=10)
+    stamps = [m.header.stamp.sec + m.header.stamp.nanosec * 1e-9 for m in joints[:60]]
+    gaps = [later - earlier for earlier, later in itertools.pairwise(stamps)]
+    assert min(gaps) > 0.008, [round(g, 4) for g in gaps]
+    assert max(gaps) < 0.012, [round(g, 4) for g in gaps]
 
 
 def test_goals_ignored_with_torque_off_and_tracked_with_torque_on(ros):

@@ -14,6 +14,7 @@ from typing import Any
 
 from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
 from olive_kit.description import GAIN_LIMITS
+from owl_common.periodic import scheduled_time
 from rcl_interfaces.msg import FloatingPointRange, IntegerRange, SetParametersResult
 from rclpy.parameter import Parameter
 from rclpy.serialization import serialize_message
@@ -155,13 +156,20 @@ class ServoModule(OliveModule):
 
     def _advance_to_now(self) -> None:
         """Run the fixed-step model until its time reaches the wall clock (hold self.lock)."""
-        elapsed = time.monotonic() - self._wall_start
+        self._advance_to(time.monotonic())
+
+    def _advance_to(self, instant: float) -> None:
+        """Run the fixed-step model until its time reaches instant, a time.monotonic() (hold self.lock).
+
+        A model already past instant (a goal or a service advanced it) stays where it is.
+        """
+        elapsed = instant - self._wall_start
         behind = elapsed - self.sim.time
         if behind > MAX_CATCH_UP:
             self.warn('stall', f'physics fell {behind:.2f} s behind wall time (process stalled): '
                       'skipping ahead')
             self._wall_start += behind - MAX_CATCH_UP
-            elapsed = time.monotonic() - self._wall_start
+            elapsed = instant - self._wall_start
         self.sim.advance(max(0, int(elapsed * self.physics_rate) - self.sim.steps))
 
     # -- parameters -------------------------------------------------------------------------
@@ -272,10 +280,13 @@ class ServoModule(OliveModule):
     # -- outputs ----------------------------------------------------------------------------
 
     def _publish_joint(self) -> None:
+        # Measured at its due time on the joint_rate schedule and stamped with the model's time, so
+        # a loaded machine delays the messages but keeps their spacing (as the IMU does).
         with self.lock:
-            self._advance_to_now()
+            self._advance_to(scheduled_time())
             values = (self.sim.measured_position(), self.sim.state.velocity, self.sim.state.torque)
-        joint = self.joint_template.fill(self.now_ns(), values)
+            measured_at = self._wall_start + self.sim.time
+        joint = self.joint_template.fill(self.ros_time_at(measured_at), values)
         self.joint_publisher.publish(joint)
         self.joint_traffic.sent += len(joint)
 
