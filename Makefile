@@ -21,7 +21,8 @@ test: setup
 	@$(ENV) python -m pytest -n $(TEST_WORKERS)
 
 lint: setup
-	@$(ENV) ruff check .
+	@$(ENV) ruff check . && python -m mypy && \
+	  python -m mypy --allow-untyped-defs --allow-incomplete-defs --follow-untyped-imports tests scripts bench docs
 
 bench: setup  # every benchmark in turn; each prints its numbers and ratio to its baseline
 	@$(ENV) for script in $(BENCHMARKS); do echo "== $$script"; python "$$script"; done

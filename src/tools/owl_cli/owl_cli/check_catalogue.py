@@ -17,7 +17,7 @@ import difflib
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from importlib.metadata import entry_points
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeVar
 
 if TYPE_CHECKING:
     from owl_cli.check_session import Session
@@ -25,6 +25,8 @@ if TYPE_CHECKING:
     Check = Callable[[Session], None]
 
 PLUGIN_GROUP = 'owl_cli.exercises'
+# A check function as written (it may take more arguments with defaults, as check_control_servo).
+CheckFunction = TypeVar('CheckFunction', bound=Callable[..., None])
 TERMINAL = 'typed at a terminal (ros2 and rqt commands), it leaves nothing in a workspace to check'
 
 
@@ -56,9 +58,9 @@ class Section:
         self.exercises: list[Exercise] = []
 
     def check(self, exercise_id: str, section: str, package: str, description: str, *,
-              extra: bool = False, choice: str = '') -> Callable[[Check], Check]:
+              extra: bool = False, choice: str = '') -> Callable[[CheckFunction], CheckFunction]:
         """Declare the function below as the check of this exercise."""
-        def declare(check: Check) -> Check:
+        def declare(check: CheckFunction) -> CheckFunction:
             self.exercises.append(Exercise(exercise_id, section, package, description, extra,
                                            choice=choice, check=check))
             return check
