@@ -23,10 +23,11 @@ import socket
 import sys
 import threading
 import time
+from typing import TYPE_CHECKING
 
 import rclpy
 from measure import cpu_seconds
-from olive_kit.description import OWL_KIT, page_host
+from olive_kit.description import OWL_KIT, KitModule, page_host
 from olive_sim.camera_render import CameraRenderer
 from olive_sim.servo_model import PidGains, ServoSim
 from owl_common.processes import RosProcess, RosSandbox
@@ -35,6 +36,9 @@ from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.qos import qos_profile_sensor_data
 from sensor_msgs.msg import CompressedImage, JointState
+
+if TYPE_CHECKING:
+    import aiohttp
 
 
 def baseline_node() -> None:
@@ -79,7 +83,7 @@ def measure_cpu(args: argparse.Namespace) -> dict[str, float]:
     PageWatcher; each case in a ROS sandbox of its own.
     """
     results = {}
-    singles = {'imu_sim': [], 'servo_sim': [], 'camera_sim': []}
+    singles: dict[str, list[str]] = {'imu_sim': [], 'servo_sim': [], 'camera_sim': []}
     with RosSandbox() as sandbox:
         baseline = sandbox.command([sys.executable, __file__, '--baseline-node'], label='baseline')
         results['baseline (rclpy JointState 100 Hz)'] = cpu_percent([baseline], args.warmup, args.seconds)
@@ -123,13 +127,13 @@ class PageWatcher:
         self.port = port
         self.updates = 0
         self.loop = asyncio.new_event_loop()
-        self.stopping: asyncio.Event | None = None
+        # made here (Python 3.10+ binds it to the loop that first waits on it): stop() always has it
+        self.stopping = asyncio.Event()
         self.thread = threading.Thread(target=self.loop.run_until_complete, args=(self._watch(),),
                                        daemon=True)
         self.thread.start()
 
     async def _watch(self) -> None:
-        self.stopping = asyncio.Event()
         async with self.aiohttp.ClientSession() as session:
             tasks = [asyncio.create_task(self._module(session, m)) for m in OWL_KIT]
             await self.stopping.wait()
@@ -137,7 +141,7 @@ class PageWatcher:
                 task.cancel()
             await asyncio.gather(*tasks, return_exceptions=True)
 
-    async def _module(self, session: object, module: object) -> None:
+    async def _module(self, session: aiohttp.ClientSession, module: KitModule) -> None:
         url = f'ws://{page_host(module.address)}:{self.port}/ws'
         deadline = time.monotonic() + 60
         while True:

@@ -43,6 +43,7 @@ import time
 from collections import Counter
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import cast
 
 import rclpy
 from olive_imu.imu_turtle import DEFAULT_IMU_TOPIC, ImuTurtle
@@ -72,6 +73,7 @@ NOT_COUNTED = ('clean', BEFORE_MAIN)  # neither is the main()'s fault
 # A traceback frame of a node's main() (not of site.main, which runs before any of our code).
 MAIN_FRAME = re.compile(r', in course_\w+$|/olive_\w+/\w+\.py", line \d+, in main$', re.MULTILINE)
 SERVO_PARAMETERS = ['-p', 'min_position:=-1.5708', '-p', 'max_position:=1.5708']
+TorqueNode = ControlServo | PidTesting  # the nodes course_main(..., torque=True) runs
 
 
 def course_main(make_node: Callable[[], Node], options: SignalHandlerOptions, construct_in_try: bool,
@@ -99,7 +101,7 @@ def course_main(make_node: Callable[[], Node], options: SignalHandlerOptions, co
             stop = node.create_guard_condition(raise_keyboard_interrupt)
             signal.signal(signal.SIGINT, lambda signum, frame: stop.trigger())
         if torque:
-            node.enable_torque()
+            cast(TorqueNode, node).enable_torque()
         print('spinning', flush=True)
         spin(node)
     except (KeyboardInterrupt, ExternalShutdownException):
@@ -107,7 +109,7 @@ def course_main(make_node: Callable[[], Node], options: SignalHandlerOptions, co
     finally:
         if node is not None:
             if torque:
-                node.disable_torque()
+                cast(TorqueNode, node).disable_torque()
             node.destroy_node()
         rclpy.try_shutdown()
 

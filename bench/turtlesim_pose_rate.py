@@ -110,8 +110,12 @@ class Observer:
     def measure(self, pid: int, turtles: int, moving: bool, seconds: float) -> Measurement:
         """/turtle1/pose's timing and process pid's CPU over `seconds`; with moving, every turtle circles."""
         stamps: list[int] = []
+
+        def on_pose(_msg: Pose, info: dict[str, int]) -> None:
+            stamps.append(info['source_timestamp'])
+
         subscription = self.node.create_subscription(
-            Pose, '/turtle1/pose', lambda _msg, info: stamps.append(info['source_timestamp']), QOS)
+            Pose, '/turtle1/pose', on_pose, QOS)  # type: ignore[arg-type]  # rclpy's hint omits (msg, info)
         drivers = []
         if moving:
             drivers = [self.node.create_publisher(Twist, f'/turtle{i + 1}/cmd_vel', QOS)

@@ -16,6 +16,7 @@ import socket
 import sys
 import time
 from dataclasses import dataclass, field
+from functools import partial
 
 from owl_common import quaternion
 from owl_common.probe import Probe
@@ -60,15 +61,19 @@ def watch(probe: Probe) -> RobotState:
     def on_pose(msg: Pose) -> None:
         state.pose = msg
 
+    def on_goal(servo: str, msg: Float32) -> None:
+        state.goals[servo] = msg.data
+
+    def on_joint(servo: str, msg: JointState) -> None:
+        state.positions[servo] = msg.position[0]
+
     node = probe.node
     node.create_subscription(Imu, IMU_TOPIC, on_imu, qos_profile_sensor_data)
     node.create_subscription(CompressedImage, CAMERA_TOPIC, on_frame, qos_profile_sensor_data)
     node.create_subscription(Pose, '/turtle1/pose', on_pose, 10)
     for servo in SERVOS:
-        node.create_subscription(Float32, f'/olive/servo/{servo}/goal/position',
-                                 lambda msg, s=servo: state.goals.__setitem__(s, msg.data), 10)
-        node.create_subscription(JointState, f'/olive/servo/{servo}/joint',
-                                 lambda msg, s=servo: state.positions.__setitem__(s, msg.position[0]), 10)
+        node.create_subscription(Float32, f'/olive/servo/{servo}/goal/position', partial(on_goal, servo), 10)
+        node.create_subscription(JointState, f'/olive/servo/{servo}/joint', partial(on_joint, servo), 10)
     return state
 
 

@@ -158,7 +158,8 @@ def write_rerun_report(report: pytest.TestReport) -> None:
 
 
 def pytest_runtest_logreport(report: pytest.TestReport) -> None:
-    if report.outcome == 'rerun' and report.nodeid not in RERUNS:
+    # pytest types outcome as passed/failed/skipped; pytest-rerunfailures sets 'rerun' too
+    if report.outcome == 'rerun' and report.nodeid not in RERUNS:  # type: ignore[comparison-overlap]
         # The call's report, then a failed teardown's: keep the first.
         RERUNS[report.nodeid] = Rerun(first_line(report))
         if not IN_WORKER:

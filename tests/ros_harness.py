@@ -86,7 +86,7 @@ class Probe(owl_common.probe.Probe):
         return [parameter_value_to_python(v) for v in response.values]
 
 
-def wait_until(condition: Callable[[], bool], timeout: float, what: str) -> None:
+def wait_until(condition: Callable[[], object], timeout: float, what: str) -> None:
     deadline = time.monotonic() + timeout
     while not condition():
         if time.monotonic() > deadline:

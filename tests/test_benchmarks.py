@@ -35,8 +35,8 @@ def test_every_benchmark_has_a_shrunk_run():
 
 @pytest.mark.parametrize('script', sorted(SHRUNK))
 def test_benchmark_runs(script):
-    if script in NEEDS_CHROMIUM and chromium_missing():
-        prerequisite_missing(chromium_missing())
+    if script in NEEDS_CHROMIUM and (missing := chromium_missing()):
+        prerequisite_missing(missing)
     result = subprocess.run([sys.executable, str(BENCH / script), *SHRUNK[script]], capture_output=True,
                             text=True, timeout=110, check=False)
     assert result.returncode == 0, result.stdout + result.stderr

@@ -15,7 +15,9 @@ BOOTSTRAP = ROOT / 'scripts' / 'bootstrap.sh'
 
 def run_bootstrap(path_dirs: list[Path], python: str) -> subprocess.CompletedProcess:
     env = {'PATH': os.pathsep.join(map(str, path_dirs)), 'PYTHON': python, 'HOME': os.environ['HOME']}
-    return subprocess.run([shutil.which('bash'), str(BOOTSTRAP)], env=env, capture_output=True,
+    bash = shutil.which('bash')
+    assert bash is not None
+    return subprocess.run([bash, str(BOOTSTRAP)], env=env, capture_output=True,
                           text=True, timeout=60)
 
 
@@ -24,7 +26,9 @@ def tool_dir(tmp_path: Path, tools: list[str]) -> Path:
     folder = tmp_path / 'bin'
     folder.mkdir()
     for tool in tools:
-        (folder / tool).symlink_to(shutil.which(tool))
+        path = shutil.which(tool)
+        assert path is not None, tool
+        (folder / tool).symlink_to(path)
     return folder
 
 

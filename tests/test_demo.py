@@ -22,8 +22,7 @@ def run_demo(*args: str, timeout: float = 150) -> subprocess.CompletedProcess:
 def test_demo_runs_the_robot_reports_it_and_stops_every_node_cleanly():
     result = run_demo('--seconds', '10', '--report-every', '2.5')
     assert result.returncode == 0, result.stdout + result.stderr
-    statuses = [STATUS.search(line) for line in result.stdout.splitlines()]
-    statuses = [s for s in statuses if s]
+    statuses = [s for line in result.stdout.splitlines() if (s := STATUS.search(line))]
     assert len(statuses) >= 3, result.stdout
     # The head follows the IMU: the servos reach their goals, and the camera streams.
     pan_goal, pan_at, tilt_goal, tilt_at, fps = map(float, statuses[-1].groups())

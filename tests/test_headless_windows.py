@@ -66,7 +66,9 @@ def test_cv2_viewer_without_a_display_says_so_in_one_line_runs_on_and_stops_at_c
     viewer.stop_cleanly(timeout=10)
     notice, summary = viewer.lines
     assert notice == f'{CV2_NOTICE} (its frames go to {folder})'
-    assert int(re.fullmatch(r'shown (\d+) frames', summary)[1]) > 100  # waitKey(1) waited about 1 ms
+    shown = re.fullmatch(r'shown (\d+) frames', summary)
+    assert shown, summary
+    assert int(shown[1]) > 100  # waitKey(1) waited about 1 ms
 
 
 def test_cv2_viewer_seam_gets_the_latest_frames_and_sends_keys(ros, tmp_path):
@@ -78,9 +80,14 @@ def test_cv2_viewer_seam_gets_the_latest_frames_and_sends_keys(ros, tmp_path):
     frame = read_image(frame_file)
     assert frame.shape == (120, 160, 3)
     assert close_to(frame[60, 40], RED)
-    greys = set()
-    wait_until(lambda: greys.add(int(read_image(frame_file)[60, 120, 0]) // 16) or len(greys) >= 3, 10,
-               'three different frames')  # the image changes with every frame: the file follows
+    greys: set[int] = set()
+
+    def three_greys_seen() -> bool:
+        greys.add(int(read_image(frame_file)[60, 120, 0]) // 16)
+        return len(greys) >= 3
+
+    # the image changes with every frame: the file follows
+    wait_until(three_greys_seen, 10, 'three different frames')
     append(folder / 'keys', 'down left', 'up left', 'down a', 'down escape', 'down nokey', 'sideways')
     viewer.wait_for(r'^key 27$', timeout=10)
     viewer.stop_cleanly(timeout=10)
@@ -116,7 +123,9 @@ def test_pygame_keys_without_a_display_says_so_in_one_line_runs_on_and_stops_at_
     notice, summary = own_lines(keys)
     keys_file = default_folder(tmp_path, keys) / 'keys'
     assert notice == f"{PYGAME_NOTICE}; or append key events to {keys_file} ('down left', 'up left')"
-    assert int(re.fullmatch(r'ran (\d+) loops', summary)[1]) > 20
+    ran = re.fullmatch(r'ran (\d+) loops', summary)
+    assert ran, summary
+    assert int(ran[1]) > 20
     assert 'ALSA' not in keys.output  # SDL on its dummy drivers
     assert 'XDG' not in keys.output
 

@@ -74,7 +74,9 @@ def seconds_until_listing(sandbox, condition, timeout=10.0):
 
 def turtle_x(sandbox):
     out = ros2(sandbox, 'topic', 'echo', '/turtle1/pose', '--once').stdout
-    return float(re.search(r'^x: (\S+)', out, re.M).group(1))
+    x = re.search(r'^x: (\S+)', out, re.M)
+    assert x, out
+    return float(x.group(1))
 
 
 @pytest.mark.parametrize('network', sorted(RANGES))

@@ -9,9 +9,11 @@ and their bad values.
 import signal
 import time
 from collections.abc import Callable
+from functools import partial
 from pathlib import Path
 
 import pytest
+from diagnostic_msgs.msg import DiagnosticStatus
 from ros_harness import wait_for_messages, wait_until
 from servo_helpers import BOUNDS, assert_clean_servo, collect, start_servo, torque_enabled
 
@@ -143,6 +145,10 @@ def drive_the_head(head: Head, keys) -> None:
     head.assert_goals_within_bounds()
 
 
+def torque_off_since(diagnostics: list[DiagnosticStatus], count: int) -> bool:
+    return len(diagnostics) > count and not torque_enabled(diagnostics)
+
+
 def stop_and_check_the_torque(node, servos, head: Head) -> None:
     """Ctrl-C: exit code 0, the torque of both servos off, and they never saw a goal too early."""
     node.stop_cleanly(timeout=10)
@@ -151,8 +157,8 @@ def stop_and_check_the_torque(node, servos, head: Head) -> None:
         assert f'torque disabled: {name}' in node.output
         servo.wait_for(r'\]: torque disabled$', timeout=10)
         count = len(head.diagnostics[name])
-        wait_until(lambda name=name, count=count: len(head.diagnostics[name]) > count
-                   and not torque_enabled(head.diagnostics[name]), 10, f'{name} torque_enabled false')
+        wait_until(partial(torque_off_since, head.diagnostics[name], count), 10,
+                   f'{name} torque_enabled false')
         assert_clean_servo(servo)
 
 

@@ -14,6 +14,7 @@ from pathlib import Path
 
 import pytest
 from netns import TestLan
+from owl_common.processes import RosProcess
 from ros_harness import wait_until
 
 OPEN = {'OWL_NETWORK': 'open', 'ROS_DOMAIN_ID': '0'}
@@ -29,13 +30,19 @@ def positions(process) -> list[float]:
     return [float(v) for v in re.findall(r"^array\('d', \[([-+0-9.e]+)\]\)$", process.output, re.M)]
 
 
+class Classroom(TestLan):
+    """The classroom fixture's Lan, with the PC's kit_hosts process."""
+
+    kit: RosProcess
+
+
 @pytest.fixture
 def classroom():
     """A student's PC and, not on the kit's bridge, a second machine (both namespaces).
 
     The PC runs kit_hosts, which joins it to the kit's bridge at 10.42.0.1.
     """
-    lan = TestLan()
+    lan = Classroom()
     try:
         lan.add_host('pc', None)
         lan.add_host('other', None)

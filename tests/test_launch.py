@@ -204,7 +204,9 @@ def test_actions_substitutions_and_conditions_in_every_format(ros, tmp_path, fmt
     rest = lines[len(expected_start):]
     assert re.fullmatch(r'exec: /\S+/sh', rest[0])
     assert rest[1] == 'command: out'
-    first, second = re.fullmatch(r'anon: (x_\w+) (x_\w+)', rest[2]).groups()
+    anon = re.fullmatch(r'anon: (x_\w+) (x_\w+)', rest[2])
+    assert anon, rest[2]
+    first, second = anon.groups()
     assert first == second
     assert rest[3:] == [f'dir: {tmp_path}', 'included: passed', 'leaked: passed', 'timer: owl']
     process.wait_for(r'\[printenv-\d+\] from-launch$')
@@ -334,7 +336,9 @@ def test_stubborn_child_gets_sigterm_then_sigkill(ros, tmp_path):
     # The timeouts are launch configurations, settable from the command line.
     process = launch(ros, path, 'sigterm_timeout:=0.5', 'sigkill_timeout:=0.5')
     assert finish(process) == 0, process.output
-    label = re.search(STARTED, process.output).group(1)
+    started = re.search(STARTED, process.output)
+    assert started, process.output
+    label = started.group(1)
     for pattern in (
             rf"\[INFO\] \[{label}\]: sending signal 'SIGINT' to process\[{label}\]",
             rf"\[ERROR\] \[{label}\]: process\[{label}\] failed to terminate '0.5' seconds after "

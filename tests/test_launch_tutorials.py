@@ -137,8 +137,9 @@ def test_event_handlers_tutorial(ros, tmp_path):
                  'Spawn finished'):
         process.wait_for(r'\[INFO\] \[launch\.user\]: ' + re.escape(line), timeout=40)
     # Closing the simulator ends the launch through OnProcessExit -> EmitEvent(Shutdown).
-    turtlesim_pid = int(re.search(r'\[turtlesim_node-\d+\]: process started with pid \[(\d+)\]',
-                                  process.output).group(1))
+    started = re.search(r'\[turtlesim_node-\d+\]: process started with pid \[(\d+)\]', process.output)
+    assert started, process.output
+    turtlesim_pid = int(started.group(1))
     os.kill(turtlesim_pid, signal.SIGINT)
     assert process.wait(30) == 0, process.output
     process.wait_for(r'\[INFO\] \[launch\.user\]: student closed the turtlesim window')

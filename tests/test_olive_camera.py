@@ -32,6 +32,7 @@ RED = LANDMARKS[0][1]  # RGB of the tower straight ahead
 def decode(data):
     """RGB pixels of JPEG bytes."""
     bgr = cv2.imdecode(np.frombuffer(bytes(data), np.uint8), cv2.IMREAD_COLOR)
+    assert bgr is not None, 'not a JPEG'
     return cv2.cvtColor(bgr, cv2.COLOR_BGR2RGB)
 
 

@@ -119,6 +119,7 @@ def test_restart_services_brings_the_servo_back_and_imu_control_robot_moves_it(r
     # The new process's first joint comes after a gap; from there the head follows the IMU again.
     wait_until(lambda: _after_gap(joints, clicked) is not None, 20, 'joints of the restarted servo')
     first_new = _after_gap(joints, clicked)
+    assert first_new is not None
     start_position = joints[first_new][1]
     wait_until(lambda: any(abs(p - start_position) > 0.01 for _, p in joints[first_new:]), 10,
                'the restarted pan servo moving')
@@ -242,14 +243,15 @@ def test_bad_input_on_every_endpoint_gets_one_line_and_the_module_keeps_running(
         assert line['error'].startswith(error), (path, body, line)
         assert '\n' not in line['error']
     with PageSocket(url) as socket:
-        for message, error in [
-                ('{"type": "subscribe", ', 'malformed JSON in the message'),
-                ({'type': 'subscribe', 'id': 1, 'channel': 'orientation'},
-                 'unknown channel "orientation"'),  # a servo has no IMU, so no Debug GUI
-                ({'type': 'subscribe', 'id': 2, 'channel': 'sytem'}, 'unknown channel "sytem" (did you mean'),
-                ({'type': 'command', 'id': 3, 'name': 'restart'}, 'unknown command "restart"'),
-                ({'type': 'subscribe', 'id': 4, 'channel': 'log', 'pad': 'x' * 70_000}, 'message of '),
-                ({'type': 'nothing', 'id': 5}, 'unknown message type "nothing"')]:
+        bad_messages: list[tuple[dict[str, Any] | str, str]] = [
+            ('{"type": "subscribe", ', 'malformed JSON in the message'),
+            ({'type': 'subscribe', 'id': 1, 'channel': 'orientation'},
+             'unknown channel "orientation"'),  # a servo has no IMU, so no Debug GUI
+            ({'type': 'subscribe', 'id': 2, 'channel': 'sytem'}, 'unknown channel "sytem" (did you mean'),
+            ({'type': 'command', 'id': 3, 'name': 'restart'}, 'unknown command "restart"'),
+            ({'type': 'subscribe', 'id': 4, 'channel': 'log', 'pad': 'x' * 70_000}, 'message of '),
+            ({'type': 'nothing', 'id': 5}, 'unknown message type "nothing"')]
+        for message, error in bad_messages:
             socket.send(message)
             answer = socket.receive_matching(lambda m: m['type'] == 'error', 'an error line')
             assert answer['error'].startswith(error), answer

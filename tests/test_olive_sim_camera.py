@@ -130,7 +130,9 @@ def test_bad_input_is_refused_or_warned(ros):
     pan.publish(JointState(name=['pan_joint']))
     count = len(images)
     wait_for_messages(images, count + 2)
-    assert find_colour(decode(images[-1]), RED)[0] == pytest.approx(319.5, abs=3)
+    tower = find_colour(decode(images[-1]), RED)
+    assert tower is not None
+    assert tower[0] == pytest.approx(319.5, abs=3)
     assert camera.running()
     assert 'Traceback' not in camera.output
 

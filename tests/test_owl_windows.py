@@ -8,6 +8,7 @@ docs/screenshots/owl_windows.png is made here.
 import re
 import sys
 from pathlib import Path
+from typing import Any
 
 from desktop import NO_DISPLAY
 from ros_harness import wait_until
@@ -84,20 +85,21 @@ def test_bad_input_gets_one_line_and_nothing_reaches_the_program(ros, tmp_path):
     with PageSocket(url) as page_socket:
         page_socket.subscribe(1, 'windows')
         page_socket.receive_matching(lambda m: m.get('id') == 1 and m['data']['windows'], 'the window list')
-        for number, (message, error) in enumerate([
-                ({'name': 'key', 'window': window, 'event': 'sideways', 'key': 'left'},
-                 "expected 'down <key>' or 'up <key>'"),
-                ({'name': 'key', 'window': window, 'event': 'down', 'key': 'left\ndown right'},
-                 "'left\\ndown right' is not a key name"),
-                ({'name': 'key', 'window': window, 'event': 'down', 'key': 'nokey'}, "unknown key 'nokey'"),
-                ({'name': 'key', 'window': 'someone-1/pygame.png', 'event': 'down', 'key': 'left'},
-                 "no window 'someone-1/pygame.png'; open now: "),
-                ({'name': 'key', 'window': 7, 'event': 'down', 'key': 'left'},
-                 "'window' must be a window's id"),
-                ({'name': 'key', 'window': window, 'event': 'down'}, "missing key 'key'"),
-                ({'name': 'key', 'window': window, 'event': 'down', 'key': 'left', 'x': 1},
-                 "unknown key 'x'"),
-                ({'name': 'press'}, 'unknown command "press"')]):
+        bad_commands: list[tuple[dict[str, Any], str]] = [
+            ({'name': 'key', 'window': window, 'event': 'sideways', 'key': 'left'},
+             "expected 'down <key>' or 'up <key>'"),
+            ({'name': 'key', 'window': window, 'event': 'down', 'key': 'left\ndown right'},
+             "'left\\ndown right' is not a key name"),
+            ({'name': 'key', 'window': window, 'event': 'down', 'key': 'nokey'}, "unknown key 'nokey'"),
+            ({'name': 'key', 'window': 'someone-1/pygame.png', 'event': 'down', 'key': 'left'},
+             "no window 'someone-1/pygame.png'; open now: "),
+            ({'name': 'key', 'window': 7, 'event': 'down', 'key': 'left'},
+             "'window' must be a window's id"),
+            ({'name': 'key', 'window': window, 'event': 'down'}, "missing key 'key'"),
+            ({'name': 'key', 'window': window, 'event': 'down', 'key': 'left', 'x': 1},
+             "unknown key 'x'"),
+            ({'name': 'press'}, 'unknown command "press"')]
+        for number, (message, error) in enumerate(bad_commands):
             page_socket.send({'type': 'command', 'id': number, **message})
             answer = page_socket.receive_matching(lambda m, n=number: m.get('id') == n, f'answer {number}')
             assert answer['type'] == 'error', answer

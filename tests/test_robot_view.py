@@ -96,7 +96,9 @@ def test_the_model_follows_the_kit_and_the_mouse_turns_the_head(ros, page):
                          and abs(position - start_position) > 0.01), None)
         wait_until(lambda: moved() is not None and commands, 10, 'the pan servo moving')
         to_command.append(commands[0] - started)
-        to_moving.append(moved() - commands[0])
+        moved_at = moved()
+        assert moved_at is not None
+        to_moving.append(moved_at - commands[0])
         time.sleep(0.5)
     for what, values in (('drag -> hold_imu on DDS', to_command),
                          ('hold_imu -> pan servo moving', to_moving),
@@ -130,21 +132,22 @@ def test_bad_websocket_input_gets_one_line_and_nothing_reaches_the_imu(ros):
     wait_until(lambda: ros.probe.node.count_publishers(TRUE_ORIENTATION) > 0, 20,
                "robot_view's publisher of the IMU's orientation")
     with PageSocket(base) as page_socket:
-        for message, error in [
-                ('{"type": "command", "id": 1, "name": "hold_imu", "orientation": {"x": NaN, "y": 0, "z": 0, '
-                 '"w": 1}}', 'the orientation: "x" must be finite, got nan'),
-                ({'type': 'command', 'id': 2, 'name': 'hold_imu',
-                  'orientation': {'x': 1, 'y': 1, 'z': 1, 'w': 1}},
-                 'the orientation must be a unit quaternion (norm 1), got norm 2'),
-                ({'type': 'command', 'id': 3, 'name': 'hold_imu', 'orientation': [0, 0, 0, 1]},
-                 'the orientation must be an object {"x", "y", "z", "w"}, got [0, 0, 0, 1]'),
-                ({'type': 'command', 'id': 4, 'name': 'hold_imu'}, "missing key 'orientation'"),
-                ({'type': 'command', 'id': 5, 'name': 'levle'},
-                 'unknown command "levle" (did you mean \'level\'?); known: goal, hold_imu, level, '
-                 'set_gains, torque'),
-                ({'type': 'command', 'id': 6, 'name': 'level', 'now': 1}, "unknown key 'now'; expected: "),
-                ('{"type": "command", ', 'malformed JSON in the message: '),
-                ({'type': 'comand', 'id': 7}, 'unknown message type "comand" (did you mean \'command\'?)')]:
+        bad_messages: list[tuple[dict[str, Any] | str, str]] = [
+            ('{"type": "command", "id": 1, "name": "hold_imu", "orientation": {"x": NaN, "y": 0, "z": 0, '
+             '"w": 1}}', 'the orientation: "x" must be finite, got nan'),
+            ({'type': 'command', 'id': 2, 'name': 'hold_imu',
+              'orientation': {'x': 1, 'y': 1, 'z': 1, 'w': 1}},
+             'the orientation must be a unit quaternion (norm 1), got norm 2'),
+            ({'type': 'command', 'id': 3, 'name': 'hold_imu', 'orientation': [0, 0, 0, 1]},
+             'the orientation must be an object {"x", "y", "z", "w"}, got [0, 0, 0, 1]'),
+            ({'type': 'command', 'id': 4, 'name': 'hold_imu'}, "missing key 'orientation'"),
+            ({'type': 'command', 'id': 5, 'name': 'levle'},
+             'unknown command "levle" (did you mean \'level\'?); known: goal, hold_imu, level, '
+             'set_gains, torque'),
+            ({'type': 'command', 'id': 6, 'name': 'level', 'now': 1}, "unknown key 'now'; expected: "),
+            ('{"type": "command", ', 'malformed JSON in the message: '),
+            ({'type': 'comand', 'id': 7}, 'unknown message type "comand" (did you mean \'command\'?)')]
+        for message, error in bad_messages:
             page_socket.send(message)
             answer = page_socket.receive()
             assert answer['type'] == 'error', answer

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 import statistics
 import time
-from typing import Any
+from typing import Any, TypedDict
 
 from diagnostic_msgs.msg import DiagnosticStatus
 from ros_harness import wait_until
@@ -63,7 +63,16 @@ def torque_enabled(diagnostics: list[DiagnosticStatus]) -> bool | None:
     return next(v.value for v in diagnostics[-1].values if v.key == 'torque_enabled') == 'true'
 
 
-def step_response(plotted: dict[str, list[float | None]], goal: float) -> dict[str, float]:
+class ServoPlot(TypedDict):
+    """A servo's plot as window.robotView.plotted(servo) gives it: x in s, a series' gaps as None."""
+
+    x: list[float]
+    goal: list[float | None]
+    position: list[float | None]
+    effort: list[float | None]
+
+
+def step_response(plotted: ServoPlot, goal: float) -> dict[str, float]:
     """Rise time (10-90 %), overshoot and remaining error of the last step to `goal` in a plot.
 
     The plot is as read from the page ({x, goal, position, effort}).
@@ -190,35 +199,36 @@ def test_bad_control_input_gets_one_line_and_reaches_no_servo(ros, page):
     assert answer['error'] == 'pan kd must be a number, got null', answer
 
     with PageSocket(base) as page_socket:
-        for message, error in [
-                ({'type': 'command', 'id': 1, 'name': 'set_gains', 'servo': 'pan', 'kp': 101},
-                 'pan kp must be within 0..100, got 101'),
-                ({'type': 'command', 'id': 2, 'name': 'set_gains', 'servo': 'pan', 'ki': -0.5},
-                 'pan ki must be within 0..1000, got -0.5'),
-                ('{"type": "command", "id": 3, "name": "set_gains", "servo": "pan", "kd": Infinity}',
-                 'pan kd must be finite, got inf'),
-                ('{"type": "command", "id": 4, "name": "set_gains", "servo": "pan", "kp": NaN}',
-                 'pan kp must be finite, got nan'),
-                ({'type': 'command', 'id': 5, 'name': 'set_gains', 'servo': 'pan', 'kq': 1},
-                 "unknown key 'kq'; expected: servo, kp, ki, kd"),
-                ({'type': 'command', 'id': 6, 'name': 'set_gains', 'servo': 'elbow', 'kp': 1},
-                 'unknown servo "elbow"; known: pan, tilt'),
-                ({'type': 'command', 'id': 7, 'name': 'goal', 'servo': 'pan', 'position': 3.0},
-                 'the pan goal must be within -1.5708..1.5708, got 3'),
-                ({'type': 'command', 'id': 8, 'name': 'goal', 'servo': 'tilt', 'position': 1.57},
-                 'the tilt goal must be within -1.3..0.9, got 1.57'),
-                ({'type': 'command', 'id': 9, 'name': 'goal', 'servo': 'pan', 'position': '1.57'},
-                 'the pan goal must be a number, got "1.57"'),
-                ({'type': 'command', 'id': 10, 'name': 'torque', 'servo': 'pan', 'enabled': 'yes'},
-                 '"enabled" must be true or false, got "yes"'),
-                ({'type': 'command', 'id': 11, 'name': 'torqe', 'servo': 'pan', 'enabled': True},
-                 'unknown command "torqe" (did you mean \'torque\'?); known: goal, hold_imu, level, '
-                 'set_gains, torque'),
-                ('{"type": "command", "name": "goal", "servo": "pan", "position": ',
-                 'malformed JSON in the message: '),
-                ('{"type": "command", "id": 12, "name": "goal", "servo": "pan", "position": 1, "pad": "'
-                 + 'x' * 70_000 + '"}', 'message of 70'),
-        ]:
+        bad_messages: list[tuple[dict[str, Any] | str, str]] = [
+            ({'type': 'command', 'id': 1, 'name': 'set_gains', 'servo': 'pan', 'kp': 101},
+             'pan kp must be within 0..100, got 101'),
+            ({'type': 'command', 'id': 2, 'name': 'set_gains', 'servo': 'pan', 'ki': -0.5},
+             'pan ki must be within 0..1000, got -0.5'),
+            ('{"type": "command", "id": 3, "name": "set_gains", "servo": "pan", "kd": Infinity}',
+             'pan kd must be finite, got inf'),
+            ('{"type": "command", "id": 4, "name": "set_gains", "servo": "pan", "kp": NaN}',
+             'pan kp must be finite, got nan'),
+            ({'type': 'command', 'id': 5, 'name': 'set_gains', 'servo': 'pan', 'kq': 1},
+             "unknown key 'kq'; expected: servo, kp, ki, kd"),
+            ({'type': 'command', 'id': 6, 'name': 'set_gains', 'servo': 'elbow', 'kp': 1},
+             'unknown servo "elbow"; known: pan, tilt'),
+            ({'type': 'command', 'id': 7, 'name': 'goal', 'servo': 'pan', 'position': 3.0},
+             'the pan goal must be within -1.5708..1.5708, got 3'),
+            ({'type': 'command', 'id': 8, 'name': 'goal', 'servo': 'tilt', 'position': 1.57},
+             'the tilt goal must be within -1.3..0.9, got 1.57'),
+            ({'type': 'command', 'id': 9, 'name': 'goal', 'servo': 'pan', 'position': '1.57'},
+             'the pan goal must be a number, got "1.57"'),
+            ({'type': 'command', 'id': 10, 'name': 'torque', 'servo': 'pan', 'enabled': 'yes'},
+             '"enabled" must be true or false, got "yes"'),
+            ({'type': 'command', 'id': 11, 'name': 'torqe', 'servo': 'pan', 'enabled': True},
+             'unknown command "torqe" (did you mean \'torque\'?); known: goal, hold_imu, level, '
+             'set_gains, torque'),
+            ('{"type": "command", "name": "goal", "servo": "pan", "position": ',
+             'malformed JSON in the message: '),
+            ('{"type": "command", "id": 12, "name": "goal", "servo": "pan", "position": 1, "pad": "'
+             + 'x' * 70_000 + '"}', 'message of 70'),
+        ]
+        for message, error in bad_messages:
             page_socket.send(message)
             answer = page_socket.receive()
             assert answer['type'] == 'error', (answer, error)
@@ -226,6 +236,7 @@ def test_bad_control_input_gets_one_line_and_reaches_no_servo(ros, page):
             assert '\n' not in answer['error']
         # A message over 1 MiB is not read at all: that connection closes ("message too big").
         page_socket.send('{"type": "command", "name": "goal", "pad": "' + 'x' * (1 << 20) + '"}')
+        closed: dict[str, Any] | int | None
         try:
             closed = page_socket.receive()
         except SocketClosed as error:

@@ -134,8 +134,9 @@ def test_missing_argument_is_a_usage_error(graph):
 
 def hung_ros2(sandbox, *args):
     """`ros2 args...` whose clean-up hangs as in a Fast DDS teardown deadlock (see with_hung_teardown)."""
-    return sandbox.command(with_hung_teardown(shutil.which('ros2', path=sandbox.env['PATH']), *args),
-                           label='ros2')
+    executable = shutil.which('ros2', path=sandbox.env['PATH'])
+    assert executable is not None
+    return sandbox.command(with_hung_teardown(executable, *args), label='ros2')
 
 
 def test_a_verb_whose_clean_up_hangs_ends_itself_with_every_stack(cli):
@@ -536,7 +537,7 @@ def test_interface_list_package_packages_proto(graph):
 
 def test_no_daemon_gives_the_same_answers(graph):
     def agree(args):
-        answers = []
+        answers: list[str] = []
 
         def same():
             # Both sides again each time: the daemon keeps a node that died without saying goodbye

@@ -110,8 +110,10 @@ def test_create_prints_upstreams_lines_and_writes_the_files(tmp_path):
     root = ET.parse(package / 'package.xml').getroot()
     assert root.get('format') == '3'
     assert root.findtext('name') == 'a_test_package'
-    assert root.find('maintainer').text == 'Nobody'
-    assert root.find('maintainer').get('email') == 'nobody@nowhere.com'
+    maintainer = root.find('maintainer')
+    assert maintainer is not None
+    assert maintainer.text == 'Nobody'
+    assert maintainer.get('email') == 'nobody@nowhere.com'
     assert root.findtext('license') == 'Apache-2.0'
     assert root.findtext('depend') == 'ros2pkg'
     assert root.findtext('export/build_type') == 'ament_cmake'

@@ -9,6 +9,7 @@ import hashlib
 import os
 import subprocess
 import zipfile
+from collections.abc import Sequence
 from pathlib import Path
 
 import pytest
@@ -32,7 +33,7 @@ MANIFEST = '''<?xml version="1.0"?>
 '''
 
 
-def add_package(src: Path, name: str, depend: list[str] = (), test_depend: list[str] = ()) -> None:
+def add_package(src: Path, name: str, depend: Sequence[str] = (), test_depend: Sequence[str] = ()) -> None:
     lines = [f'  <depend>{key}</depend>' for key in depend]
     lines += [f'  <test_depend>{key}</test_depend>' for key in test_depend]
     (src / name).mkdir(parents=True)

@@ -80,13 +80,14 @@ def test_page_node_graph_and_ctrl_c(ros):
                                 'the graph with /rosout')
 
         # bad subscriptions: one line each, the connection and the server live on
-        bad = [({'type': 'subscribe', 'id': 'x', 'channel': 'grahp'},
-                'unknown channel "grahp" (did you mean \'graph\'?); known: graph, image'),
-               ({'type': 'subscribe', 'id': 'y', 'channel': 'graph', 'hide_debugs': False},
-                "unknown key 'hide_debugs' (did you mean 'hide_debug'?); "
-                'expected: hide_debug, hide_leaf_topics'),
-               ('{"type": "subscribe", "id": ',
-                'malformed JSON in the message: Expecting value (line 1, column 29)')]
+        bad: list[tuple[dict[str, Any] | str, str]] = [
+            ({'type': 'subscribe', 'id': 'x', 'channel': 'grahp'},
+             'unknown channel "grahp" (did you mean \'graph\'?); known: graph, image'),
+            ({'type': 'subscribe', 'id': 'y', 'channel': 'graph', 'hide_debugs': False},
+             "unknown key 'hide_debugs' (did you mean 'hide_debug'?); "
+             'expected: hide_debug, hide_leaf_topics'),
+            ('{"type": "subscribe", "id": ',
+             'malformed JSON in the message: Expecting value (line 1, column 29)')]
         for message, error in bad:
             socket.send(message)
             assert socket.receive_matching(lambda m: m['type'] == 'error', error)['error'] == error

@@ -18,18 +18,21 @@ import threading
 import urllib.error
 import urllib.request
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import aiohttp
 from owl_web.codec import unpack_frame
 from ros_harness import wait_until
+
+if TYPE_CHECKING:
+    from playwright.sync_api import ViewportSize
 
 CHROMIUM = Path('/usr/bin/chromium')
 # Root needs --no-sandbox; the rest keeps Chromium from reaching out to the network or updating.
 CHROMIUM_ARGS = ['--no-sandbox', '--disable-gpu', '--disable-background-networking',
                  '--disable-component-update', '--no-first-run', '--disable-default-apps',
                  '--disable-sync', '--metrics-recording-only']
-VIEWPORT = {'width': 1280, 'height': 800}
+VIEWPORT: ViewportSize = {'width': 1280, 'height': 800}
 SCREENSHOTS = Path(__file__).resolve().parents[1] / 'docs' / 'screenshots'
 RQT_URL_LINE = r'^rqt: open (http://127\.0\.0\.1:\d+/)(#[a-z-]+)? in a browser \(Ctrl-C to quit\)$'
 
@@ -73,9 +76,13 @@ class BrowserPage:
         self.console_errors: list[str] = []
         self.requested: list[str] = []  # every URL the page loaded or fetched
         page.on('request', lambda request: self.requested.append(request.url))
-        page.on('console', lambda message: message.type == 'error' and self.console_errors.append(
-            message.text + (f" ({message.location['url']})" if message.location.get('url') else '')))
+        page.on('console', self._on_console)
         page.on('pageerror', lambda error: self.console_errors.append(f'uncaught: {error}'))
+
+    def _on_console(self, message: Any) -> None:
+        if message.type == 'error':
+            self.console_errors.append(
+                message.text + (f" ({message.location['url']})" if message.location.get('url') else ''))
 
     def __getattr__(self, name: str) -> Any:
         return getattr(self.page, name)
@@ -144,7 +151,7 @@ class PageSocket:
         return asyncio.run_coroutine_threadsafe(coroutine, self._loop).result(timeout)
 
     @staticmethod
-    async def _connect(url: str) -> tuple[aiohttp.ClientSession, aiohttp.ClientWebSocketResponse]:
+    async def _connect(url: str) -> tuple[aiohttp.ClientSession, aiohttp.ClientWebSocketResponse[bool]]:
         session = aiohttp.ClientSession()
         return session, await session.ws_connect(url, max_msg_size=16 << 20)
 
