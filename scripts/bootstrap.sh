@@ -135,6 +135,14 @@ if [ -d install ] && [ "$(cat "$GENERATORS_STAMP" 2>/dev/null)" != "$generators_
   echo "setup: the interface generators changed; removing the old build"
   rm -rf build install
 fi
+# The same when a package moved, appeared or went: a --symlink-install build links into the source
+# folders it was made from, and colcon would keep the links of a package's old place.
+PACKAGES_STAMP="$ROOT/install/.owl-packages.sha256"
+packages_hash="$(find src -name package.xml -not -path '*/__pycache__/*' | sort | sha256sum | cut -d' ' -f1)"
+if [ -d install ] && [ "$(cat "$PACKAGES_STAMP" 2>/dev/null)" != "$packages_hash" ]; then
+  echo "setup: the workspace's packages moved or changed; removing the old build"
+  rm -rf build install
+fi
 src_hash="$( (find src -type f -not -path '*/__pycache__/*' -printf '%p %T@\n' | sort; cat requirements.txt) | sha256sum | cut -d' ' -f1)"
 if [ "$(cat "$BUILD_STAMP" 2>/dev/null)" != "$src_hash" ]; then
   echo "setup: building the workspace (colcon build --symlink-install) ..."
@@ -145,6 +153,7 @@ if [ "$(cat "$BUILD_STAMP" 2>/dev/null)" != "$src_hash" ]; then
   run_logged bytecode python -m compileall -q -j 0 src install
   echo "$src_hash" >"$BUILD_STAMP"
   echo "$generators_hash" >"$GENERATORS_STAMP"
+  echo "$packages_hash" >"$PACKAGES_STAMP"
 fi
 
 steps=""
