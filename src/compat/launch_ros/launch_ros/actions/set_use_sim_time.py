@@ -11,7 +11,7 @@ from launch.substitution import (
     perform_substitutions,
 )
 
-from launch_ros.actions.scoped import SetParameter
+from launch_ros.actions.set_parameter import SetParameter
 
 if TYPE_CHECKING:
     from launch.frontend import Entity, Parser
