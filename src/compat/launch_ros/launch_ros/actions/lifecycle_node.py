@@ -10,12 +10,14 @@ from typing import TYPE_CHECKING, Any
 import lifecycle_msgs.msg
 import lifecycle_msgs.srv
 from launch.action import Action
+from launch.actions import EmitEvent
 from launch.event_handler import CallbackEventHandler
 from launch.frontend.expose import expose_action
 from launch.logging import get_logger
 
 from launch_ros.actions.node import Node
 from launch_ros.events.lifecycle import ChangeState, StateTransition
+from launch_ros.events.matchers import matches_node_name
 from launch_ros.ros_adapters import get_ros_node
 
 if TYPE_CHECKING:
@@ -121,10 +123,6 @@ class LifecycleNode(Node):
             loop.run_in_executor(None, self._call_change_state, context, event.transition_id))
 
     def _autostart(self, event: Event, context: LaunchContext) -> list[Action]:
-        from launch.actions import EmitEvent
-
-        from launch_ros.events.matchers import matches_node_name
-
         assert isinstance(event, StateTransition)
         if event.start_state == 'configuring' and event.goal_state == 'inactive':
             return [EmitEvent(event=ChangeState(lifecycle_node_matcher=matches_node_name(self.node_name),

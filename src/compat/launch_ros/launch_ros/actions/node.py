@@ -28,6 +28,10 @@ from launch.substitution import (
 from launch_ros.parameter_descriptions import Parameter, ParameterFile, ParameterValue
 from launch_ros.parameters import flatten_parameters, write_parameters_file, yaml_text
 from launch_ros.substitutions import ExecutableInPackage
+from launch_ros.utilities.namespace_utils import join_namespaces, make_namespace_absolute
+from launch_ros.utilities.normalize_parameters import check_parameters_item
+from launch_ros.utilities.normalize_remap_rule import normalize_remap_rules
+from launch_ros.utilities.track_node_names import add_node_name, get_node_name_count
 
 if TYPE_CHECKING:
     from launch.frontend import Entity, Parser
@@ -63,19 +67,6 @@ def validate_namespace(namespace: str) -> None:
         raise ValueError(f"namespace '{namespace}' is longer than {MAX_NAME_LENGTH} characters")
 
 
-def make_namespace_absolute(namespace: str) -> str:
-    """The namespace with exactly one leading '/' and no trailing one; '/' for an empty one."""
-    namespace = '/' + namespace.strip('/') if namespace.strip('/') else '/'
-    return namespace
-
-
-def join_namespaces(base: str | None, namespace: str) -> str:
-    """A relative namespace goes under the pushed one; an absolute one replaces it."""
-    if namespace.startswith('/') or not base:
-        return namespace
-    return base.rstrip('/') + '/' + namespace
-
-
 @expose_action('node')
 class Node(ExecuteProcess):
     """A ROS node from a package (or an executable path when package is None)."""
@@ -105,8 +96,6 @@ class Node(ExecuteProcess):
         self.__node_name = None if name is None else normalize_to_list_of_substitutions(name)
         self.__node_namespace = None if namespace is None else normalize_to_list_of_substitutions(namespace)
         self.__parameters = list(parameters or [])
-        from launch_ros.utilities.normalize_parameters import normalize_remap_rules
-
         self.__remappings = normalize_remap_rules(remappings or [])
         self.__expanded_name: str | None = None
         self.__expanded_namespace: str | None = None
@@ -196,8 +185,6 @@ class Node(ExecuteProcess):
         super().execute(context)
         label = self.process_description.final_name
         if self.__expanded_name is not None and label is not None:
-            from launch_ros.utilities.track_node_names import add_node_name, get_node_name_count
-
             add_node_name(context, self.node_name)
             count = get_node_name_count(context, self.node_name)
             if count > 1:
@@ -246,19 +233,6 @@ class Node(ExecuteProcess):
             get_logger('launch_ros.actions.node').warning(f'Parameter file path is not a file: {path}')
             return []
         return ['--params-file', path]
-
-
-def check_parameters_item(item: Any) -> None:
-    """One item of Node(parameters=[...]): a dict, a parameter file path or a Parameter object.
-
-    A bare value such as 5.0 has no name to be the value of: refused at construction, as upstream.
-    """
-    if isinstance(item, (dict, Parameter, ParameterFile, str, Substitution, pathlib.Path)):
-        return
-    if isinstance(item, (list, tuple)) and item and all(isinstance(i, (str, Substitution)) for i in item):
-        return  # a path made of text and substitutions
-    raise TypeError(f"Node parameters must be dicts, parameter file paths or Parameter objects, got "
-                    f"{item!r} ('{type(item).__name__}')")
 
 
 PARAMETER_TYPES = {

@@ -12,7 +12,8 @@ from launch.substitution import (
     perform_substitutions,
 )
 
-from launch_ros.actions.node import join_namespaces, make_namespace_absolute, validate_namespace
+from launch_ros.actions.node import validate_namespace
+from launch_ros.utilities.namespace_utils import join_namespaces, make_namespace_absolute
 
 if TYPE_CHECKING:
     from launch.frontend import Entity, Parser

@@ -12,7 +12,7 @@ from launch.substitution import (
     perform_substitutions,
 )
 
-from launch_ros.parameters import evaluate_value
+from launch_ros.parameter_descriptions import evaluate_value
 
 if TYPE_CHECKING:
     from launch.frontend import Entity, Parser

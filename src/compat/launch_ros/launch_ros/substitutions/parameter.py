@@ -14,6 +14,8 @@ from launch.substitution import (
     perform_substitutions,
 )
 
+from launch_ros.parameters import yaml_text
+
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
 
@@ -34,8 +36,6 @@ class Parameter(Substitution):
 
     def perform(self, context: LaunchContext) -> str:
         """The latest value set for the name in scope; SubstitutionFailure if there is none."""
-        from launch_ros.parameters import yaml_text
-
         name = perform_substitutions(context, self.name)
         for item in reversed(context.launch_configurations.get('global_params', [])):
             if isinstance(item, tuple) and item[0] == name:
