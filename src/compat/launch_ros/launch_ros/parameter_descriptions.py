@@ -13,12 +13,9 @@ from typing import TYPE_CHECKING, Any, get_args, get_origin
 
 import yaml
 from launch.frontend import parse_substitution
-from launch.substitution import (
-    SomeSubstitutionsType,
-    Substitution,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
+from launch.some_substitutions_type import SomeSubstitutionsType
+from launch.substitution import Substitution
+from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext

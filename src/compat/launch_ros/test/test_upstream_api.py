@@ -12,7 +12,7 @@ import pytest
 from launch import LaunchContext, LaunchDescription, LaunchService
 from launch.actions import GroupAction, LogInfo
 from launch.frontend import LaunchFileError, Parser
-from launch.substitution import SubstitutionFailure
+from launch.substitutions import SubstitutionFailure
 from launch_ros.actions import (
     ComposableNodeContainer,
     LifecycleNode,

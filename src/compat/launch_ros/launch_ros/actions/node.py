@@ -17,13 +17,9 @@ from launch.actions import ExecuteProcess
 from launch.actions.execute_process import split_command_line
 from launch.frontend.expose import expose_action
 from launch.logging import get_logger
-from launch.substitution import (
-    SomeSubstitutionsType,
-    Substitution,
-    describe_substitutions,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
+from launch.some_substitutions_type import SomeSubstitutionsType
+from launch.substitution import Substitution
+from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
 
 from launch_ros.parameter_descriptions import Parameter, ParameterFile, ParameterValue
 from launch_ros.parameters import flatten_parameters, write_parameters_file, yaml_text
@@ -65,6 +61,11 @@ def validate_namespace(namespace: str) -> None:
                          'start with a number')
     if len(namespace) > MAX_NAME_LENGTH:
         raise ValueError(f"namespace '{namespace}' is longer than {MAX_NAME_LENGTH} characters")
+
+
+def _describe(substitutions: Iterable[Substitution]) -> str:
+    """Substitutions as launch describes them: each one's describe(), joined by ' + '."""
+    return ' + '.join(sub.describe() for sub in substitutions)
 
 
 @expose_action('node')
@@ -149,8 +150,8 @@ class Node(ExecuteProcess):
 
     def describe(self) -> str:
         """'Node(package=..., executable=...)': its line in LaunchIntrospector's tree."""
-        package = describe_substitutions(self.__package) if self.__package else None
-        return f'Node(package={package}, executable={describe_substitutions(self.__executable)})'
+        package = _describe(self.__package) if self.__package else None
+        return f'Node(package={package}, executable={_describe(self.__executable)})'
 
     def _expand_names(self, context: LaunchContext) -> None:
         name = namespace = None
@@ -167,7 +168,7 @@ class Node(ExecuteProcess):
                 namespace = make_namespace_absolute(namespace)
                 validate_namespace(namespace)
         except Exception:
-            describe = lambda subs: describe_substitutions(subs) if subs else None  # noqa: E731
+            describe = lambda subs: _describe(subs) if subs else None  # noqa: E731
             get_logger().error(
                 'Error while expanding or validating node name or namespace for '
                 f"'package={describe(self.__package)}, executable={describe(self.__executable)}, "

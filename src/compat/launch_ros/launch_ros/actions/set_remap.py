@@ -6,11 +6,8 @@ from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
 from launch.frontend.expose import expose_action
-from launch.substitution import (
-    SomeSubstitutionsType,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
+from launch.some_substitutions_type import SomeSubstitutionsType
+from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
 
 if TYPE_CHECKING:
     from launch.frontend import Entity, Parser

@@ -7,14 +7,10 @@ import shutil
 from typing import TYPE_CHECKING, Any
 
 from launch.frontend.expose import expose_substitution
-from launch.substitution import (
-    SomeSubstitutionsType,
-    Substitution,
-    SubstitutionFailure,
-    describe_substitutions,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
+from launch.some_substitutions_type import SomeSubstitutionsType
+from launch.substitution import Substitution
+from launch.substitutions import SubstitutionFailure
+from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
 
 from launch_ros.substitutions.find_package import package_prefix
 
@@ -51,8 +47,9 @@ class ExecutableInPackage(Substitution):
 
     def describe(self) -> str:
         """'ExecInPkg(pkg=..., exec=...)': a readable form without a context."""
-        return (f'ExecInPkg(pkg={describe_substitutions(self.package)}, '
-                f'exec={describe_substitutions(self.executable)})')
+        package = ' + '.join(sub.describe() for sub in self.package)
+        executable = ' + '.join(sub.describe() for sub in self.executable)
+        return f'ExecInPkg(pkg={package}, exec={executable})'
 
 
 @expose_substitution('exec-in-pkg', 2)

@@ -7,14 +7,10 @@ from typing import TYPE_CHECKING, Any
 
 from ament_index_python.packages import PackageNotFoundError, get_package_prefix
 from launch.frontend.expose import expose_substitution
-from launch.substitution import (
-    SomeSubstitutionsType,
-    Substitution,
-    SubstitutionFailure,
-    describe_substitutions,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
+from launch.some_substitutions_type import SomeSubstitutionsType
+from launch.substitution import Substitution
+from launch.substitutions import SubstitutionFailure
+from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
@@ -56,7 +52,7 @@ class FindPackagePrefix(FindPackage):
 
     def describe(self) -> str:
         """'FindPackagePrefix(pkg=...)': a readable form without a context."""
-        return f'FindPackagePrefix(pkg={describe_substitutions(self.package)})'
+        return f"FindPackagePrefix(pkg={' + '.join(sub.describe() for sub in self.package)})"
 
 
 class FindPackageShare(FindPackage):
@@ -68,7 +64,7 @@ class FindPackageShare(FindPackage):
 
     def describe(self) -> str:
         """'FindPackageShare(pkg=...)': a readable form without a context."""
-        return f'FindPackageShare(pkg={describe_substitutions(self.package)})'
+        return f"FindPackageShare(pkg={' + '.join(sub.describe() for sub in self.package)})"
 
 
 @expose_substitution('find-pkg-share', 1)

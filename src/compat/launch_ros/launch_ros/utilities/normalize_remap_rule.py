@@ -5,7 +5,8 @@ from __future__ import annotations
 from collections.abc import Iterable
 from typing import Any
 
-from launch.substitution import Substitution, normalize_to_list_of_substitutions
+from launch.substitution import Substitution
+from launch.utilities import normalize_to_list_of_substitutions
 
 __all__ = ['normalize_remap_rule', 'normalize_remap_rules']
 
