@@ -17,4 +17,11 @@ setup(
     description='ROS-specific launch actions: Node, PushRosNamespace, SetParameter, SetRemap...',
     license='Apache-2.0',
     tests_require=['pytest'],
+    # launch's frontend imports every module of this group, as upstream's launch does, so that the
+    # XML/YAML tags and `$(...)` names launch_ros exposes are known (importing launch_ros registers them).
+    entry_points={
+        'launch.frontend.launch_extension': [
+            'launch_ros = launch_ros',
+        ],
+    },
 )

@@ -6,7 +6,7 @@ import pathlib
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from launch.substitution import SomeSubstitutionsType
+from launch.some_substitutions_type import SomeSubstitutionsType
 
 from launch_ros.parameter_descriptions import Parameter, ParameterFile, ParameterValue
 

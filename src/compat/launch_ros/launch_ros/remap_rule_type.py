@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
-from launch.substitution import SomeSubstitutionsType, Substitution
+from launch.some_substitutions_type import SomeSubstitutionsType
+from launch.substitution import Substitution
 
 __all__ = ['RemapRules', 'SomeRemapRules']
 

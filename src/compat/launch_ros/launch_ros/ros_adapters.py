@@ -10,8 +10,7 @@ import os
 import threading
 from typing import TYPE_CHECKING, Any
 
-from launch.event_handler import CallbackEventHandler
-from launch.events import Shutdown
+from launch.event_handlers import OnShutdown
 
 if TYPE_CHECKING:
     from launch.event import Event
@@ -43,6 +42,8 @@ class ROSAdapter:
         """
         if self.__thread is not None:
             raise RuntimeError('ROSAdapter already started')
+        # Lazy: rclpy takes long to import and only lifecycle nodes need it, while every launch
+        # file with a ROS tag imports this package.
         import rclpy
         from rclpy.executors import SingleThreadedExecutor
         from rclpy.signals import SignalHandlerOptions
@@ -102,8 +103,7 @@ def get_ros_adapter(context: LaunchContext) -> ROSAdapter:
         adapter.shutdown()
 
     # Appended: processes get their SIGINT first, and the node stays until launch is done.
-    context.register_event_handler(CallbackEventHandler(
-        matcher=lambda event: isinstance(event, Shutdown), callback=stop, handle_once=True), append=True)
+    context.register_event_handler(OnShutdown(on_shutdown=stop, handle_once=True), append=True)
     return adapter
 
 

@@ -7,8 +7,7 @@ import pytest
 import yaml
 from launch import LaunchContext
 from launch.actions import GroupAction
-from launch.substitution import SubstitutionFailure
-from launch.substitutions import LaunchConfiguration
+from launch.substitutions import LaunchConfiguration, SubstitutionFailure
 from launch_ros.actions import Node, PushRosNamespace, SetParameter, SetRemap
 from launch_ros.parameter_descriptions import Parameter, ParameterFile, ParameterValue
 from launch_ros.substitutions import ExecutableInPackage, FindPackageShare

@@ -12,7 +12,7 @@ import pytest
 from launch import LaunchContext, LaunchDescription, LaunchService
 from launch.actions import GroupAction, LogInfo
 from launch.frontend import LaunchFileError, Parser
-from launch.substitution import SubstitutionFailure
+from launch.substitutions import SubstitutionFailure
 from launch_ros.actions import (
     ComposableNodeContainer,
     LifecycleNode,
@@ -30,19 +30,37 @@ from launch_ros.substitutions import Parameter
 UPSTREAM_PATHS = {
     'launch_ros.utilities': 'make_namespace_absolute',
     'launch_ros.utilities.evaluate_parameters': 'evaluate_parameters',
+    'launch_ros.utilities.namespace_utils': 'prefix_namespace',
     'launch_ros.utilities.normalize_parameters': 'normalize_parameters',
+    'launch_ros.utilities.normalize_remap_rule': 'normalize_remap_rules',
     'launch_ros.utilities.track_node_names': 'add_node_name',
     'launch_ros.events.lifecycle': 'ChangeState',
+    'launch_ros.events.lifecycle.change_state': 'ChangeState',
+    'launch_ros.events.lifecycle.lifecycle_node_matchers': 'matches_node_name',
+    'launch_ros.events.lifecycle.state_transition': 'StateTransition',
     'launch_ros.events.matchers': 'matches_node_name',
+    'launch_ros.events.matchers.matches_node_name': 'matches_node_name',
     'launch_ros.event_handlers.on_state_transition': 'OnStateTransition',
+    'launch_ros.actions.composable_node_container': 'ComposableNodeContainer',
     'launch_ros.actions.lifecycle_node': 'LifecycleNode',
+    'launch_ros.actions.lifecycle_transition': 'LifecycleTransition',
+    'launch_ros.actions.load_composable_nodes': 'LoadComposableNodes',
+    'launch_ros.actions.node': 'Node',
+    'launch_ros.actions.ros_timer': 'ROSTimer',
     'launch_ros.actions.set_parameter': 'SetParameter',
+    'launch_ros.actions.set_parameters_from_file': 'SetParametersFromFile',
+    'launch_ros.actions.set_remap': 'SetRemap',
     'launch_ros.actions.push_ros_namespace': 'PushROSNamespace',
     'launch_ros.actions.set_use_sim_time': 'SetUseSimTime',
     'launch_ros.actions.set_ros_log_dir': 'SetROSLogDir',
+    'launch_ros.substitutions.executable_in_package': 'ExecutableInPackage',
     'launch_ros.substitutions.parameter': 'Parameter',
     'launch_ros.substitutions.find_package': 'FindPackageShare',
     'launch_ros.descriptions': 'ParameterValue',
+    'launch_ros.descriptions.composable_node': 'ComposableNode',
+    'launch_ros.parameter_descriptions': 'ParameterFile',
+    'launch_ros.parameters_type': 'SomeParameters',
+    'launch_ros.remap_rule_type': 'SomeRemapRules',
     'launch_ros.ros_adapters': 'get_ros_node',
 }
 
@@ -70,6 +88,18 @@ def user_lines(capsys) -> list[str]:
 @pytest.mark.parametrize('module', UPSTREAM_PATHS)
 def test_upstream_module_paths(module):
     assert getattr(importlib.import_module(module), UPSTREAM_PATHS[module])
+
+
+# The modules whose name their subpackage exports too (launch_ros.events exports the module lifecycle).
+IN_SUBPACKAGE = [m for m in UPSTREAM_PATHS
+                 if m.rsplit('.', 1)[0] != 'launch_ros' and m != 'launch_ros.events.lifecycle']
+
+
+@pytest.mark.parametrize('module', IN_SUBPACKAGE)
+def test_a_module_path_gives_the_object_its_package_exports(module):
+    name = UPSTREAM_PATHS[module]
+    package = importlib.import_module(module.rsplit('.', 1)[0])
+    assert getattr(importlib.import_module(module), name) is getattr(package, name)
 
 
 def test_param_substitution_reads_the_latest_set_parameter_in_scope(capsys):

@@ -5,23 +5,27 @@ from __future__ import annotations
 import asyncio
 import threading
 import time
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 import lifecycle_msgs.msg
 import lifecycle_msgs.srv
 from launch.action import Action
-from launch.event_handler import CallbackEventHandler
+from launch.actions import EmitEvent
+from launch.event_handler import BaseEventHandler
 from launch.frontend.expose import expose_action
 from launch.logging import get_logger
 
 from launch_ros.actions.node import Node
 from launch_ros.events.lifecycle import ChangeState, StateTransition
+from launch_ros.events.matchers import matches_node_name
 from launch_ros.ros_adapters import get_ros_node
 
 if TYPE_CHECKING:
     from launch.event import Event
     from launch.frontend import Entity, Parser
     from launch.launch_context import LaunchContext
+    from launch.some_entities_type import SomeEntitiesType
 
 # Seconds between checks for shutdown while waiting for the change_state service or its answer.
 SERVICE_POLL = 0.5
@@ -31,6 +35,20 @@ SERVICE_POLL = 0.5
 # that change is lost and OnStateTransition never fires (the node's service can be found first).
 EVENT_MATCH_TIMEOUT = 5.0
 EVENT_MATCH_SETTLE = 0.2
+
+
+class _CallbackEventHandler(BaseEventHandler):
+    """Calls callback(event, context) for each matching event; what it returns is visited next."""
+
+    def __init__(self, *, matcher: Callable[[Event], bool],
+                 callback: Callable[[Event, LaunchContext], SomeEntitiesType | None]) -> None:
+        super().__init__(matcher=matcher)
+        self.__callback = callback
+
+    def handle(self, event: Event, context: LaunchContext) -> SomeEntitiesType | None:
+        """Record the event in context.locals as every handler does, then call the callback."""
+        super().handle(event, context)
+        return self.__callback(event, context)
 
 
 @expose_action('lifecycle_node')
@@ -121,10 +139,6 @@ class LifecycleNode(Node):
             loop.run_in_executor(None, self._call_change_state, context, event.transition_id))
 
     def _autostart(self, event: Event, context: LaunchContext) -> list[Action]:
-        from launch.actions import EmitEvent
-
-        from launch_ros.events.matchers import matches_node_name
-
         assert isinstance(event, StateTransition)
         if event.start_state == 'configuring' and event.goal_state == 'inactive':
             return [EmitEvent(event=ChangeState(lifecycle_node_matcher=matches_node_name(self.node_name),
@@ -146,10 +160,10 @@ class LifecycleNode(Node):
             lambda msg: self._on_transition_message(context, msg), 10)
         self.__client = ros_node.create_client(lifecycle_msgs.srv.ChangeState,
                                                f'{self.node_name}/change_state')
-        context.register_event_handler(CallbackEventHandler(
+        context.register_event_handler(_CallbackEventHandler(
             matcher=lambda event: isinstance(event, ChangeState), callback=self._on_change_state))
         if self.__autostart:
-            context.register_event_handler(CallbackEventHandler(
+            context.register_event_handler(_CallbackEventHandler(
                 matcher=lambda event: isinstance(event, StateTransition) and event.action is self,
                 callback=self._autostart))
             self._on_change_state(ChangeState(lifecycle_node_matcher=lambda action: action is self,

@@ -10,11 +10,8 @@ from launch.action import Action
 from launch.actions import EmitEvent, OpaqueFunction, RegisterEventHandler
 from launch.event_handler import BaseEventHandler, EventHandler
 from launch.logging import get_logger
-from launch.substitution import (
-    SomeSubstitutionsType,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
+from launch.some_substitutions_type import SomeSubstitutionsType
+from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
 
 from launch_ros.events.lifecycle import ChangeState, StateTransition
 from launch_ros.events.matchers import matches_node_name

@@ -1,5 +1,26 @@
-"""Upstream's module path; implemented in launch_ros.actions.composable_node_container."""
+"""LoadComposableNodes: refused in one clear line (see launch_ros.descriptions.composable_node)."""
 
-from launch_ros.actions.composable_node_container import LoadComposableNodes
+from __future__ import annotations
 
-__all__ = ['LoadComposableNodes']
+from typing import TYPE_CHECKING, Any
+
+from launch.action import Action
+from launch.frontend.expose import expose_action
+
+from launch_ros.descriptions.composable_node import COMPOSITION_UNAVAILABLE, CompositionUnavailableError
+
+if TYPE_CHECKING:
+    from launch.frontend import Entity, Parser
+
+
+@expose_action('load_composable_node')
+class LoadComposableNodes(Action):
+    """Upstream's action that loads composable nodes into a container: refused like the container."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        raise CompositionUnavailableError(COMPOSITION_UNAVAILABLE.format(what='LoadComposableNodes'))
+
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        """Refuse a <load_composable_node> tag, in the file's own error, before anything starts."""
+        raise entity.error(COMPOSITION_UNAVAILABLE.format(what='<load_composable_node>'))

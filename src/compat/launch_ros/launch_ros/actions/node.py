@@ -17,17 +17,17 @@ from launch.actions import ExecuteProcess
 from launch.actions.execute_process import split_command_line
 from launch.frontend.expose import expose_action
 from launch.logging import get_logger
-from launch.substitution import (
-    SomeSubstitutionsType,
-    Substitution,
-    describe_substitutions,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
+from launch.some_substitutions_type import SomeSubstitutionsType
+from launch.substitution import Substitution
+from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
 
 from launch_ros.parameter_descriptions import Parameter, ParameterFile, ParameterValue
 from launch_ros.parameters import flatten_parameters, write_parameters_file, yaml_text
 from launch_ros.substitutions import ExecutableInPackage
+from launch_ros.utilities.namespace_utils import join_namespaces, make_namespace_absolute
+from launch_ros.utilities.normalize_parameters import check_parameters_item
+from launch_ros.utilities.normalize_remap_rule import normalize_remap_rules
+from launch_ros.utilities.track_node_names import add_node_name, get_node_name_count
 
 if TYPE_CHECKING:
     from launch.frontend import Entity, Parser
@@ -63,17 +63,9 @@ def validate_namespace(namespace: str) -> None:
         raise ValueError(f"namespace '{namespace}' is longer than {MAX_NAME_LENGTH} characters")
 
 
-def make_namespace_absolute(namespace: str) -> str:
-    """The namespace with exactly one leading '/' and no trailing one; '/' for an empty one."""
-    namespace = '/' + namespace.strip('/') if namespace.strip('/') else '/'
-    return namespace
-
-
-def join_namespaces(base: str | None, namespace: str) -> str:
-    """A relative namespace goes under the pushed one; an absolute one replaces it."""
-    if namespace.startswith('/') or not base:
-        return namespace
-    return base.rstrip('/') + '/' + namespace
+def _describe(substitutions: Iterable[Substitution]) -> str:
+    """Substitutions as launch describes them: each one's describe(), joined by ' + '."""
+    return ' + '.join(sub.describe() for sub in substitutions)
 
 
 @expose_action('node')
@@ -105,8 +97,6 @@ class Node(ExecuteProcess):
         self.__node_name = None if name is None else normalize_to_list_of_substitutions(name)
         self.__node_namespace = None if namespace is None else normalize_to_list_of_substitutions(namespace)
         self.__parameters = list(parameters or [])
-        from launch_ros.utilities.normalize_parameters import normalize_remap_rules
-
         self.__remappings = normalize_remap_rules(remappings or [])
         self.__expanded_name: str | None = None
         self.__expanded_namespace: str | None = None
@@ -160,8 +150,8 @@ class Node(ExecuteProcess):
 
     def describe(self) -> str:
         """'Node(package=..., executable=...)': its line in LaunchIntrospector's tree."""
-        package = describe_substitutions(self.__package) if self.__package else None
-        return f'Node(package={package}, executable={describe_substitutions(self.__executable)})'
+        package = _describe(self.__package) if self.__package else None
+        return f'Node(package={package}, executable={_describe(self.__executable)})'
 
     def _expand_names(self, context: LaunchContext) -> None:
         name = namespace = None
@@ -178,7 +168,7 @@ class Node(ExecuteProcess):
                 namespace = make_namespace_absolute(namespace)
                 validate_namespace(namespace)
         except Exception:
-            describe = lambda subs: describe_substitutions(subs) if subs else None  # noqa: E731
+            describe = lambda subs: _describe(subs) if subs else None  # noqa: E731
             get_logger().error(
                 'Error while expanding or validating node name or namespace for '
                 f"'package={describe(self.__package)}, executable={describe(self.__executable)}, "
@@ -196,8 +186,6 @@ class Node(ExecuteProcess):
         super().execute(context)
         label = self.process_description.final_name
         if self.__expanded_name is not None and label is not None:
-            from launch_ros.utilities.track_node_names import add_node_name, get_node_name_count
-
             add_node_name(context, self.node_name)
             count = get_node_name_count(context, self.node_name)
             if count > 1:
@@ -246,19 +234,6 @@ class Node(ExecuteProcess):
             get_logger('launch_ros.actions.node').warning(f'Parameter file path is not a file: {path}')
             return []
         return ['--params-file', path]
-
-
-def check_parameters_item(item: Any) -> None:
-    """One item of Node(parameters=[...]): a dict, a parameter file path or a Parameter object.
-
-    A bare value such as 5.0 has no name to be the value of: refused at construction, as upstream.
-    """
-    if isinstance(item, (dict, Parameter, ParameterFile, str, Substitution, pathlib.Path)):
-        return
-    if isinstance(item, (list, tuple)) and item and all(isinstance(i, (str, Substitution)) for i in item):
-        return  # a path made of text and substitutions
-    raise TypeError(f"Node parameters must be dicts, parameter file paths or Parameter objects, got "
-                    f"{item!r} ('{type(item).__name__}')")
 
 
 PARAMETER_TYPES = {

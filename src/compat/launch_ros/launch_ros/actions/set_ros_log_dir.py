@@ -3,20 +3,26 @@
 from __future__ import annotations
 
 import os
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
 from launch.frontend.expose import expose_action
-from launch.logging import default_log_root
-from launch.substitution import (
-    SomeSubstitutionsType,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
+from launch.some_substitutions_type import SomeSubstitutionsType
+from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
 
 if TYPE_CHECKING:
     from launch.frontend import Entity, Parser
     from launch.launch_context import LaunchContext
+
+
+def _current_log_dir() -> Path:
+    """Where ROS nodes log now: $ROS_LOG_DIR, else rcl's default $ROS_HOME/log, else ~/.ros/log."""
+    if os.environ.get('ROS_LOG_DIR'):
+        return Path(os.path.expanduser(os.environ['ROS_LOG_DIR']))
+    if os.environ.get('ROS_HOME'):
+        return Path(os.path.expanduser(os.environ['ROS_HOME'])) / 'log'
+    return Path.home() / '.ros' / 'log'
 
 
 @expose_action('set_ros_log_dir')
@@ -42,4 +48,4 @@ class SetROSLogDir(Action):
         if not new_log_dir:
             raise ValueError('SetROSLogDir needs a directory, got an empty one')
         # An absolute new_log_dir replaces the current one: os.path.join drops what comes before it.
-        context.environment['ROS_LOG_DIR'] = os.path.join(str(default_log_root()), new_log_dir)
+        context.environment['ROS_LOG_DIR'] = os.path.join(str(_current_log_dir()), new_log_dir)

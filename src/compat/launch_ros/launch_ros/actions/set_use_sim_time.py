@@ -5,13 +5,10 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from launch.frontend.expose import expose_action
-from launch.substitution import (
-    SomeSubstitutionsType,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
+from launch.some_substitutions_type import SomeSubstitutionsType
+from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
 
-from launch_ros.actions.scoped import SetParameter
+from launch_ros.actions.set_parameter import SetParameter
 
 if TYPE_CHECKING:
     from launch.frontend import Entity, Parser

@@ -5,14 +5,12 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from launch.frontend.expose import expose_substitution
-from launch.substitution import (
-    SomeSubstitutionsType,
-    Substitution,
-    SubstitutionFailure,
-    describe_substitutions,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
+from launch.some_substitutions_type import SomeSubstitutionsType
+from launch.substitution import Substitution
+from launch.substitutions import SubstitutionFailure
+from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
+
+from launch_ros.parameters import yaml_text
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
@@ -30,12 +28,10 @@ class Parameter(Substitution):
 
     def describe(self) -> str:
         """'Parameter(name=...)': a readable form without a context."""
-        return f'Parameter(name={describe_substitutions(self.name)})'
+        return f"Parameter(name={' + '.join(sub.describe() for sub in self.name)})"
 
     def perform(self, context: LaunchContext) -> str:
         """The latest value set for the name in scope; SubstitutionFailure if there is none."""
-        from launch_ros.parameters import yaml_text
-
         name = perform_substitutions(context, self.name)
         for item in reversed(context.launch_configurations.get('global_params', [])):
             if isinstance(item, tuple) and item[0] == name:

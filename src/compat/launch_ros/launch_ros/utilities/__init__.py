@@ -2,11 +2,8 @@
 
 from launch_ros.utilities.evaluate_parameters import evaluate_parameters
 from launch_ros.utilities.namespace_utils import is_root_namespace, make_namespace_absolute, prefix_namespace
-from launch_ros.utilities.normalize_parameters import (
-    normalize_parameters,
-    normalize_remap_rule,
-    normalize_remap_rules,
-)
+from launch_ros.utilities.normalize_parameters import normalize_parameters
+from launch_ros.utilities.normalize_remap_rule import normalize_remap_rule, normalize_remap_rules
 from launch_ros.utilities.track_node_names import add_node_name, get_node_name_count
 
 __all__ = [

@@ -6,7 +6,7 @@ import pathlib
 from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any
 
-from launch.substitution import normalize_to_list_of_substitutions, perform_substitutions
+from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
 
 from launch_ros.parameter_descriptions import Parameter, ParameterFile
 from launch_ros.parameters import flatten_parameters

@@ -1,15 +1,29 @@
-"""Node parameters and remapping rules checked and normalised at construction."""
+"""Node parameters checked and normalised at construction."""
 
 from __future__ import annotations
 
+import pathlib
 from collections.abc import Iterable
 from typing import Any
 
-from launch.substitution import Substitution, normalize_to_list_of_substitutions
+from launch.substitution import Substitution
 
-from launch_ros.actions.node import check_parameters_item
+from launch_ros.parameter_descriptions import Parameter, ParameterFile
 
-__all__ = ['normalize_parameters', 'normalize_remap_rule', 'normalize_remap_rules']
+__all__ = ['check_parameters_item', 'normalize_parameters']
+
+
+def check_parameters_item(item: Any) -> None:
+    """One item of Node(parameters=[...]): a dict, a parameter file path or a Parameter object.
+
+    A bare value such as 5.0 has no name to be the value of: refused at construction, as upstream.
+    """
+    if isinstance(item, (dict, Parameter, ParameterFile, str, Substitution, pathlib.Path)):
+        return
+    if isinstance(item, (list, tuple)) and item and all(isinstance(i, (str, Substitution)) for i in item):
+        return  # a path made of text and substitutions
+    raise TypeError(f"Node parameters must be dicts, parameter file paths or Parameter objects, got "
+                    f"{item!r} ('{type(item).__name__}')")
 
 
 def normalize_parameters(parameters: Iterable[Any]) -> list[Any]:
@@ -20,16 +34,3 @@ def normalize_parameters(parameters: Iterable[Any]) -> list[Any]:
     for item in items:
         check_parameters_item(item)
     return items
-
-
-def normalize_remap_rule(remap_rule: Any) -> tuple[list[Substitution], list[Substitution]]:
-    """A (from, to) remapping as two substitution lists; TypeError for anything but a 2-tuple."""
-    if not isinstance(remap_rule, tuple) or len(remap_rule) != 2:
-        raise TypeError(f'remap_rule must be a tuple of length 2, got {remap_rule!r}')
-    return (normalize_to_list_of_substitutions(remap_rule[0]),
-            normalize_to_list_of_substitutions(remap_rule[1]))
-
-
-def normalize_remap_rules(remap_rules: Iterable[Any]) -> list[tuple[list[Substitution], list[Substitution]]]:
-    """Every (from, to) remapping of Node(remappings=...) normalised, in order."""
-    return [normalize_remap_rule(rule) for rule in remap_rules]

@@ -1,4 +1,4 @@
-"""Upstream's module path; implemented in launch_ros.events.matchers."""
+"""Upstream's older home of matches_node_name, kept as upstream keeps it: see launch_ros.events.matchers."""
 
 from launch_ros.events.matchers import matches_node_name
 

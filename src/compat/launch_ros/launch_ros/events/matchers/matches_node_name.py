@@ -1,4 +1,4 @@
-"""Matchers of ROS actions for events that target actions (ChangeState...)."""
+"""matches_node_name: a matcher of the Node action with a given name, for events that target actions."""
 
 from __future__ import annotations
 
