@@ -22,7 +22,8 @@ from launch.launch_description_entity import LaunchDescriptionEntity
 from launch.launch_description_source import LaunchDescriptionSource
 from launch.launch_introspector import LaunchIntrospector
 from launch.launch_service import LaunchService
-from launch.substitution import SomeSubstitutionsType, SomeSubstitutionsType_types_tuple, Substitution
+from launch.some_substitutions_type import SomeSubstitutionsType, SomeSubstitutionsType_types_tuple
+from launch.substitution import Substitution
 
 __all__ = [
     'Action', 'BaseEventHandler', 'Condition', 'Event', 'EventHandler', 'LaunchContext', 'LaunchDescription',

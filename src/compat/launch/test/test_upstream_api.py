@@ -22,12 +22,12 @@ from launch.actions import (
     TimerAction,
 )
 from launch.frontend import LaunchFileError, Parser
-from launch.substitution import SubstitutionFailure
 from launch.substitutions import (
     Command,
     EqualsSubstitution,
     LaunchConfiguration,
     NotSubstitution,
+    SubstitutionFailure,
 )
 from launch.utilities.type_utils import coerce_to_type, get_typed_value
 

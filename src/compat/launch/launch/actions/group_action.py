@@ -15,11 +15,9 @@ from launch.actions.launch_configuration_actions import (
 from launch.actions.reset_launch_configurations import ResetLaunchConfigurations
 from launch.frontend.expose import expose_action
 from launch.launch_description_entity import LaunchDescriptionEntity
-from launch.substitution import (
-    SomeSubstitutionsType,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
+from launch.some_substitutions_type import SomeSubstitutionsType
+from launch.utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
+from launch.utilities.perform_substitutions_impl import perform_substitutions
 
 if TYPE_CHECKING:
     from launch.frontend import Entity, Parser

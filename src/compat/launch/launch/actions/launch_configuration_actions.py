@@ -9,13 +9,11 @@ from launch.action import Action
 from launch.actions.named_value_actions import SetNamedValue, UnsetNamedValue
 from launch.frontend.expose import expose_action
 from launch.logging import get_logger
-from launch.substitution import (
-    SomeSubstitutionsType,
-    TextSubstitution,
-    describe_substitutions,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
+from launch.some_substitutions_type import SomeSubstitutionsType
+from launch.substitution import describe_substitutions
+from launch.substitutions.text_substitution import TextSubstitution
+from launch.utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
+from launch.utilities.perform_substitutions_impl import perform_substitutions
 
 if TYPE_CHECKING:
     from launch.frontend import Entity, Parser

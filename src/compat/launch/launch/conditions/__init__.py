@@ -6,12 +6,10 @@ import warnings
 from typing import TYPE_CHECKING
 
 from launch.condition import Condition
-from launch.substitution import (
-    SomeSubstitutionsType,
-    describe_substitutions,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
+from launch.some_substitutions_type import SomeSubstitutionsType
+from launch.substitution import describe_substitutions
+from launch.utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
+from launch.utilities.perform_substitutions_impl import perform_substitutions
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext

@@ -11,7 +11,8 @@ from typing import TYPE_CHECKING, TextIO, overload
 from launch.frontend import substitution_parser, type_utils
 from launch.frontend.entity import Entity, LaunchFileError, load_xml_root, load_yaml_root
 from launch.frontend.expose import action_parse_methods, expose_action, expose_substitution
-from launch.substitution import Substitution, TextSubstitution
+from launch.substitution import Substitution
+from launch.substitutions.text_substitution import TextSubstitution
 
 if TYPE_CHECKING:
     from launch.action import Action

@@ -9,7 +9,8 @@ from __future__ import annotations
 import re
 
 from launch.frontend.expose import substitution_parse_methods
-from launch.substitution import Substitution, TextSubstitution
+from launch.substitution import Substitution
+from launch.substitutions.text_substitution import TextSubstitution
 
 _IDENTIFIER = re.compile(r'[A-Za-z][A-Za-z0-9_-]*')
 

@@ -9,7 +9,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from launch.launch_description_source import LaunchDescriptionSource
-from launch.substitution import SomeSubstitutionsType
+from launch.some_substitutions_type import SomeSubstitutionsType
 
 if TYPE_CHECKING:
     from launch.launch_description import LaunchDescription

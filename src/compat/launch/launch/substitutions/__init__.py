@@ -15,15 +15,12 @@ from typing import TYPE_CHECKING
 
 from launch.conditions import InvalidConditionExpressionError, evaluate_condition_expression
 from launch.logging import get_logger, launch_config
-from launch.substitution import (
-    SomeSubstitutionsType,
-    Substitution,
-    SubstitutionFailure,
-    TextSubstitution,
-    describe_substitutions,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
+from launch.some_substitutions_type import SomeSubstitutionsType
+from launch.substitution import Substitution, describe_substitutions
+from launch.substitutions.substitution_failure import SubstitutionFailure
+from launch.substitutions.text_substitution import TextSubstitution
+from launch.utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
+from launch.utilities.perform_substitutions_impl import perform_substitutions
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
