@@ -31,7 +31,7 @@ from launch.frontend.expose import expose_action
 from launch.logging import get_logger, write_process_line
 from launch.some_substitutions_type import SomeSubstitutionsType
 from launch.substitution import Substitution, describe_substitutions
-from launch.substitutions import LaunchConfiguration
+from launch.substitutions.launch_configuration import LaunchConfiguration
 from launch.substitutions.text_substitution import TextSubstitution
 from launch.utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
 from launch.utilities.perform_substitutions_impl import perform_substitutions

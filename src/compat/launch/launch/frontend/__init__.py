@@ -149,7 +149,8 @@ class Parser:
                                f'(or yes/no, on/off), got {value!r}') from None
 
     def parse_condition(self, entity: Entity) -> Condition | None:
-        from launch.conditions import IfCondition, UnlessCondition
+        from launch.conditions.if_condition import IfCondition
+        from launch.conditions.unless_condition import UnlessCondition
 
         if_value = entity.get_attr('if', optional=True)
         unless_value = entity.get_attr('unless', optional=True)
