@@ -6,6 +6,7 @@ from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
 from launch.condition import Condition
+from launch.events.execution_complete import ExecutionComplete
 from launch.launch_description_entity import LaunchDescriptionEntity
 
 if TYPE_CHECKING:
@@ -35,8 +36,6 @@ class Action(LaunchDescriptionEntity):
 
     def _announce_completion(self, context: LaunchContext) -> None:
         """Emit ExecutionComplete when this action (and its future, if any) is done, if wanted."""
-        from launch.events import ExecutionComplete
-
         event = ExecutionComplete(action=self)
         if not context.would_handle_event(event):
             return

@@ -8,8 +8,8 @@ from typing import TYPE_CHECKING, Any
 from launch.action import Action
 from launch.event import Event
 from launch.event_handler import BaseEventHandler
-from launch.events import Shutdown as ShutdownEvent
-from launch.events.process import ProcessExited
+from launch.events.process.process_exited import ProcessExited
+from launch.events.shutdown import Shutdown as ShutdownEvent
 from launch.frontend.expose import expose_action
 from launch.launch_description_entity import LaunchDescriptionEntity
 from launch.logging import get_logger

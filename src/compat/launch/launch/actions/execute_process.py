@@ -15,18 +15,16 @@ from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
-from launch.descriptions import Executable
+from launch.descriptions.executable import Executable
 from launch.event_handler import CallbackEventHandler
 from launch.event_handlers import OnProcessExit
-from launch.events import Shutdown as ShutdownEvent
-from launch.events.process import (
-    ProcessExited,
-    ProcessStarted,
-    ProcessStderr,
-    ProcessStdout,
-    ShutdownProcess,
-    SignalProcess,
-)
+from launch.events.process.process_exited import ProcessExited
+from launch.events.process.process_started import ProcessStarted
+from launch.events.process.process_stderr import ProcessStderr
+from launch.events.process.process_stdout import ProcessStdout
+from launch.events.process.shutdown_process import ShutdownProcess
+from launch.events.process.signal_process import SignalProcess
+from launch.events.shutdown import Shutdown as ShutdownEvent
 from launch.frontend.expose import expose_action
 from launch.logging import get_logger, write_process_line
 from launch.some_substitutions_type import SomeSubstitutionsType

@@ -13,7 +13,8 @@ from launch.actions.launch_configuration_actions import (
     ReplaceLaunchConfigurations,
 )
 from launch.event_handler import CallbackEventHandler
-from launch.events import Shutdown, TimerEvent
+from launch.events.shutdown import Shutdown
+from launch.events.timer_event import TimerEvent
 from launch.frontend.expose import expose_action
 from launch.launch_description_entity import LaunchDescriptionEntity
 from launch.some_substitutions_type import SomeSubstitutionsType

@@ -6,9 +6,13 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, TypeAlias
 
 from launch.event_handler import BaseEventHandler, EventHandler, SomeEntitiesType
-from launch.events import ExecutionComplete, Shutdown
-from launch.events import IncludeLaunchDescription as IncludeLaunchDescriptionEvent
-from launch.events.process import ProcessExited, ProcessIO, ProcessStarted, RunningProcessEvent
+from launch.events.execution_complete import ExecutionComplete
+from launch.events.include_launch_description import IncludeLaunchDescription as IncludeLaunchDescriptionEvent
+from launch.events.process.process_exited import ProcessExited
+from launch.events.process.process_io import ProcessIO
+from launch.events.process.process_started import ProcessStarted
+from launch.events.process.running_process_event import RunningProcessEvent
+from launch.events.shutdown import Shutdown
 from launch.launch_description_entity import LaunchDescriptionEntity
 
 if TYPE_CHECKING:
