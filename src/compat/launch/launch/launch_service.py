@@ -13,7 +13,7 @@ from typing import Any
 import launch.logging
 from launch.event import Event
 from launch.event_handler import CallbackEventHandler
-from launch.event_handlers import OnIncludeLaunchDescription
+from launch.event_handlers.on_include_launch_description import OnIncludeLaunchDescription
 from launch.events.include_launch_description import IncludeLaunchDescription as IncludeLaunchDescriptionEvent
 from launch.events.shutdown import Shutdown
 from launch.launch_context import LaunchContext

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any
 from launch.action import Action
 from launch.descriptions.executable import Executable
 from launch.event_handler import CallbackEventHandler
-from launch.event_handlers import OnProcessExit
+from launch.event_handlers.on_process_exit import OnProcessExit
 from launch.events.process.process_exited import ProcessExited
 from launch.events.process.process_started import ProcessStarted
 from launch.events.process.process_stderr import ProcessStderr
