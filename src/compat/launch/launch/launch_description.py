@@ -9,7 +9,7 @@ from launch.action import Action
 from launch.launch_description_entity import LaunchDescriptionEntity
 
 if TYPE_CHECKING:
-    from launch.actions import DeclareLaunchArgument
+    from launch.actions.declare_launch_argument import DeclareLaunchArgument
     from launch.launch_context import LaunchContext
 
 
@@ -65,7 +65,7 @@ class LaunchDescription(LaunchDescriptionEntity):
         With conditional_inclusion=True each argument gets `_conditionally_included` set to
         whether it is only reached under some condition.
         """
-        from launch.actions import DeclareLaunchArgument
+        from launch.actions.declare_launch_argument import DeclareLaunchArgument
 
         found: dict[str, DeclareLaunchArgument] = {}
 

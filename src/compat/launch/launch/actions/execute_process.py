@@ -15,6 +15,7 @@ from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
+from launch.actions.shutdown_action import Shutdown
 from launch.descriptions.executable import Executable
 from launch.event_handler import CallbackEventHandler
 from launch.event_handlers.on_process_exit import OnProcessExit
@@ -193,8 +194,6 @@ class ExecuteProcess(Action):
         if on_exit is not None:
             if on_exit != 'shutdown':
                 raise entity.error(f"on_exit only supports 'shutdown', got {on_exit!r}")
-            from launch.actions.event_actions import Shutdown
-
             kwargs['on_exit'] = [Shutdown()]
         env = entity.get_children('env')
         if env:
