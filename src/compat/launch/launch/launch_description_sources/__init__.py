@@ -8,6 +8,7 @@ import os
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
+from launch.frontend.parser import InvalidFrontendLaunchFileError
 from launch.launch_description_source import LaunchDescriptionSource
 from launch.some_substitutions_type import SomeSubstitutionsType
 
@@ -26,10 +27,6 @@ __all__ = [
 
 class InvalidPythonLaunchFileError(Exception):
     pass
-
-
-class InvalidFrontendLaunchFileError(Exception):
-    """An XML or YAML launch file could not be read."""
 
 
 class InvalidLaunchFileError(Exception):
