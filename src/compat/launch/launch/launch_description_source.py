@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from typing import TYPE_CHECKING
 
 from launch.launch_context import LaunchContext
@@ -52,3 +53,11 @@ class LaunchDescriptionSource:
             return self.get_launch_description(LaunchContext())
         except Exception:
             return None
+
+
+def _check_file(path: str) -> None:
+    """A clear error for a launch file path that is missing or not a file."""
+    if not os.path.exists(path):
+        raise FileNotFoundError(f"launch file '{path}' does not exist")
+    if not os.path.isfile(path):
+        raise IsADirectoryError(f"launch file '{path}' is not a file")
