@@ -47,8 +47,3 @@ class Action(LaunchDescriptionEntity):
 
     def execute(self, context: LaunchContext) -> Iterable[LaunchDescriptionEntity] | None:
         return None
-
-
-# Upstream's names of "one action or several".
-SomeActionsType = Action | Iterable[Action]
-SomeActionsType_types_tuple = (Action, Iterable)

@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING
 
 from launch.action import Action
 from launch.launch_description_entity import LaunchDescriptionEntity
+from launch.logging import get_logger
 
 if TYPE_CHECKING:
     from launch.actions.declare_launch_argument import DeclareLaunchArgument
@@ -44,8 +45,6 @@ class LaunchDescription(LaunchDescriptionEntity):
 
     def visit(self, context: LaunchContext) -> list[LaunchDescriptionEntity]:
         if self.__deprecated_reason is not None:
-            from launch.logging import get_logger
-
             try:
                 path = context.locals.current_launch_file_path
             except AttributeError:
@@ -65,6 +64,7 @@ class LaunchDescription(LaunchDescriptionEntity):
         With conditional_inclusion=True each argument gets `_conditionally_included` set to
         whether it is only reached under some condition.
         """
+        # Lazy: launch.actions imports the frontend, whose parser imports this module (a cycle).
         from launch.actions.declare_launch_argument import DeclareLaunchArgument
 
         found: dict[str, DeclareLaunchArgument] = {}
