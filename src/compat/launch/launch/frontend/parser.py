@@ -112,6 +112,7 @@ class Parser:
     def _load_path(cls, path: str) -> tuple[Entity, Parser]:
         if not os.path.isfile(path):
             raise LaunchFileError(f"launch file '{path}' does not exist")
+        implementations: list[type[Parser]]
         if cls.get_file_extensions():  # an implementation reads its own format
             implementations = [cls]
         else:
