@@ -13,6 +13,14 @@ setup(
     ],
     install_requires=['setuptools'],
     zip_safe=True,
+    # The frontend finds its parsers through this group, as upstream's launch_xml and launch_yaml
+    # declare them.
+    entry_points={
+        'launch.frontend.parser': [
+            'xml = launch_xml:Parser',
+            'yaml = launch_yaml:Parser',
+        ],
+    },
     maintainer='Owl Kit Lab',
     maintainer_email='team@owlkitlab.invalid',
     description='The ROS 2 launch system (Python, XML and YAML launch files).',

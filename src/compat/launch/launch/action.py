@@ -6,6 +6,7 @@ from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
 from launch.condition import Condition
+from launch.events.execution_complete import ExecutionComplete
 from launch.launch_description_entity import LaunchDescriptionEntity
 
 if TYPE_CHECKING:
@@ -35,8 +36,6 @@ class Action(LaunchDescriptionEntity):
 
     def _announce_completion(self, context: LaunchContext) -> None:
         """Emit ExecutionComplete when this action (and its future, if any) is done, if wanted."""
-        from launch.events import ExecutionComplete
-
         event = ExecutionComplete(action=self)
         if not context.would_handle_event(event):
             return
@@ -48,8 +47,3 @@ class Action(LaunchDescriptionEntity):
 
     def execute(self, context: LaunchContext) -> Iterable[LaunchDescriptionEntity] | None:
         return None
-
-
-# Upstream's names of "one action or several".
-SomeActionsType = Action | Iterable[Action]
-SomeActionsType_types_tuple = (Action, Iterable)

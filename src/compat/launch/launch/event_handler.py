@@ -2,17 +2,14 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
-from launch.launch_description_entity import LaunchDescriptionEntity
+from launch.some_entities_type import SomeEntitiesType
 
 if TYPE_CHECKING:
     from launch.event import Event
     from launch.launch_context import LaunchContext
-
-SomeEntitiesType = LaunchDescriptionEntity | Iterable[LaunchDescriptionEntity]
-SomeEntitiesType_types_tuple = (LaunchDescriptionEntity, Iterable)
 
 
 class BaseEventHandler:

@@ -7,9 +7,10 @@ from typing import TYPE_CHECKING
 
 from launch.action import Action
 from launch.launch_description_entity import LaunchDescriptionEntity
+from launch.logging import get_logger
 
 if TYPE_CHECKING:
-    from launch.actions import DeclareLaunchArgument
+    from launch.actions.declare_launch_argument import DeclareLaunchArgument
     from launch.launch_context import LaunchContext
 
 
@@ -44,8 +45,6 @@ class LaunchDescription(LaunchDescriptionEntity):
 
     def visit(self, context: LaunchContext) -> list[LaunchDescriptionEntity]:
         if self.__deprecated_reason is not None:
-            from launch.logging import get_logger
-
             try:
                 path = context.locals.current_launch_file_path
             except AttributeError:
@@ -65,7 +64,8 @@ class LaunchDescription(LaunchDescriptionEntity):
         With conditional_inclusion=True each argument gets `_conditionally_included` set to
         whether it is only reached under some condition.
         """
-        from launch.actions import DeclareLaunchArgument
+        # Lazy: launch.actions imports the frontend, whose parser imports this module (a cycle).
+        from launch.actions.declare_launch_argument import DeclareLaunchArgument
 
         found: dict[str, DeclareLaunchArgument] = {}
 

@@ -2,15 +2,14 @@
 
 from __future__ import annotations
 
+import os
 from typing import TYPE_CHECKING
 
 from launch.launch_context import LaunchContext
-from launch.substitution import (
-    SomeSubstitutionsType,
-    describe_substitutions,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
+from launch.some_substitutions_type import SomeSubstitutionsType
+from launch.substitution import describe_substitutions
+from launch.utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
+from launch.utilities.perform_substitutions_impl import perform_substitutions
 
 if TYPE_CHECKING:
     from launch.launch_description import LaunchDescription
@@ -54,3 +53,11 @@ class LaunchDescriptionSource:
             return self.get_launch_description(LaunchContext())
         except Exception:
             return None
+
+
+def _check_file(path: str) -> None:
+    """A clear error for a launch file path that is missing or not a file."""
+    if not os.path.exists(path):
+        raise FileNotFoundError(f"launch file '{path}' does not exist")
+    if not os.path.isfile(path):
+        raise IsADirectoryError(f"launch file '{path}' is not a file")

@@ -13,9 +13,9 @@ from typing import Any
 import launch.logging
 from launch.event import Event
 from launch.event_handler import CallbackEventHandler
-from launch.event_handlers import OnIncludeLaunchDescription
-from launch.events import IncludeLaunchDescription as IncludeLaunchDescriptionEvent
-from launch.events import Shutdown
+from launch.event_handlers.on_include_launch_description import OnIncludeLaunchDescription
+from launch.events.include_launch_description import IncludeLaunchDescription as IncludeLaunchDescriptionEvent
+from launch.events.shutdown import Shutdown
 from launch.launch_context import LaunchContext
 from launch.launch_description import LaunchDescription
 from launch.launch_description_entity import LaunchDescriptionEntity

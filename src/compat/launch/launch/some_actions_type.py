@@ -1,5 +1,10 @@
-"""Upstream's module path; implemented in launch.action."""
+"""SomeActionsType: one action or several (upstream's name until Iron)."""
 
-from launch.action import SomeActionsType, SomeActionsType_types_tuple
+from __future__ import annotations
 
-__all__ = ['SomeActionsType', 'SomeActionsType_types_tuple']
+from collections.abc import Iterable
+
+from launch.action import Action
+
+SomeActionsType = Action | Iterable[Action]
+SomeActionsType_types_tuple = (Action, Iterable)

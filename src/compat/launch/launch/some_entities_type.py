@@ -1,5 +1,10 @@
-"""Upstream's module path; implemented in launch.event_handler."""
+"""SomeEntitiesType: what an event handler returns (one launch description entity or several)."""
 
-from launch.event_handler import SomeEntitiesType, SomeEntitiesType_types_tuple
+from __future__ import annotations
 
-__all__ = ['SomeEntitiesType', 'SomeEntitiesType_types_tuple']
+from collections.abc import Iterable
+
+from launch.launch_description_entity import LaunchDescriptionEntity
+
+SomeEntitiesType = LaunchDescriptionEntity | Iterable[LaunchDescriptionEntity]
+SomeEntitiesType_types_tuple = (LaunchDescriptionEntity, Iterable)

@@ -1,5 +1,10 @@
-"""Upstream's module path of SomeSubstitutionsType."""
+"""SomeSubstitutionsType: what takes substitutions accepts (text, a substitution, or a list of both)."""
 
-from launch.substitution import SomeSubstitutionsType, SomeSubstitutionsType_types_tuple
+from __future__ import annotations
 
-__all__ = ['SomeSubstitutionsType', 'SomeSubstitutionsType_types_tuple']
+from collections.abc import Iterable
+
+from launch.substitution import Substitution
+
+SomeSubstitutionsType = str | Substitution | Iterable[str | Substitution]
+SomeSubstitutionsType_types_tuple = (str, Substitution, Iterable)

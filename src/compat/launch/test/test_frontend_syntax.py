@@ -3,7 +3,7 @@
 import pytest
 from launch import LaunchContext
 from launch.frontend import LaunchFileError, load_launch_file, parse_substitution
-from launch.substitution import perform_substitutions
+from launch.utilities import perform_substitutions
 
 
 def render(text: str, **configurations: str) -> str:

@@ -22,12 +22,12 @@ from launch.actions import (
     TimerAction,
 )
 from launch.frontend import LaunchFileError, Parser
-from launch.substitution import SubstitutionFailure
 from launch.substitutions import (
     Command,
     EqualsSubstitution,
     LaunchConfiguration,
     NotSubstitution,
+    SubstitutionFailure,
 )
 from launch.utilities.type_utils import coerce_to_type, get_typed_value
 
@@ -56,6 +56,11 @@ UPSTREAM_PATHS = {
     'launch.invalid_launch_file_error': 'InvalidLaunchFileError',
     'launch.launch_introspector': 'LaunchIntrospector',
     'launch.frontend.parser': 'Parser',
+    'launch.frontend.parse_substitution': 'parse_substitution',
+    'launch.launch_description_sources.any_launch_description_source': 'AnyLaunchDescriptionSource',
+    'launch.some_actions_type': 'SomeActionsType',
+    'launch_xml.launch_description_sources.xml_launch_description_source': 'XMLLaunchDescriptionSource',
+    'launch_yaml.launch_description_sources.yaml_launch_description_source': 'YAMLLaunchDescriptionSource',
 }
 
 

@@ -1,5 +1,6 @@
-"""Upstream's module path; implemented in launch.actions."""
+"""ExecuteLocal: upstream's name of the process-running action class."""
 
-from launch.actions import ExecuteLocal
+from launch.actions.execute_process import ExecuteProcess
 
-__all__ = ['ExecuteLocal']
+# Upstream's ExecuteLocal is the base class of ExecuteProcess; here both names are one class.
+ExecuteLocal = ExecuteProcess

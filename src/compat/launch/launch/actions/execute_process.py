@@ -15,29 +15,25 @@ from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
-from launch.descriptions import Executable
+from launch.actions.shutdown_action import Shutdown
+from launch.descriptions.executable import Executable
 from launch.event_handler import CallbackEventHandler
-from launch.event_handlers import OnProcessExit
-from launch.events import Shutdown as ShutdownEvent
-from launch.events.process import (
-    ProcessExited,
-    ProcessStarted,
-    ProcessStderr,
-    ProcessStdout,
-    ShutdownProcess,
-    SignalProcess,
-)
+from launch.event_handlers.on_process_exit import OnProcessExit
+from launch.events.process.process_exited import ProcessExited
+from launch.events.process.process_started import ProcessStarted
+from launch.events.process.process_stderr import ProcessStderr
+from launch.events.process.process_stdout import ProcessStdout
+from launch.events.process.shutdown_process import ShutdownProcess
+from launch.events.process.signal_process import SignalProcess
+from launch.events.shutdown import Shutdown as ShutdownEvent
 from launch.frontend.expose import expose_action
 from launch.logging import get_logger, write_process_line
-from launch.substitution import (
-    SomeSubstitutionsType,
-    Substitution,
-    TextSubstitution,
-    describe_substitutions,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
-from launch.substitutions import LaunchConfiguration
+from launch.some_substitutions_type import SomeSubstitutionsType
+from launch.substitution import Substitution, describe_substitutions
+from launch.substitutions.launch_configuration import LaunchConfiguration
+from launch.substitutions.text_substitution import TextSubstitution
+from launch.utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
+from launch.utilities.perform_substitutions_impl import perform_substitutions
 from launch.utilities.type_utils import perform_typed_substitution
 
 if TYPE_CHECKING:
@@ -198,8 +194,6 @@ class ExecuteProcess(Action):
         if on_exit is not None:
             if on_exit != 'shutdown':
                 raise entity.error(f"on_exit only supports 'shutdown', got {on_exit!r}")
-            from launch.actions.event_actions import Shutdown
-
             kwargs['on_exit'] = [Shutdown()]
         env = entity.get_children('env')
         if env:

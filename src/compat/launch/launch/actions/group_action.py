@@ -6,20 +6,18 @@ from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
-from launch.actions.environment_actions import PopEnvironment, PushEnvironment, ResetEnvironment
-from launch.actions.launch_configuration_actions import (
-    PopLaunchConfigurations,
-    PushLaunchConfigurations,
-    SetLaunchConfiguration,
-)
+from launch.actions.pop_environment import PopEnvironment
+from launch.actions.pop_launch_configurations import PopLaunchConfigurations
+from launch.actions.push_environment import PushEnvironment
+from launch.actions.push_launch_configurations import PushLaunchConfigurations
+from launch.actions.reset_environment import ResetEnvironment
 from launch.actions.reset_launch_configurations import ResetLaunchConfigurations
+from launch.actions.set_launch_configuration import SetLaunchConfiguration
 from launch.frontend.expose import expose_action
 from launch.launch_description_entity import LaunchDescriptionEntity
-from launch.substitution import (
-    SomeSubstitutionsType,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
+from launch.some_substitutions_type import SomeSubstitutionsType
+from launch.utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
+from launch.utilities.perform_substitutions_impl import perform_substitutions
 
 if TYPE_CHECKING:
     from launch.frontend import Entity, Parser

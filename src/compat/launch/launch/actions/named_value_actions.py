@@ -10,11 +10,9 @@ from collections.abc import MutableMapping
 from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
-from launch.substitution import (
-    SomeSubstitutionsType,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
+from launch.some_substitutions_type import SomeSubstitutionsType
+from launch.utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
+from launch.utilities.perform_substitutions_impl import perform_substitutions
 
 if TYPE_CHECKING:
     from launch.frontend import Entity, Parser

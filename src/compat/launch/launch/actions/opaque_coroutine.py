@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
 from launch.event_handler import CallbackEventHandler
-from launch.events import Shutdown
+from launch.events.shutdown import Shutdown
 
 if TYPE_CHECKING:
     from launch.event import Event

@@ -1,5 +1,15 @@
-"""Upstream's module path; implemented in launch.actions.environment_actions."""
+"""PopEnvironment: restore the environment the matching PushEnvironment saved."""
 
-from launch.actions.environment_actions import PopEnvironment
+from __future__ import annotations
 
-__all__ = ['PopEnvironment']
+from typing import TYPE_CHECKING
+
+from launch.action import Action
+
+if TYPE_CHECKING:
+    from launch.launch_context import LaunchContext
+
+
+class PopEnvironment(Action):
+    def execute(self, context: LaunchContext) -> None:
+        context._pop_environment()

@@ -1,5 +1,15 @@
-"""Upstream's module path; implemented in launch.actions.launch_configuration_actions."""
+"""PopLaunchConfigurations: restore the launch configurations the matching Push saved."""
 
-from launch.actions.launch_configuration_actions import PopLaunchConfigurations
+from __future__ import annotations
 
-__all__ = ['PopLaunchConfigurations']
+from typing import TYPE_CHECKING
+
+from launch.action import Action
+
+if TYPE_CHECKING:
+    from launch.launch_context import LaunchContext
+
+
+class PopLaunchConfigurations(Action):
+    def execute(self, context: LaunchContext) -> None:
+        context._pop_launch_configurations()

@@ -1,5 +1,15 @@
-"""Upstream's module path; implemented in launch.actions.environment_actions."""
+"""PushEnvironment: save the environment; the matching PopEnvironment restores it."""
 
-from launch.actions.environment_actions import PushEnvironment
+from __future__ import annotations
 
-__all__ = ['PushEnvironment']
+from typing import TYPE_CHECKING
+
+from launch.action import Action
+
+if TYPE_CHECKING:
+    from launch.launch_context import LaunchContext
+
+
+class PushEnvironment(Action):
+    def execute(self, context: LaunchContext) -> None:
+        context._push_environment()

@@ -1,5 +1,17 @@
-"""Upstream's module path; implemented in launch.actions.launch_configuration_actions."""
+"""PushLaunchConfigurations: save the launch configurations."""
 
-from launch.actions.launch_configuration_actions import PushLaunchConfigurations
+from __future__ import annotations
 
-__all__ = ['PushLaunchConfigurations']
+from typing import TYPE_CHECKING
+
+from launch.action import Action
+
+if TYPE_CHECKING:
+    from launch.launch_context import LaunchContext
+
+
+class PushLaunchConfigurations(Action):
+    """Save the launch configurations; the matching Pop restores them."""
+
+    def execute(self, context: LaunchContext) -> None:
+        context._push_launch_configurations()

@@ -1,5 +1,24 @@
-"""Upstream's module path; implemented in launch.actions.environment_actions."""
+"""ResetEnvironment (`<reset_env>`): back to the environment launch started with."""
 
-from launch.actions.environment_actions import ResetEnvironment
+from __future__ import annotations
 
-__all__ = ['ResetEnvironment']
+from typing import TYPE_CHECKING, Any
+
+from launch.action import Action
+from launch.frontend.expose import expose_action
+
+if TYPE_CHECKING:
+    from launch.frontend import Entity, Parser
+    from launch.launch_context import LaunchContext
+
+
+@expose_action('reset_env')
+class ResetEnvironment(Action):
+    """Back to the environment launch started with."""
+
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        return cls, {}
+
+    def execute(self, context: LaunchContext) -> None:
+        context._reset_environment()

@@ -1,5 +1,19 @@
-"""Upstream's module path; implemented in launch.actions.environment_actions."""
+"""SetEnvironmentVariable (`<set_env>`): set an environment variable of launch."""
 
-from launch.actions.environment_actions import SetEnvironmentVariable
+from __future__ import annotations
 
-__all__ = ['SetEnvironmentVariable']
+from collections.abc import MutableMapping
+from typing import TYPE_CHECKING
+
+from launch.actions.named_value_actions import SetNamedValue
+from launch.frontend.expose import expose_action
+
+if TYPE_CHECKING:
+    from launch.launch_context import LaunchContext
+
+
+@expose_action('set_env')
+class SetEnvironmentVariable(SetNamedValue):
+    @staticmethod
+    def entries(context: LaunchContext) -> MutableMapping[str, str]:
+        return context.environment

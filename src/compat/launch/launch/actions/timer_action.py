@@ -7,20 +7,16 @@ from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
-from launch.actions.launch_configuration_actions import (
-    PopLaunchConfigurations,
-    PushLaunchConfigurations,
-    ReplaceLaunchConfigurations,
-)
+from launch.actions.pop_launch_configurations import PopLaunchConfigurations
+from launch.actions.push_launch_configurations import PushLaunchConfigurations
 from launch.event_handler import CallbackEventHandler
-from launch.events import Shutdown, TimerEvent
+from launch.events.shutdown import Shutdown
+from launch.events.timer_event import TimerEvent
 from launch.frontend.expose import expose_action
 from launch.launch_description_entity import LaunchDescriptionEntity
-from launch.substitution import (
-    SomeSubstitutionsType,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
+from launch.some_substitutions_type import SomeSubstitutionsType
+from launch.utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
+from launch.utilities.perform_substitutions_impl import perform_substitutions
 
 if TYPE_CHECKING:
     from launch.event import Event
@@ -80,7 +76,7 @@ class TimerAction(Action):
 
         def on_timer(_event: Event, ctx: LaunchContext) -> list[LaunchDescriptionEntity]:
             ctx.extend_locals(captured_locals)
-            return [PushLaunchConfigurations(), ReplaceLaunchConfigurations(captured_configurations),
+            return [PushLaunchConfigurations(), _ReplaceLaunchConfigurations(captured_configurations),
                     *self.actions, PopLaunchConfigurations()]
 
         context.register_event_handler(CallbackEventHandler(
@@ -99,3 +95,15 @@ class TimerAction(Action):
                 self._future.set_result(None)
 
         self._handle = loop.call_later(period, fire)
+
+
+class _ReplaceLaunchConfigurations(Action):
+    """Replace every launch configuration by the given ones (inside a pushed scope)."""
+
+    def __init__(self, configurations: dict[str, Any], **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.configurations = configurations
+
+    def execute(self, context: LaunchContext) -> None:
+        context.launch_configurations.clear()
+        context.launch_configurations.update(self.configurations)

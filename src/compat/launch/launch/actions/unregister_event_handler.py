@@ -1,5 +1,15 @@
-"""Upstream's module path; implemented in launch.actions.event_actions."""
+"""UnregisterEventHandler: remove an event handler from the launch."""
 
-from launch.actions.event_actions import UnregisterEventHandler
+from __future__ import annotations
 
-__all__ = ['UnregisterEventHandler']
+from typing import TYPE_CHECKING
+
+from launch.actions.register_event_handler import RegisterEventHandler
+
+if TYPE_CHECKING:
+    from launch.launch_context import LaunchContext
+
+
+class UnregisterEventHandler(RegisterEventHandler):
+    def execute(self, context: LaunchContext) -> None:
+        context.unregister_event_handler(self.event_handler)

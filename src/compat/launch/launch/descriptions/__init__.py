@@ -1,17 +1,5 @@
 """Descriptions of what an action runs, filled in when it executes."""
 
-from __future__ import annotations
+from launch.descriptions.executable import Executable
 
-
-class Executable:
-    """The final argv, label, working directory and environment of a process, once prepared."""
-
-    def __init__(self) -> None:
-        self.final_cmd: list[str] | None = None
-        self.final_name: str | None = None
-        self.final_cwd: str | None = None
-        self.final_env: dict[str, str] | None = None
-
-    @property
-    def name(self) -> str | None:
-        return self.final_name
+__all__ = ['Executable']

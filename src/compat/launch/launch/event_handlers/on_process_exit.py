@@ -1,5 +1,17 @@
-"""Upstream's module path; implemented in launch.event_handlers."""
+"""OnProcessExit: react to processes exiting."""
 
-from launch.event_handlers import OnProcessExit
+from __future__ import annotations
 
-__all__ = ['OnProcessExit']
+from launch.event_handlers.on_action_event_base import (
+    OnActionEventBase,
+    SomeActionsOrCallable,
+    TargetAction,
+)
+from launch.events.process.process_exited import ProcessExited
+
+
+class OnProcessExit(OnActionEventBase):
+    def __init__(self, *, target_action: TargetAction = None, on_exit: SomeActionsOrCallable,
+                 handle_once: bool = False) -> None:
+        super().__init__(event_type=ProcessExited, on_event=on_exit, target_action=target_action,
+                         handle_once=handle_once)

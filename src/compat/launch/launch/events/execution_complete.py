@@ -1,5 +1,17 @@
-"""Upstream's module path; implemented in launch.events."""
+"""ExecutionComplete: an action has finished executing."""
 
-from launch.events import ExecutionComplete
+from __future__ import annotations
 
-__all__ = ['ExecutionComplete']
+from typing import TYPE_CHECKING
+
+from launch.event import Event
+
+if TYPE_CHECKING:
+    from launch.action import Action
+
+
+class ExecutionComplete(Event):
+    name = 'launch.events.ExecutionComplete'
+
+    def __init__(self, *, action: Action) -> None:
+        self.action = action

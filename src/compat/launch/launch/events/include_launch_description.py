@@ -1,5 +1,17 @@
-"""Upstream's module path; implemented in launch.events."""
+"""IncludeLaunchDescription (event): a launch description to visit."""
 
-from launch.events import IncludeLaunchDescription
+from __future__ import annotations
 
-__all__ = ['IncludeLaunchDescription']
+from typing import TYPE_CHECKING
+
+from launch.event import Event
+
+if TYPE_CHECKING:
+    from launch.launch_description import LaunchDescription
+
+
+class IncludeLaunchDescription(Event):
+    name = 'launch.events.IncludeLaunchDescription'
+
+    def __init__(self, launch_description: LaunchDescription) -> None:
+        self.launch_description = launch_description

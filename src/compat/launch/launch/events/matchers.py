@@ -1,5 +1,14 @@
-"""Upstream's module path; implemented in launch.events."""
+"""matches_action: a matcher of the events about one action."""
 
-from launch.events import matches_action
+from __future__ import annotations
 
-__all__ = ['matches_action']
+from collections.abc import Callable
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from launch.action import Action
+
+
+def matches_action(target_action: Action) -> Callable[[Action], bool]:
+    """A matcher for process events and process-targeting events of exactly this action."""
+    return lambda action: action is target_action

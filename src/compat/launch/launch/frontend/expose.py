@@ -1,8 +1,14 @@
-"""Registries of the frontend: which class a tag builds, which substitution a `$(name)` makes."""
+"""Registries of the frontend: which class a tag builds, which substitution a `$(name)` makes.
+
+launch's own modules fill them when imported; other packages (launch_ros) extend them through the
+entry point group 'launch.frontend.launch_extension', whose modules are imported before a launch
+file or a `$(...)` value is first parsed.
+"""
 
 from __future__ import annotations
 
 from collections.abc import Callable
+from importlib.metadata import EntryPoint, entry_points
 from typing import TYPE_CHECKING, Any, Protocol, TypeVar
 
 if TYPE_CHECKING:
@@ -55,3 +61,30 @@ def expose_substitution(name: str, min_args: int = 0, max_args: int | None = Non
         substitution_parse_methods[name] = checked
         return function
     return register
+
+
+# The installed entry points, read once: reading them scans every distribution (some 10 ms).
+_installed_entry_points: Any = None
+_extensions_loaded = False
+
+
+def get_entry_points(group: str) -> list[EntryPoint]:
+    """The installed entry points of one group, in the order importlib.metadata finds them."""
+    global _installed_entry_points
+    if _installed_entry_points is None:
+        _installed_entry_points = entry_points()
+    return list(_installed_entry_points.select(group=group))
+
+
+def load_launch_extensions() -> None:
+    """Import the modules of the 'launch.frontend.launch_extension' entry points, once.
+
+    Importing them registers their actions and substitutions here (launch_ros's `<node>`,
+    `$(find-pkg-share ...)`...).
+    """
+    global _extensions_loaded
+    if _extensions_loaded:
+        return
+    for entry_point in get_entry_points('launch.frontend.launch_extension'):
+        entry_point.load()
+    _extensions_loaded = True

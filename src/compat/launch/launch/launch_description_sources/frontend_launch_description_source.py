@@ -1,5 +1,27 @@
-"""Upstream's module path; implemented in launch.launch_description_sources."""
+"""FrontendLaunchDescriptionSource: an XML or YAML launch file."""
 
-from launch.launch_description_sources import FrontendLaunchDescriptionSource
+from __future__ import annotations
 
-__all__ = ['FrontendLaunchDescriptionSource']
+from launch.frontend.parser import load_launch_file
+from launch.invalid_launch_file_error import InvalidLaunchFileError
+from launch.launch_description import LaunchDescription
+from launch.launch_description_source import LaunchDescriptionSource, _check_file
+from launch.some_substitutions_type import SomeSubstitutionsType
+
+
+class FrontendLaunchDescriptionSource(LaunchDescriptionSource):
+    """An XML or YAML file: the format is the subclass's, else chosen by the extension."""
+
+    format_name = ''
+
+    def __init__(self, launch_file_path: SomeSubstitutionsType) -> None:
+        super().__init__(None, launch_file_path, f'interpreted {self.format_name} launch file')
+
+    def _load(self, location: str) -> LaunchDescription:
+        _check_file(location)
+        format_name = self.format_name or (
+            'yaml' if location.endswith(('.yaml', '.yml')) else 'xml')
+        try:
+            return load_launch_file(location, format_name)
+        except Exception as error:
+            raise InvalidLaunchFileError(format_name, likely_errors=[error]) from error

@@ -1,5 +1,21 @@
-"""Upstream's module path; implemented in launch.substitutions."""
+"""LaunchLogDir: the log directory of this launch."""
 
-from launch.substitutions import LaunchLogDir
+from __future__ import annotations
 
-__all__ = ['LaunchLogDir']
+from typing import TYPE_CHECKING
+
+from launch.logging import launch_config
+from launch.substitution import Substitution
+from launch.substitutions.substitution_failure import SubstitutionFailure
+
+if TYPE_CHECKING:
+    from launch.launch_context import LaunchContext
+
+
+class LaunchLogDir(Substitution):
+    """The directory this launch writes its logs to."""
+
+    def perform(self, context: LaunchContext) -> str:
+        if launch_config.log_dir is None:
+            raise SubstitutionFailure('this launch has no log directory')
+        return str(launch_config.log_dir)

@@ -1,5 +1,5 @@
-"""Upstream's module path; implemented in launch.substitution."""
+"""SubstitutionFailure: the error of a substitution that cannot be performed."""
 
-from launch.substitution import SubstitutionFailure
 
-__all__ = ['SubstitutionFailure']
+class SubstitutionFailure(RuntimeError):
+    """A substitution could not be performed (missing configuration, package, executable...)."""

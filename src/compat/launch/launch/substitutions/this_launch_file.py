@@ -1,5 +1,25 @@
-"""Upstream's module path; implemented in launch.substitutions."""
+"""ThisLaunchFile: the path of the launch file being loaded."""
 
-from launch.substitutions import ThisLaunchFile
+from __future__ import annotations
 
-__all__ = ['ThisLaunchFile']
+from typing import TYPE_CHECKING
+
+from launch.substitution import Substitution
+from launch.substitutions.substitution_failure import SubstitutionFailure
+
+if TYPE_CHECKING:
+    from launch.launch_context import LaunchContext
+
+
+class ThisLaunchFile(Substitution):
+    """The path of the launch file being loaded."""
+
+    def perform(self, context: LaunchContext) -> str:
+        try:
+            return context.locals.current_launch_file_path
+        except AttributeError:
+            raise SubstitutionFailure(
+                'ThisLaunchFile used outside of a launch file (in a script)') from None
+
+    def describe(self) -> str:
+        return 'ThisLaunchFile()'

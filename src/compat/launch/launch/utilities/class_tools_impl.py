@@ -1,5 +1,17 @@
-"""Upstream's module path; implemented in launch.utilities."""
+"""is_a and is_a_subclass: isinstance checks by upstream's names."""
 
-from launch.utilities import is_a, is_a_subclass
+from __future__ import annotations
 
-__all__ = ['is_a', 'is_a_subclass']
+from typing import Any
+
+
+def is_a(obj: Any, entity_type: type | tuple[type, ...]) -> bool:
+    """isinstance, named as upstream names it."""
+    return isinstance(obj, entity_type)
+
+
+def is_a_subclass(obj: Any, entity_type: type | tuple[type, ...]) -> bool:
+    """Obj is an instance of entity_type, or a class derived from it."""
+    if isinstance(obj, type):
+        return issubclass(obj, entity_type)
+    return isinstance(obj, entity_type)

@@ -1,5 +1,10 @@
-"""Upstream's module path; implemented in launch.utilities."""
+"""create_future: a future of an event loop."""
 
-from launch.utilities import create_future
+from __future__ import annotations
 
-__all__ = ['create_future']
+import asyncio
+
+
+def create_future(loop: asyncio.AbstractEventLoop | None = None) -> asyncio.Future:
+    """A future of the running loop (or of loop)."""
+    return (loop or asyncio.get_event_loop()).create_future()

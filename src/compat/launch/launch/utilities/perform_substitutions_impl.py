@@ -1,5 +1,15 @@
-"""Upstream's module path; implemented in launch.substitution."""
+"""perform_substitutions: the text of a list of substitutions."""
 
-from launch.substitution import perform_substitutions
+from __future__ import annotations
 
-__all__ = ['perform_substitutions']
+from collections.abc import Iterable
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from launch.launch_context import LaunchContext
+    from launch.substitution import Substitution
+
+
+def perform_substitutions(context: LaunchContext, subs: Iterable[Substitution]) -> str:
+    """The concatenated text of the substitutions."""
+    return ''.join(sub.perform(context) for sub in subs)

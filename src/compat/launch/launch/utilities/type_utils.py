@@ -14,12 +14,10 @@ from typing import TYPE_CHECKING, Any, cast, get_args, get_origin
 
 import yaml
 
-from launch.substitution import (
-    SomeSubstitutionsType,
-    Substitution,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
+from launch.some_substitutions_type import SomeSubstitutionsType
+from launch.substitution import Substitution
+from launch.utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
+from launch.utilities.perform_substitutions_impl import perform_substitutions
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext

@@ -1,9 +1,5 @@
-"""XMLLaunchDescriptionSource: an XML launch file."""
+"""The launch description source of XML launch files."""
 
-from launch.launch_description_sources import FrontendLaunchDescriptionSource
+from launch_xml.launch_description_sources.xml_launch_description_source import XMLLaunchDescriptionSource
 
 __all__ = ['XMLLaunchDescriptionSource']
-
-
-class XMLLaunchDescriptionSource(FrontendLaunchDescriptionSource):
-    format_name = 'xml'

@@ -1,9 +1,5 @@
-"""YAMLLaunchDescriptionSource: a YAML launch file."""
+"""The launch description source of YAML launch files."""
 
-from launch.launch_description_sources import FrontendLaunchDescriptionSource
+from launch_yaml.launch_description_sources.yaml_launch_description_source import YAMLLaunchDescriptionSource
 
 __all__ = ['YAMLLaunchDescriptionSource']
-
-
-class YAMLLaunchDescriptionSource(FrontendLaunchDescriptionSource):
-    format_name = 'yaml'

@@ -1,5 +1,13 @@
-"""Upstream's module path; implemented in launch.events.process."""
+"""ProcessExited: a process has exited."""
 
-from launch.events.process import ProcessExited
+from __future__ import annotations
 
-__all__ = ['ProcessExited']
+from typing import Any
+
+from launch.events.process.running_process_event import RunningProcessEvent
+
+
+class ProcessExited(RunningProcessEvent):
+    def __init__(self, *, returncode: int, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.returncode = returncode

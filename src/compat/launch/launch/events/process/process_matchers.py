@@ -1,5 +1,28 @@
-"""Upstream's module path; implemented in launch.events.process."""
+"""Matchers for ShutdownProcess and SignalProcess: by pid, by name, or the actions themselves."""
 
-from launch.events.process import matches_executable, matches_name, matches_pid
+from __future__ import annotations
 
-__all__ = ['matches_executable', 'matches_name', 'matches_pid']
+from typing import TYPE_CHECKING
+
+from launch.events.process.process_targeted_event import ProcessMatcher
+
+if TYPE_CHECKING:
+    from launch.actions.execute_process import ExecuteProcess
+
+
+def matches_pid(*pids: int) -> ProcessMatcher:
+    """Process actions whose process has one of these pids right now."""
+    def match(action: ExecuteProcess) -> bool:
+        process = getattr(action, '_process', None)
+        return process is not None and process.pid in pids
+    return match
+
+
+def matches_name(*names: str) -> ProcessMatcher:
+    """Process actions whose label (e.g. 'talker-1') is one of names."""
+    return lambda action: action.process_description.final_name in names
+
+
+def matches_executable(*executables: ExecuteProcess) -> ProcessMatcher:
+    """Exactly these process actions."""
+    return lambda action: any(action is executable for executable in executables)

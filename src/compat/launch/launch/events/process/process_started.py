@@ -1,5 +1,7 @@
-"""Upstream's module path; implemented in launch.events.process."""
+"""ProcessStarted: a process has started."""
 
-from launch.events.process import ProcessStarted
+from launch.events.process.running_process_event import RunningProcessEvent
 
-__all__ = ['ProcessStarted']
+
+class ProcessStarted(RunningProcessEvent):
+    pass

@@ -1,5 +1,12 @@
-"""Upstream's module path; implemented in launch.events.process."""
+"""ProcessStderr: a chunk of a process's standard error."""
 
-from launch.events.process import ProcessStderr
+from __future__ import annotations
 
-__all__ = ['ProcessStderr']
+from typing import Any
+
+from launch.events.process.process_io import ProcessIO
+
+
+class ProcessStderr(ProcessIO):
+    def __init__(self, **kwargs: Any) -> None:
+        super().__init__(fd=2, **kwargs)

@@ -1,5 +1,12 @@
-"""Upstream's module path; implemented in launch.events.process."""
+"""ProcessStdin: a chunk of a process's standard input."""
 
-from launch.events.process import ProcessStdin
+from __future__ import annotations
 
-__all__ = ['ProcessStdin']
+from typing import Any
+
+from launch.events.process.process_io import ProcessIO
+
+
+class ProcessStdin(ProcessIO):
+    def __init__(self, **kwargs: Any) -> None:
+        super().__init__(fd=0, **kwargs)

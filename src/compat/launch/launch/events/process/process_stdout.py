@@ -1,5 +1,12 @@
-"""Upstream's module path; implemented in launch.events.process."""
+"""ProcessStdout: a chunk of a process's standard output."""
 
-from launch.events.process import ProcessStdout
+from __future__ import annotations
 
-__all__ = ['ProcessStdout']
+from typing import Any
+
+from launch.events.process.process_io import ProcessIO
+
+
+class ProcessStdout(ProcessIO):
+    def __init__(self, **kwargs: Any) -> None:
+        super().__init__(fd=1, **kwargs)

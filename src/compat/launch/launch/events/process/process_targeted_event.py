@@ -1,5 +1,22 @@
-"""Upstream's module path; implemented in launch.events.process."""
+"""ProcessTargetedEvent: the base of the events for some process actions."""
 
-from launch.events.process import ProcessTargetedEvent
+from __future__ import annotations
 
-__all__ = ['ProcessTargetedEvent']
+from collections.abc import Callable
+from typing import TYPE_CHECKING, TypeAlias
+
+from launch.event import Event
+
+if TYPE_CHECKING:
+    from launch.actions.execute_process import ExecuteProcess
+
+
+# Which process actions (ExecuteProcess, Node...) a ShutdownProcess or SignalProcess is for.
+ProcessMatcher: TypeAlias = 'Callable[[ExecuteProcess], bool]'
+
+
+class ProcessTargetedEvent(Event):
+    """An event for the process actions that process_matcher(action) accepts."""
+
+    def __init__(self, *, process_matcher: ProcessMatcher) -> None:
+        self.process_matcher = process_matcher

@@ -1,5 +1,7 @@
-"""Upstream's module path; implemented in launch.events.process."""
+"""ShutdownProcess: stop some processes."""
 
-from launch.events.process import ShutdownProcess
+from launch.events.process.process_targeted_event import ProcessTargetedEvent
 
-__all__ = ['ShutdownProcess']
+
+class ShutdownProcess(ProcessTargetedEvent):
+    """Stop the matching processes (SIGINT, then the SIGTERM/SIGKILL escalation)."""
