@@ -53,9 +53,9 @@ setup(
             'type = ros2cli.command.action:TypeVerb',
         ],
         'ros2cli.daemon.verb': [
-            'start = ros2cli.command.daemon:StartVerb',
-            'status = ros2cli.command.daemon:StatusVerb',
-            'stop = ros2cli.command.daemon:StopVerb',
+            'start = ros2cli.verb.daemon.start:StartVerb',
+            'status = ros2cli.verb.daemon.status:StatusVerb',
+            'stop = ros2cli.verb.daemon.stop:StopVerb',
         ],
         'ros2interface.verb': [
             'list = ros2cli.command.interface:ListVerb',
