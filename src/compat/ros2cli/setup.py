@@ -27,7 +27,7 @@ setup(
         'ros2cli.command': [
             'action = ros2cli.command.action:ActionCommand',
             'daemon = ros2cli.command.daemon:DaemonCommand',
-            'extension_points = ros2cli.command.extensions:ExtensionPointsCommand',
+            'extension_points = ros2cli.command.extension_points:ExtensionPointsCommand',
             'extensions = ros2cli.command.extensions:ExtensionsCommand',
             'interface = ros2cli.command.interface:InterfaceCommand',
             'node = ros2cli.command.node:NodeCommand',
