@@ -3,8 +3,8 @@
 import pytest
 from ros2cli.command.interface import nested_type, render_definition, split_comment
 from ros2cli.command.param import nested_parameters, parameters_for_node
-from ros2cli.command.topic_bw import BandwidthStatistics, size_text
-from ros2cli.command.topic_hz import RateStatistics
+from ros2cli.verb.topic.bw import BandwidthStatistics, size_text
+from ros2cli.verb.topic.hz import RateStatistics
 
 
 def test_interface_lines():

@@ -126,7 +126,7 @@ class SendGoalVerb(VerbExtension):
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         """Add the action name and type, the goal's YAML values (or --stdin) and -f/--feedback."""
-        from ros2cli.command.topic_pub import add_values_arguments
+        from ros2cli.api.topic import add_values_arguments
         from ros2cli.completion import action_type_completer, with_completer
         _action_argument(parser, "Name of the ROS action (e.g. '/fibonacci')")
         with_completer(parser.add_argument('action_type', help="Type of the ROS action (e.g. "
@@ -144,7 +144,7 @@ class SendGoalVerb(VerbExtension):
         from rosidl_runtime_py.set_message import FieldError, set_message_fields
         from rosidl_runtime_py.utilities import InvalidType, canonical_type, import_type
 
-        from ros2cli.command.topic_pub import read_values
+        from ros2cli.api.topic import read_values
 
         try:
             action_class = import_type(args.action_type, 'action')

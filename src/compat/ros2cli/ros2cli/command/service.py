@@ -103,7 +103,7 @@ class CallVerb(VerbExtension):
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         """Add the service name and type, the request's YAML values (or --stdin) and -r/--rate."""
-        from ros2cli.command.topic_pub import add_values_arguments
+        from ros2cli.api.topic import add_values_arguments
         from ros2cli.completion import service_type_completer, with_completer
         _service_argument(parser, "Name of the ROS service to call to (e.g. '/add_two_ints')")
         with_completer(parser.add_argument('service_type',
@@ -125,7 +125,7 @@ class CallVerb(VerbExtension):
         from rosidl_runtime_py.set_message import FieldError, set_message_fields
         from rosidl_runtime_py.utilities import InvalidType, import_type, split_type
 
-        from ros2cli.command.topic_pub import read_values
+        from ros2cli.api.topic import read_values
         from ros2cli.node.direct import tear_down
 
         if args.rate is not None and args.rate <= 0:
