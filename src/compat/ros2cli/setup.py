@@ -65,8 +65,8 @@ setup(
             'show = ros2cli.command.interface:ShowVerb',
         ],
         'ros2node.verb': [
-            'info = ros2cli.command.node:InfoVerb',
-            'list = ros2cli.command.node:ListVerb',
+            'info = ros2cli.verb.node.info:InfoVerb',
+            'list = ros2cli.verb.node.list:ListVerb',
         ],
         'ros2param.verb': [
             'delete = ros2cli.command.param:DeleteVerb',

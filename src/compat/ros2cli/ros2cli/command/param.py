@@ -66,7 +66,7 @@ class ParameterSession:
     def __enter__(self) -> 'ParameterSession':
         from owl_common.hints import did_you_mean
 
-        from ros2cli.command.node import node_names
+        from ros2cli.api.node import node_names
         from ros2cli.node.direct import NAMED_LOOKUP_GRACE
         from ros2cli.node.strategy import NodeStrategy
         from ros2cli.service_call import DaemonServiceCaller, ServiceCaller
@@ -171,7 +171,7 @@ class ListVerb(VerbExtension):
         """
         import re
 
-        from ros2cli.command.node import node_names
+        from ros2cli.api.node import node_names
         from ros2cli.node.strategy import NodeStrategy
 
         try:
