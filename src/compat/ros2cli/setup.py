@@ -78,10 +78,10 @@ setup(
             'set = ros2cli.command.param:SetVerb',
         ],
         'ros2service.verb': [
-            'call = ros2cli.command.service:CallVerb',
-            'find = ros2cli.command.service:FindVerb',
-            'list = ros2cli.command.service:ListVerb',
-            'type = ros2cli.command.service:TypeVerb',
+            'call = ros2cli.verb.service.call:CallVerb',
+            'find = ros2cli.verb.service.find:FindVerb',
+            'list = ros2cli.verb.service.list:ListVerb',
+            'type = ros2cli.verb.service.type:TypeVerb',
         ],
         'ros2topic.verb': [
             'bw = ros2cli.verb.topic.bw:BwVerb',
