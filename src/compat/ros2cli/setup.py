@@ -47,10 +47,10 @@ setup(
             'ros2topic.verb = ros2cli.verb:VerbExtension',
         ],
         'ros2action.verb': [
-            'info = ros2cli.command.action:InfoVerb',
-            'list = ros2cli.command.action:ListVerb',
-            'send_goal = ros2cli.command.action:SendGoalVerb',
-            'type = ros2cli.command.action:TypeVerb',
+            'info = ros2cli.verb.action.info:InfoVerb',
+            'list = ros2cli.verb.action.list:ListVerb',
+            'send_goal = ros2cli.verb.action.send_goal:SendGoalVerb',
+            'type = ros2cli.verb.action.type:TypeVerb',
         ],
         'ros2cli.daemon.verb': [
             'start = ros2cli.verb.daemon.start:StartVerb',
