@@ -58,11 +58,11 @@ setup(
             'stop = ros2cli.verb.daemon.stop:StopVerb',
         ],
         'ros2interface.verb': [
-            'list = ros2cli.command.interface:ListVerb',
-            'package = ros2cli.command.interface:PackageVerb',
-            'packages = ros2cli.command.interface:PackagesVerb',
-            'proto = ros2cli.command.interface:ProtoVerb',
-            'show = ros2cli.command.interface:ShowVerb',
+            'list = ros2cli.verb.interface.list:ListVerb',
+            'package = ros2cli.verb.interface.package:PackageVerb',
+            'packages = ros2cli.verb.interface.packages:PackagesVerb',
+            'proto = ros2cli.verb.interface.proto:ProtoVerb',
+            'show = ros2cli.verb.interface.show:ShowVerb',
         ],
         'ros2node.verb': [
             'info = ros2cli.verb.node.info:InfoVerb',

@@ -1,7 +1,7 @@
 """Node-free logic of the verbs: interface definitions, rate statistics, parameter files."""
 
 import pytest
-from ros2cli.command.interface import nested_type, render_definition, split_comment
+from ros2cli.verb.interface.show import nested_type, render_definition, split_comment
 from ros2cli.verb.param.dump import nested_parameters
 from ros2cli.verb.param.load import parameters_for_node
 from ros2cli.verb.topic.bw import BandwidthStatistics, size_text
