@@ -1,5 +1,5 @@
 """What the verbs of one `ros2` command share: a module per command (upstream's ros2<command>.api).
 
-The modules import nothing slow at their top (no rclpy, message packages or YAML): `ros2 <command>
--h` imports every verb of the command, and the verbs import these.
+The modules import no rclpy, message package or YAML at their top: `ros2 <command> -h` imports
+every verb of the command, and the verbs import these.
 """

@@ -6,7 +6,6 @@ terminal, from `kill <pid of ros2>` or from a signal to the whole group of `ros2
 """
 
 import argparse
-import ctypes
 import os
 import shlex
 import signal
@@ -56,6 +55,7 @@ def _child_setup(take_terminal: bool) -> None:
         os.tcsetpgrp(0, os.getpgrp())
         signal.signal(signal.SIGTTOU, signal.SIG_DFL)
     try:  # the child follows `ros2 run` when that is killed outright
+        import ctypes  # lazy: only the child needs it, and `ros2 run -h` (completion too) imports this module
         ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
     except (OSError, AttributeError):
         pass

@@ -17,7 +17,7 @@ class RunCommand(CommandExtension):
 
     def main(self, *, parser: argparse.ArgumentParser, args: argparse.Namespace) -> int | str:
         """Run the executable (see ros2cli.api.run.run); its exit code, or the error message."""
-        # Lazy: `ros2 -h` imports every command module; ros2cli.api.run imports subprocess and ctypes.
+        # Lazy: `ros2 -h` imports every command module; ros2cli.api.run imports subprocess.
         from ros2cli.api.run import run
         return run(args)
 
