@@ -7,7 +7,7 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import pytest
-from ros2pkg.command import PkgCommand
+from ros2pkg.command.pkg import PkgCommand
 
 TIMEOUT = 60
 

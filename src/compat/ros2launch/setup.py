@@ -18,6 +18,6 @@ setup(
     license='Apache-2.0',
     tests_require=['pytest'],
     entry_points={
-        'ros2cli.command': ['launch = ros2launch.command:LaunchCommand'],
+        'ros2cli.command': ['launch = ros2launch.command.launch:LaunchCommand'],
     },
 )

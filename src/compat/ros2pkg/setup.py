@@ -18,14 +18,14 @@ setup(
     license='Apache-2.0',
     tests_require=['pytest'],
     entry_points={
-        'ros2cli.command': ['pkg = ros2pkg.command:PkgCommand'],
+        'ros2cli.command': ['pkg = ros2pkg.command.pkg:PkgCommand'],
         'ros2cli.extension_point': ['ros2pkg.verb = ros2cli.verb:VerbExtension'],
         'ros2pkg.verb': [
-            'create = ros2pkg.command:CreateVerb',
-            'executables = ros2pkg.command:ExecutablesVerb',
-            'list = ros2pkg.command:ListVerb',
-            'prefix = ros2pkg.command:PrefixVerb',
-            'xml = ros2pkg.command:XmlVerb',
+            'create = ros2pkg.verb.create:CreateVerb',
+            'executables = ros2pkg.verb.executables:ExecutablesVerb',
+            'list = ros2pkg.verb.list:ListVerb',
+            'prefix = ros2pkg.verb.prefix:PrefixVerb',
+            'xml = ros2pkg.verb.xml:XmlVerb',
         ],
     },
 )

@@ -13,8 +13,11 @@ deadlock) ends the process after 5 s with every thread's stack and exit code 1
 import argparse
 import io
 import os
+import re
+import shlex
 import signal
 import sys
+import warnings
 from collections.abc import Callable
 from typing import cast
 
@@ -47,7 +50,6 @@ def one_line(message: str) -> str:
     rcl's multi-line name errors (text, the name, a caret line) are joined, and the C source
     location rcl appends is dropped.
     """
-    import re
     parts = [line.strip() for line in message.splitlines() if line.strip() and set(line.strip()) != {'^'}]
     return re.sub(r', at \S+\.c:\d+', '', ' '.join(parts))
 
@@ -56,7 +58,6 @@ def _completion_argv() -> list[str] | None:
     """The words being completed, when argcomplete drives this process (shell completion)."""
     if '_ARGCOMPLETE' not in os.environ:
         return None
-    import shlex
     line = os.environ.get('COMP_LINE', '')[:int(os.environ.get('COMP_POINT', '0') or 0)]
     try:
         return shlex.split(line)[1:]
@@ -78,7 +79,7 @@ def run_command(command_main: Callable[[argparse.Namespace], int | str | None],
         # Armed while the exception still holds the command's frames (and node); only a command
         # that imported rclpy can have a participant.
         if 'rclpy' in sys.modules:
-            from owl_common.run import begin_cleanup
+            from owl_common.run import begin_cleanup  # lazy: it imports rclpy (loaded by now, see above)
             begin_cleanup()
 
 
@@ -92,7 +93,7 @@ def main(argv: list[str] | None = None) -> int | str:
     argv = completing if completing is not None else sys.argv[1:] if argv is None else argv
     parser = build_parser(argv)
     if completing is not None:
-        import argcomplete
+        import argcomplete  # lazy: only shell completion needs it, and `ros2 -h` must start fast
         argcomplete.autocomplete(parser)  # prints the candidates and exits
     args = parser.parse_args(argv)
     if not args.use_python_default_buffering:
@@ -102,7 +103,6 @@ def main(argv: list[str] | None = None) -> int | str:
     if extension is None:
         parser.print_help()
         return 0
-    import warnings
     # rclpy warns while it cleans up after a failed construction; the error itself is reported.
     warnings.filterwarnings('ignore', category=RuntimeWarning, module=r'rclpy(\.|$)')
     try:

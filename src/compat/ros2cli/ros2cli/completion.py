@@ -1,12 +1,17 @@
-"""argcomplete completers for package, executable, node, topic, service, action and type names.
+"""argcomplete completers for package, node, topic, service, action and type names.
 
 Graph names come from the daemon when it runs (instant), else from a short-lived DirectNode.
+Executable names are completed by ros2cli.api.run.executable_completer (it knows where `ros2 run`
+looks for them).
 """
 
 import argparse
-import os
 from collections.abc import Callable, Iterable
 
+from ament_index_python.packages import get_packages_with_prefixes
+from owl_common.graph import full_node_name
+
+from ros2cli.node.direct import DirectNode
 from ros2cli.node.graph import Graph
 
 # argcomplete calls a completer with the prefix and keyword arguments (parsed_args, action, parser);
@@ -26,29 +31,12 @@ def with_completer(argument: argparse.Action, completer: Completer) -> argparse.
 
 def package_completer(prefix: str, **_kwargs: object) -> Iterable[str]:
     """The names of the installed packages that start with prefix, sorted."""
-    from ament_index_python.packages import get_packages_with_prefixes
     return sorted(p for p in get_packages_with_prefixes() if p.startswith(prefix))
 
 
-def executable_completer(prefix: str, parsed_args: argparse.Namespace, **_kwargs: object) -> Iterable[str]:
-    """The package's executable names that start with prefix, sorted (none for an unknown package).
-
-    The package is the one given before it on the command line (parsed_args.package_name).
-    """
-    from ament_index_python.packages import get_package_prefix
-
-    from ros2cli.command.run import package_executables
-    try:
-        package_prefix = get_package_prefix(parsed_args.package_name)
-    except Exception:
-        return []
-    names = {os.path.basename(p) for p in package_executables(package_prefix, parsed_args.package_name)}
-    return sorted(n for n in names if n.startswith(prefix))
-
-
 def _graph_names(query: str, parsed_args: argparse.Namespace | None) -> list[str]:
+    # Lazy: the client imports xmlrpc.client (http.client, ssl), and the verbs import this module.
     from ros2cli.daemon.client import DaemonGraph, is_daemon_running
-    from ros2cli.node.direct import DirectNode
 
     if is_daemon_running(timeout=1.0) and not getattr(parsed_args, 'no_daemon', False):
         graph: Graph = DaemonGraph()
@@ -58,7 +46,6 @@ def _graph_names(query: str, parsed_args: argparse.Namespace | None) -> list[str
 
 
 def _names_from(graph: Graph, query: str) -> list[str]:
-    from owl_common.graph import full_node_name
     if query == 'nodes':
         return sorted(full_node_name(ns, n) for n, ns in graph.node_names_and_namespaces())
     return [name for name, _ in getattr(graph, f'{query}_names_and_types')()]
@@ -78,6 +65,7 @@ action_completer = _graph_completer('action')
 
 def _type_completer(kind: str) -> Completer:
     def complete(prefix: str, **_kwargs: object) -> list[str]:
+        # Lazy: rosidl_runtime_py imports yaml and rosidl_parser, and the verbs import this module.
         from rosidl_runtime_py.get_interfaces import interface_index
         return [f'{package}/{kind}/{name}' for package, kinds in sorted(interface_index().items())
                 for name in kinds[kind] if f'{package}/{kind}/{name}'.startswith(prefix)]

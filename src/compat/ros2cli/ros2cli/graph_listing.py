@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 from ros2cli.node.graph import Graph
 
-if TYPE_CHECKING:  # the verbs import the strategy (and rclpy) only when they run
+if TYPE_CHECKING:  # only for an annotation
     from ros2cli.node.strategy import NodeStrategy
 
 Entries = Sequence[Sequence[Any]]

@@ -4,6 +4,8 @@
 owl_common.hints.)
 """
 
+import sys
+import time
 from collections.abc import Callable, Iterable
 
 from owl_common.hints import did_you_mean
@@ -17,7 +19,6 @@ class WaitingHint:
     """
 
     def __init__(self, subject: str, name: str, grace: float) -> None:
-        import time
         self._subject = subject  # e.g. "server for service '/ech'"
         self._name = name
         self._grace_end = time.monotonic() + grace
@@ -28,8 +29,6 @@ class WaitingHint:
 
         candidates is only called once the grace period is over and until a close name was found.
         """
-        import sys
-        import time
         if self._suggested or time.monotonic() < self._grace_end:
             return
         hint = did_you_mean(self._name, [c for c in candidates() if c != self._name])

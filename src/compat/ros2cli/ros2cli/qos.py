@@ -49,6 +49,7 @@ def has_overrides(args: argparse.Namespace) -> bool:
 
 def profile_from_args(args: argparse.Namespace) -> 'QoSProfile':
     """The --qos-profile preset with every explicitly given policy applied."""
+    # Lazy: rclpy is slow to import, and `ros2 topic -h` imports this module (through the verbs).
     from rclpy.duration import Duration
     from rclpy.qos import (
         QoSDurabilityPolicy,

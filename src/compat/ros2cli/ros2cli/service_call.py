@@ -47,7 +47,7 @@ class ServiceCaller:
         It waits up to timeout s for the server, then sends the request up to CALL_ATTEMPTS times, each
         attempt waiting longer for the answer (timeout * attempt / CALL_ATTEMPTS s).
         """
-        import rclpy
+        import rclpy  # lazy: slow to import, and `ros2 param -h` imports this module (ros2cli.api.param)
 
         client = self._clients.get((service, srv_class))
         if client is None:
@@ -76,11 +76,13 @@ class DaemonServiceCaller:
     """The same calls, made by the daemon's node (already discovered by everyone)."""
 
     def __init__(self, timeout: float) -> None:
+        # Lazy: the client imports xmlrpc.client (http.client, ssl), and `ros2 param -h` imports this module.
         from ros2cli.daemon.client import DaemonGraph
         self._daemon = DaemonGraph(timeout=timeout * 2 + 5.0)
 
     def call(self, service: str, srv_class: Any, request: Any, timeout: float) -> Any:
         """The same call, made by the daemon (see serve_call): the same response, or the same exceptions."""
+        # Lazy: xmlrpc.client and rosidl_runtime_py (yaml) import slowly; `ros2 param -h` imports this module.
         import xmlrpc.client
 
         from rosidl_runtime_py.convert import dump_yaml, message_to_ordereddict
@@ -103,6 +105,7 @@ def serve_call(caller: ServiceCaller, service: str, type_name: str, request_yaml
     Requests and responses travel as YAML text of the codec: plain data for XML-RPC (which has
     no 64-bit integers), and the client needs no rclpy import for it, which keeps warm calls fast.
     """
+    # Lazy: xmlrpc.client and rosidl_runtime_py (yaml) import slowly; `ros2 param -h` imports this module.
     import xmlrpc.client
 
     from rosidl_runtime_py.convert import dump_yaml, message_to_ordereddict

@@ -1,10 +1,11 @@
 """Node-free logic of the verbs: interface definitions, rate statistics, parameter files."""
 
 import pytest
-from ros2cli.command.interface import nested_type, render_definition, split_comment
-from ros2cli.command.param import nested_parameters, parameters_for_node
-from ros2cli.command.topic_bw import BandwidthStatistics, size_text
-from ros2cli.command.topic_hz import RateStatistics
+from ros2cli.verb.interface.show import nested_type, render_definition, split_comment
+from ros2cli.verb.param.dump import nested_parameters
+from ros2cli.verb.param.load import parameters_for_node
+from ros2cli.verb.topic.bw import BandwidthStatistics, size_text
+from ros2cli.verb.topic.hz import RateStatistics
 
 
 def test_interface_lines():
@@ -81,7 +82,7 @@ def test_nested_parameters_for_dump():
 def test_python_value_gives_what_rclpy_gives_for_every_parameter_type():
     from rcl_interfaces.msg import ParameterValue
     from rclpy.parameter import parameter_value_to_python
-    from ros2cli.command.param import python_value
+    from ros2cli.api.param import python_value
 
     fields = [{}, {'bool_value': True}, {'integer_value': 5}, {'double_value': 2.5}, {'string_value': 'x'},
               {'byte_array_value': [b'a']}, {'bool_array_value': [True]}, {'integer_array_value': [1, 2]},

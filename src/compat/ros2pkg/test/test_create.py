@@ -1,4 +1,4 @@
-"""ros2pkg.create and ros2pkg.templates as plain functions: checks, plan order, file contents."""
+"""ros2pkg.api.create and ros2pkg.templates as plain functions: checks, plan order, file contents."""
 
 import ast
 import os
@@ -6,7 +6,7 @@ import xml.etree.ElementTree as ET
 
 import pytest
 from catkin_pkg.package import parse_package_string
-from ros2pkg.create import (
+from ros2pkg.api.create import (
     CreateError,
     check_build_type,
     check_license,

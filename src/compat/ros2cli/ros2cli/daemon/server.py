@@ -12,7 +12,14 @@ import uuid
 from typing import Any
 from xmlrpc.server import SimpleXMLRPCRequestHandler, SimpleXMLRPCServer
 
+import rclpy
+from owl_common.graph import GraphQueries
+from rclpy.node import Node
+
 from ros2cli.daemon import RPC_PATH, daemon_port
+from ros2cli.node.direct import tear_down
+from ros2cli.node.settle import graph_view, local_participants
+from ros2cli.service_call import ServiceCaller, serve_call
 
 IDLE_TIMEOUT = 2 * 60 * 60.0  # seconds without a request, as upstream
 # A daemon that a verb started on its own (not `ros2 daemon start`) also leaves once it has been
@@ -39,14 +46,6 @@ def serve(domain: int, listener: socket.socket, idle_timeout: float, alone_timeo
     That is on system.shutdown (`ros2 daemon stop`), after idle_timeout s without a request, or, when
     alone_timeout is not None, once no node but `ros2`'s own has been in the domain for that long.
     """
-    import rclpy
-    from owl_common.graph import GraphQueries
-    from rclpy.node import Node
-
-    from ros2cli.node.direct import tear_down
-    from ros2cli.node.settle import graph_view, local_participants
-    from ros2cli.service_call import ServiceCaller, serve_call
-
     server = _Server(
         ('127.0.0.1', daemon_port(domain)), requestHandler=_RequestHandler, logRequests=False,
         allow_none=True, bind_and_activate=False)

@@ -6,10 +6,11 @@ import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
+from owl_common.graph import GraphQueries
+
 from ros2cli.node.settle import MOST, POLL, DiscoverySettling, graph_view, local_participants
 
-if TYPE_CHECKING:  # rclpy is imported when a node is made: `ros2 -h` does not need it
-    from owl_common.graph import GraphQueries
+if TYPE_CHECKING:  # rclpy is imported when a node is made: `ros2 <command> -h` does not need it
     from rclpy.node import Node
 
 # A verb that looks for one named entity (node, topic, service) keeps looking this much longer
@@ -33,6 +34,7 @@ def tear_down(node: 'Node', *owned: Any) -> None:
     Under owl_common's clean-up watchdog: Fast DDS can deadlock while it tears the participant down,
     and the verb must then end with every thread's stack and exit code 1, not hang until SIGKILL.
     """
+    # Lazy: both import rclpy (loaded by the node's owner by now); the verbs import this module for -h.
     import rclpy
     from owl_common.run import begin_cleanup
 
@@ -48,6 +50,7 @@ class DirectNode:
 
     def __init__(self, args: argparse.Namespace | None = None, node_name: str | None = None,
                  spin_time: float | None = None) -> None:
+        # Lazy: rclpy is slow to import, and `ros2 <command> -h` imports this module (through the verbs).
         import rclpy
         from rclpy.node import Node
         from rclpy.parameter import Parameter
@@ -92,7 +95,6 @@ class DirectNode:
     def graph(self) -> 'GraphQueries':
         """The node's graph queries (GraphQueries, made on first use)."""
         if self._graph is None:
-            from owl_common.graph import GraphQueries
             self._graph = GraphQueries(self.node)
         return self._graph
 

@@ -26,6 +26,7 @@ class NodeStrategy:
     """`.graph` answers graph queries; `.direct` is a DirectNode for everything else (lazy)."""
 
     def __init__(self, args: argparse.Namespace, spin_time: float | None = None) -> None:
+        # Lazy: the client imports xmlrpc.client (http.client, ssl); the verbs import this module for -h.
         from ros2cli.daemon import client
 
         self._args = args
@@ -84,7 +85,7 @@ def wait_until_settled(daemon: Any) -> None:
     after a participant is seen has arrived by then); one up for DAEMON_SETTLED s is not asked at
     all.
     """
-    import xmlrpc.client
+    import xmlrpc.client  # lazy: as in NodeStrategy (loaded by then, with the daemon client)
 
     uptime = daemon.get_uptime()
     if uptime >= DAEMON_SETTLED:

@@ -56,6 +56,7 @@ def add_launch_arguments(parser: argparse.ArgumentParser) -> None:
 
 def resolve_launch_file(args: argparse.Namespace) -> tuple[str, list[str]]:
     """(path of the launch file, the name:=value arguments) from the positionals."""
+    # Lazy: ros2launch.api imports `launch`, which takes a while, and `ros2 -h` imports this module.
     from ros2launch.api import get_share_file_path_from_package
 
     arguments = list(args.launch_arguments)
@@ -75,7 +76,7 @@ def launch(args: argparse.Namespace) -> int | str:
     A missing package or file or a malformed name:=value raises RuntimeError, and so does a broken
     launch file for -p and -s; --launch-prefix-filter without --launch-prefix is the error message.
     """
-    # Imported here: `launch` takes a while to import, and `ros2 -h` imports this module.
+    # Lazy: ros2launch.api imports `launch`, which takes a while, and `ros2 -h` imports this module.
     from ros2launch.api import (
         format_arguments_of_launch_file,
         format_launch_description,

@@ -1,12 +1,20 @@
 """`ros2 topic pub <topic> <type> [values]`: publish a message given as YAML, once, N times or at a rate."""
 
 import argparse
-import sys
 import time
 from typing import Any
 
-from ros2cli.command.topic import _topic_argument, _type_argument
-from ros2cli.command.topic_echo import positive_float
+from owl_common.graph import expand_topic_name
+
+from ros2cli.api.topic import (
+    _topic_argument,
+    _type_argument,
+    add_values_arguments,
+    positive_float,
+    read_values,
+)
+from ros2cli.node.direct import DirectNode, add_direct_node_arguments
+from ros2cli.qos import add_qos_arguments, profile_from_args
 from ros2cli.verb import VerbExtension
 
 # A subscriber that our writer has matched may not yet have matched our writer (each side learns of
@@ -23,33 +31,11 @@ def nonnegative_int(text: str) -> int:
     return value
 
 
-def read_values(args: argparse.Namespace, kind: str) -> Any:
-    """The YAML values of the positional argument or --stdin, parsed; RuntimeError when malformed."""
-    from rosidl_runtime_py.set_message import FieldError, parse_yaml
-    text = sys.stdin.read() if getattr(args, 'stdin', False) else (args.values or '{}')
-    try:
-        return parse_yaml(text)
-    except FieldError as error:
-        raise RuntimeError(f'Failed to populate {kind}: {error}') from None
-
-
-def add_values_arguments(parser: argparse.ArgumentParser, what: str, example: str) -> None:
-    """Add the YAML values (positional) or --stdin; `what` and `example` go into their help texts."""
-    group = parser.add_mutually_exclusive_group()
-    group.add_argument('values', nargs='?', default='{}',
-                       help=f"Values to fill the {what} with in YAML format (e.g. '{example}'), "
-                            f'otherwise the {what} will be published with default values')
-    group.add_argument('--stdin', action='store_true', help=f'Read {what} values from stdin.')
-
-
 class PubVerb(VerbExtension):
     """Publish a message to a topic."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         """Add the topic name and type, the values, and the rate, count, wait, QoS and DirectNode options."""
-        from ros2cli.node.direct import add_direct_node_arguments
-        from ros2cli.qos import add_qos_arguments
-
         _topic_argument(parser, "Name of the ROS topic to publish to (e.g. '/chatter')")
         _type_argument(parser, help_text="Type of the ROS message (e.g. 'std_msgs/String')")
         add_values_arguments(parser, 'message', 'data: Hello World')
@@ -79,12 +65,9 @@ class PubVerb(VerbExtension):
         With -1 or -t it first waits for a matching subscription (see -w, and MATCH_SETTLE). An invalid
         type or field, or a wait that times out, gives the error message.
         """
-        from owl_common.graph import expand_topic_name
+        # Lazy: rosidl_runtime_py imports yaml and rosidl_parser, and `ros2 topic -h` imports this module.
         from rosidl_runtime_py.set_message import FieldError, set_message_fields
         from rosidl_runtime_py.utilities import InvalidType, import_type
-
-        from ros2cli.node.direct import DirectNode
-        from ros2cli.qos import profile_from_args
 
         times = 1 if args.once else args.times
         wait_count = args.wait_matching_subscriptions
@@ -138,6 +121,7 @@ class PubVerb(VerbExtension):
     @staticmethod
     def _publish_loop(direct: Any, publisher: Any, message: Any, stamps: list[Any], times: int,
                       args: argparse.Namespace) -> None:
+        # Lazy: rclpy is slow to import, and `ros2 topic -h` imports this module.
         from rclpy.executors import SingleThreadedExecutor
 
         node = direct.node

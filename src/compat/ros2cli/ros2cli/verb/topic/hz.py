@@ -4,21 +4,13 @@ import argparse
 import math
 import sys
 from collections import deque
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
-from ros2cli.command.topic import _topic_argument, wait_for_topic_type
+from owl_common.graph import expand_topic_name
+
+from ros2cli.api.topic import _topic_argument, positive_int, receive_profile, wait_for_topic_type
+from ros2cli.node.direct import DirectNode, add_direct_node_arguments
 from ros2cli.verb import VerbExtension
-
-if TYPE_CHECKING:  # rclpy is imported where it is used: `ros2 -h` imports this module
-    from rclpy.qos import QoSProfile
-
-
-def positive_int(text: str) -> int:
-    """An argparse type: the text as an int, ArgumentTypeError unless it is above zero."""
-    value = int(text)
-    if value <= 0:
-        raise argparse.ArgumentTypeError(f'{text} is not a positive integer')
-    return value
 
 
 class RateStatistics:
@@ -63,22 +55,11 @@ class RateStatistics:
                 f'max: {max(self.intervals):.3f}s std dev: {std_dev:.5f}s window: {count}')
 
 
-def receive_profile() -> 'QoSProfile':
-    """sensor_data's policies (best effort: hears every publisher) with room for bursts."""
-    from rclpy.qos import QoSProfile, qos_profile_sensor_data
-
-    from ros2cli.command.topic_echo import RECEIVE_DEPTH
-    return QoSProfile(history=qos_profile_sensor_data.history, depth=RECEIVE_DEPTH,
-                      reliability=qos_profile_sensor_data.reliability,
-                      durability=qos_profile_sensor_data.durability)
-
-
 class HzVerb(VerbExtension):
     """Print the average publishing rate to screen."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         """Add the topic name, -w/--window, --filter, --wall-time and the DirectNode options."""
-        from ros2cli.node.direct import add_direct_node_arguments
         _topic_argument(parser, "Name of the ROS topic to listen to (e.g. '/chatter')")
         parser.add_argument('--window', '-w', type=positive_int, default=10000,
                             help='window size, in # of messages, for calculating rate (default: 10000)')
@@ -95,12 +76,10 @@ class HzVerb(VerbExtension):
         Times are the node's clock (sim time with -s) unless --wall-time; with --filter only the messages
         it accepts count (a malformed expression gives the error message).
         """
-        from owl_common.graph import expand_topic_name
+        # Lazy: rclpy and rosidl_runtime_py (yaml) import slowly; `ros2 topic -h` imports this module.
         from rclpy.clock import Clock, ClockType
         from rclpy.executors import SingleThreadedExecutor
         from rosidl_runtime_py.utilities import InvalidType, import_type
-
-        from ros2cli.node.direct import DirectNode
 
         topic = expand_topic_name(args.topic_name)
         predicate = None

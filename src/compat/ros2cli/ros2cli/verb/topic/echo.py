@@ -2,15 +2,27 @@
 
 import argparse
 import sys
+import time
 from typing import TYPE_CHECKING, Any
 
-from ros2cli.command.topic import _topic_argument, _type_argument, topic_types
+from owl_common.graph import expand_topic_name
+
+from ros2cli.api.topic import (
+    RECEIVE_DEPTH,
+    _topic_argument,
+    _type_argument,
+    positive_float,
+    topic_types,
+    unknown_topic,
+)
+from ros2cli.node.direct import NAMED_LOOKUP_GRACE, DirectNode
+from ros2cli.node.strategy import add_strategy_arguments
+from ros2cli.qos import add_qos_arguments, has_overrides, profile_from_args
 from ros2cli.verb import VerbExtension
 
-if TYPE_CHECKING:  # rclpy is imported where it is used: `ros2 -h` imports this module
+if TYPE_CHECKING:  # rclpy is imported where it is used: `ros2 topic -h` imports this module
     from rclpy.qos import QoSProfile
 
-RECEIVE_DEPTH = 1000
 # What upstream (Jazzy) shows of a message's receive information (printed with sorted keys).
 MESSAGE_INFO_KEYS = ('publication_sequence_number', 'reception_sequence_number', 'received_timestamp',
                      'source_timestamp')
@@ -19,14 +31,6 @@ RELIABLE_FALLBACK = ('Some, but not all, publishers are offering QoSReliabilityP
                      'to QoSReliabilityPolicy.BEST_EFFORT as it will connect to all publishers')
 DURABLE_FALLBACK = ('Some, but not all, publishers are offering QoSDurabilityPolicy.TRANSIENT_LOCAL. Falling '
                     'back to QoSDurabilityPolicy.VOLATILE as it will connect to all publishers')
-
-
-def positive_float(text: str) -> float:
-    """An argparse type: the text as a float, ArgumentTypeError unless it is above zero."""
-    value = float(text)
-    if value <= 0:
-        raise argparse.ArgumentTypeError(f'{text} is not a positive number')
-    return value
 
 
 def add_message_output_arguments(parser: argparse.ArgumentParser) -> None:
@@ -51,9 +55,8 @@ def add_message_output_arguments(parser: argparse.ArgumentParser) -> None:
 
 def choose_qos(args: argparse.Namespace, publishers: list[dict[str, Any]]) -> 'QoSProfile':
     """Explicit policies win; otherwise match the publishers (reliable/durable only if all are)."""
+    # Lazy: rclpy is slow to import, and `ros2 topic -h` imports this module.
     from rclpy.qos import QoSDurabilityPolicy, QoSReliabilityPolicy
-
-    from ros2cli.qos import has_overrides, profile_from_args
 
     profile = profile_from_args(args)
     if has_overrides(args):
@@ -121,6 +124,7 @@ class MessagePrinter:
 
     def format(self, message: Any) -> str:
         """The text to print: YAML ending in '---', or a CSV line for --csv (str() of a non-message field)."""
+        # Lazy: rosidl_runtime_py imports yaml and rosidl_parser, and `ros2 topic -h` imports this module.
         from rosidl_runtime_py.convert import message_to_csv, message_to_yaml
         from rosidl_runtime_py.utilities import is_message
 
@@ -144,9 +148,6 @@ class EchoVerb(VerbExtension):
         Then echo's own: --no-lost-messages, --raw, --filter, --once, --timeout and -i. The QoS
         profile defaults to sensor_data, fitted to the publishers (see choose_qos).
         """
-        from ros2cli.node.strategy import add_strategy_arguments
-        from ros2cli.qos import add_qos_arguments
-
         add_strategy_arguments(parser)
         _topic_argument(parser, "Name of the ROS topic to listen to (e.g. '/chatter')")
         _type_argument(parser, nargs='?', help_text="Type of the ROS message (e.g. 'std_msgs/msg/String')")
@@ -170,10 +171,8 @@ class EchoVerb(VerbExtension):
         grace). An unknown topic, a topic with several types, or a --field or --filter that fails gives
         the error message.
         """
-        from owl_common.graph import expand_topic_name
+        # Lazy: rosidl_runtime_py imports yaml and rosidl_parser, and `ros2 topic -h` imports this module.
         from rosidl_runtime_py.utilities import InvalidType, import_type
-
-        from ros2cli.node.direct import NAMED_LOOKUP_GRACE, DirectNode
 
         printer = MessagePrinter(args)
         topic = expand_topic_name(args.topic_name)
@@ -186,7 +185,6 @@ class EchoVerb(VerbExtension):
                 types = topic_types(graph, topic)
                 if types is None:
                     print(f'WARNING: topic [{topic}] does not appear to be published yet')
-                    from ros2cli.command.topic import unknown_topic
                     hint = unknown_topic(graph, topic).partition(f"'{topic}'")[2]
                     return f'Could not determine the type for the passed topic{hint}'
                 if len(types) > 1:
@@ -204,10 +202,10 @@ class EchoVerb(VerbExtension):
 
     def _echo(self, direct: Any, topic: str, message_class: Any, qos: Any,
               printer: MessagePrinter) -> int | str:
-        import time
-
+        # Lazy: rclpy and rosidl_runtime_py (yaml) import slowly; `ros2 topic -h` imports this module.
         from rclpy.event_handler import SubscriptionEventCallbacks
         from rclpy.executors import SingleThreadedExecutor
+        from rosidl_runtime_py.convert import dump_yaml
 
         args = printer.args
         state: dict[str, Any] = {'done': False, 'error': None}
@@ -223,7 +221,6 @@ class EchoVerb(VerbExtension):
                         return
                     text = printer.format(message)
                 if args.include_message_info and info is not None:
-                    from rosidl_runtime_py.convert import dump_yaml
                     details = {key: info[key] for key in MESSAGE_INFO_KEYS if key in info}
                     text = (','.join(str(v) for v in details.values()) + ',' + text if args.csv
                             else dump_yaml(details) + '---\n' + text)

@@ -1,5 +1,9 @@
-"""Installed packages as the ament index sees them: names, prefixes, executables, manifests."""
+"""Installed packages as the ament index sees them: names, prefixes, executables, manifests.
 
+Also what several `ros2 pkg` verbs share: the package name argument, completed in the shell.
+"""
+
+import argparse
 import os
 
 from ament_index_python.packages import (
@@ -8,6 +12,9 @@ from ament_index_python.packages import (
     get_package_share_directory,
     get_packages_with_prefixes,
 )
+from ros2cli.completion import with_completer
+
+PACKAGE_NOT_FOUND = 'Package not found'
 
 
 class PackageNotFound(Exception):
@@ -53,3 +60,13 @@ def get_executable_paths(package_name: str) -> list[str]:
             if os.path.isfile(path) and os.access(path, os.X_OK):
                 executables.append(path)
     return sorted(executables)
+
+
+def package_name_completer(**_: object) -> list[str]:
+    """Shell completion of package names (argcomplete calls completers with keyword arguments)."""
+    return get_package_names()
+
+
+def _package_argument(parser: argparse.ArgumentParser, nargs: str | None = None) -> None:
+    with_completer(parser.add_argument('package_name', help='The package name', nargs=nargs),
+                   package_name_completer)

@@ -5,8 +5,10 @@ import time
 from collections import deque
 from typing import Any
 
-from ros2cli.command.topic import _topic_argument, wait_for_topic_type
-from ros2cli.command.topic_hz import positive_int, receive_profile
+from owl_common.graph import expand_topic_name
+
+from ros2cli.api.topic import _topic_argument, positive_int, receive_profile, wait_for_topic_type
+from ros2cli.node.direct import DirectNode, add_direct_node_arguments
 from ros2cli.verb import VerbExtension
 
 
@@ -46,7 +48,6 @@ class BwVerb(VerbExtension):
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
         """Add the topic name, -w/--window and the DirectNode options."""
-        from ros2cli.node.direct import add_direct_node_arguments
         _topic_argument(parser, "Name of the ROS topic to listen to (e.g. '/chatter')")
         parser.add_argument('--window', '-w', type=positive_int, default=100,
                             help='maximum window size, in # of messages, for calculating rate (default: 100)')
@@ -58,11 +59,9 @@ class BwVerb(VerbExtension):
         Messages are received serialized and never deserialized; a message type that cannot be imported
         gives the error message.
         """
-        from owl_common.graph import expand_topic_name
+        # Lazy: rclpy and rosidl_runtime_py (yaml) import slowly; `ros2 topic -h` imports this module.
         from rclpy.executors import SingleThreadedExecutor
         from rosidl_runtime_py.utilities import InvalidType, import_type
-
-        from ros2cli.node.direct import DirectNode
 
         topic = expand_topic_name(args.topic_name)
         with DirectNode(args) as direct:
