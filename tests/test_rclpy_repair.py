@@ -120,6 +120,25 @@ def test_a_task_whose_construction_ctrl_c_cut_short_is_deleted_quietly():
     assert (deleted.returncode, deleted.stdout, deleted.stderr) == (0, 'deleted\n', '')
 
 
+def test_an_executor_outliving_its_guard_condition_is_deleted_quietly(ros):
+    """An executor finalised after its SIGINT guard condition (at interpreter exit) prints nothing.
+
+    Seen at the end of `ros2 topic echo --once`: "Exception ignored in: <function Executor.__del__
+    ...> InvalidHandle: cannot use Destroyable because destruction was requested".
+    """
+    deleted = subprocess.run(
+        [sys.executable, '-c', 'import rclpy\n'
+         'from rclpy.executors import SingleThreadedExecutor\n'
+         'rclpy.init()\n'
+         'executor = SingleThreadedExecutor()\n'
+         'executor._sigint_gc.destroy()  # what the guard does when it is finalised first\n'
+         'del executor\n'
+         'rclpy.shutdown()\n'
+         'print("deleted")'],
+        env=ros.env, capture_output=True, text=True, timeout=60)
+    assert (deleted.returncode, deleted.stdout, deleted.stderr) == (0, 'deleted\n', '')
+
+
 # A client that calls a plain rclpy echo service many times, awaiting each response the three
 # ways rclpy offers; it prints how many Tasks its executor holds at the end.
 CALLING_CLIENT = """

@@ -66,6 +66,13 @@ callback, before the attribute its __del__ reads is set: the node still stops as
 Python prints "Exception ignored in: <function Future.__del__ ...> ... AttributeError: 'Task'
 object has no attribute '_exception'" on the way out. Future.__del__ is made to skip a future
 whose construction was interrupted (it has no exception to report).
+
+An executor still alive when the interpreter exits (kept by a reference cycle with its node) may be
+finalised after its SIGINT guard condition, which destroys itself first: Executor.__del__ then
+printed "Exception ignored in: <function Executor.__del__ ...> ... InvalidHandle: cannot use
+Destroyable because destruction was requested" (seen at the end of `ros2 topic echo --once`).
+Executor.__del__ now leaves a guard condition that is already gone alone, as the guard's own
+__del__ does.
 """
 
 from __future__ import annotations
@@ -236,12 +243,14 @@ def install() -> None:
 def patch_executors(executors: Any) -> None:
     """Patch rclpy.executors: takes keep Ctrl-C out, the spin-until-future methods leave no wake-ups.
 
-    Future.__del__ (rclpy.task) is patched here too, to skip the futures a Ctrl-C left half built.
+    Future.__del__ (rclpy.task) is patched here too, to skip the futures a Ctrl-C left half built,
+    and Executor.__del__, to leave a guard condition that finalised itself first alone.
     """
     for name in TAKES:
         setattr(executors.Executor, name, keep_ctrl_c_out(getattr(executors.Executor, name)))
     from rclpy.task import Future
     Future.__del__ = skip_half_built(Future.__del__)  # type: ignore[method-assign]
+    executors.Executor.__del__ = forgive_gone_guard(executors.Executor.__del__)
     for cls in (executors.Executor, executors.SingleThreadedExecutor, executors.MultiThreadedExecutor):
         for name in SPINS_UNTIL_FUTURE:
             if name in vars(cls):
@@ -310,6 +319,20 @@ def skip_half_built(delete: Callable[[Any], None]) -> Callable[[Any], None]:
             delete(future)
 
     return delete_when_built
+
+
+def forgive_gone_guard(delete: Callable[[Any], None]) -> Callable[[Any], None]:
+    """Executor.__del__, quiet when its SIGINT guard condition was destroyed before it."""
+    from rclpy.exceptions import InvalidHandle
+
+    @wraps(delete)
+    def delete_after_guard(executor: Any) -> None:
+        try:
+            delete(executor)
+        except InvalidHandle:  # the guard finalised itself first, at interpreter exit
+            pass
+
+    return delete_after_guard
 
 
 def keep_ctrl_c_out(take: Callable[..., Any]) -> Callable[..., Any]:
