@@ -8,10 +8,11 @@ file or a `$(...)` value is first parsed.
 from __future__ import annotations
 
 from collections.abc import Callable
-from importlib.metadata import EntryPoint, entry_points
 from typing import TYPE_CHECKING, Any, Protocol, TypeVar
 
 if TYPE_CHECKING:
+    from importlib.metadata import EntryPoint
+
     from launch.frontend.entity import Entity
     from launch.frontend.parser import Parser
     from launch.substitution import Substitution
@@ -72,6 +73,9 @@ def get_entry_points(group: str) -> list[EntryPoint]:
     """The installed entry points of one group, in the order importlib.metadata finds them."""
     global _installed_entry_points
     if _installed_entry_points is None:
+        # Lazy: importing importlib.metadata takes some 20 ms, and only a parse needs it.
+        from importlib.metadata import entry_points
+
         _installed_entry_points = entry_points()
     return list(_installed_entry_points.select(group=group))
 
