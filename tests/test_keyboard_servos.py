@@ -108,7 +108,8 @@ def drive_the_head(head: Head, keys) -> None:
     start = len(head.goals['pan'])
     keys.down('left')
     head.wait_goal('pan', lambda g: g == pytest.approx(pan_upper, abs=1e-6), 'at its upper bound')
-    time.sleep(0.5)  # held past the limit
+    wait_for_messages(head.goals['pan'], len(head.goals['pan']) + 20,
+                      what='pan goals, Left held past the bound')
     head.wait_joint('pan', lambda p: p > pan_upper - 0.1, 'turned left to its bound')
     keys.up('left')
     pan_goals = [g.data for g in head.goals['pan'][start:]]
@@ -116,7 +117,7 @@ def drive_the_head(head: Head, keys) -> None:
     assert all(g.data == 0.0 for g in head.goals['tilt'])  # Left moves the pan servo only
     time.sleep(0.3)
     released = len(head.goals['pan'])
-    time.sleep(0.5)
+    wait_for_messages(head.goals['pan'], released + 20, what='pan goals after Left was released')
     after = [g.data for g in head.goals['pan'][released:]]
     assert after
     assert all(g == pytest.approx(pan_upper, abs=1e-6) for g in after)  # released: it stays
@@ -131,7 +132,8 @@ def drive_the_head(head: Head, keys) -> None:
     start = len(head.goals['tilt'])
     keys.down('up')
     head.wait_goal('tilt', lambda g: g == pytest.approx(tilt_lower, abs=1e-6), 'at its lower bound')
-    time.sleep(0.5)
+    wait_for_messages(head.goals['tilt'], len(head.goals['tilt']) + 20,
+                      what='tilt goals, Up held past the bound')
     head.wait_joint('tilt', lambda p: p < tilt_lower + 0.15, 'looking up to its bound')
     keys.up('up')
     tilt_goals = [g.data for g in head.goals['tilt'][start:]]

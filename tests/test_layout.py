@@ -162,3 +162,72 @@ def test_no_package_imports_itself_back():
     except CycleError as cycle:
         pytest.fail(f'packages import each other in a cycle: {cycle.args[1]}')
     assert set(order) == set(packages())
+
+
+def python_modules() -> dict[str, Path]:
+    """Dotted name -> file of every module of our Python packages under src/ (tests aside)."""
+    found = {}
+    for path in SRC.rglob('*.py'):
+        parts = path.relative_to(SRC).parts
+        if 'test' in parts or path.name == 'setup.py':
+            continue
+        for depth in range(len(parts) - 1):
+            folder = SRC.joinpath(*parts[:depth + 1])
+            if (folder / '__init__.py').is_file() and not (folder.parent / '__init__.py').is_file():
+                name = '.'.join(parts[depth:])[:-3].removesuffix('.__init__')
+                found[name] = path
+                break
+    return found
+
+
+def module_level_imports(name: str, path: Path, modules: dict[str, Path]) -> set[str]:
+    """Our modules that `name` imports as it loads (TYPE_CHECKING blocks and functions aside).
+
+    `from package import submodule` counts as an import of the submodule, as a package's own
+    __init__ is loaded before any of its modules anyway.
+    """
+    def known(dotted: str) -> str | None:
+        while dotted and dotted not in modules:
+            dotted = dotted.rpartition('.')[0]
+        return dotted or None
+
+    def loaded(statements: list[ast.stmt]) -> list[ast.Import | ast.ImportFrom]:
+        """The import statements run as the module loads: inside if/try/with, not in functions."""
+        found: list[ast.Import | ast.ImportFrom] = []
+        for statement in statements:
+            if isinstance(statement, (ast.Import, ast.ImportFrom)):
+                found.append(statement)
+            elif isinstance(statement, ast.If):
+                if 'TYPE_CHECKING' not in ast.unparse(statement.test):
+                    found += loaded(statement.body) + loaded(statement.orelse)
+            elif isinstance(statement, ast.Try):
+                found += loaded(statement.body) + loaded(statement.orelse) + loaded(statement.finalbody)
+                for handler in statement.handlers:
+                    found += loaded(handler.body)
+            elif isinstance(statement, ast.With):
+                found += loaded(statement.body)
+        return found
+
+    found: set[str | None] = set()
+    for statement in loaded(ast.parse(path.read_text(), str(path)).body):
+        if isinstance(statement, ast.Import):
+            found |= {known(alias.name) for alias in statement.names}
+        else:
+            base = statement.module or ''
+            if statement.level:
+                package = name.split('.') if path.name == '__init__.py' else name.split('.')[:-1]
+                package = package[:len(package) - statement.level + 1]
+                base = '.'.join([*package, *([base] if base else [])])
+            submodules = {f'{base}.{alias.name}' for alias in statement.names} & modules.keys()
+            found |= submodules if len(submodules) == len(statement.names) else {known(base)}
+    return {module for module in found if module is not None and module != name}
+
+
+def test_no_module_imports_itself_back_as_it_loads():
+    modules = python_modules()
+    assert len(modules) > 300
+    graph = {name: module_level_imports(name, path, modules) for name, path in modules.items()}
+    try:
+        list(TopologicalSorter(graph).static_order())
+    except CycleError as cycle:
+        pytest.fail(f'modules import each other in a cycle as they load: {cycle.args[1]}')
