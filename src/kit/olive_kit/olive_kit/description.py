@@ -13,6 +13,7 @@ from typing import Any
 
 # The course's first IMU: x + the 13-digit serial number (a Unix time in ms).
 IMU_NAMESPACE = 'x1684267976913'
+CAMERA_NAMESPACE = 'eye'  # the course's camera (section 4.5)
 WEB_PORT = 8042  # of every simulated module's page (a real module's is 80, which needs root)
 # A servo's PID gains accept 0 up to these (servo_sim's parameters, robot_view's sliders).
 GAIN_LIMITS = {'kp': 100.0, 'ki': 1000.0, 'kd': 10.0}
@@ -87,8 +88,11 @@ OWL_KIT = (
     KitModule('servo', 'tilt', 'servo_sim', '10.42.0.9', {'namespace': 'tilt', 'load_mass': 0.12,
                                                           'load_offset': 0.04, 'min_position': -1.3,
                                                           'max_position': 0.9}),
-    KitModule('camera', 'eye', 'camera_sim', '10.42.0.10', {'namespace': 'eye'}),
+    KitModule('camera', CAMERA_NAMESPACE, 'camera_sim', '10.42.0.10', {'namespace': CAMERA_NAMESPACE}),
 )
+# Each servo's goal range in the kit (its min_position, max_position), by namespace: pan, tilt.
+SERVO_RANGES = {m.namespace: (m.own_parameters['min_position'], m.own_parameters['max_position'])
+                for m in OWL_KIT if m.module_type == 'servo'}
 # The modules' subnet (a module's factory address is 10.42.0.7) and the student's PC on it.
 KIT_SUBNET = '10.42.0.0/24'
 STUDENT_ADDRESS = '10.42.0.1'

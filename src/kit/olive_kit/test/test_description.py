@@ -4,9 +4,11 @@ import ipaddress
 
 import pytest
 from olive_kit.description import (
+    CAMERA_NAMESPACE,
     GAIN_LIMITS,
     IMU_NAMESPACE,
     OWL_KIT,
+    SERVO_RANGES,
     address_table,
     node_name,
     page_host,
@@ -51,3 +53,9 @@ def test_the_tables_name_every_module():
 def test_gain_limits_are_the_pid_terms():
     assert set(GAIN_LIMITS) == {'kp', 'ki', 'kd'}
     assert all(v > 0 for v in GAIN_LIMITS.values())
+
+
+def test_the_servos_ranges_and_the_cameras_namespace_are_the_kits():
+    assert SERVO_RANGES == {'pan': (-1.5708, 1.5708), 'tilt': (-1.3, 0.9)}
+    assert OWL_KIT[3].topics()[f'/olive/camera/{CAMERA_NAMESPACE}/image/compressed'] == (
+        'sensor_msgs/msg/CompressedImage')

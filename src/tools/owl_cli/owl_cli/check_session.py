@@ -20,7 +20,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from olive_kit.description import IMU_NAMESPACE, OWL_KIT, node_name
+from olive_kit.description import CAMERA_NAMESPACE, IMU_NAMESPACE, SERVO_RANGES, node_name
 from owl_common.probe import Probe
 from owl_common.processes import RosProcess, RosSandbox
 from rcl_interfaces.srv import GetParameters, ListParameters, SetParameters
@@ -34,16 +34,13 @@ if TYPE_CHECKING:
     from rclpy.qos import QoSProfile
     from rclpy.topic_endpoint_info import TopicEndpointInfo
 
-_SERVO_RANGES = {m.namespace: (m.own_parameters['min_position'], m.own_parameters['max_position'])
-                 for m in OWL_KIT if m.module_type == 'servo'}
-_CAMERA = next(m for m in OWL_KIT if m.module_type == 'camera')
 IMU_TOPIC = f'/olive/imu/{IMU_NAMESPACE}/imu'
 IMU_COMMAND_TOPIC = f"/{node_name('imu', IMU_NAMESPACE)}/true_orientation"  # imu_sim's motion:=command
 CMD_VEL = '/turtle1/cmd_vel'
 COURSE_CMD_VEL = '/turtle/cmd_vel'  # section 4.3.2's text; turtlesim's turtle is turtle1
-CAMERA_TOPIC = f'/olive/camera/{_CAMERA.namespace}/image/compressed'
-PAN_RANGE = _SERVO_RANGES['pan']
-TILT_RANGE = _SERVO_RANGES['tilt']  # the camera bracket's
+CAMERA_TOPIC = f'/olive/camera/{CAMERA_NAMESPACE}/image/compressed'
+PAN_RANGE = SERVO_RANGES['pan']
+TILT_RANGE = SERVO_RANGES['tilt']  # the camera bracket's
 START_TIMEOUT = 15.0  # s for a student's node to show up in the graph
 STOP_TIMEOUT = 8.0  # s for Ctrl-C to end a student's node
 PROBE_NODE = 'owl_check'
@@ -151,7 +148,7 @@ class Session:
                 nodes.append(node_name('servo', servo))
         if 'camera' in modules:
             self.helper('olive_sim', 'camera_sim', '--ros-args', *NO_WEB_PAGE)
-            nodes.append(node_name('camera', _CAMERA.namespace))
+            nodes.append(node_name('camera', CAMERA_NAMESPACE))
         for name in nodes:
 
             def started(n: str = name) -> bool:

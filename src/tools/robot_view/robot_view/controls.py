@@ -4,7 +4,7 @@ What a page's `set_gains`, `torque` and `goal` commands may ask; each refusal is
 
 The limits are the kit's own: the gains' ranges are the kit's (olive_kit.description.GAIN_LIMITS,
 the ranges its parameters declare), a goal's range is the one the kit's launch gives each servo
-(olive_kit.description.OWL_KIT), so a goal outside it is refused here instead of clamped by the servo.
+(olive_kit.description.SERVO_RANGES), so a goal outside it is refused here instead of clamped by the servo.
 """
 
 from __future__ import annotations
@@ -13,13 +13,11 @@ import json
 import math
 from typing import Any
 
-from olive_kit.description import GAIN_LIMITS, OWL_KIT, node_name
+from olive_kit.description import GAIN_LIMITS, SERVO_RANGES, node_name
 from owl_web import codec
 from owl_web.codec import ApiError
 
-SERVO_BOUNDS = {m.namespace: (m.parameters['min_position'], m.parameters['max_position'])
-                for m in OWL_KIT if m.module_type == 'servo'}
-SERVOS = tuple(SERVO_BOUNDS)  # pan, tilt
+SERVOS = tuple(SERVO_RANGES)  # pan, tilt
 GAINS = tuple(GAIN_LIMITS)  # kp, ki, kd
 # The appendix 5.3 script's two goals (it publishes 1.57 for pi/2).
 APPENDIX_GOALS = (0.0, 1.57)
@@ -78,7 +76,7 @@ def goal_request(arguments: dict[str, Any]) -> tuple[str, float]:
     """
     codec.check_keys(arguments, ('servo', 'position'), required=('servo', 'position'))
     servo = servo_name(arguments)
-    low, high = SERVO_BOUNDS[servo]
+    low, high = SERVO_RANGES[servo]
     return servo, number(arguments['position'], f'the {servo} goal', low, high)
 
 
@@ -87,12 +85,12 @@ def appendix_goals(servo: str) -> list[float]:
 
     The tilt servo's top is 0.9 rad: the camera would hit the base.
     """
-    low, high = SERVO_BOUNDS[servo]
+    low, high = SERVO_RANGES[servo]
     return [min(high, max(low, goal)) for goal in APPENDIX_GOALS]
 
 
 def control_limits() -> dict[str, Any]:
     """What the page's controls offer: the gains' ranges, and each servo's range and goal buttons."""
     return {'gains': dict(GAIN_LIMITS),
-            'servos': {servo: {'range': list(SERVO_BOUNDS[servo]), 'goals': appendix_goals(servo)}
+            'servos': {servo: {'range': list(SERVO_RANGES[servo]), 'goals': appendix_goals(servo)}
                        for servo in SERVOS}}

@@ -16,7 +16,7 @@ from typing import Any
 
 from diagnostic_msgs.msg import DiagnosticStatus
 from geometry_msgs.msg import Quaternion
-from olive_kit.description import IMU_NAMESPACE, OWL_KIT, node_name
+from olive_kit.description import CAMERA_NAMESPACE, IMU_NAMESPACE, node_name
 from owl_common import quaternion
 from owl_common.polled_subscription import PolledSubscription
 from owl_web.codec import ApiError
@@ -45,8 +45,7 @@ from robot_view.plot_window import PlotWindow, PushCursor, sample_time
 
 IMU_TOPIC = f'/olive/imu/{IMU_NAMESPACE}/imu'
 TRUE_ORIENTATION_TOPIC = f"/{node_name('imu', IMU_NAMESPACE)}/true_orientation"
-_CAMERA_NAMESPACE = next(m.namespace for m in OWL_KIT if m.module_type == 'camera')
-CAMERA_TOPIC = f'/olive/camera/{_CAMERA_NAMESPACE}/image/compressed'
+CAMERA_TOPIC = f'/olive/camera/{CAMERA_NAMESPACE}/image/compressed'
 PLOT_SERIES = (*(f'{servo}_{what}' for servo in SERVOS for what in ('goal', 'position', 'effort')),
                'roll', 'pitch', 'yaw')
 PLOT_PUSH_EVERY = 0.1  # s: ten batches a second keep a 10 s plot moving smoothly
