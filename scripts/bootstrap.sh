@@ -126,21 +126,14 @@ set +u  # colcon's setup scripts read unset variables
 source "$ROOT/env.sh" >/dev/null  # its network-mode line is for interactive shells
 set -u
 BUILD_STAMP="$ROOT/install/.owl-src.sha256"
-# A build made with other interface generators is removed, not built over: colcon would leave the
-# files of generators no longer run (e.g. the C++ ones of builds before this choice) installed.
+# A build is removed, not built over, when the interface generators changed (colcon would leave the
+# files of generators no longer run installed, e.g. the C++ ones of builds before this choice) or a
+# package moved, appeared or went (a --symlink-install build links into the folders it was made from).
 INTERFACE_GENERATORS="$ROOT/scripts/python_interface_generators.cmake"
-GENERATORS_STAMP="$ROOT/install/.owl-interface-generators.sha256"
-generators_hash="$(sha256sum "$INTERFACE_GENERATORS" | cut -d' ' -f1)"
-if [ -d install ] && [ "$(cat "$GENERATORS_STAMP" 2>/dev/null)" != "$generators_hash" ]; then
-  echo "setup: the interface generators changed; removing the old build"
-  rm -rf build install
-fi
-# The same when a package moved, appeared or went: a --symlink-install build links into the source
-# folders it was made from, and colcon would keep the links of a package's old place.
-PACKAGES_STAMP="$ROOT/install/.owl-packages.sha256"
-packages_hash="$(find src -name package.xml -not -path '*/__pycache__/*' | sort | sha256sum | cut -d' ' -f1)"
-if [ -d install ] && [ "$(cat "$PACKAGES_STAMP" 2>/dev/null)" != "$packages_hash" ]; then
-  echo "setup: the workspace's packages moved or changed; removing the old build"
+LAYOUT_STAMP="$ROOT/install/.owl-build-layout.sha256"
+layout_hash="$( (sha256sum "$INTERFACE_GENERATORS"; find src -name package.xml | sort) | sha256sum | cut -d' ' -f1)"
+if [ -d install ] && [ "$(cat "$LAYOUT_STAMP" 2>/dev/null)" != "$layout_hash" ]; then
+  echo "setup: the interface generators or the workspace's packages changed; removing the old build"
   rm -rf build install
 fi
 src_hash="$( (find src -type f -not -path '*/__pycache__/*' -printf '%p %T@\n' | sort; cat requirements.txt) | sha256sum | cut -d' ' -f1)"
@@ -152,8 +145,7 @@ if [ "$(cat "$BUILD_STAMP" 2>/dev/null)" != "$src_hash" ]; then
   # The workspace's modules compiled once, for the same reason as the wheels' (--compile-bytecode).
   run_logged bytecode python -m compileall -q -j 0 src install
   echo "$src_hash" >"$BUILD_STAMP"
-  echo "$generators_hash" >"$GENERATORS_STAMP"
-  echo "$packages_hash" >"$PACKAGES_STAMP"
+  echo "$layout_hash" >"$LAYOUT_STAMP"
 fi
 
 steps=""
