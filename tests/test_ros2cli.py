@@ -10,6 +10,7 @@ import re
 import shutil
 import signal
 import subprocess
+import sys
 import time
 from concurrent.futures import ThreadPoolExecutor
 
@@ -571,6 +572,27 @@ def test_daemon_start_stop_status(cli):
     assert lines(ros2(cli, 'daemon', 'status')) == ['The daemon is running']
     assert lines(ros2(cli, 'daemon', 'stop')) == ['The daemon has been stopped']
     assert lines(ros2(cli, 'daemon', 'status')) == ['The daemon is not running']
+
+
+# What `ros2 daemon stop` does, with the domain's participants counted before and the moment it returns.
+STOP_AND_COUNT = '''
+from ros2cli.daemon.client import shutdown_daemon
+from ros2cli.node.settle import local_participants
+before = local_participants()
+shutdown_daemon()
+print(before, local_participants())
+'''
+
+
+def test_a_stopped_daemon_has_left_the_graph_when_stop_returns(cli):
+    # Else a daemon started next sees this one's participant, counts it, and misses a node of the
+    # graph when it leaves (the first answer of a just started daemon was partial).
+    for _ in range(3):
+        assert lines(ros2(cli, 'daemon', 'start')) == ['The daemon has been started']
+        counted = subprocess.run([sys.executable, '-c', STOP_AND_COUNT], env=cli.env, capture_output=True,
+                                 text=True, timeout=30, check=True)
+        before, after = map(int, counted.stdout.split())
+        assert after == before - 1, counted.stdout
 
 
 def test_first_call_starts_a_daemon_that_leaves_when_alone(cli):

@@ -1,5 +1,6 @@
 from ros2cli.node.settle import (
     MOST,
+    MOST_COUNTED,
     QUIET,
     QUIET_COMPLETE,
     UNKNOWN_NODE,
@@ -11,7 +12,7 @@ from ros2cli.node.settle import (
 STEP = 0.02
 
 
-def ticks(until: float = 2.0) -> list[float]:
+def ticks(until: float = 3.5) -> list[float]:
     return [round(i * STEP, 3) for i in range(int(until / STEP) + 1)]
 
 
@@ -53,11 +54,19 @@ def test_where_participants_cannot_be_counted_a_quiet_window_after_the_first_nod
 
 def test_nothing_but_itself_is_believed_only_at_the_bound():
     assert answered_at([(t, 'self', False, None) for t in ticks()]) == MOST
-    assert answered_at([(t, 'self', False, False) for t in ticks()]) == MOST
+
+
+def test_a_participant_bound_here_but_unseen_is_waited_for_up_to_the_longer_bound():
+    assert answered_at([(t, 'self', False, False) for t in ticks()]) == MOST_COUNTED
+    # A loaded machine: the second turtle's announcement repaired at 2.1 s, past MOST, is answered
+    # as soon as it is seen.
+    timeline = [(t, 'one' if t < 2.1 else 'two', True, t >= 2.1) for t in ticks()]
+    assert answered_at(timeline) == 2.1
 
 
 def test_a_graph_that_never_stops_changing_is_answered_at_the_bound():
     assert answered_at([(t, str(t), True, True) for t in ticks()]) == MOST
+    assert answered_at([(t, str(t), True, None) for t in ticks()]) == MOST
 
 
 PROC_NET_UDP = """   sl  local_address rem_address   st tx_queue rx_queue tr tm->when retrnsmt   uid

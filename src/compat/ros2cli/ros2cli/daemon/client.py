@@ -85,7 +85,7 @@ def wait_until(condition: Callable[[], object], timeout: float = READY_TIMEOUT) 
 
 
 def shutdown_daemon() -> bool:
-    """Ask the daemon to exit; True once its port is free again."""
+    """Ask the daemon to exit; True once its port is free again (after its participant left the graph)."""
     try:
         _proxy(READY_TIMEOUT).system.shutdown()
     except (OSError, xmlrpc.client.Error):

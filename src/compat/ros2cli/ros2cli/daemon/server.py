@@ -97,8 +97,13 @@ def serve(domain: int, listener: socket.socket, idle_timeout: float, alone_timeo
                 elif now - last_company > alone_timeout:
                     break
     finally:
-        server.server_close()
-        tear_down(node)
+        # The port closes last: `ros2 daemon stop` returns when it is free, and a daemon started
+        # next must not find this one's participant still in the graph (it would count it as one
+        # of the domain's participants, then miss another's node when this one's port went).
+        try:
+            tear_down(node)
+        finally:
+            server.server_close()
 
 
 def main() -> None:

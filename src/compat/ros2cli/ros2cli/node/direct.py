@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 from owl_common.graph import GraphQueries
 
-from ros2cli.node.settle import MOST, POLL, DiscoverySettling, graph_view, local_participants
+from ros2cli.node.settle import MOST, MOST_COUNTED, POLL, DiscoverySettling, graph_view, local_participants
 
 if TYPE_CHECKING:  # rclpy is imported when a node is made: `ros2 <command> -h` does not need it
     from rclpy.node import Node
@@ -24,7 +24,7 @@ def add_direct_node_arguments(parser: argparse.ArgumentParser) -> None:
         '--spin-time', type=float, default=None,
         help='Spin time in seconds to wait for discovery (only applies when not using an already '
              'running daemon); by default until discovery has settled, at most '
-             f'{MOST:.1f} s')
+             f'{MOST:.1f} s ({MOST_COUNTED:.1f} s while a participant of this machine is unseen)')
     parser.add_argument('-s', '--use-sim-time', action='store_true', help='Enable ROS simulation time')
 
 

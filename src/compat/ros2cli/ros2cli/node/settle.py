@@ -11,9 +11,10 @@ With ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST (how Owl Kit Lab runs unless a netw
 every participant of the domain is a process of this machine, bound to a discovery port that
 /proc/net/udp shows. The answer is given once as many participants have been seen (through the
 endpoints of their nodes) as there are such ports, every endpoint's node is named, and nothing has
-changed for QUIET_COMPLETE s. Elsewhere (other hosts can take part) it is given once a node that is
-not a hidden one is in sight and nothing has changed for QUIET s. A graph that never gets there is
-answered at MOST s, the bound on every wait.
+changed for QUIET_COMPLETE s; while a participant bound here is still unseen, the answer waits for
+it up to MOST_COUNTED s (on a loaded machine a lost announcement can be repaired later than MOST).
+Elsewhere (other hosts can take part) it is given once a node that is not a hidden one is in sight
+and nothing has changed for QUIET s. A graph that never gets there is answered at MOST s.
 """
 
 from __future__ import annotations
@@ -28,6 +29,7 @@ if TYPE_CHECKING:
 QUIET = 0.25  # s without a change, once another node is in sight (participants not countable)
 QUIET_COMPLETE = 0.05  # s without a change once every local participant is seen
 MOST = 1.2  # s: the answer then, whatever has arrived (lost endpoint data is repaired after 1 s)
+MOST_COUNTED = 3.0  # s: the bound while a participant that /proc/net/udp shows has not been seen
 POLL = 0.02  # s between two looks at the graph
 # rmw_fastrtps's LOCALHOST discovery reaches participants 0..31 of a domain (maxInitialPeersRange);
 # participant i listens for discovery on port 7410 + 250 * domain + 2 * i (the RTPS port formula).
@@ -39,10 +41,11 @@ class DiscoverySettling:
     """Feed it what the graph looks like at growing elapsed times; it says when to answer."""
 
     def __init__(self, quiet: float = QUIET, quiet_complete: float = QUIET_COMPLETE,
-                 most: float = MOST) -> None:
+                 most: float = MOST, most_counted: float = MOST_COUNTED) -> None:
         self.quiet = quiet
         self.quiet_complete = quiet_complete
         self.most = most
+        self.most_counted = most_counted
         self._seen: Hashable = None
         self._changed_at = 0.0
 
@@ -57,7 +60,7 @@ class DiscoverySettling:
             self._seen = graph
             self._changed_at = elapsed
         quiet_for = elapsed - self._changed_at
-        if elapsed >= self.most:
+        if elapsed >= (self.most_counted if complete is False else self.most):
             return True
         if complete is None:
             return others_seen and quiet_for >= self.quiet

@@ -78,7 +78,7 @@ class NodeStrategy:
 
 
 def wait_until_settled(daemon: Any) -> None:
-    """Wait, as a verb's own node does, until a young daemon's graph has settled (at most MOST s).
+    """Wait, as a verb's own node does, until a young daemon's graph has settled (ros2cli.node.settle).
 
     A daemon started a moment ago (by `ros2 daemon start` or the previous call) may still be
     discovering. Past MOST s of age a complete graph is answered at once (what trickles in right
