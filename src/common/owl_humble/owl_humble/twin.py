@@ -30,13 +30,14 @@ from std_msgs.msg import Bool, Float32
 
 from owl_humble import discovery_info as info
 from owl_humble import wire
-from owl_humble.graph_partition import DISCOVERY_TOPIC
+from owl_humble.graph_partition import DISCOVERY_TOPIC, JAZZY_GRAPH_PARTITION
 from owl_humble.launcher import ensure_discovery_bridge
 
 PREFIX = 'humble_twin'
 MODULE_TYPES = ('imu', 'servo')
 NAMESPACE_PATTERN = re.compile(r'[A-Za-z][A-Za-z0-9_]*')
 SERVO_SPEED = 3.0  # rad/s towards the goal, about the simulated servo's no-load speed
+BRIDGED_WITHIN = 20.0  # s for the local bridge to forward the twin's graph message before it says ready
 
 
 def ros_type(name: str) -> str:
@@ -189,6 +190,26 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     return args
 
 
+def wait_until_bridged(twin: Twin, timeout: float) -> bool:
+    """Wait until the bridge forwards the twin's graph message into our partition; False after timeout s.
+
+    The bridge may have been started a moment ago: "ready" means our tools can list the node.
+    """
+    forwarded = twin.participant.reader(DISCOVERY_TOPIC, wire.DISCOVERY_TYPE, wire.discovery_reader_qos(),
+                                        JAZZY_GRAPH_PARTITION)
+    deadline = time.monotonic() + timeout
+    try:
+        while time.monotonic() < deadline:
+            for sample in wire.take(forwarded):
+                layout = info.layout_of(sample.data) if sample.alive else None
+                if layout is not None and info.decode(sample.data, layout).gid == twin.participant.gid:
+                    return True
+            time.sleep(0.02)
+        return False
+    finally:
+        forwarded.__del__()
+
+
 def main(argv: list[str] | None = None) -> None:
     """The humble_twin command: be the module until SIGINT or SIGTERM, then print the check's summary."""
     args = parse_args(sys.argv[1:] if argv is None else argv)
@@ -204,6 +225,9 @@ def main(argv: list[str] | None = None) -> None:
         # In open mode our tools start the bridge, as they do for a real module; in private mode
         # they do not (no real module can be there), so this stand-in starts it for its own demo.
         ensure_discovery_bridge(local_twin=True)
+        if not wait_until_bridged(twin, BRIDGED_WITHIN):
+            say(f'warning: the discovery bridge did not forward this node within {BRIDGED_WITHIN:.0f} s; '
+                'our tools may not list it')
     say(f'ready: node /{twin.node.name} ({args.module}, ROS 2 Humble on the wire), participant '
         f'{twin.participant.gid.hex()} in domain {twin.participant.domain_id}')
     next_tick = time.monotonic()
