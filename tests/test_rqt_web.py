@@ -11,14 +11,13 @@ import time
 from typing import Any
 
 import numpy as np
-import pytest
 from geometry_msgs.msg import Twist
 from PIL import Image as PilImage
 from ros_harness import wait_for_messages
 from sensor_msgs.msg import Image
 from std_srvs.srv import Trigger
 from turtlesim.msg import Pose
-from web_harness import Rqt, SocketClosed, http
+from web_harness import Rqt, http
 
 PLUGINS = ('Node Graph', 'Message Publisher', 'Service Caller', 'Image View')
 CAMERA_TOPIC = '/olive/camera/eye/image/compressed'
@@ -96,12 +95,10 @@ def test_page_node_graph_and_ctrl_c(ros):
             'message of 100065 bytes is over the limit of 65536'
         socket.send({'type': 'unsubscribe', 'id': 'all'})
     with rqt.socket() as socket:  # a message too big to read at all ends its connection, only that one
-        socket.send('x' * (2 << 20))
-        with pytest.raises(SocketClosed) as closed:
-            socket.receive_matching(lambda m: False, 'the connection to close')
         # The server closes with the protocol's "message too big" (1009); with the rest of the message
-        # still unread, the kernel may reset the connection before the client reads that (1006).
-        assert closed.value.code in (1009, 1006)
+        # still unread, the kernel may reset the connection before the client reads that (1006), or
+        # while the client is still sending it (the send fails: "Connection lost").
+        assert socket.close_code_after('x' * (2 << 20)) in (1009, 1006, None)
     with rqt.socket() as socket:
         socket.subscribe('again', 'graph')
         socket.receive_matching(lambda m: m['id'] == 'again' and m['type'] == 'update', 'the graph again')

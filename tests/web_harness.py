@@ -187,6 +187,22 @@ class PageSocket:
             if wanted(message):
                 return message
 
+    def close_code_after(self, text: str) -> int | None:
+        """Send text and read until the server closes: its close code, or None if the send itself failed.
+
+        A server that closes on a message over its limit may reset the connection while the client
+        is still writing it: aiohttp's send then fails with "Connection lost".
+        """
+        try:
+            self.send(text)
+        except ConnectionError:
+            return None
+        while True:
+            try:
+                self.receive()
+            except SocketClosed as closed:
+                return closed.code
+
     def subscribe(self, subscription_id: int | str, channel: str, **params: Any) -> None:
         self.send({'type': 'subscribe', 'id': subscription_id, 'channel': channel, **params})
 
