@@ -10,8 +10,11 @@ from rclpy.node import Node
 from std_srvs.srv import Trigger
 
 ANSWER_TIMEOUT = 5.0    # s for a servo to answer a torque request once its service is there
-DISABLE_TIMEOUT = 2.0   # s at shutdown: well within the 5 s ros2 launch waits before it escalates to SIGTERM
-GOALS_ARRIVED_TIMEOUT = 0.5  # s at shutdown for the servos to have every goal sent before it
+# At shutdown, all of it within the 5 s that ros2 launch waits before it escalates to SIGTERM: first
+# up to GOALS_ARRIVED_TIMEOUT s for the servos to have every goal sent, then DISABLE_TIMEOUT s for
+# their answers (a loaded machine answered after more than 2 s).
+GOALS_ARRIVED_TIMEOUT = 0.5  # s
+DISABLE_TIMEOUT = 3.5  # s
 WAITING_EVERY = 5.0     # s between two "waiting for service" lines
 
 
@@ -55,9 +58,10 @@ class ServoTorque:
         not a topic's against a service's, so on a busy machine a goal sent just before could reach
         a servo after its torque went off, and the servo warns that it ignored it.
         """
+        goals_sent_by = time.monotonic() + GOALS_ARRIVED_TIMEOUT
         for publisher in self.node.publishers:
             if any(publisher.topic_name.startswith(f'/olive/servo/{servo}/') for servo in self.enabled):
-                publisher.wait_for_all_acked(Duration(seconds=GOALS_ARRIVED_TIMEOUT))
+                publisher.wait_for_all_acked(Duration(seconds=max(0.0, goals_sent_by - time.monotonic())))
         clients = {servo: self.disable_clients[servo] for servo in self.enabled}
         for servo, response in self._call(clients, DISABLE_TIMEOUT).items():
             if response is not None and response.success:
