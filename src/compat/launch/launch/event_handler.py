@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
+from launch.launch_description_entity import LaunchDescriptionEntity
 from launch.some_entities_type import SomeEntitiesType
 
 if TYPE_CHECKING:
@@ -57,3 +58,15 @@ class CallbackEventHandler(BaseEventHandler):
     def handle(self, event: Event, context: LaunchContext) -> SomeEntitiesType | None:
         super().handle(event, context)
         return self._callback(event, context)
+
+
+def reaction_callable(on_event: SomeEntitiesType | Callable[[Event, LaunchContext], SomeEntitiesType | None]
+                      ) -> Callable[[Event, LaunchContext], SomeEntitiesType | None]:
+    """A handler's reaction (entities, or a callable (event, context)), checked once, as a callable."""
+    if callable(on_event) and not isinstance(on_event, LaunchDescriptionEntity):
+        return on_event
+    entities = [on_event] if isinstance(on_event, LaunchDescriptionEntity) else list(on_event)
+    for entity in entities:
+        if not isinstance(entity, LaunchDescriptionEntity):
+            raise TypeError(f"expected launch description entities, got '{type(entity).__name__}'")
+    return lambda _event, _context: entities

@@ -11,7 +11,6 @@ PACKAGES = ('launch', 'launch_xml', 'launch_yaml')
 # The imports that run inside a function, each because a top-level one would close a cycle.
 LAZY_IMPORTS = {
     ('launch.utilities.normalize_to_list_of_substitutions_impl', 'launch.substitutions.text_substitution'),
-    ('launch.event_handlers.on_action_event_base', 'launch.actions.execute_process'),
     ('launch.launch_description', 'launch.actions.declare_launch_argument'),
 }
 

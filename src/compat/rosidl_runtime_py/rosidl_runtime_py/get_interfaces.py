@@ -3,7 +3,7 @@
 import os
 from functools import cache
 
-from rosidl_runtime_py.utilities import KINDS
+KINDS = ('msg', 'srv', 'action')  # the interface kinds an ament index entry can name
 
 
 @cache

@@ -10,7 +10,8 @@ from typing import Any
 
 from owl_common.hints import did_you_mean
 
-KINDS = ('msg', 'srv', 'action')
+from rosidl_runtime_py.get_interfaces import KINDS, interface_index
+
 KIND_WORDS = {'msg': 'message', 'srv': 'service', 'action': 'action'}
 
 
@@ -40,7 +41,6 @@ def canonical_type(type_name: str, kind: str) -> str:
 
 def why_not_found(package: str, kind: str, name: str) -> str:
     """A one-line reason why package/kind/name is not installed, with the closest names."""
-    from rosidl_runtime_py.get_interfaces import interface_index
     index = interface_index()
     if package not in index:
         return f"unknown package '{package}'{did_you_mean(package, index)}"

@@ -17,8 +17,7 @@ from typing import TYPE_CHECKING, Any
 from launch.action import Action
 from launch.actions.shutdown_action import Shutdown
 from launch.descriptions.executable import Executable
-from launch.event_handler import CallbackEventHandler
-from launch.event_handlers.on_process_exit import OnProcessExit
+from launch.event_handler import CallbackEventHandler, reaction_callable
 from launch.events.process.process_exited import ProcessExited
 from launch.events.process.process_started import ProcessStarted
 from launch.events.process.process_stderr import ProcessStderr
@@ -282,7 +281,9 @@ class ExecuteProcess(Action):
             matcher=lambda event: isinstance(event, SignalProcess) and event.process_matcher(self),
             callback=lambda event, _ctx: self._send_signal(event.signal)))  # type: ignore[attr-defined]
         if self.on_exit is not None:
-            context.register_event_handler(OnProcessExit(target_action=self, on_exit=self.on_exit))
+            context.register_event_handler(CallbackEventHandler(
+                matcher=lambda event: isinstance(event, ProcessExited) and event.action is self,
+                callback=reaction_callable(self.on_exit)))
         context._process_actions.append(self)
         loop = asyncio.get_running_loop()
         self._future = loop.create_future()

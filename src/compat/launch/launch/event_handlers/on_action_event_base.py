@@ -5,7 +5,8 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING, TypeAlias
 
-from launch.event_handler import BaseEventHandler
+from launch.actions.execute_process import ExecuteProcess
+from launch.event_handler import BaseEventHandler, reaction_callable
 from launch.events.process.running_process_event import RunningProcessEvent
 from launch.launch_description_entity import LaunchDescriptionEntity
 from launch.some_entities_type import SomeEntitiesType
@@ -26,18 +27,6 @@ TargetAction: TypeAlias = 'LaunchDescriptionEntity | Callable[[Action], object] 
 ActionEventType: TypeAlias = 'type[ExecutionComplete] | type[RunningProcessEvent]'
 
 
-def _entities_or_callable(on_event: SomeActionsOrCallable
-                          ) -> Callable[[Event, LaunchContext], SomeEntitiesType | None]:
-    """Check a reaction once, at construction, and turn it into a callable."""
-    if callable(on_event) and not isinstance(on_event, LaunchDescriptionEntity):
-        return on_event
-    entities = [on_event] if isinstance(on_event, LaunchDescriptionEntity) else list(on_event)
-    for entity in entities:
-        if not isinstance(entity, LaunchDescriptionEntity):
-            raise TypeError(f"expected launch description entities, got '{type(entity).__name__}'")
-    return lambda _event, _context: entities
-
-
 def _action_matcher(target_action: TargetAction, *, processes_only: bool = False
                     ) -> Callable[[Action], bool]:
     """Which actions' events a handler takes: all (None), one action, or those a callable accepts.
@@ -49,9 +38,6 @@ def _action_matcher(target_action: TargetAction, *, processes_only: bool = False
         return lambda _action: True
     if isinstance(target_action, LaunchDescriptionEntity):
         if processes_only:
-            # Lazy: ExecuteProcess registers an OnProcessExit for on_exit, so a top-level import is a cycle.
-            from launch.actions.execute_process import ExecuteProcess
-
             if not isinstance(target_action, ExecuteProcess):
                 raise TypeError("target_action must be an ExecuteProcess (or Node) action, a callable "
                                 f"taking one, or None; got '{type(target_action).__name__}'")
@@ -72,7 +58,7 @@ class OnActionEventBase(BaseEventHandler):
         super().__init__(
             matcher=lambda event: isinstance(event, event_type) and action_matches(event.action),
             handle_once=handle_once)
-        self._on_event = _entities_or_callable(on_event)
+        self._on_event = reaction_callable(on_event)
 
     def handle(self, event: Event, context: LaunchContext) -> SomeEntitiesType | None:
         super().handle(event, context)

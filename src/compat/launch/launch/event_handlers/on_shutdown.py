@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from launch.event_handler import BaseEventHandler
-from launch.event_handlers.on_action_event_base import SomeActionsOrCallable, _entities_or_callable
+from launch.event_handler import BaseEventHandler, reaction_callable
+from launch.event_handlers.on_action_event_base import SomeActionsOrCallable
 from launch.events.shutdown import Shutdown
 from launch.some_entities_type import SomeEntitiesType
 
@@ -17,7 +17,7 @@ if TYPE_CHECKING:
 class OnShutdown(BaseEventHandler):
     def __init__(self, *, on_shutdown: SomeActionsOrCallable, handle_once: bool = False) -> None:
         super().__init__(matcher=lambda event: isinstance(event, Shutdown), handle_once=handle_once)
-        self._on_shutdown = _entities_or_callable(on_shutdown)
+        self._on_shutdown = reaction_callable(on_shutdown)
 
     def handle(self, event: Event, context: LaunchContext) -> SomeEntitiesType | None:
         super().handle(event, context)
