@@ -95,13 +95,17 @@ class BrowserPage:
         is, so a test run does not dirty the tree when the page did not change; OWL_SCREENSHOTS=always
         writes it anyway (after a change too small for that test, say).
         """
-        SCREENSHOTS.mkdir(parents=True, exist_ok=True)
-        path = SCREENSHOTS / f'{name}.png'
-        picture = self.page.screenshot(full_page=full_page)
-        if os.environ.get('OWL_SCREENSHOTS') == 'always' or not path.exists() \
-                or not nearly_the_same(path.read_bytes(), picture):
-            path.write_bytes(picture)
-        return path
+        return keep_screenshot(name, self.page.screenshot(full_page=full_page))
+
+
+def keep_screenshot(name: str, picture: bytes) -> Path:
+    """Write docs/screenshots/<name>.png of a PNG picture unless the one there hardly differs."""
+    SCREENSHOTS.mkdir(parents=True, exist_ok=True)
+    path = SCREENSHOTS / f'{name}.png'
+    if os.environ.get('OWL_SCREENSHOTS') == 'always' or not path.exists() \
+            or not nearly_the_same(path.read_bytes(), picture):
+        path.write_bytes(picture)
+    return path
 
 
 # The share of pixels that may differ visibly in "the same" picture: two runs of robot_view.png (the

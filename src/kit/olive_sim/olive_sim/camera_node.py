@@ -7,19 +7,36 @@ import time
 
 from owl_common import quaternion as quat
 from owl_common.quaternion import Quaternion
-from rcl_interfaces.msg import FloatingPointRange, IntegerRange
+from rcl_interfaces.msg import FloatingPointRange, IntegerRange, SetParametersResult
 from rclpy.parameter import Parameter
 from rclpy.qos import DurabilityPolicy, QoSProfile
 from rclpy.serialization import deserialize_message, serialize_message
 from sensor_msgs.msg import CameraInfo, CompressedImage, JointState
+from std_msgs.msg import Header, String
 
-from olive_sim.camera_render import CameraRenderer
+from olive_sim.camera_render import NO_RED_LANDMARKS, CameraRenderer, build_panorama
 from olive_sim.imu_output import ImuOutput, reliability
 from olive_sim.module_node import OliveModule, describe, run_module
+from olive_sim.scene_draw import SceneView
+from olive_sim.scene_model import (
+    BALL_ELEVATION_RANGE,
+    BALL_MAX_SPEED,
+    BALL_START,
+    GESTURE_NAMES,
+    NO_GESTURE,
+    SCENES,
+    BallPath,
+    gesture_named,
+    person_directions,
+    wrap,
+)
 from olive_sim.serialized import STAMP_MARKER, SerializedTemplate, joint_state_position
 
 # Horizontal field of view of the vendor's shipped calibration (K of calibration/ost.yaml).
 DEFAULT_FOV_DEG = 48.66
+# The gesture app of the real camera (a vendor example) classifies every frame it can keep up with;
+# the simulated one answers for every TPU_EVERY-th frame (10 Hz at the default 30 fps).
+TPU_EVERY = 3
 
 
 class CameraModule(OliveModule):
@@ -46,9 +63,18 @@ class CameraModule(OliveModule):
             'JointState topic of the pan servo the camera sits on.', True))
         self.declare_parameter('tilt_joint_topic', '/olive/servo/tilt/joint', describe(
             'JointState topic of the tilt servo the camera sits on.', True))
+        self._declare_scene_parameters()
         value = self.get_parameter
-        self.renderer = CameraRenderer(value('width').value, value('height').value,
-                                       math.radians(value('horizontal_fov').value))
+        self.scene = value('scene').value
+        if self.scene not in SCENES:
+            raise ValueError(f"unknown scene '{self.scene}': expected one of {', '.join(SCENES)}")
+        self.ball = BallPath(value('ball_azimuth').value, value('ball_elevation').value,
+                             value('ball_speed').value, time.monotonic())
+        self.gesture = gesture_named(value('gesture').value)
+        self.recognised = NO_GESTURE  # what the gesture app says: its last recognised gesture
+        self.renderer = CameraRenderer(
+            value('width').value, value('height').value, math.radians(value('horizontal_fov').value),
+            panorama=None if self.scene == 'landmarks' else build_panorama(NO_RED_LANDMARKS))
         self.frame_id = value('frame_id').value
         self.pan = 0.0
         self.tilt = 0.0
@@ -68,14 +94,63 @@ class CameraModule(OliveModule):
                                                        raw=True)
                        for topic, callback in (('pan_joint_topic', self._on_pan),
                                                ('tilt_joint_topic', self._on_tilt))]
+        if self.scene == 'person':  # the camera runs its gesture app (a vendor example)
+            tpu = QoSProfile(depth=1)
+            self.tpu_publisher = self.create_publisher(CompressedImage, self.topic('tpu/compressed'), tpu)
+            self.gesture_publisher = self.create_publisher(String, self.topic('tpu/gesture'), tpu)
+        self.add_on_set_parameters_callback(self._check_parameters)
         self.add_post_set_parameters_callback(self._apply_parameters)
         self.output = ImuOutput(self, self.topic, f'{namespace}_body_link', self.orientation)
         self.frame_thread = self.create_periodic(value('fps').value, self.publish_frame, 'frames')
 
+    def _declare_scene_parameters(self) -> None:
+        self.declare_parameter('scene', 'landmarks', describe(
+            f"What stands around the robot: {', '.join(SCENES)} (the landmarks, and a red ball to track, "
+            'or a person making gestures).', True))
+        self.declare_parameter('ball_speed', 0.1, describe(
+            "Speed of the ball along its path around the robot [rad/s of azimuth]; 0 keeps it still.",
+            floating_point_range=[FloatingPointRange(from_value=0.0, to_value=BALL_MAX_SPEED)]))
+        self.declare_parameter('ball_azimuth', BALL_START[0], describe(
+            'Where the ball is put: its azimuth [rad], 0 straight ahead, positive to the left; it moves '
+            'on from there.',
+            floating_point_range=[FloatingPointRange(from_value=-math.pi, to_value=math.pi)]))
+        low, high = BALL_ELEVATION_RANGE
+        self.declare_parameter('ball_elevation', BALL_START[1], describe(
+            'Where the ball is put: its elevation [rad] above the horizon; it moves on from there.',
+            floating_point_range=[FloatingPointRange(from_value=low, to_value=high)]))
+        self.declare_parameter('gesture', GESTURE_NAMES[0], describe(
+            f"The person's gesture in the person scene: {', '.join(GESTURE_NAMES)}."))
+
+    def _check_parameters(self, parameters: list[Parameter]) -> SetParametersResult:
+        for p in parameters:
+            if p.name == 'gesture' and p.value not in GESTURE_NAMES:
+                return SetParametersResult(successful=False, reason=(
+                    f"unknown gesture '{p.value}': expected one of {', '.join(GESTURE_NAMES)}"))
+            if p.name.startswith('ball_') and not math.isfinite(p.value):
+                return SetParametersResult(successful=False, reason=f'{p.name} must be a finite number')
+        return SetParametersResult(successful=True)
+
     def _apply_parameters(self, parameters: list[Parameter]) -> None:
+        now = time.monotonic()
         for p in parameters:
             if p.name == 'jpeg_quality':
                 self.jpeg_quality = p.value
+            elif p.name == 'gesture':
+                self.gesture = gesture_named(p.value)
+            elif p.name == 'ball_speed':
+                self.ball = self.ball.moved(now, speed=p.value)
+            elif p.name == 'ball_azimuth':
+                self.ball = self.ball.moved(now, azimuth=wrap(p.value))
+            elif p.name == 'ball_elevation':
+                self.ball = self.ball.moved(now, elevation=p.value)
+
+    def scene_view(self, t: float) -> SceneView | None:
+        """What stands in front of the panorama at time t (time.monotonic()); None in the landmarks scene."""
+        if self.scene == 'ball':
+            return SceneView(ball=self.ball.at(t))
+        if self.scene == 'person':
+            return SceneView(person=person_directions(self.gesture))
+        return None
 
     def _poll_joints(self) -> None:
         for joint in self.joints:
@@ -131,11 +206,32 @@ class CameraModule(OliveModule):
         msg = CompressedImage(format='jpeg')
         msg.header.stamp.sec, msg.header.stamp.nanosec = divmod(now, 1_000_000_000)
         msg.header.frame_id = self.frame_id
-        msg.data = self.renderer.jpeg(self.pan, self.tilt, caption, self.jpeg_quality)
+        msg.data = self.renderer.jpeg(self.pan, self.tilt, caption, self.jpeg_quality,
+                                      self.scene_view(time.monotonic()))
         self.image_publisher.publish(msg)
         info = self.camera_info.fill(now, ())
         self.info_publisher.publish(info)
         self.frame_traffic.sent += len(msg.data) + len(info) + 64  # 64: the image's header and format
+        if self.scene == 'person' and self.frames % TPU_EVERY == 0:
+            self._run_gesture_app(msg.header)
+
+    def _run_gesture_app(self, header: Header) -> None:
+        """What the camera's gesture app publishes for the frame just made: skeleton image and gesture.
+
+        As the app, it classifies a gesture only when it sees all 17 keypoints, and keeps saying the
+        last one it recognised (none before the first).
+        """
+        placed = self.renderer.placed
+        r = self.renderer
+        visible = {} if placed is None else {
+            name: point for name, point in placed.keypoints.items()
+            if 0 <= point[0] < r.width and 0 <= point[1] < r.height}
+        if placed is not None and placed.inside(r.width, r.height):
+            self.recognised = self.gesture.label
+        annotated = CompressedImage(header=header, format='jpeg')
+        annotated.data = r.annotated_jpeg(visible, self.jpeg_quality)
+        self.tpu_publisher.publish(annotated)
+        self.gesture_publisher.publish(String(data=self.recognised))
 
     def imu_orientation(self) -> Quaternion | None:
         """The orientation the camera's IMU last published (None before its first reading)."""

@@ -11,9 +11,13 @@ from __future__ import annotations
 import io
 import math
 import re
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
+
+from olive_sim.scene_draw import Placed, SceneView, draw_ball, draw_person, draw_skeleton
+from olive_sim.scene_model import BALL_RADIUS, PERSON_DISTANCE, Pinhole
 
 PANORAMA_WIDTH = 3600   # 0.1 deg per column
 PANORAMA_HEIGHT = 1800  # 0.1 deg per row
@@ -36,6 +40,8 @@ LANDMARKS = (
     (225.0, (240, 140, 20), 'G'),   # orange
     (315.0, (245, 245, 245), 'H'),  # white
 )
+# The ball's and the person's scenes: no red but the ball's (the tower straight ahead turns slate grey).
+NO_RED_LANDMARKS = ((0.0, (110, 115, 125), 'A'), *LANDMARKS[1:])
 LANDMARK_WIDTH = 6.0      # deg of azimuth
 LANDMARK_BOTTOM = -8.0    # deg of elevation
 LANDMARK_TOP = 20.0
@@ -53,8 +59,8 @@ def _font(size: int) -> Font:
         return ImageFont.load_default()
 
 
-def build_panorama() -> np.ndarray:
-    """The scene as an RGB array PANORAMA_HEIGHT x PANORAMA_WIDTH."""
+def build_panorama(landmarks: Sequence[tuple[float, tuple[int, int, int], str]] = LANDMARKS) -> np.ndarray:
+    """The scene, with these landmarks, as an RGB array PANORAMA_HEIGHT x PANORAMA_WIDTH."""
     h, w = PANORAMA_HEIGHT, PANORAMA_WIDTH
     elevation = np.linspace(90.0, -90.0, h, dtype=np.float32)[:, None]
     sky = np.clip(elevation / 90.0, 0, 1)
@@ -78,7 +84,7 @@ def build_panorama() -> np.ndarray:
         draw.line([(0, y), (w, y)], fill=(50, 70, 40), width=2)
     draw.line([(0, horizon), (w, horizon)], fill=(40, 40, 40), width=3)
     font = _font(60)
-    for azimuth, colour, label in LANDMARKS:
+    for azimuth, colour, label in landmarks:
         left = round((azimuth - LANDMARK_WIDTH / 2) * column)
         right = round((azimuth + LANDMARK_WIDTH / 2) * column)
         top = round(horizon - LANDMARK_TOP * row)
@@ -207,6 +213,7 @@ class CameraRenderer:
 
     def __init__(self, width: int = 640, height: int = 480, horizontal_fov: float = math.radians(48.7),
                  panorama: np.ndarray | None = None) -> None:
+        """panorama: the scene behind everything (default: build_panorama())."""
         if width < 16 or height < 16:
             raise ValueError(f'image size {width}x{height} is too small (at least 16x16)')
         if not 0.05 < horizontal_fov < math.radians(170):
@@ -215,6 +222,7 @@ class CameraRenderer:
         self.width, self.height = width, height
         self.fx = self.fy = focal_length(width, horizontal_fov)
         self.cx, self.cy = (width - 1) / 2, (height - 1) / 2
+        self.pinhole = Pinhole(self.fx, self.fy, self.cx, self.cy)
         pano = build_panorama() if panorama is None else panorama
         # Two copies side by side: a column shifted by pan never needs a modulo.
         packed = np.zeros((PANORAMA_HEIGHT, 2 * PANORAMA_WIDTH, 4), dtype=np.uint8)
@@ -226,6 +234,8 @@ class CameraRenderer:
         self._tilt: float | None = None
         self._lookups = 0  # lookups built so far: a frame's view is (pan shift, this count)
         self._frame_view: tuple[int, int] | None = None
+        self._frame_scene: tuple[object, ...] | None = None
+        self.placed: Placed | None = None  # where the last jpeg() drew its scene's ball and person
         self._rays: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
         self._caption = CaptionWriter(_font(16))
         self._jpeg = SplicedJpeg(height, CAPTION_AT[1] + self._caption.line_height + CAPTION_MARGIN[1])
@@ -261,23 +271,61 @@ class CameraRenderer:
             self._rebuild(tilt)
         return round(pan * PANORAMA_WIDTH / (2 * math.pi)) % PANORAMA_WIDTH, self._lookups
 
-    def render(self, pan: float, tilt: float) -> np.ndarray:
-        """RGB array height x width x 3 of the view at pan, tilt (a new array)."""
+    def place(self, scene: SceneView, pan: float, tilt: float) -> Placed:
+        """Where the scene's ball and person are in the view at pan, tilt."""
+        ball = None
+        if scene.ball is not None:
+            centre = self.pinhole.project(*scene.ball, pan, tilt)
+            if centre is not None:
+                ball = (*centre, self.fx * math.tan(BALL_RADIUS))
+        keypoints = {}
+        for name, direction in (scene.person or {}).items():
+            point = self.pinhole.project(*direction, pan, tilt)
+            if point is not None:
+                keypoints[name] = point
+        return Placed(ball, keypoints, self.fx / PERSON_DISTANCE)
+
+    def render(self, pan: float, tilt: float, scene: SceneView | None = None) -> np.ndarray:
+        """RGB array height x width x 3 of the view at pan, tilt, with the scene drawn (a new array)."""
         shift, _ = self._view_of(pan, tilt)
         # Every index is in range by construction, so 'clip' only spares numpy's bounds check.
-        packed = self._pixels[shift:].take(self._index, mode='clip')
-        return packed.view(np.uint8).reshape(self.height, self.width, 4)[..., :3].copy()
+        frame = self._pixels[shift:].take(self._index, mode='clip')
+        if scene is not None:
+            self._draw(frame, self.place(scene, pan, tilt))
+        return frame.view(np.uint8).reshape(self.height, self.width, 4)[..., :3].copy()
 
-    def jpeg(self, pan: float, tilt: float, caption: str, quality: int = 80) -> bytes:
-        """The view with `caption` (frame counter and time) in the top-left corner, as JPEG."""
+    @staticmethod
+    def _draw(frame: np.ndarray, placed: Placed) -> None:
+        if placed.keypoints:
+            draw_person(frame, placed.keypoints, placed.person_scale)
+        if placed.ball is not None:
+            draw_ball(frame, *placed.ball)
+
+    def jpeg(self, pan: float, tilt: float, caption: str, quality: int = 80,
+             scene: SceneView | None = None) -> bytes:
+        """The view with the scene drawn and `caption` (frame counter and time) in the top-left corner.
+
+        Where the scene's things were drawn is kept as .placed (None without a scene).
+        """
         view = self._view_of(pan, tilt)
-        unchanged = view == self._frame_view
-        # The same view: only the rows under the caption need their clean pixels back.
+        placed = self.place(scene, pan, tilt) if scene is not None else None
+        signature = placed.signature if placed is not None else None
+        unchanged = view == self._frame_view and signature == self._frame_scene
+        # The same view: only the rows under the caption need their clean pixels back (and the
+        # scene drawn again over them: the same pixels below, where they are already).
         rows = self._jpeg.top if unchanged else self.height
         np.take(self._pixels[view[0]:], self._index[:rows], out=self._frame[:rows], mode='clip')
-        self._frame_view = view
+        if placed is not None:
+            self._draw(self._frame, placed)
+        self._frame_view, self._frame_scene, self.placed = view, signature, placed
         self._caption.draw(self._frame, caption, *CAPTION_AT)
         return self._jpeg.encode(self._frame, quality, unchanged)
+
+    def annotated_jpeg(self, keypoints: Mapping[str, tuple[float, float]], quality: int = 80) -> bytes:
+        """The last frame jpeg() made, with the skeleton of keypoints drawn as the gesture app does."""
+        frame = self._frame.copy()
+        draw_skeleton(frame, keypoints)
+        return encode_jpeg(frame, quality)
 
 
 def find_colour(rgb: np.ndarray, colour: tuple[int, int, int],

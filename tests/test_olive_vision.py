@@ -1,0 +1,185 @@
+"""olive_vision over real DDS against the simulated kit: the head tracks the red ball, answers gestures.
+
+The numbers of section 4.6's tracker come from the camera's own images: where the ball is in each
+one, against the time the tracker started tracking (both on the ROS clock).
+"""
+
+import math
+
+import cv2
+import numpy as np
+import pytest
+from olive_sim.camera_render import find_colour
+from olive_sim.scene_draw import BALL_COLOUR
+from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+from ros_harness import wait_for_messages, wait_until
+from sensor_msgs.msg import CompressedImage
+from servo_helpers import assert_clean_servo, collect, start_servo
+from std_msgs.msg import String
+from turtlesim.msg import Pose
+from web_harness import keep_screenshot
+
+IMAGE_TOPIC = '/olive/camera/eye/image/compressed'
+GESTURE_TOPIC = '/olive/camera/eye/tpu/gesture'
+CAMERA = '/olive_camera_eye_dcm_srv'
+CAMERA_QOS = QoSProfile(depth=100, durability=DurabilityPolicy.VOLATILE,
+                        reliability=ReliabilityPolicy.BEST_EFFORT)
+WIDTH = 640
+
+
+def rgb_of(msg: CompressedImage) -> np.ndarray:
+    bgr = cv2.imdecode(np.frombuffer(bytes(msg.data), np.uint8), cv2.IMREAD_COLOR)
+    assert bgr is not None, 'not a JPEG'
+    return cv2.cvtColor(bgr, cv2.COLOR_BGR2RGB)
+
+
+def png(msg: CompressedImage) -> bytes:
+    """A JPEG image message as PNG bytes, for the documentation's screenshots."""
+    return cv2.imencode('.png', cv2.cvtColor(rgb_of(msg), cv2.COLOR_RGB2BGR))[1].tobytes()
+
+
+def ball_error(msg: CompressedImage) -> float | None:
+    """How far the ball is from the image's middle, as a share of the width; None if not in sight."""
+    rgb = rgb_of(msg)
+    ball = find_colour(rgb, BALL_COLOUR)
+    if ball is None:
+        return None
+    height, width = rgb.shape[:2]
+    return math.hypot(ball[0] - (width - 1) / 2, ball[1] - (height - 1) / 2) / width
+
+
+def stamp(msg: CompressedImage) -> float:
+    return msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
+
+
+def start_tracking(ros, **ball):
+    servos = {name: start_servo(ros, name) for name in ('pan', 'tilt')}
+    args = [arg for key, value in {'scene': 'ball', **ball}.items() for arg in ('-p', f'{key}:={value}')]
+    ros.run('olive_sim', 'camera_sim', '--ros-args', *args)
+    images = ros.probe.collect(CompressedImage, IMAGE_TOPIC, CAMERA_QOS)
+    wait_for_messages(images, 3, timeout=60)
+    tracker = ros.run('olive_vision', 'track_object')
+    [line] = tracker.wait_for(r'\[(\d+\.\d+)\] \[track_object\]: red ball at .* tracking it$', timeout=60)
+    return servos, images, tracker, float(line.group(1))
+
+
+def test_the_tracker_centres_a_still_ball_from_a_0_4_rad_offset_within_2_s(ros):
+    servos, images, tracker, started = start_tracking(ros, ball_speed=0.0, ball_azimuth=0.4,
+                                                      ball_elevation=-0.1)
+    wait_until(lambda: images and stamp(images[-1]) > started + 4.0, 30, '4 s of images')
+    errors = [(stamp(m) - started, ball_error(m)) for m in list(images) if stamp(m) >= started]
+    first = errors[0][1]
+    assert first is not None, errors[:3]
+    assert first > 0.25, errors[:3]  # the ball starts well off the middle
+    centred = next(t for t, e in errors if e is not None and e < 0.02)
+    print(f'still ball from 0.4 rad: centred (< 2 % of the width) {centred:.2f} s after tracking began')
+    assert centred < 2.0
+    assert all(e is not None and e < 0.02 for t, e in errors if t > centred + 0.5), errors
+    keep_screenshot('camera_ball_tracked', png(images[-1]))
+    tracker.stop_cleanly(timeout=15)
+    for servo in servos.values():
+        assert_clean_servo(servo)
+
+
+def test_the_tracker_follows_a_moving_ball_within_5_percent_of_the_width(ros):
+    servos, images, tracker, started = start_tracking(ros, ball_speed=0.2)
+    wait_until(lambda: images and stamp(images[-1]) > started + 10.0, 40, '10 s of images')
+    errors = [ball_error(m) for m in list(images) if stamp(m) > started + 3.0]
+    locked = [error for error in errors if error is not None]
+    assert len(locked) == len(errors), 'the ball left the picture'
+    mean = sum(locked) / len(locked)
+    print(f'moving ball (0.2 rad/s): mean error {100 * mean:.2f} % of the width, '
+          f'largest {100 * max(locked):.2f} %, over {len(locked)} images')
+    assert mean < 0.05
+    tracker.stop_cleanly(timeout=15)
+    for servo in servos.values():
+        assert_clean_servo(servo)
+
+
+def start_person(ros, gesture='both_hands_down'):
+    """camera_sim with a person making a gesture; the gestures its app says, once it has said the first."""
+    ros.run('olive_sim', 'camera_sim', '--ros-args', '-p', 'scene:=person', '-p', f'gesture:={gesture}')
+    gestures = ros.probe.collect(String, GESTURE_TOPIC)
+    wait_until(lambda: gestures and gestures[-1].data != 'none', 60, 'a recognised gesture')
+    return gestures
+
+
+def set_gesture(ros, gesture):
+    assert all(r.successful for r in ros.probe.set_parameters(CAMERA, gesture=gesture))
+
+
+def test_the_gesture_app_says_the_gesture_and_draws_the_skeleton_and_the_head_nods(ros):
+    servos = {name: start_servo(ros, name) for name in ('pan', 'tilt')}
+    gestures = start_person(ros)
+    assert gestures[-1].data == '1'  # both hands down
+    skeletons = ros.probe.collect(CompressedImage, '/olive/camera/eye/tpu/compressed')
+    wait_for_messages(skeletons, 1, timeout=20)
+    rgb = rgb_of(skeletons[-1])
+    yellow = (np.abs(rgb.astype(int) - (255, 255, 0)).max(axis=2) < 60).sum()
+    assert yellow > 500, f'{yellow} yellow px: no skeleton drawn'
+    keep_screenshot('camera_gesture_skeleton', png(skeletons[-1]))
+    control = ros.run('olive_vision', 'gesture_control')
+    control.wait_for(r'\[gesture_control\]: gesture 1 \(both hands down\): rest$', timeout=60)
+    tilt_goals = collect(ros, 'tilt', 'goal/position')
+    set_gesture(ros, 'both_hands_up')
+    wait_until(lambda: gestures[-1].data == '2', 10, 'gesture 2 said')
+    control.wait_for(r'\[gesture_control\]: gesture 2 \(both hands up\): nod$', timeout=10)
+    wait_until(lambda: any(g.data == pytest.approx(0.3) for g in tilt_goals), 10, 'the nod going down')
+    wait_until(lambda: tilt_goals and tilt_goals[-1].data == 0.0 and any(
+        g.data == pytest.approx(-0.1) for g in tilt_goals), 10, 'the nod up and back to the middle')
+    control.stop_cleanly(timeout=15)
+    for servo in servos.values():
+        assert_clean_servo(servo)
+
+
+def test_with_target_turtle_the_gestures_drive_turtlesims_turtle(ros):
+    ros.run('turtlesim', 'turtlesim_node', '--headless')
+    poses = ros.probe.collect(Pose, '/turtle1/pose')
+    wait_for_messages(poses, 1, timeout=30)
+    start_person(ros, 'both_hands_up')
+    control = ros.run('olive_vision', 'gesture_control', '--ros-args', '-p', 'target:=turtle')
+    control.wait_for(r'gesture 2 \(both hands up\): turtle \(1.5, 0.0\)$', timeout=60)
+    x = poses[-1].x
+    wait_until(lambda: poses[-1].x > x + 1.0, 10, 'the turtle driving forward')
+    set_gesture(ros, 'hands_on_hip')
+    control.wait_for(r'gesture 7 \(hands on hip\): turtle \(0.0, 0.0\)$', timeout=10)
+    wait_until(lambda: poses[-1].linear_velocity == 0.0, 10, 'the turtle stopped')
+    control.stop_cleanly(timeout=15)
+
+
+def test_bad_scenes_gestures_speeds_and_places_get_one_line_each_and_nothing_breaks(ros):
+    bad = ros.run('olive_sim', 'camera_sim', '--ros-args', '-p', 'scene:=beach')
+    assert bad.wait(60) == 2
+    assert "error: unknown scene 'beach': expected one of landmarks, ball, person" in bad.output
+    assert 'Traceback' not in bad.output
+    ros.run('olive_sim', 'camera_sim', '--ros-args', '-p', 'scene:=ball')
+    images = ros.probe.collect(CompressedImage, IMAGE_TOPIC, CAMERA_QOS)
+    wait_for_messages(images, 3, timeout=60)
+    for values, reason in (({'ball_speed': -0.2}, 'out of range'), ({'ball_elevation': 1.2}, 'out of range'),
+                           ({'ball_azimuth': math.nan}, 'out of range'),
+                           ({'gesture': 'waving'}, "unknown gesture 'waving': expected one of both_hands"),
+                           ({'scene': 'person'}, 'read-only')):
+        [result] = ros.probe.set_parameters(CAMERA, **values)
+        assert not result.successful, values
+        assert reason in result.reason, (values, result.reason)
+    count = len(images)
+    wait_for_messages(images, count + 10, timeout=20)  # the camera goes on
+    assert ball_error(images[-1]) is not None
+    for executable, args, message in (
+            ('track_object', ['-p', 'gain_pan:=1.5'], 'out of range'),
+            ('track_object', ['-p', 'image_topic:=my camera'], "image_topic 'my camera' is not a valid"),
+            ('gesture_control', ['-p', 'target:=fish'], "target 'fish' is not one of head, turtle")):
+        node = ros.run('olive_vision', executable, '--ros-args', *args)
+        assert node.wait(30) == 2
+        assert len(node.lines) == 1, node.output
+        assert node.lines[0].startswith(f'{executable}: error: '), node.output
+        assert message in node.output
+    for argument, message in (('scene:=beach', "scene must be one of landmarks, ball, person, got 'beach'"),
+                              ('ball_speed:=-1', "ball_speed must be a number of rad/s from 0 (still) "
+                                                 "to 2.0, got '-1'"),
+                              ('gesture:=waving', 'gesture must be one of both_hands_down')):
+        launch = ros.command(['ros2', 'launch', 'olive_sim', 'owl_kit.launch.py', 'web_port:=0', argument])
+        launch.wait(timeout=60)
+        assert message in launch.output
+        assert 'Traceback' not in launch.output
+        assert 'process started' not in launch.output
