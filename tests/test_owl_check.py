@@ -57,6 +57,7 @@ def broken(tmp_path_factory) -> Path:
             VARIANTS / 'camera_reliable' / 'olive_camera',
             VARIANTS / 'servo_mistakes' / 'olive_servo',
             VARIANTS / 'ignores_upper_limit' / 'random_number_ps',
+            VARIANTS / 'track_pan_reversed' / 'olive_vision',
         ],
     )
 
@@ -70,7 +71,16 @@ def broken_too(tmp_path_factory) -> Path:
             VARIANTS / 'imu_sign' / 'olive_imu',
             VARIANTS / 'crashing_publisher' / 'random_number_ps',
             VARIANTS / 'factorial_own_names' / 'olive_srvcli',
+            VARIANTS / 'track_no_torque' / 'olive_vision',
         ],
+    )
+
+
+@pytest.fixture(scope='module')
+def broken_tracker(tmp_path_factory) -> Path:
+    """The third tracker's mistake, in a workspace of its own (one olive_vision per workspace)."""
+    return build_from(
+        tmp_path_factory.mktemp('broken_tracker_ws'), [VARIANTS / 'track_ignores_tilt' / 'olive_vision']
     )
 
 
@@ -134,7 +144,7 @@ def test_the_reference_solutions_pass_every_calibrated_check():
     assert done.returncode == 0
 
 
-# The checks added for the rest of sections 3.4-4.5 (3.6's exercise, 3.7.1's file, the "+" extras).
+# The checks added for the rest of sections 3.4-4.7 (3.6's exercise, 3.7.1's file, the "+" extras).
 EXTRAS = [
     'currency_server',
     'currency_client',
@@ -146,6 +156,12 @@ EXTRAS = [
     'keyboard_servos_torque',
     'keyboard_servos_speed',
     'robot_camera_launch',
+    'track_object',
+    'track_object_search',
+    'track_object_launch',
+    'gesture_control',
+    'gesture_control_turtle',
+    'gesture_control_launch',
 ]
 
 
@@ -247,6 +263,26 @@ def test_a_broken_variant_fails_with_the_right_hint(broken, exercise, criterion,
     done = owl_check(exercise, '--workspace', str(broken), '--json', timeout=280)
     assert done.returncode == 1, done.stdout + done.stderr
     failed = [c for c in results(done)[exercise]['criteria'] if not c['passed']]
+    matching = [c for c in failed if criterion in c['text']]
+    assert matching, failed
+    assert hint in matching[0]['hint'], failed
+
+
+@pytest.mark.timeout(300)
+@pytest.mark.parametrize(
+    ('workspace', 'criterion', 'hint'),
+    [
+        ('broken', 'the pan servo points the camera at the still ball', 'turns away from the ball'),
+        ('broken_too', 'enables the pan torque', 'ignores every goal while its torque is off'),
+        ('broken_tracker', 'the tilt servo points the camera at the still ball', 'does not follow the ball'),
+    ],
+    ids=['track_pan_reversed', 'track_no_torque', 'track_ignores_tilt'],
+)
+def test_a_broken_tracker_fails_with_the_right_hint(request, workspace, criterion, hint):
+    folder = request.getfixturevalue(workspace)
+    done = owl_check('track_object', '--workspace', str(folder), '--json', timeout=280)
+    assert done.returncode == 1, done.stdout + done.stderr
+    failed = [c for c in results(done)['track_object']['criteria'] if not c['passed']]
     matching = [c for c in failed if criterion in c['text']]
     assert matching, failed
     assert hint in matching[0]['hint'], failed

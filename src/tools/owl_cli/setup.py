@@ -37,6 +37,8 @@ setup(
             '4.4 = owl_cli.exercises.section_4_4:SECTION',
             '4.4.1 = owl_cli.exercises.section_4_4_1:SECTION',
             '4.5 = owl_cli.exercises.section_4_5:SECTION',
+            '4.6 = owl_cli.exercises.section_4_6:SECTION',
+            '4.7 = owl_cli.exercises.section_4_7:SECTION',
         ],
     },
 )

@@ -1,4 +1,4 @@
-"""owl check: checks a student's exercise of the course (sections 3.4 to 4.5) over real ROS 2.
+"""owl check: checks a student's exercise of the course (sections 3.4 to 4.7) over real ROS 2.
 
 owl check --list                       the exercises and projects, with their ids
 owl check ID... [--workspace DIR]      build the package if needed, run the checks, one line per criterion

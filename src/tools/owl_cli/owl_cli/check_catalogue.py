@@ -1,4 +1,4 @@
-"""The exercises and projects of course sections 3.4 to 4.5, the "+" extras included.
+"""The exercises and projects of course sections 3.4 to 4.7, the "+" extras included.
 
 Each has an id (the course's executable name where there is one, else a short name), its section,
 the package it lives in, a one-line description and its check. Exercises done by hand at a terminal

@@ -39,6 +39,8 @@ IMU_COMMAND_TOPIC = f"/{node_name('imu', IMU_NAMESPACE)}/true_orientation"  # im
 CMD_VEL = '/turtle1/cmd_vel'
 COURSE_CMD_VEL = '/turtle/cmd_vel'  # section 4.3.2's text; turtlesim's turtle is turtle1
 CAMERA_TOPIC = f'/olive/camera/{CAMERA_NAMESPACE}/image/compressed'
+CAMERA_NODE = node_name('camera', CAMERA_NAMESPACE)
+GESTURE_TOPIC = f'/olive/camera/{CAMERA_NAMESPACE}/tpu/gesture'  # the camera's gesture app (section 4.7)
 PAN_RANGE = SERVO_RANGES['pan']
 TILT_RANGE = SERVO_RANGES['tilt']  # the camera bracket's
 START_TIMEOUT = 15.0  # s for a student's node to show up in the graph
@@ -111,8 +113,11 @@ class Session:
         self.helpers[executable] = process
         return process
 
-    def kit(self, *modules: str, imu_command: bool = False) -> None:
-        """The simulated modules: 'imu', 'pan', 'tilt', 'camera' (nodes are waited for)."""
+    def kit(self, *modules: str, imu_command: bool = False, scene: dict[str, object] | None = None) -> None:
+        """The simulated modules: 'imu', 'pan', 'tilt', 'camera' (nodes are waited for).
+
+        scene: the camera's scene parameters (scene, ball_speed, ball_azimuth, gesture, ...).
+        """
         nodes = []
         if 'imu' in modules:
             motion = 'command' if imu_command else 'scripted'
@@ -147,7 +152,8 @@ class Session:
                 self.helpers[servo] = process
                 nodes.append(node_name('servo', servo))
         if 'camera' in modules:
-            self.helper('olive_sim', 'camera_sim', '--ros-args', *NO_WEB_PAGE)
+            settings = [arg for name, value in (scene or {}).items() for arg in ('-p', f'{name}:={value}')]
+            self.helper('olive_sim', 'camera_sim', '--ros-args', *settings, *NO_WEB_PAGE)
             nodes.append(node_name('camera', CAMERA_NAMESPACE))
         for name in nodes:
 
