@@ -5,6 +5,9 @@ Starts the simulated Owl Kit (IMU, pan and tilt servos, camera), the course's pr
 imu_turtle drives turtlesim's turtle with the IMU) and robot_view (the kit live in a browser, with
 its plots and the camera), prints the robot view's address and a few readable lines of what
 happens, then stops everything with Ctrl-C's signal, as a user at a terminal would.
+
+With --project tracking it is section 4.6's robot instead: a red ball goes round the robot and
+track_object keeps it in the middle of the camera's picture; each line says how far off it is.
 """
 
 from __future__ import annotations
@@ -18,6 +21,10 @@ import time
 from dataclasses import dataclass, field
 from functools import partial
 
+import cv2
+import numpy as np
+from olive_sim.camera_render import find_colour
+from olive_sim.scene_draw import BALL_COLOUR
 from owl_common import quaternion
 from owl_common.probe import Probe
 from owl_common.processes import RosProcess, RosSandbox
@@ -32,6 +39,8 @@ SERVOS = ('pan', 'tilt')
 STARTUP_TIMEOUT = 60.0  # s for every node to say it is working, on a loaded 2-core machine
 ROBOT_VIEW_PORT = 8091  # robot_view's own default; another free port when it is taken
 ROBOT_VIEW_LINE = r'robot_view: open (http://127\.0\.0\.1:\d+/) in a browser'
+PROJECTS = ('imu', 'tracking')
+BALL_SPEED = 0.15  # rad/s of the ball going round the robot in the tracking project
 
 
 @dataclass
@@ -42,6 +51,7 @@ class RobotState:
     goals: dict[str, float] = field(default_factory=dict)
     positions: dict[str, float] = field(default_factory=dict)
     frames: int = 0
+    frame: bytes | None = None  # the camera's latest JPEG
     pose: Pose | None = None
 
 
@@ -55,8 +65,9 @@ def watch(probe: Probe) -> RobotState:
         if euler is not None:
             state.euler = euler
 
-    def on_frame(_msg: CompressedImage) -> None:
+    def on_frame(msg: CompressedImage) -> None:
         state.frames += 1
+        state.frame = msg.data
 
     def on_pose(msg: Pose) -> None:
         state.pose = msg
@@ -82,10 +93,33 @@ def degrees(radians: float) -> str:
     return f'{math.degrees(radians):+4.0f}°'
 
 
-def report_line(elapsed: float, state: RobotState, fps: float) -> str:
+def ball_offset(jpeg: bytes) -> tuple[float, float] | None:
+    """Where the red ball is in a camera image: (right, down) of the middle as shares of width and height."""
+    bgr = cv2.imdecode(np.frombuffer(bytes(jpeg), np.uint8), cv2.IMREAD_COLOR)
+    if bgr is None:
+        return None
+    ball = find_colour(cv2.cvtColor(bgr, cv2.COLOR_BGR2RGB), BALL_COLOUR)
+    if ball is None:
+        return None
+    height, width = bgr.shape[:2]
+    return (ball[0] - (width - 1) / 2) / width, (ball[1] - (height - 1) / 2) / height
+
+
+def tracking_text(state: RobotState) -> str:
+    """The tracking error of the latest camera image, for a report line."""
+    offset = ball_offset(state.frame) if state.frame is not None else None
+    if offset is None:
+        return 'ball not in sight'
+    right, down = offset
+    return f'ball {100 * right:+5.1f} % right, {100 * down:+5.1f} % down of the middle'
+
+
+def report_line(elapsed: float, state: RobotState, fps: float, project: str = 'imu') -> str:
     """One line of what the robot does now."""
     parts = [f'{elapsed:3.0f} s']
-    if state.euler is not None:
+    if project == 'tracking':
+        parts.append(tracking_text(state))
+    elif state.euler is not None:
         roll, pitch, yaw = state.euler
         parts.append(f'IMU roll {degrees(roll)} pitch {degrees(pitch)} yaw {degrees(yaw)}')
     for servo in SERVOS:
@@ -113,8 +147,10 @@ def robot_view_port(preferred: int = ROBOT_VIEW_PORT) -> int:
     return preferred
 
 
-def start_robot(sandbox: RosSandbox) -> dict[str, RosProcess]:
+def start_robot(sandbox: RosSandbox, project: str = 'imu') -> dict[str, RosProcess]:
     """The kit, the course's projects and robot_view, each waited for until it says it works."""
+    if project == 'tracking':
+        return start_tracking_robot(sandbox)
     processes = {
         'kit': sandbox.command(['ros2', 'launch', 'olive_sim', 'owl_kit.launch.py'], label='kit'),
         'imu_turtle': sandbox.command(['ros2', 'launch', 'olive_imu', 'imu_turtle.launch.py'],
@@ -130,6 +166,21 @@ def start_robot(sandbox: RosSandbox) -> dict[str, RosProcess]:
     return processes
 
 
+def start_tracking_robot(sandbox: RosSandbox) -> dict[str, RosProcess]:
+    """Section 4.6's robot: the kit with a red ball going round, track_object and display_camera."""
+    processes = {
+        'kit': sandbox.command(['ros2', 'launch', 'olive_sim', 'owl_kit.launch.py', 'scene:=ball',
+                                f'ball_speed:={BALL_SPEED}'], label='kit'),
+        'track_object': sandbox.run('olive_vision', 'track_object'),
+        'display_camera': sandbox.run('olive_camera', 'display_camera'),
+        'robot_view': sandbox.run('robot_view', 'robot_view', '--port', str(robot_view_port())),
+    }
+    processes['track_object'].wait_for(r'red ball at .* tracking it', STARTUP_TIMEOUT)
+    processes['display_camera'].wait_for(r'showing them in the window', STARTUP_TIMEOUT)
+    processes['robot_view'].wait_for(ROBOT_VIEW_LINE, STARTUP_TIMEOUT)
+    return processes
+
+
 def robot_view_address(process: RosProcess) -> str:
     """The robot view's address (http://127.0.0.1:PORT/), from the line robot_view printed at start."""
     return process.wait_for(ROBOT_VIEW_LINE, 1.0)[0].group(1)
@@ -140,7 +191,7 @@ def display_camera_lines(process: RosProcess) -> list[str]:
     return [line for line in process.lines if 'showing them in the window' in line or 'no display' in line]
 
 
-def run_demo(seconds: float, report_every: float) -> int:
+def run_demo(seconds: float, report_every: float, project: str = 'imu') -> int:
     """Run the demo for seconds, a status line every report_every s; the exit code, 0 if all stopped cleanly.
 
     Each process is stopped with SIGINT at the end; any exit code but 0 makes it 1, with that process's
@@ -150,17 +201,24 @@ def run_demo(seconds: float, report_every: float) -> int:
     with RosSandbox(discovery_range=os.environ.get('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')) as sandbox:
         print(f'== Owl Kit Lab demo: the simulated Owl Kit and the course\'s chapter 4 projects, '
               f'ROS 2 domain {sandbox.domain_id}, {seconds:.0f} s', flush=True)
-        print('   kit: IMU, servos pan and tilt, camera eye (ros2 launch olive_sim owl_kit.launch.py)\n'
-              '   imu_control_robot: the head points where the IMU points\n'
-              '   display_camera: the camera\'s picture\n'
-              '   imu_turtle: the IMU drives turtlesim\'s turtle (pitch = speed, yaw = turning)', flush=True)
+        if project == 'tracking':
+            print('   kit: IMU, servos pan and tilt, camera eye, and a red ball going round the robot at '
+                  f'{BALL_SPEED} rad/s (ros2 launch olive_sim owl_kit.launch.py scene:=ball)\n'
+                  '   track_object: the head keeps the ball in the middle of the picture (section 4.6)\n'
+                  '   display_camera: the camera\'s picture', flush=True)
+        else:
+            print('   kit: IMU, servos pan and tilt, camera eye (ros2 launch olive_sim owl_kit.launch.py)\n'
+                  '   imu_control_robot: the head points where the IMU points\n'
+                  '   display_camera: the camera\'s picture\n'
+                  '   imu_turtle: the IMU drives turtlesim\'s turtle (pitch = speed, yaw = turning)',
+                  flush=True)
         print(f'== watch it from another shell: source env.sh && export ROS_DOMAIN_ID={sandbox.domain_id}, '
               'then `rqt` (Plugins > Visualization > Image View, '
               f'topic {CAMERA_TOPIC}) or `ros2 topic echo /turtle1/pose`', flush=True)
         probe = Probe(sandbox.domain_id, 'owl_demo')
         try:
             state = watch(probe)
-            processes = start_robot(sandbox)
+            processes = start_robot(sandbox, project)
             time.sleep(0.5)  # the no-display line follows the first frame's
             for line in display_camera_lines(processes['display_camera']):
                 print(f'   display_camera says: {line}', flush=True)
@@ -174,7 +232,7 @@ def run_demo(seconds: float, report_every: float) -> int:
                 now = time.monotonic()
                 fps = (state.frames - frames_then) / max(now - last, 1e-6)
                 frames_then, last = state.frames, now
-                print('   ' + report_line(now - start, state, fps), flush=True)
+                print('   ' + report_line(now - start, state, fps, project), flush=True)
         finally:
             probe.close()
         print('== stopping (SIGINT, as Ctrl-C would)', flush=True)
@@ -195,11 +253,14 @@ def main() -> int:
     parser.add_argument('--seconds', type=float, default=20.0, help='how long to run (default 20)')
     parser.add_argument('--report-every', type=float, default=4.0, metavar='SECONDS',
                         help='seconds between two status lines (default 4)')
+    parser.add_argument('--project', choices=PROJECTS, default='imu',
+                        help="the chapter 4 robot to run: 'imu' (4.4-4.5, the IMU steers) or 'tracking' "
+                             '(4.6, the camera follows a red ball)')
     args = parser.parse_args()
     if not args.seconds > 0 or not args.report_every > 0:
         parser.error('--seconds and --report-every must be positive numbers')
     try:
-        return run_demo(args.seconds, args.report_every)
+        return run_demo(args.seconds, args.report_every, args.project)
     except KeyboardInterrupt:
         print('== interrupted; every node was stopped', file=sys.stderr)
         return 130

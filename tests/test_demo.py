@@ -40,8 +40,24 @@ def test_demo_runs_the_robot_reports_it_and_stops_every_node_cleanly():
     assert 'Traceback' not in result.stdout + result.stderr
 
 
-def test_demo_refuses_a_bad_duration_in_one_line():
-    for args in (['--seconds', '-3'], ['--seconds', 'soon'], ['--report-every', '0']):
+TRACKING = re.compile(r'ball +([+-]\d+\.\d) % right, +([+-]\d+\.\d) % down of the middle \| pan goal')
+
+
+def test_the_tracking_demo_keeps_the_ball_in_the_middle_and_says_how_far_off_it_is():
+    result = run_demo('--project', 'tracking', '--seconds', '6', '--report-every', '1')
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert 'track_object: the head keeps the ball in the middle of the picture' in result.stdout
+    offsets = [tuple(map(float, m.groups()))
+               for line in result.stdout.splitlines() if (m := TRACKING.search(line))]
+    assert len(offsets) >= 4, result.stdout
+    assert all(abs(right) < 5 and abs(down) < 5 for right, down in offsets), result.stdout
+    assert 'every node stopped cleanly' in result.stdout
+    assert 'Traceback' not in result.stdout + result.stderr
+
+
+def test_demo_refuses_a_bad_duration_or_project_in_one_line():
+    bad = (['--seconds', '-3'], ['--seconds', 'soon'], ['--report-every', '0'], ['--project', 'juggling'])
+    for args in bad:
         result = run_demo(*args, timeout=30)
         assert result.returncode == 2, args
         assert 'Traceback' not in result.stderr
