@@ -112,6 +112,9 @@ def test_the_gesture_app_says_the_gesture_and_draws_the_skeleton_and_the_head_no
     servos = {name: start_servo(ros, name) for name in ('pan', 'tilt')}
     gestures = start_person(ros)
     assert gestures[-1].data == '1'  # both hands down
+    [refused] = ros.probe.set_parameters(CAMERA, gesture='waving')
+    assert not refused.successful
+    assert "unknown gesture 'waving': expected one of both_hands_down" in refused.reason
     skeletons = ros.probe.collect(CompressedImage, '/olive/camera/eye/tpu/compressed')
     wait_for_messages(skeletons, 1, timeout=20)
     rgb = rgb_of(skeletons[-1])
@@ -157,7 +160,8 @@ def test_bad_scenes_gestures_speeds_and_places_get_one_line_each_and_nothing_bre
     wait_for_messages(images, 3, timeout=60)
     for values, reason in (({'ball_speed': -0.2}, 'out of range'), ({'ball_elevation': 1.2}, 'out of range'),
                            ({'ball_azimuth': math.nan}, 'out of range'),
-                           ({'gesture': 'waving'}, "unknown gesture 'waving': expected one of both_hands"),
+                           ({'gesture': 'both_hands_up'},
+                            "there is no person in the scene 'ball' (start the camera with scene:=person)"),
                            ({'scene': 'person'}, 'read-only')):
         [result] = ros.probe.set_parameters(CAMERA, **values)
         assert not result.successful, values

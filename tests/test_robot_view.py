@@ -21,6 +21,7 @@ from web_harness import PageSocket, free_port
 URL_LINE = r'robot_view: open (http://127\.0\.0\.1:\d+/) in a browser \(Ctrl-C to quit\)'
 IMU_TOPIC = f'/olive/imu/{IMU_NAMESPACE}/imu'
 TRUE_ORIENTATION = f'/olive_imu_{IMU_NAMESPACE}_dcm_srv/true_orientation'
+CAMERA_NODE = '/olive_camera_eye_dcm_srv'
 MIN_FPS = 25.0  # the camera publishes 30 frames/s
 LATENCY_SAMPLES = 6
 
@@ -143,10 +144,18 @@ def test_bad_websocket_input_gets_one_line_and_nothing_reaches_the_imu(ros):
             ({'type': 'command', 'id': 4, 'name': 'hold_imu'}, "missing key 'orientation'"),
             ({'type': 'command', 'id': 5, 'name': 'levle'},
              'unknown command "levle" (did you mean \'level\'?); known: goal, hold_imu, level, '
-             'set_gains, torque'),
+             'place_ball, set_gains, torque'),
             ({'type': 'command', 'id': 6, 'name': 'level', 'now': 1}, "unknown key 'now'; expected: "),
             ('{"type": "command", ', 'malformed JSON in the message: '),
-            ({'type': 'comand', 'id': 7}, 'unknown message type "comand" (did you mean \'command\'?)')]
+            ({'type': 'comand', 'id': 7}, 'unknown message type "comand" (did you mean \'command\'?)'),
+            ({'type': 'command', 'id': 8, 'name': 'place_ball', 'azimuth': 0.1}, "missing key 'elevation'"),
+            ({'type': 'command', 'id': 9, 'name': 'place_ball', 'azimuth': 'left', 'elevation': 0},
+             'the ball\'s azimuth must be a number, got "left"'),
+            ('{"type": "command", "id": 10, "name": "place_ball", "azimuth": 0, "elevation": Infinity}',
+             "the ball's elevation must be finite, got inf"),
+            ({'type': 'command', 'id': 11, 'name': 'place_ball', 'azimuth': 0, 'elevation': 0},
+             "the camera refused to put the ball there: there is no ball in the scene 'landmarks' (start "
+             'the camera with scene:=ball)')]
         for message, error in bad_messages:
             page_socket.send(message)
             answer = page_socket.receive()
@@ -184,3 +193,60 @@ def test_ctrl_c_stops_robot_view_cleanly(ros):
     # the executor's constructor (a traceback from its __del__; owl_common.run.spin_until_stopped).
     assert view.stop(timeout=10) == 0, view.output
     assert 'Traceback' not in view.output
+
+
+def start_scene_and_view(ros: Any, *arguments: str) -> str:
+    launch = ros.command(['ros2', 'launch', 'robot_view', 'robot_view.launch.py', f'port:={free_port()}',
+                          *arguments], label='robot_view.launch')
+    return launch.wait_for(URL_LINE, timeout=60)[0].group(1)
+
+
+def test_the_ball_is_shown_and_dragged_and_a_place_out_of_its_world_is_refused_in_one_line(ros, page):
+    base = start_scene_and_view(ros, 'scene:=ball', 'ball_speed:=0.0')
+    page.goto(base)
+    page.wait_for_function('() => window.robotView.scene !== null && window.robotView.scene.ball',
+                           timeout=30_000)
+    assert page.evaluate('window.robotView.scene.ball') == [0.25, -0.12]
+    start = page.evaluate('window.robotView.ballOnPage()')
+    target = page.evaluate('window.robotView.ballPlaceOnPage(-0.3, 0.1)')
+    page.mouse.move(start['x'], start['y'])
+    page.mouse.down()
+    page.mouse.move(target['x'], target['y'], steps=10)
+    page.mouse.up()
+    camera = CAMERA_NODE
+
+    def placed() -> bool:
+        azimuth, elevation = ros.probe.get_parameters(camera, 'ball_azimuth', 'ball_elevation')
+        return abs(azimuth + 0.3) < 0.02 and abs(elevation - 0.1) < 0.02
+    wait_until(placed, 10, 'the ball put at (-0.3, 0.1) rad by the mouse')
+    page.wait_for_function('() => Math.abs(window.robotView.scene.ball[0] + 0.3) < 0.02', timeout=10_000)
+    assert page.evaluate('window.robotView.ballAnswers').count(None) > 0
+    # Above the ball's world (elevation 0.6 at most): the camera says no, in one line on the page.
+    page.evaluate("window.robotView.ballAnswers.length = 0")
+    start = page.evaluate('window.robotView.ballOnPage()')
+    target = page.evaluate('window.robotView.ballPlaceOnPage(-0.3, 1.0)')
+    page.mouse.move(start['x'], start['y'])
+    page.mouse.down()
+    page.mouse.move(target['x'], target['y'], steps=10)
+    page.mouse.up()
+    page.wait_for_function('() => window.robotView.ballAnswers.some((answer) => answer)', timeout=10_000)
+    error = page.text_content('#errors')
+    assert error.startswith('the camera refused to put the ball there: '), error
+    assert 'ball_elevation' in error, error
+    assert '\n' not in error, error
+    assert abs(ros.probe.get_parameters(camera, 'ball_elevation')[0]) <= 0.6
+    page.screenshot_to('robot_view_ball')
+
+
+def test_the_person_is_shown_with_the_gesture_of_the_camera(ros, page):
+    base = start_scene_and_view(ros, 'scene:=person', 'gesture:=both_hands_up')
+    page.goto(base)
+    page.wait_for_function('() => window.robotView.scene !== null && window.robotView.scene.keypoints',
+                           timeout=30_000)
+    assert page.evaluate('window.robotView.scene.gesture') == 'both_hands_up'
+    assert len(page.evaluate('Object.keys(window.robotView.scene.keypoints)')) == 17
+    assert page.evaluate('window.robotView.personParts()') == 18  # 17 bones and the head
+    changed = ros.probe.set_parameters(CAMERA_NODE, gesture='hands_on_hip')
+    assert all(r.successful for r in changed)
+    page.wait_for_function("() => window.robotView.scene.gesture === 'hands_on_hip'", timeout=10_000)
+    page.screenshot_to('robot_view_person')

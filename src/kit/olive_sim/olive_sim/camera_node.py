@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import math
 import time
 
@@ -37,6 +38,7 @@ DEFAULT_FOV_DEG = 48.66
 # The gesture app of the real camera (a vendor example) classifies every frame it can keep up with;
 # the simulated one answers for every TPU_EVERY-th frame (10 Hz at the default 30 fps).
 TPU_EVERY = 3
+SCENE_RATE = 10.0  # Hz of the scene topic (where the ball and the person are)
 
 
 class CameraModule(OliveModule):
@@ -94,6 +96,13 @@ class CameraModule(OliveModule):
                                                        raw=True)
                        for topic, callback in (('pan_joint_topic', self._on_pan),
                                                ('tilt_joint_topic', self._on_tilt))]
+        if self.scene != 'landmarks':
+            # Not a real module's: where the ball and the person are, for the robot view and tests
+            # (as imu_sim's true_orientation), at SCENE_RATE Hz; the newest one kept for a late joiner.
+            self.scene_publisher = self.create_publisher(
+                String, f'/{self.get_name()}/scene',
+                QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL))
+            self.create_timer(1.0 / SCENE_RATE, self._publish_scene)
         if self.scene == 'person':  # the camera runs its gesture app (a vendor example)
             tpu = QoSProfile(depth=1)
             self.tpu_publisher = self.create_publisher(CompressedImage, self.topic('tpu/compressed'), tpu)
@@ -123,6 +132,11 @@ class CameraModule(OliveModule):
 
     def _check_parameters(self, parameters: list[Parameter]) -> SetParametersResult:
         for p in parameters:
+            needs = 'ball' if p.name.startswith('ball_') else 'person' if p.name == 'gesture' else None
+            if needs is not None and self.scene != needs:
+                return SetParametersResult(successful=False, reason=(
+                    f"there is no {needs} in the scene '{self.scene}' "
+                    f'(start the camera with scene:={needs})'))
             if p.name == 'gesture' and p.value not in GESTURE_NAMES:
                 return SetParametersResult(successful=False, reason=(
                     f"unknown gesture '{p.value}': expected one of {', '.join(GESTURE_NAMES)}"))
@@ -143,6 +157,17 @@ class CameraModule(OliveModule):
                 self.ball = self.ball.moved(now, azimuth=wrap(p.value))
             elif p.name == 'ball_elevation':
                 self.ball = self.ball.moved(now, elevation=p.value)
+
+    def _publish_scene(self) -> None:
+        view = self.scene_view(time.monotonic())
+        if view is None:
+            return
+        state: dict[str, object] = {'scene': self.scene}
+        if view.ball is not None:
+            state['ball'] = list(view.ball)
+        if view.person is not None:
+            state.update(gesture=self.gesture.name, keypoints={k: list(v) for k, v in view.person.items()})
+        self.scene_publisher.publish(String(data=json.dumps(state)))
 
     def scene_view(self, t: float) -> SceneView | None:
         """What stands in front of the panorama at time t (time.monotonic()); None in the landmarks scene."""

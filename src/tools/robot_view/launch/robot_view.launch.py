@@ -1,4 +1,8 @@
-"""The Owl Kit (its IMU in command mode, so the page can hold it) and robot_view."""
+"""The Owl Kit (its IMU in command mode, so the page can hold it) and robot_view.
+
+scene:=ball or scene:=person puts a red ball (ball_speed:=, rad/s) or a person (gesture:=) around
+the robot, as owl_kit.launch.py does; the page shows them and the ball can be dragged.
+"""
 
 from launch import LaunchDescription
 from launch.actions import DeclareLaunchArgument
@@ -13,10 +17,18 @@ def generate_launch_description() -> LaunchDescription:
         parameters = dict(module.parameters)
         if module.module_type == 'imu':
             parameters['motion'] = 'command'  # the page's hand holds the IMU
+        if module.module_type == 'camera':
+            parameters.update({name: LaunchConfiguration(name)
+                               for name in ('scene', 'ball_speed', 'gesture')})
         modules.append(Node(package='olive_sim', executable=module.executable, output='screen',
                             parameters=[parameters] if parameters else []))
     return LaunchDescription([
         DeclareLaunchArgument('port', default_value='8091', description='robot_view HTTP port'),
+        DeclareLaunchArgument('scene', default_value='landmarks',
+                              description="what the camera sees around the robot: landmarks, ball, person"),
+        DeclareLaunchArgument('ball_speed', default_value='0.1',
+                              description='speed of the red ball around the robot in rad/s (0: still)'),
+        DeclareLaunchArgument('gesture', default_value='both_hands_down', description="the person's gesture"),
         *modules,
         # robot_view prints the page's address when it serves
         Node(package='robot_view', executable='robot_view', output='screen',

@@ -80,6 +80,18 @@ def goal_request(arguments: dict[str, Any]) -> tuple[str, float]:
     return servo, number(arguments['position'], f'the {servo} goal', low, high)
 
 
+def ball_request(arguments: dict[str, Any]) -> tuple[float, float]:
+    """A `place_ball` command ({"azimuth": 0.3, "elevation": -0.1}, rad) as (azimuth, elevation).
+
+    The azimuth is taken round the circle into -pi..pi; whether the elevation is in the ball's world
+    is the camera's to say.
+    """
+    codec.check_keys(arguments, ('azimuth', 'elevation'), required=('azimuth', 'elevation'))
+    azimuth = number(arguments['azimuth'], "the ball's azimuth", -math.inf, math.inf)
+    elevation = number(arguments['elevation'], "the ball's elevation", -math.inf, math.inf)
+    return math.remainder(azimuth, 2 * math.pi), elevation
+
+
 def appendix_goals(servo: str) -> list[float]:
     """The appendix's goals, 0 and 1.57 rad, each brought within the servo's range.
 

@@ -8,6 +8,7 @@ simulated IMU's true_orientation, and "set_gains", "torque" and "goal" on the se
 
 from __future__ import annotations
 
+import json
 import math
 import threading
 import time
@@ -25,15 +26,16 @@ from rcl_interfaces.msg import Parameter, ParameterEvent, ParameterType, Paramet
 from rcl_interfaces.srv import GetParameters, SetParameters
 from rclpy.client import Client
 from rclpy.node import Node
-from rclpy.qos import qos_profile_sensor_data
+from rclpy.qos import DurabilityPolicy, QoSProfile, qos_profile_sensor_data
 from rclpy.time import Time
 from sensor_msgs.msg import CompressedImage, Imu, JointState
-from std_msgs.msg import Float32
+from std_msgs.msg import Float32, String
 from std_srvs.srv import Trigger
 
 from robot_view.controls import (
     GAINS,
     SERVOS,
+    ball_request,
     control_limits,
     gains_request,
     goal_request,
@@ -46,6 +48,8 @@ from robot_view.plot_window import PlotWindow, PushCursor, sample_time
 IMU_TOPIC = f'/olive/imu/{IMU_NAMESPACE}/imu'
 TRUE_ORIENTATION_TOPIC = f"/{node_name('imu', IMU_NAMESPACE)}/true_orientation"
 CAMERA_TOPIC = f'/olive/camera/{CAMERA_NAMESPACE}/image/compressed'
+CAMERA_NODE = f"/{node_name('camera', CAMERA_NAMESPACE)}"
+SCENE_TOPIC = f'{CAMERA_NODE}/scene'  # the simulated camera's ball and person (scene:=ball or person)
 PLOT_SERIES = (*(f'{servo}_{what}' for servo in SERVOS for what in ('goal', 'position', 'effort')),
                'roll', 'pitch', 'yaw')
 PLOT_PUSH_EVERY = 0.1  # s: ten batches a second keep a 10 s plot moving smoothly
@@ -60,7 +64,7 @@ class RobotViewNode(Node):
     def __init__(self, server: WebServer) -> None:
         super().__init__('robot_view')
         self._lock = threading.Lock()
-        self._state: dict[str, Any] = {'pan': None, 'tilt': None, 'imu': None}
+        self._state: dict[str, Any] = {'pan': None, 'tilt': None, 'imu': None, 'scene': None}
         self._kit_watchers: set[Subscription] = set()
         self._camera_watchers: set[Subscription] = set()
         self._plot_watchers: dict[Subscription, PushCursor] = {}
@@ -101,6 +105,9 @@ class RobotViewNode(Node):
         self.create_subscription(Imu, IMU_TOPIC, self._on_imu, qos_profile_sensor_data)
         self.create_subscription(CompressedImage, CAMERA_TOPIC, self._on_frame, qos_profile_sensor_data)
         self.true_orientation = self.create_publisher(Quaternion, TRUE_ORIENTATION_TOPIC, 10)
+        self.create_subscription(String, SCENE_TOPIC, self._on_scene,
+                                 QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL))
+        self._set_camera_parameters = self.create_client(SetParameters, f'{CAMERA_NODE}/set_parameters')
         self.create_timer(PLOT_PUSH_EVERY, self._push_plots)
         self._asking: dict[str, Any] = {}  # servo -> its unanswered question for its gains
         self.create_timer(ASK_GAINS_EVERY, self._ask_for_unknown_gains)
@@ -113,6 +120,7 @@ class RobotViewNode(Node):
         server.command('set_gains', self._set_gains)
         server.command('torque', self._torque)
         server.command('goal', self._goal)
+        server.command('place_ball', self._place_ball)
 
     # ---- the page's commands (each runs in a worker thread of the web server) ---------------
 
@@ -134,16 +142,22 @@ class RobotViewNode(Node):
 
     def _set_gains(self, arguments: dict[str, Any]) -> None:
         servo, gains = gains_request(arguments)
-        request = SetParameters.Request(parameters=[
-            Parameter(name=name,
-                      value=ParameterValue(type=ParameterType.PARAMETER_DOUBLE, double_value=value))
-            for name, value in gains.items()])
+        request = SetParameters.Request(parameters=double_parameters(gains))
         response = self._call(self._set_parameters[servo], request, f'servo {servo}')
         refusals = [f'{name}: {result.reason}' for name, result in zip(gains, response.results, strict=False)
                     if not result.successful]
         if refusals:
             raise ApiError(409, f"{servo_node(servo)} refused {'; '.join(refusals)}")
         self._update_servo(servo, **gains)
+
+    def _place_ball(self, arguments: dict[str, Any]) -> None:
+        azimuth, elevation = ball_request(arguments)
+        places = {'ball_azimuth': azimuth, 'ball_elevation': elevation}
+        request = SetParameters.Request(parameters=double_parameters(places))
+        response = self._call(self._set_camera_parameters, request, 'the camera (scene:=ball)')
+        refusals = [result.reason for result in response.results if not result.successful]
+        if refusals:
+            raise ApiError(409, f"the camera refused to put the ball there: {'; '.join(refusals)}")
 
     def _call(self, client: Client, request: Any, what: str) -> Any:
         """A service's response, waited for in this (web worker) thread while the executor spins.
@@ -303,6 +317,15 @@ class RobotViewNode(Node):
                        Time.from_msg(message.header.stamp).nanoseconds)
         self._push_state()
 
+    def _on_scene(self, message: String) -> None:
+        try:
+            scene = json.loads(message.data)
+        except json.JSONDecodeError:
+            return  # not the simulated camera's: nothing to draw
+        with self._lock:
+            self._state['scene'] = scene if isinstance(scene, dict) else None
+        self._push_state()
+
     def _on_frame(self, message: CompressedImage) -> None:
         with self._lock:
             self._frames += 1
@@ -314,6 +337,13 @@ class RobotViewNode(Node):
         content_type = 'image/png' if message.format.lower().startswith('png') else 'image/jpeg'
         for watcher in watchers:
             watcher.send_binary({'content_type': content_type, 'frame': number}, data)
+
+
+def double_parameters(values: dict[str, float]) -> list[Parameter]:
+    """A SetParameters request's parameters: each value as a double."""
+    return [Parameter(name=name,
+                      value=ParameterValue(type=ParameterType.PARAMETER_DOUBLE, double_value=value))
+            for name, value in values.items()]
 
 
 def finite(samples: dict[str, float]) -> dict[str, float]:

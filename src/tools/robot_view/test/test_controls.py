@@ -1,9 +1,12 @@
-"""The servo controls' commands (set_gains, torque, goal), checked without a node."""
+"""The page's commands (set_gains, torque, goal, place_ball), checked without a node."""
+
+import math
 
 import pytest
 from owl_web.codec import ApiError
 from robot_view.controls import (
     appendix_goals,
+    ball_request,
     control_limits,
     gains_request,
     goal_request,
@@ -78,3 +81,22 @@ def test_the_pages_goal_buttons_are_the_appendixs_within_each_range():
     limits = control_limits()
     assert limits['gains'] == {'kp': 100.0, 'ki': 1000.0, 'kd': 10.0}
     assert limits['servos']['tilt'] == {'range': [-1.3, 0.9], 'goals': [0.0, 0.9]}
+
+
+def test_a_ball_place_is_two_finite_numbers_with_the_azimuth_taken_round():
+    assert ball_request({'azimuth': 0.3, 'elevation': -0.1}) == pytest.approx((0.3, -0.1))
+    assert ball_request({'azimuth': 2 * math.pi + 0.2, 'elevation': 0}) == pytest.approx((0.2, 0.0))
+    assert ball_request({'azimuth': 3.5, 'elevation': 0})[0] == pytest.approx(3.5 - 2 * math.pi)
+    # The ball's world is the camera's to judge: an elevation of 1.0 goes to it, and it says no.
+    assert ball_request({'azimuth': 0, 'elevation': 1.0}) == pytest.approx((0.0, 1.0))
+
+
+@pytest.mark.parametrize(('arguments', 'error'), [
+    ({'azimuth': 0.1}, "missing key 'elevation'"),
+    ({'azimuth': 'left', 'elevation': 0}, 'the ball\'s azimuth must be a number, got "left"'),
+    ({'azimuth': 0, 'elevation': math.nan}, "the ball's elevation must be finite, got nan"),
+    ({'azimuth': True, 'elevation': 0}, "the ball's azimuth must be a number, got true"),
+    ({'azimuth': 0, 'elevation': 0, 'speed': 1}, "unknown key 'speed'"),
+])
+def test_bad_ball_places_are_refused_in_one_line(arguments, error):
+    assert refused(ball_request, arguments).startswith(error)

@@ -1,12 +1,14 @@
 // The robot view: the Owl Kit as a three.js model that follows the servos' joints and the IMU's
 // orientation pushed by the server (channel "kit"), the camera's frames (channel "camera"), and
-// the IMU block turned with the mouse ("hold_imu" commands to the simulated IMU); beside it the
-// live plots (plots.js) and the servos' controls (controls.js), on the same socket.
+// the IMU block turned with the mouse ("hold_imu" commands to the simulated IMU); the camera
+// scene's ball and person around the head (scene.js); beside it the live plots (plots.js) and the
+// servos' controls (controls.js), on the same socket.
 // The model works in base_link's frame (metres, z up), from shared/specs/olive_hardware.md §7.
 import * as THREE from 'three';
 import { OwlSocket } from '/owl/socket.js';
 import { startControls } from '/static/controls.js';
 import { startPlots } from '/static/plots.js';
+import { startScene } from '/static/scene.js';
 
 const DRAG_RADIANS_PER_PIXEL = 0.01;
 const FPS_WINDOW = 2000;  // ms of frames the shown frame rate counts
@@ -31,10 +33,10 @@ renderer.setSize(container.clientWidth, container.clientHeight);
 container.appendChild(renderer.domElement);
 const scene = new THREE.Scene();
 scene.background = new THREE.Color(0xe5e7eb);
-const camera = new THREE.PerspectiveCamera(35, container.clientWidth / container.clientHeight, 0.01, 10);
+const camera = new THREE.PerspectiveCamera(42, container.clientWidth / container.clientHeight, 0.01, 10);
 camera.up.set(0, 0, 1);
-camera.position.set(-0.32, -0.38, 0.26);
-camera.lookAt(0.03, 0, 0.07);
+camera.position.set(-0.36, -0.40, 0.26);
+camera.lookAt(-0.03, 0, 0.07);
 scene.add(new THREE.HemisphereLight(0xffffff, 0x667788, 2.0));
 const sun = new THREE.DirectionalLight(0xffffff, 1.5);
 sun.position.set(-1, -2, 3);
@@ -136,7 +138,9 @@ function visiblyChanged(state) {
   return state.imu !== null && state.imu.some((value, i) => Math.abs(value - drawn.imu[i]) > VISIBLE / 2);
 }
 
+let updateScene = () => false;  // set once the scene's objects exist (below)
 socket.subscribe('kit', {}, (state) => {
+  const sceneChanged = updateScene(state.scene);
   view.pan = state.pan;
   view.tilt = state.tilt;
   view.imu = state.imu;
@@ -149,7 +153,7 @@ socket.subscribe('kit', {}, (state) => {
   document.getElementById('roll').textContent = degrees(roll);
   document.getElementById('pitch').textContent = degrees(pitch);
   document.getElementById('yaw').textContent = degrees(yaw);
-  if (visiblyChanged(state)) {
+  if (visiblyChanged(state) || sceneChanged) {
     drawn = { pan: state.pan, tilt: state.tilt, imu: state.imu };
     render();
   }
@@ -246,6 +250,7 @@ view.imuOnPage = () => {
   centre.project(camera);
   return { x: rect.left + (centre.x + 1) / 2 * rect.width, y: rect.top + (1 - centre.y) / 2 * rect.height };
 };
+updateScene = startScene({ scene, camera, renderer, render, socket, view, showError });
 view.panOfModel = () => panJoint.rotation.z;
 view.tiltOfModel = () => -tiltJoint.rotation.y;
 render();
