@@ -222,7 +222,7 @@ def test_bad_control_input_gets_one_line_and_reaches_no_servo(ros, page):
              '"enabled" must be true or false, got "yes"'),
             ({'type': 'command', 'id': 11, 'name': 'torqe', 'servo': 'pan', 'enabled': True},
              'unknown command "torqe" (did you mean \'torque\'?); known: goal, hold_imu, level, '
-             'set_gains, torque'),
+             'place_ball, set_gains, torque'),
             ('{"type": "command", "name": "goal", "servo": "pan", "position": ',
              'malformed JSON in the message: '),
             ('{"type": "command", "id": 12, "name": "goal", "servo": "pan", "position": 1, "pad": "'
