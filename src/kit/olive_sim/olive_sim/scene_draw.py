@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from olive_sim.scene_model import BONES
+from olive_sim.scene_model import BONES, KEYPOINTS
 
 BALL_COLOUR = (215, 20, 28)      # clearly red: hue ~358 deg, saturation 0.91, value 0.84
 BALL_HIGHLIGHT = (245, 70, 75)   # its lit top left, still red (saturation 0.71, value 0.96)
@@ -86,11 +86,9 @@ class Placed:
 
     def inside(self, width: int, height: int) -> bool:
         """Whether all 17 keypoints of the person are in an image of this size."""
-        return len(self.keypoints) == len(KEYPOINT_NAMES) and all(
+        return len(self.keypoints) == len(KEYPOINTS) and all(
             0 <= x < width and 0 <= y < height for x, y in self.keypoints.values())
 
-
-KEYPOINT_NAMES = tuple(dict.fromkeys(name for bone in BONES for name in bone))
 
 
 def draw_person(frame: np.ndarray, keypoints: Mapping[str, tuple[float, float]], scale: float) -> None:

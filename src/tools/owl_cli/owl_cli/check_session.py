@@ -51,6 +51,11 @@ PROBE_NODE = 'owl_check'
 NO_WEB_PAGE = ('-p', 'web_port:=0')  # after --ros-args
 
 
+def headless(windows: Path) -> dict[str, str | None]:
+    """The environment of a student's windowed node run without a display, its windows seen in windows."""
+    return {'DISPLAY': None, 'WAYLAND_DISPLAY': None, 'OWL_HEADLESS': '1', 'OWL_WINDOWS_DIR': str(windows)}
+
+
 STANDARD_PARAMETERS = ('use_sim_time', 'qos_overrides.', 'start_type_description_service')
 
 

@@ -10,6 +10,7 @@ from owl_cli.check_session import (
     CAMERA_TOPIC,
     Session,
     goal_topic,
+    headless,
     launch_files,
 )
 
@@ -31,7 +32,7 @@ def check_display_camera(s: Session) -> None:
     s.student(
         'olive_camera',
         'display_camera',
-        env={'DISPLAY': None, 'WAYLAND_DISPLAY': None, 'OWL_HEADLESS': '1', 'OWL_WINDOWS_DIR': str(windows)},
+        env=headless(windows),
     )
     info = s.expect_endpoint(
         CAMERA_TOPIC,
@@ -101,7 +102,7 @@ def check_robot_camera_launch(s: Session) -> None:
     s.student_launch(
         'olive_camera',
         files[0].name,
-        env={'DISPLAY': None, 'WAYLAND_DISPLAY': None, 'OWL_HEADLESS': '1', 'OWL_WINDOWS_DIR': str(windows)},
+        env=headless(windows),
     )
     s.wait(lambda: len({round(m.data, 2) for _, m in pan}) >= 3, 20.0)
     s.add(

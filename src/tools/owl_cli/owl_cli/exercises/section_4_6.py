@@ -12,6 +12,7 @@ from owl_cli.check_session import (
     CAMERA_TOPIC,
     Session,
     goal_topic,
+    headless,
     launch_files,
 )
 from owl_cli.exercises.section_4_4 import joint_positions, torque_criterion
@@ -25,7 +26,6 @@ CENTRED = 0.03      # rad off the ball: 3 % of the image's width
 FOLLOWING = 0.1     # rad off the moving ball
 MOVING_SPEED = 0.2  # rad/s
 HIDDEN_BALL = (1.2, -0.05)  # out of sight at rest: only a search finds it
-NO_DISPLAY = {'DISPLAY': None, 'WAYLAND_DISPLAY': None, 'OWL_HEADLESS': '1'}
 
 
 def ball_scene(azimuth: float, elevation: float) -> dict[str, object]:
@@ -147,7 +147,7 @@ def check_track_object_launch(s: Session) -> None:
     s.kit('pan', 'tilt', 'camera', scene=ball_scene(*BALL))
     pan = joint_positions(s, 'pan')
     windows = Path(s.temporary.name)
-    s.student_launch('olive_vision', files[0].name, env={**NO_DISPLAY, 'OWL_WINDOWS_DIR': str(windows)})
+    s.student_launch('olive_vision', files[0].name, env=headless(windows))
     s.add(Criterion(
         f'ros2 launch olive_vision {files[0].name}: track_object points the head at the ball',
         s.wait(lambda: near(pan, BALL[0], CENTRED), 20.0),

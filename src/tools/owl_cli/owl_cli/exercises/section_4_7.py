@@ -12,6 +12,7 @@ from owl_cli.check_session import (
     GESTURE_TOPIC,
     Session,
     goal_topic,
+    headless,
     launch_files,
 )
 from owl_cli.exercises.section_4_4 import joint_positions, torque_criterion
@@ -20,7 +21,6 @@ SECTION = Section()
 
 MOVED = 0.1    # rad: a head that moved at least this far answered the gesture
 FACING = 0.05  # rad from the middle: facing the person again
-NO_DISPLAY = {'DISPLAY': None, 'WAYLAND_DISPLAY': None, 'OWL_HEADLESS': '1'}
 
 
 def person_scene(gesture: str) -> dict[str, object]:
@@ -137,7 +137,7 @@ def check_gesture_control_launch(s: Session) -> None:
     s.kit('pan', 'tilt', 'camera', scene=person_scene('both_hands_down'))
     joints = {servo: joint_positions(s, servo) for servo in ('pan', 'tilt')}
     windows = Path(s.temporary.name)
-    s.student_launch('olive_vision', files[0].name, env={**NO_DISPLAY, 'OWL_WINDOWS_DIR': str(windows)})
+    s.student_launch('olive_vision', files[0].name, env=headless(windows))
     s.wait(lambda: s.endpoints(GESTURE_TOPIC, 'subscriptions') != [], 20.0)
     s.set_parameter(CAMERA_NODE, 'gesture', 'both_hands_up')
     since = time.monotonic()
