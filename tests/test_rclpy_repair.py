@@ -6,6 +6,7 @@ traceback. By chance that is 1 stop in 3 under a flood of messages; here the Ctr
 inside the constructor every time, so the test does not depend on luck.
 """
 
+import re
 import signal
 import subprocess
 import sys
@@ -14,6 +15,8 @@ from pathlib import Path
 import pytest
 from std_msgs.msg import String
 from std_srvs.srv import SetBool
+
+TRACEBACK_WORDS = re.compile(r'Traceback|Exception ignored|Error')
 
 # A node as the course writes one, except that the first message (or request) built after the
 # first callback raises SIGINT from inside its constructor, i.e. inside rclpy's take.
@@ -102,6 +105,43 @@ def test_ctrl_c_inside_a_take_ends_the_node_cleanly(ros, tmp_path: Path, entity:
     assert 'Traceback' not in listener.output, f'the listener ended with a traceback:\n{listener.output}'
     assert 'stopped by Ctrl-C' in listener.output, f'exit code {code}:\n{listener.output}'
     assert code == 0, f'exit code {code}:\n{listener.output}'
+
+
+# The program's main code is over and Python waits, in threading._shutdown, for a thread that spins
+# a node. A Ctrl-C handled there (this one, or a copy of the Ctrl-C that ended a listing, delivered
+# late on a busy machine: 1 run in a suite once) must not raise where nothing can catch it.
+MAIN_OVER = """
+import threading
+
+import rclpy
+from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
+from rclpy.node import Node
+
+
+def spin(executor):
+    try:
+        executor.spin()
+    except ExternalShutdownException:  # how a thread's spin ends when ROS goes down, upstream too
+        pass
+
+
+rclpy.init()
+executor = SingleThreadedExecutor()
+executor.add_node(Node('joined'))
+threading.Thread(target=spin, args=(executor,)).start()
+print('main over', flush=True)
+"""
+
+
+def test_a_ctrl_c_while_python_joins_threads_ends_the_program_quietly(ros, tmp_path: Path):
+    script = tmp_path / 'main_over.py'
+    script.write_text(MAIN_OVER)
+    program = ros.command([sys.executable, str(script)], label='main_over')
+    program.wait_for('main over', timeout=15)
+    ros.probe.wait_until_spinning('joined')
+    program.send_signal()
+    code = program.wait(15)
+    assert (code, TRACEBACK_WORDS.findall(program.output)) == (0, []), program.output
 
 
 def test_a_task_whose_construction_ctrl_c_cut_short_is_deleted_quietly():

@@ -15,7 +15,9 @@ at once. CtrlC is also a SystemExit without a code: a program that does not catc
 with exit status 0, as after sys.exit(), instead of printing a traceback. A SIGINT within SAME_PRESS
 of the last is the same Ctrl-C passed on by `ros2 launch` and is not raised again. When the interpreter
 exits after a Ctrl-C, the default context is shut down before Python joins the program's threads,
-so an executor spinning in a thread of its own stops as it did with rclpy's handler. Code that asks
+so an executor spinning in a thread of its own stops as it did with rclpy's handler; a Ctrl-C
+that lands while Python joins those threads (after the program's main code ended) does the same
+instead of raising where nothing can catch it. Code that asks
 for upstream's behaviour keeps it: signal_handler_options given to rclpy.init, a SIGINT handler or
 wake-up fd of the program's own, rclpy.init outside the main thread or for another context.
 
@@ -203,7 +205,26 @@ def raise_ctrl_c(signum: int, frame: FrameType | None) -> None:
     if last is not None and now - last < SAME_PRESS:
         return
     CtrlCAsOnHumble.pressed_at = now
+    if in_threading_shutdown(frame):
+        import rclpy
+        rclpy.try_shutdown()
+        return
     raise CtrlC
+
+
+def in_threading_shutdown(frame: FrameType | None) -> bool:
+    """Whether the main thread runs threading._shutdown: the program is over, Python joins its threads.
+
+    A CtrlC raised there would only be printed ("Exception ignored in: <module 'threading'>"); what
+    the Ctrl-C must do instead is stop ROS, so that threads still spinning end and Python can join
+    them. A late copy of the Ctrl-C that ended the program lands there too when the machine is busy.
+    """
+    shutdown_code = threading._shutdown.__code__  # type: ignore[attr-defined]
+    while frame is not None:
+        if frame.f_code is shutdown_code:
+            return True
+        frame = frame.f_back
+    return False
 
 
 def patch_signals(signals: Any) -> None:
