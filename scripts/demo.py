@@ -39,6 +39,8 @@ SERVOS = ('pan', 'tilt')
 STARTUP_TIMEOUT = 60.0  # s for every node to say it is working, on a loaded 2-core machine
 ROBOT_VIEW_PORT = 8091  # robot_view's own default; another free port when it is taken
 ROBOT_VIEW_LINE = r'robot_view: open (http://127\.0\.0\.1:\d+/) in a browser'
+WINDOWS_PORT = 8092  # owl windows' own default, likewise
+WINDOWS_LINE = r'owl windows: open (http://127\.0\.0\.1:\d+/) in a browser'
 PROJECTS = ('imu', 'tracking')
 BALL_SPEED = 0.15  # rad/s of the ball going round the robot in the tracking project
 
@@ -133,11 +135,11 @@ def report_line(elapsed: float, state: RobotState, fps: float, project: str = 'i
     return ' | '.join(parts)
 
 
-def robot_view_port(preferred: int = ROBOT_VIEW_PORT) -> int:
-    """The port to give robot_view: the preferred one when it is free on 127.0.0.1, else 0.
+def page_port(preferred: int) -> int:
+    """The port to give a page's server: the preferred one when it is free on 127.0.0.1, else 0.
 
-    A robot_view or another demo may hold the preferred port; with 0, robot_view picks a free one and
-    prints it.
+    A robot_view, an owl windows or another demo may hold the preferred port; with 0, the server picks
+    a free one and prints it.
     """
     with socket.socket() as probe:
         try:
@@ -157,12 +159,15 @@ def start_robot(sandbox: RosSandbox, project: str = 'imu') -> dict[str, RosProce
                                       label='imu_turtle'),
         'imu_control_robot': sandbox.run('olive_servo', 'imu_control_robot'),
         'display_camera': sandbox.run('olive_camera', 'display_camera'),
-        'robot_view': sandbox.run('robot_view', 'robot_view', '--port', str(robot_view_port())),
+        'robot_view': sandbox.run('robot_view', 'robot_view', '--port', str(page_port(ROBOT_VIEW_PORT))),
+        'owl_windows': sandbox.command(['owl', 'windows', '--port', str(page_port(WINDOWS_PORT))],
+                                       label='owl windows'),
     }
     processes['imu_control_robot'].wait_for(r'steering the pan and tilt servos', STARTUP_TIMEOUT)
     processes['imu_turtle'].wait_for(r'IMU data on', STARTUP_TIMEOUT)
     processes['display_camera'].wait_for(r'showing them in the window', STARTUP_TIMEOUT)
     processes['robot_view'].wait_for(ROBOT_VIEW_LINE, STARTUP_TIMEOUT)
+    processes['owl_windows'].wait_for(WINDOWS_LINE, STARTUP_TIMEOUT)
     return processes
 
 
@@ -173,7 +178,7 @@ def start_tracking_robot(sandbox: RosSandbox) -> dict[str, RosProcess]:
                                 f'ball_speed:={BALL_SPEED}'], label='kit'),
         'track_object': sandbox.run('olive_vision', 'track_object'),
         'display_camera': sandbox.run('olive_camera', 'display_camera'),
-        'robot_view': sandbox.run('robot_view', 'robot_view', '--port', str(robot_view_port())),
+        'robot_view': sandbox.run('robot_view', 'robot_view', '--port', str(page_port(ROBOT_VIEW_PORT))),
     }
     processes['track_object'].wait_for(r'red ball at .* tracking it', STARTUP_TIMEOUT)
     processes['display_camera'].wait_for(r'showing them in the window', STARTUP_TIMEOUT)
@@ -181,9 +186,9 @@ def start_tracking_robot(sandbox: RosSandbox) -> dict[str, RosProcess]:
     return processes
 
 
-def robot_view_address(process: RosProcess) -> str:
-    """The robot view's address (http://127.0.0.1:PORT/), from the line robot_view printed at start."""
-    return process.wait_for(ROBOT_VIEW_LINE, 1.0)[0].group(1)
+def page_address(process: RosProcess, line: str) -> str:
+    """A page's address (http://127.0.0.1:PORT/), from the line its server printed at start."""
+    return process.wait_for(line, 1.0)[0].group(1)
 
 
 def display_camera_lines(process: RosProcess) -> list[str]:
@@ -222,8 +227,13 @@ def run_demo(seconds: float, report_every: float, project: str = 'imu') -> int:
             time.sleep(0.5)  # the no-display line follows the first frame's
             for line in display_camera_lines(processes['display_camera']):
                 print(f'   display_camera says: {line}', flush=True)
-            print(f"== robot view: open {robot_view_address(processes['robot_view'])} in a browser "
-                  '(the kit in 3D, live plots, the camera; the IMU follows its script here)', flush=True)
+            print(f"== robot view: open {page_address(processes['robot_view'], ROBOT_VIEW_LINE)} in a "
+                  'browser (the kit in 3D, live plots, the camera; the IMU follows its script here)',
+                  flush=True)
+            if 'owl_windows' in processes:
+                print(f"== turtlesim: open {page_address(processes['owl_windows'], WINDOWS_LINE)} in a "
+                      "browser (owl windows: the TurtleSim window and display_camera's window, when they "
+                      'have no display)', flush=True)
             print('== running', flush=True)
             start = last = time.monotonic()
             frames_then = state.frames

@@ -99,6 +99,10 @@ class RosHarness(RosSandbox):
 
     def __init__(self) -> None:
         super().__init__()
+        # Programs without a display write no headless windows (OWL_WINDOWS_DIR set and empty) unless a
+        # test gives them a folder: a suite's turtlesims and cameras would fill the user's own folder,
+        # which `owl windows` shows, and spend the machine on frames nobody sees.
+        self.env['OWL_WINDOWS_DIR'] = ''
         self._probe: Probe | None = None
 
     @property

@@ -36,6 +36,11 @@ def test_demo_runs_the_robot_reports_it_and_stops_every_node_cleanly():
     assert address, result.stdout
     assert 0 < int(address.group(1)) < 65536, result.stdout
     assert result.stdout.index(address.group(0)) < result.stdout.index('== running')
+    # where to see the turtle without a display: owl windows' page (tests/test_owl_windows.py shows it)
+    windows = re.search(r'^== turtlesim: open http://127\.0\.0\.1:(\d+)/ in a browser \(owl windows: the '
+                        r'TurtleSim window', result.stdout, re.M)
+    assert windows, result.stdout
+    assert result.stdout.index(windows.group(0)) < result.stdout.index('== running')
     assert 'every node stopped cleanly' in result.stdout
     assert 'Traceback' not in result.stdout + result.stderr
 

@@ -1,17 +1,21 @@
 """`owl windows` with real programs without a display, shown live on the page in Chromium.
 
 A student's OpenCV viewer and pygame key reader (tests/student_scripts/) show on the page, live; keys
-pressed on the page reach the pygame program; bad input gets one line.
-docs/screenshots/owl_windows.png is made here.
+pressed on the page reach the pygame program; turtlesim's TurtleSim window is there too, driven by the
+arrow keys and the on-screen arrows; bad input gets one line.
+docs/screenshots/owl_windows.png and owl_windows_turtlesim(_390).png are made here.
 """
 
 import re
 import sys
+import time
 from pathlib import Path
 from typing import Any
 
+import pytest
 from desktop import NO_DISPLAY
 from ros_harness import wait_until
+from turtlesim.msg import Pose
 from web_harness import PageSocket, free_port
 
 STUDENT_SCRIPTS = Path(__file__).parent / 'student_scripts'
@@ -73,6 +77,81 @@ def test_windows_of_programs_without_a_display_show_live_and_get_the_keys_presse
     page.wait_for_selector('#none:not([hidden])', timeout=10_000)
     page_server.stop_cleanly(timeout=10)
     assert 'Traceback' not in page_server.output
+
+
+PIXEL_OF_WINDOW = """([program, x, y]) => {
+  const image = document.querySelector(`[data-window^="${program}-"] img`);
+  const canvas = document.createElement('canvas');
+  canvas.width = image.naturalWidth;
+  canvas.height = image.naturalHeight;
+  const context = canvas.getContext('2d');
+  context.drawImage(image, 0, 0);
+  return Array.from(context.getImageData(x, y, 1, 1).data.slice(0, 3));
+}"""
+TURTLESIM_BLUE = (69, 86, 255)
+PEN = (179, 184, 255)  # turtle1's pen
+
+
+def near(colour, wanted, tolerance=24):
+    return all(abs(a - b) <= tolerance for a, b in zip(colour, wanted, strict=True))
+
+
+def test_turtlesim_without_a_display_shows_on_the_page_and_its_arrows_drive_turtle1(ros, page, tmp_path):
+    folder = tmp_path / 'windows'
+    page_server, url = start_windows_page(ros, folder)
+    turtlesim = ros.run('turtlesim', 'turtlesim_node', env={**NO_DISPLAY, 'OWL_WINDOWS_DIR': str(folder)})
+    turtlesim.wait_for(r"No display: the TurtleSim window is shown in a browser instead\. Run 'owl windows' "
+                       r'and open its page \(http://127\.0\.0\.1:8092/\); arrow keys pressed there drive '
+                       r'turtle1\.$', timeout=30)
+    poses = ros.probe.collect(Pose, '/turtle1/pose')
+    page.goto(url)
+    page.wait_for_function('() => document.body.dataset.windows === "1"', timeout=30_000)
+    assert re.fullmatch(rf"turtlesim_node \({turtlesim.pid}\) — 'TurtleSim'\s*",
+                        page.locator('.window h2').inner_text())
+    card = '[data-window^="turtlesim_node-"]'
+    page.wait_for_function(f"() => document.querySelector('{card} img').naturalWidth === 500", timeout=20_000)
+    assert near(page.evaluate(PIXEL_OF_WINDOW, ['turtlesim_node', 10, 10]), TURTLESIM_BLUE)
+    on_the_way = ['turtlesim_node', 340, 250]  # between the middle and where the turtle stops
+    assert near(page.evaluate(PIXEL_OF_WINDOW, on_the_way), TURTLESIM_BLUE)
+
+    # A malformed line in the keys file is said once and skipped; the turtle stays where it is.
+    keys_file = folder / f'turtlesim_node-{turtlesim.pid}' / 'keys'
+    with open(keys_file, 'a') as keys:
+        keys.write('sideways up\n')
+    turtlesim.wait_for(r"^owl_gui_hook: key event 'sideways up' in .* skipped: expected 'down <key>'",
+                       timeout=10)
+
+    # The up arrow held on the window: turtle1 goes forward at teleop's 2 m/s, and the page shows it live.
+    def wait_for_pose(condition, what):
+        wait_until(lambda: poses and condition(poses[-1]), 10, what)
+
+    wait_for_pose(lambda pose: pose.x == pytest.approx(5.544, abs=0.01), 'turtle1 in the middle')
+    page.click(card)
+    frames_before = frames_of(page, 'turtlesim_node')
+    page.keyboard.down('ArrowUp')
+    wait_for_pose(lambda pose: pose.linear_velocity == 2.0, 'turtle1 driving forward')
+    time.sleep(0.8)
+    page.keyboard.up('ArrowUp')
+    wait_for_pose(lambda pose: pose.linear_velocity == 0.0, 'turtle1 stopped, 1 s after the key')
+    assert poses[-1].x > 8.0, poses[-1]
+    assert poses[-1].theta == 0.0, poses[-1]
+    assert frames_of(page, 'turtlesim_node') - frames_before >= 10, 'the page did not follow the turtle'
+    wait_until(lambda: near(page.evaluate(PIXEL_OF_WINDOW, on_the_way), PEN), 10, 'the trail on the page')
+
+    # The on-screen left arrow, held with the mouse (a finger on a phone): turtle1 turns left.
+    page.hover(f'{card} .arrow.left')
+    page.mouse.down()
+    wait_for_pose(lambda pose: pose.angular_velocity == 2.0, 'turtle1 turning left')
+    page.mouse.up()
+    page.screenshot_to('owl_windows_turtlesim')
+    page.set_viewport_size({'width': 390, 'height': 844})
+    page.wait_for_function(f"() => document.querySelector('{card}').getBoundingClientRect().right <= 390")
+    page.screenshot_to('owl_windows_turtlesim_390')
+
+    turtlesim.stop_cleanly(timeout=10)
+    page.wait_for_function('() => document.body.dataset.windows === "0"', timeout=10_000)
+    assert not keys_file.parent.exists(), 'turtlesim left its window folder behind'
+    page_server.stop_cleanly(timeout=10)
 
 
 def test_bad_input_gets_one_line_and_nothing_reaches_the_program(ros, tmp_path):

@@ -265,14 +265,24 @@ def _decode(message) -> Image.Image:
     return Image.open(io.BytesIO(bytes(message.data))).convert('RGB')
 
 
-def test_without_headless_flag_runs_headless_when_no_display_can_be_opened(ros):
+def test_without_headless_flag_runs_headless_when_no_display_can_be_opened(ros, tmp_path):
+    # No windows' folder (the harness sets OWL_WINDOWS_DIR empty): no browser window either.
     no_display = ros.run('turtlesim', 'turtlesim_node', env={'DISPLAY': ''})
     no_display.wait_for(r'Spawning turtle \[turtle1\]', timeout=30)
     unreachable = ros.run('turtlesim', 'turtlesim_node', '--ros-args', '-r', '__node:=second',
                           env={'DISPLAY': ':4242'})
     unreachable.wait_for(r'\[WARN\].*\[second\]: No window \(.*\); running headless', timeout=30)
     assert ros.probe.get_parameters('second', 'background_r') == [69]  # serving
-    no_display.stop_cleanly()
-    unreachable.stop_cleanly()
-    assert 'No window' not in no_display.output
-    assert 'Traceback' not in no_display.output + unreachable.output
+    # With the folder, the window that could not open goes to the browser (owl windows) instead.
+    to_browser = ros.run('turtlesim', 'turtlesim_node', '--ros-args', '-r', '__node:=third',
+                         env={'DISPLAY': ':4242', 'OWL_WINDOWS_DIR': str(tmp_path)})
+    to_browser.wait_for(r'\[INFO\].*\[third\]: No display \(couldn.t connect to display ":4242"\): the '
+                        r'TurtleSim window is shown in a browser instead\.', timeout=30)
+    frame = tmp_path / f'turtlesim_node-{to_browser.pid}' / 'tk-TurtleSim.jpg'
+    wait_until(frame.exists, 10, 'the first frame in the windows folder')
+    assert Image.open(frame).size == (500, 500)
+    for process in (no_display, unreachable, to_browser):
+        process.stop_cleanly()
+    assert 'No window' not in no_display.output + to_browser.output
+    assert 'Traceback' not in no_display.output + unreachable.output + to_browser.output
+    assert not frame.parent.exists()

@@ -53,6 +53,10 @@ display.
                             destroyWindow/destroyAllWindows remove it.
     pygame.png              the latest content of the pygame display, at each display.flip() or
                             display.update(), PNG. pygame.display.quit()/pygame.quit() remove it.
+    tk-<window>.jpg         the latest frame of a window that a program draws itself and, with no
+                            display, writes here through this module's WindowsFolder: turtlesim's
+                            'TurtleSim' (tk-TurtleSim.jpg), at its own rate, JPEG. The program
+                            reads the keys file with KeyReader.
     keys                    empty when made; append key events to it, one per line:
                                 down <key>
                                 up <key>
@@ -368,12 +372,12 @@ def private_root(root: str) -> None:
 
 
 def window_file(kind: str, name: str) -> str:
-    """The seam's file name of a window: cv2-<percent-encoded name>.jpg or pygame.png."""
+    """The seam's file name of a window: pygame.png, or <kind>-<percent-encoded name>.jpg (cv2, tk)."""
     from urllib.parse import quote
 
     if kind == 'pygame':
         return 'pygame.png'
-    return f"cv2-{quote(name, safe='')}.jpg"
+    return f"{kind}-{quote(name, safe='')}.jpg"
 
 
 def parse_key_event(line: str) -> tuple[bool, str]:

@@ -25,6 +25,7 @@ from rclpy.node import Node
 from rclpy.task import Future
 from turtlesim.action import RotateAbsolute
 
+from turtlesim_py.arrow_keys import ARROWS
 from turtlesim_py.rclcpp_parameters import declare_parameter_events_qos
 
 BANNER = """Reading from keyboard
@@ -37,7 +38,8 @@ NOT_A_TERMINAL_EXIT = 2
 READ_TIMEOUT_MS = 100
 
 # Arrow keys arrive as ESC [ A..D; like upstream, only the last byte counts.
-ARROWS = {ord('A'): (1.0, 0.0), ord('B'): (-1.0, 0.0), ord('C'): (0.0, -1.0), ord('D'): (0.0, 1.0)}
+ARROW_BYTES = {ord('A'): ARROWS['up'], ord('B'): ARROWS['down'], ord('C'): ARROWS['right'],
+               ord('D'): ARROWS['left']}
 # The ring around F, each key pointing in its direction.
 HEADINGS = {'g': 0.0, 't': 0.7854, 'r': 1.5708, 'e': 2.3562, 'd': 3.1416,
             'c': -2.3562, 'v': -1.5708, 'b': -0.7854}
@@ -75,8 +77,8 @@ Action = Drive | Rotate | Cancel | Quit
 
 def action_for(byte: int) -> Action | None:
     """What one input byte asks for; None for keys that do nothing."""
-    if byte in ARROWS:
-        return Drive(*ARROWS[byte])
+    if byte in ARROW_BYTES:
+        return Drive(*ARROW_BYTES[byte])
     key = chr(byte)
     if key in HEADINGS:
         return Rotate(HEADINGS[key])

@@ -45,6 +45,8 @@ from turtlesim.msg import Pose as PoseMsg
 from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelative
 
 from turtlesim_py import world
+from turtlesim_py.arrow_keys import held_drive
+from turtlesim_py.browser_window import BrowserWindow
 from turtlesim_py.canvas import DEFAULT_BACKGROUND, SHELL_COLORS, Canvas, SpriteView, encode_png
 from turtlesim_py.rclcpp_parameters import declare_parameter_events_qos
 from turtlesim_py.turtle import RotationGoal, TickResult, Turtle
@@ -212,13 +214,14 @@ class TurtlesimNode(Node):
     """Node `turtlesim`: the pond, its turtles' endpoints, and the 16 ms tick that moves them.
 
     canvas_png is where the hidden ~/_save_canvas service writes the canvas; publish_image sends frames on
-    ~/canvas/compressed; window opens a Tk window when there is a display.
+    ~/canvas/compressed; window opens a Tk window when there is a display, else the browser window
+    (browser_window.py) that `owl windows` shows, whose held arrow keys drive turtle1.
     """
 
     def __init__(self, canvas_png: Path = Path('turtlesim.png'), publish_image: bool = False,
                  window: bool = False) -> None:
         # Set first: rclpy destroys a half-built node (bad --ros-args parameter) via destroy_node().
-        self.window: CanvasWindow | None = None
+        self.window: CanvasWindow | BrowserWindow | None = None
         self._ticks: PeriodicThread | None = None
         self._tick_lock = threading.RLock()  # held by the tick and by every ROS callback
         super().__init__('turtlesim')
@@ -251,7 +254,7 @@ class TurtlesimNode(Node):
         self.get_logger().info(f'Starting turtlesim with node name {self.get_fully_qualified_name()}')
         self.spawn_turtle('', world.CENTER, world.CENTER, 0.0)
         # Tk must be used from one thread only: the tick's, which opens, pumps and closes it.
-        self._window_wanted = window and bool(os.environ.get('DISPLAY'))
+        self._window_wanted = window
         if self._window_wanted:
             # Closing the window shuts ROS down from the executor's thread, not from the tick's.
             self._window_closed = self.create_guard_condition(self._on_window_closed)
@@ -273,19 +276,33 @@ class TurtlesimNode(Node):
             executor.wake()
 
     def _open_window(self) -> None:
-        try:  # tkinter only when there is a display to use
+        display = os.environ.get('DISPLAY') and os.environ.get('OWL_HEADLESS') != '1'
+        problem = self._open_tk_window() if display else None
+        if self.window is None:
+            self.window = BrowserWindow.open()
+            if self.window is not None:
+                self.get_logger().info(
+                    f"No display{f' ({problem})' if problem else ''}: the TurtleSim window is shown in a "
+                    "browser instead. Run 'owl windows' and open its page (http://127.0.0.1:8092/); "
+                    'arrow keys pressed there drive turtle1.')
+            elif problem:
+                self.get_logger().warning(f'No window ({problem}); running headless')
+        if self.window is not None:
+            self._mark_changed()
+
+    def _open_tk_window(self) -> str | None:
+        """Open the Tk window on the display; None when it opened, else why it could not."""
+        try:
             import tkinter
 
             from turtlesim_py.window import CanvasWindow
         except ImportError as error:
-            self.get_logger().warning(f'No window ({error}); running headless')
-            return
+            return str(error)
         try:
             self.window = CanvasWindow(on_close=self._window_closed.trigger)
         except tkinter.TclError as error:
-            self.get_logger().warning(f'No window ({error}); running headless')
-            return
-        self._mark_changed()
+            return str(error)
+        return None
 
     def _on_window_closed(self) -> None:
         # Closing the window ends the process, as upstream's does.
@@ -409,6 +426,7 @@ class TurtlesimNode(Node):
         now = self.now()
         if self.window is not None:
             self.window.pump()  # the window's events, between ticks like every ROS callback
+            self._drive_with_held_keys(now)
         if self._last_tick is None:
             # The first tick only records the time (with sim time and no /clock it stays 0).
             if now != 0.0:
@@ -427,6 +445,14 @@ class TurtlesimNode(Node):
                                         f'pos_y: {turtle.y_down:f} theta: {turtle.theta:f}')
         if self._stale:
             self._publish_frame(now)
+
+    def _drive_with_held_keys(self, now: float) -> None:
+        """Arrow keys held on the window's page drive turtle1, as turtle_teleop_key's key repeat would."""
+        assert self.window is not None
+        drive = held_drive(self.window.held_keys())
+        turtle1 = self.turtles.get('turtle1')
+        if drive is not None and turtle1 is not None:
+            turtle1.turtle.command_velocity(drive[0], 0.0, drive[1], now=now)
 
     def _mark_changed(self) -> None:
         """Something visible changed: every frame consumer needs a new frame."""

@@ -37,6 +37,10 @@ class CanvasWindow:
         """Handle pending window events and redraws, without blocking."""
         self._root.update()
 
+    def held_keys(self) -> frozenset[str]:
+        """Always none: like upstream's window, this one sends the simulator no keys."""
+        return frozenset()
+
     def close(self) -> None:
         """Destroy the window; it cannot be used again."""
         self._root.destroy()

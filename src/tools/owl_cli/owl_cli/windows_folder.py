@@ -2,7 +2,8 @@
 
 Each running program with headless windows has a folder <root>/<program>-<pid>/ (written by the
 venv's start-up hook, owl_venv_hooks/owl_gui_hook.py, which documents it): cv2-<window>.jpg per
-OpenCV window, pygame.png for a pygame display, and a `keys` file that the program reads key events from.
+OpenCV window, pygame.png for a pygame display, tk-<window>.jpg for a window a program draws itself
+(turtlesim's TurtleSim), and a `keys` file that the program reads key events from.
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ from owl_gui_hook import cv2_key_code, default_windows_dir, parse_key_event, pri
 __all__ = ['Window', 'append_key_event', 'default_windows_dir', 'private_root', 'scan']
 
 PROCESS_FOLDER = re.compile(r'(?P<program>.+)-(?P<pid>\d+)')
+JPEG_KINDS = ('cv2', 'tk')  # <kind>-<name>.jpg: OpenCV's windows, and those a program draws (turtlesim)
 MAX_FRAME_BYTES = 16 * 1024 * 1024  # a 4K frame as PNG is under this; anything larger is not a frame
 
 
@@ -27,7 +29,7 @@ class Window:
 
     program: str
     pid: int
-    kind: str  # 'cv2' or 'pygame'
+    kind: str  # 'cv2', 'pygame' or 'tk'
     name: str  # the window's name as the program gave it ('pygame' for a pygame display)
     path: Path
     changed: int  # the file's mtime in ns: a new frame changes it
@@ -62,10 +64,11 @@ def running(pid: int) -> bool:
 def window_of(path: Path, program: str, pid: int) -> Window | None:
     """The window a file of a program's folder shows; None for other files and one removed meanwhile."""
     name = path.name
+    kind, _, rest = name.partition('-')
     if name == 'pygame.png':
         kind, title = 'pygame', 'pygame'
-    elif name.startswith('cv2-') and name.endswith('.jpg'):
-        kind, title = 'cv2', unquote(name[len('cv2-'):-len('.jpg')])
+    elif kind in JPEG_KINDS and name.endswith('.jpg'):
+        title = unquote(rest[:-len('.jpg')])
     else:
         return None  # the keys file, a frame being written (.<name>.tmp)
     try:

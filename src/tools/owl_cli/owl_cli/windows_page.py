@@ -1,10 +1,10 @@
 """`owl windows`: the headless windows of this user's programs on one local page, live, with their keys.
 
-A thread looks at the windows' folder every POLL_PERIOD (the programs write at most 10 frames/s
-per window, the hook's default) and pushes over owl_web's WebSocket: the list of windows when it
-changes (channel `windows`), each watched window's frame when its file changes (channel `window`,
-parameter `window`: the id from the list), and a key pressed on the page goes to that program's
-keys file (command `key`).
+A thread looks at the windows' folder every POLL_PERIOD (the hook writes at most 10 frames/s per
+window by default, turtlesim about 33 while something moves) and pushes over owl_web's WebSocket:
+the list of windows when it changes (channel `windows`), each watched window's frame when its file
+changes (channel `window`, parameter `window`: the id from the list), and a key pressed on the page
+goes to that program's keys file (command `key`).
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from owl_web.server import Subscription, WebServer
 
 from owl_cli.windows_folder import Window, append_key_event, read_frame, scan
 
-POLL_PERIOD = 0.05
+POLL_PERIOD = 0.015  # s: under turtlesim's 30 ms between frames, so none waits long
 STATIC_DIR = Path(__file__).parent / 'windows_static'
 
 

@@ -21,6 +21,8 @@ def root(tmp_path):
     live.mkdir()
     (live / 'cv2-Olive%20Camera.jpg').write_bytes(b'jpeg')
     (live / 'pygame.png').write_bytes(b'png')
+    (live / 'tk-TurtleSim.jpg').write_bytes(b'jpeg')
+    (live / 'tk-notes.txt').write_bytes(b'not a frame')
     (live / '.pygame.png.tmp').write_bytes(b'half')
     (live / 'keys').write_text('')
     dead = tmp_path / f'killed-{ended_pid()}'
@@ -35,9 +37,10 @@ def test_scan_lists_the_windows_of_running_programs_only(root):
     windows = scan(root)
     assert [(w.program, w.pid, w.kind, w.name) for w in windows] == [
         ('display camera', os.getpid(), 'cv2', 'Olive Camera'),
-        ('display camera', os.getpid(), 'pygame', 'pygame')]
+        ('display camera', os.getpid(), 'pygame', 'pygame'),
+        ('display camera', os.getpid(), 'tk', 'TurtleSim')]
     assert windows[0].id == f'display%20camera-{os.getpid()}/cv2-Olive%20Camera.jpg'
-    assert [w.content_type for w in windows] == ['image/jpeg', 'image/png']
+    assert [w.content_type for w in windows] == ['image/jpeg', 'image/png', 'image/jpeg']
     assert read_frame(windows[0]) == b'jpeg'
 
 

@@ -44,6 +44,39 @@ function sendKey(id, event, kind) {
   socket.command('key', { window: id, event: kind, key });
 }
 
+// On-screen arrows for touch screens (and mice): held down as a key is held, released as it is.
+const ARROWS = [['up', '▲'], ['left', '◀'], ['down', '▼'], ['right', '▶']];
+function arrowPad(id) {
+  const pad = document.createElement('div');
+  pad.className = 'arrows';
+  for (const [key, label] of ARROWS) {
+    const button = document.createElement('button');
+    button.type = 'button';
+    button.className = `arrow ${key}`;
+    button.textContent = label;
+    button.setAttribute('aria-label', `${key} arrow key`);
+    let held = false;
+    const release = () => {
+      if (!held) return;
+      held = false;
+      button.classList.remove('held');
+      socket.command('key', { window: id, event: 'up', key });
+    };
+    button.addEventListener('pointerdown', (event) => {
+      event.preventDefault();
+      button.setPointerCapture(event.pointerId);  // the up comes here even if the finger slides off
+      held = true;
+      button.classList.add('held');
+      socket.command('key', { window: id, event: 'down', key });
+    });
+    button.addEventListener('pointerup', release);
+    button.addEventListener('pointercancel', release);
+    button.addEventListener('lostpointercapture', release);
+    pad.append(button);
+  }
+  return pad;
+}
+
 function addWindow(window) {
   const card = document.createElement('section');
   card.className = 'window';
@@ -56,7 +89,7 @@ function addWindow(window) {
   title.append(keys);
   const image = document.createElement('img');
   image.alt = `${window.program}: ${window.name}`;
-  card.append(title, image);
+  card.append(title, image, arrowPad(window.id));
   card.addEventListener('keydown', (event) => sendKey(window.id, event, 'down'));
   card.addEventListener('keyup', (event) => sendKey(window.id, event, 'up'));
   card.addEventListener('focus', () => { keys.textContent = '(keys go to it)'; });
