@@ -7,6 +7,7 @@ here.
 
 import math
 import re
+import signal
 import socket
 import statistics
 import time
@@ -250,3 +251,43 @@ def test_the_person_is_shown_with_the_gesture_of_the_camera(ros, page):
     assert all(r.successful for r in changed)
     page.wait_for_function("() => window.robotView.scene.gesture === 'hands_on_hip'", timeout=10_000)
     page.screenshot_to('robot_view_person')
+
+
+def test_without_a_kit_the_page_says_what_to_start_and_after_its_server_stops_it_says_it_is_frozen(ros, page):
+    view = ros.run('robot_view', 'robot_view', '--port', str(free_port()))
+    page.goto(view.wait_for(URL_LINE, timeout=30)[0].group(1))
+    # No module at all: one line names the commands that start the kit, the camera says it has none,
+    # and "Level the IMU" cannot be pressed.
+    page.wait_for_function("() => document.getElementById('kit-state').textContent.startsWith("
+                           "'No Owl Kit module runs in this ROS domain')", timeout=20_000)
+    assert 'ros2 launch robot_view robot_view.launch.py' in page.inner_text('#kit-state')
+    assert 'ros2 launch olive_sim owl_kit.launch.py' in page.inner_text('#kit-state')
+    assert page.is_visible('#camera-missing')
+    assert not page.is_visible('#camera')  # no broken-image icon
+    assert page.inner_text('#camera-missing').startswith('No camera runs. Start the kit:')
+    assert page.is_disabled('#level')
+    assert page.inner_text('#imu-hint') == 'No IMU runs: the block has nothing to hold.'
+    page.screenshot_to('robot_view_no_kit')
+    page.set_viewport_size({'width': 390, 'height': 844})
+    page.screenshot_to('robot_view_no_kit_390')
+    page.set_viewport_size({'width': 1280, 'height': 800})
+
+    # An IMU that follows its own script (as in owl_kit.launch.py): dragging cannot steer it, and the
+    # hint says so and how to start one that can be held.
+    ros.run('olive_sim', 'imu_sim')
+    page.wait_for_function("() => document.getElementById('kit-state').textContent.startsWith("
+                           "'Not running: pan, tilt, camera')", timeout=20_000)
+    wait_until(lambda: 'follows its own motion' in page.inner_text('#imu-hint'), 10, 'the scripted IMU hint')
+    assert 'dragging the block does nothing' in page.inner_text('#imu-hint')
+    assert page.is_disabled('#level')
+
+    # robot_view dies (killed: no goodbye, the WebSocket's code 1006): the page greys out what it shows
+    # and says, in words, that it is frozen.
+    view.send_signal(signal.SIGKILL)
+    view.wait(timeout=10)
+    page.wait_for_function("() => document.body.classList.contains('stale')", timeout=10_000)
+    status = page.inner_text('#status')
+    assert status.startswith("lost the connection to this page's server (did it stop?)"), status
+    assert 'What the page shows is frozen' in status
+    assert 'code 1006' not in status
+    page.screenshot_to('robot_view_server_stopped')

@@ -183,6 +183,44 @@ def test_goal_buttons_torque_switch_and_pause(ros, page):
     assert page.evaluate('window.robotView.plotted("imu").x[0]') >= -10.0
 
 
+def status_line(page: Any) -> str:
+    return page.inner_text('#command-status')
+
+
+def test_each_command_says_what_the_kit_did_with_it(ros, page):
+    open_page(ros, page)
+    row = servo_row('pan')
+    # robot_view.launch.py starts no imu_control_robot: the hint says what would steer the head.
+    hint = 'Nothing steers the servos from the IMU yet: run ros2 run olive_servo imu_control_robot'
+    wait_until(lambda: hint in page.inner_text('#imu-hint'), 10, 'the hint naming imu_control_robot')
+
+    # The torque is off: the servo ignores the goal, and the page says so (not "goal 1.57 rad").
+    wait_until(lambda: page.evaluate('window.robotView.servos.pan.torque') is False, 10, 'the torque off')
+    answer = click_and_wait_for_answer(page, f'{row} button.goal[data-goal="1.57"]')
+    assert answer['result']['outcome'] == 'ignored', answer
+    assert status_line(page).startswith("pan: goal 1.57 rad ignored: the pan servo's torque is off, so it "
+                                        'ignores goals: switch it on'), status_line(page)
+    page.screenshot_to('robot_view_goal_ignored')
+
+    # Torque on: the goal is sent and followed in the joint until it is reached.
+    click_and_wait_for_answer(page, f'{row} input.torque')
+    answer = click_and_wait_for_answer(page, f'{row} button.goal[data-goal="1.57"]')
+    assert answer['result'] == {'outcome': 'sent'}, answer
+    wait_until(lambda: status_line(page).startswith('pan: goal 1.57 rad reached in '), 10, 'the goal reached')
+
+    # A refused Kp leaves the field showing the servo's own Kp, not the refused one.
+    kp = page.evaluate('window.robotView.servos.pan.kp')
+    answer = set_gains(page, 'pan', kp='1000')
+    assert answer['error'] == 'pan kp must be within 0..100, got 1000', answer
+    assert float(page.input_value(f'{row} input.kp')) == kp
+    assert 'edited' not in (page.get_attribute(f'{row} input.kp', 'class') or '')
+    # An edit not yet set is marked as such; Escape drops it.
+    page.fill(f'{row} input.ki', '7')
+    assert 'edited' in page.get_attribute(f'{row} input.ki', 'class')
+    page.press(f'{row} input.ki', 'Escape')
+    assert float(page.input_value(f'{row} input.ki')) == page.evaluate('window.robotView.servos.pan.ki')
+
+
 def test_bad_control_input_gets_one_line_and_reaches_no_servo(ros, page):
     pan_goals = ros.probe.collect(Float32, '/olive/servo/pan/goal/position')
     tilt_goals = ros.probe.collect(Float32, '/olive/servo/tilt/goal/position')
@@ -194,6 +232,7 @@ def test_bad_control_input_gets_one_line_and_reaches_no_servo(ros, page):
     answer = set_gains(page, 'pan', kp='500')
     assert answer['error'] == 'pan kp must be within 0..100, got 500', answer
     assert page.inner_text('#command-status') == 'refused: pan kp must be within 0..100, got 500'
+    assert float(page.input_value(f'{servo_row("pan")} input.kp')) == factory[0]  # the servo's, not 500
     page.fill(f'{servo_row("pan")} input.kp', '5')
     answer = set_gains(page, 'pan', kd='')
     assert answer['error'] == 'pan kd must be a number, got null', answer

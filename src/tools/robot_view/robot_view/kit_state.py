@@ -1,14 +1,22 @@
 """What the robot view shows of the kit, as plain data (node-free).
 
-The joint angles and the IMU's orientation, and the commands a page may send to hold the
-simulated IMU.
+The joint angles and the IMU's orientation, the commands a page may send to hold the simulated
+IMU, which modules run and what steers them, and what came of a goal.
 """
 
 from __future__ import annotations
 
 from typing import Any
 
+from olive_kit.description import CAMERA_NAMESPACE, IMU_NAMESPACE, node_name
 from owl_web import codec
+
+from robot_view.controls import SERVOS
+
+IMU_TOPIC = f'/olive/imu/{IMU_NAMESPACE}/imu'
+# The simulated IMU listens here only with motion:=command (robot_view.launch.py starts it so).
+TRUE_ORIENTATION_TOPIC = f"/{node_name('imu', IMU_NAMESPACE)}/true_orientation"
+CAMERA_TOPIC = f'/olive/camera/{CAMERA_NAMESPACE}/image/compressed'
 
 LEVEL = (0.0, 0.0, 0.0, 1.0)  # x, y, z, w: the IMU lying flat, pointing along base_link's x
 
@@ -31,3 +39,42 @@ def joint_position(names: list[str], positions: list[float], joint: str) -> floa
         if name == joint:
             return float(position)
     return None
+
+
+def joint_topic(servo: str) -> str:
+    """The servo's JointState topic."""
+    return f'/olive/servo/{servo}/joint'
+
+
+def goal_topic(servo: str) -> str:
+    """The servo's position goal topic (Float32, rad)."""
+    return f'/olive/servo/{servo}/goal/position'
+
+
+def kit_presence(publishers: dict[str, int], subscribers: dict[str, int]) -> dict[str, Any]:
+    """Which modules run and what steers them, from the graph's publisher and subscriber counts by topic.
+
+    modules: each module publishes (a servo its joint, the IMU, the camera); imu_steerable: a
+    simulated IMU takes the page's orientation (it subscribes to true_orientation; a scripted one or a
+    real module does not); steered: a node other than robot_view (whose own goal publisher is one)
+    publishes the servo's goals, e.g. imu_control_robot.
+    """
+    modules = {servo: publishers.get(joint_topic(servo), 0) > 0 for servo in SERVOS}
+    modules['imu'] = publishers.get(IMU_TOPIC, 0) > 0
+    modules['camera'] = publishers.get(CAMERA_TOPIC, 0) > 0
+    return {'modules': modules,
+            'imu_steerable': subscribers.get(TRUE_ORIENTATION_TOPIC, 0) > 0,
+            'steered': {servo: publishers.get(goal_topic(servo), 0) > 1 for servo in SERVOS}}
+
+
+def goal_outcome(servo: str, torque: bool | None) -> dict[str, Any]:
+    """What came of a goal sent to a servo whose torque is as its diagnostics last said (None: not known).
+
+    A servo with its torque off ignores every goal (it says so in its log); otherwise the goal is
+    sent, and whether it is reached shows in the servo's joint.
+    """
+    if torque is False:
+        return {'outcome': 'ignored',
+                'reason': f"the {servo} servo's torque is off, so it ignores goals: switch it on "
+                          f'(torque column, or /olive/servo/{servo}/setTorqueEnable) first'}
+    return {'outcome': 'sent'}

@@ -17,7 +17,7 @@ from typing import Any
 
 from diagnostic_msgs.msg import DiagnosticStatus
 from geometry_msgs.msg import Quaternion
-from olive_kit.description import CAMERA_NAMESPACE, IMU_NAMESPACE, node_name
+from olive_kit.description import CAMERA_NAMESPACE, node_name
 from owl_common import quaternion
 from owl_common.polled_subscription import PolledSubscription
 from owl_web.codec import ApiError
@@ -42,12 +42,20 @@ from robot_view.controls import (
     servo_node,
     torque_request,
 )
-from robot_view.kit_state import hold_imu_orientation, joint_position, level_orientation
+from robot_view.kit_state import (
+    CAMERA_TOPIC,
+    IMU_TOPIC,
+    TRUE_ORIENTATION_TOPIC,
+    goal_outcome,
+    goal_topic,
+    hold_imu_orientation,
+    joint_position,
+    joint_topic,
+    kit_presence,
+    level_orientation,
+)
 from robot_view.plot_window import PlotWindow, PushCursor, sample_time
 
-IMU_TOPIC = f'/olive/imu/{IMU_NAMESPACE}/imu'
-TRUE_ORIENTATION_TOPIC = f"/{node_name('imu', IMU_NAMESPACE)}/true_orientation"
-CAMERA_TOPIC = f'/olive/camera/{CAMERA_NAMESPACE}/image/compressed'
 CAMERA_NODE = f"/{node_name('camera', CAMERA_NAMESPACE)}"
 SCENE_TOPIC = f'{CAMERA_NODE}/scene'  # the simulated camera's ball and person (scene:=ball or person)
 PLOT_SERIES = (*(f'{servo}_{what}' for servo in SERVOS for what in ('goal', 'position', 'effort')),
@@ -56,6 +64,7 @@ PLOT_PUSH_EVERY = 0.1  # s: ten batches a second keep a 10 s plot moving smoothl
 SERVICE_TIMEOUT = 3.0  # s for a servo to answer a command's service call
 RESEND_EVERY = 1.0  # s: see _call
 ASK_GAINS_EVERY = 1.0  # s between two questions to a servo whose gains are not known yet
+LOOK_AT_GRAPH_EVERY = 1.0  # s between two looks at which modules run and what steers them
 
 
 class RobotViewNode(Node):
@@ -64,7 +73,8 @@ class RobotViewNode(Node):
     def __init__(self, server: WebServer) -> None:
         super().__init__('robot_view')
         self._lock = threading.Lock()
-        self._state: dict[str, Any] = {'pan': None, 'tilt': None, 'imu': None, 'scene': None}
+        # 'kit' is what runs of the kit and what steers it (kit_presence), None until the first look
+        self._state: dict[str, Any] = {'pan': None, 'tilt': None, 'imu': None, 'scene': None, 'kit': None}
         self._kit_watchers: set[Subscription] = set()
         self._camera_watchers: set[Subscription] = set()
         self._plot_watchers: dict[Subscription, PushCursor] = {}
@@ -80,19 +90,17 @@ class RobotViewNode(Node):
         self._set_parameters: dict[str, Client] = {}
         self._get_parameters: dict[str, Client] = {}
         for servo in SERVOS:
-            self.create_subscription(JointState, f'/olive/servo/{servo}/joint',
-                                     partial(self._on_joint, servo), 10)
-            goal_topic = f'/olive/servo/{servo}/goal/position'
+            self.create_subscription(JointState, joint_topic(servo), partial(self._on_joint, servo), 10)
             # Every goal on the topic is plotted, the page's and any other node's. Taken just before
             # each joint message is handled, not by executor callbacks: imu_control_robot sends
             # 100 goals a second per servo, and waking the executor for each cost robot_view 6 % of
             # a core (29 % instead of 23 %, with a page open); a goal is at most one joint period
             # (10 ms) late in the plot, within its 20 ms bucket.
             self._goals[servo] = PolledSubscription(
-                self, Float32, goal_topic, partial(self._on_goal, servo), 10, info=True)
+                self, Float32, goal_topic(servo), partial(self._on_goal, servo), 10, info=True)
             self.create_subscription(DiagnosticStatus, f'/olive/servo/{servo}/joint/diagnostics',
                                      partial(self._on_diagnostics, servo), 10)
-            self._goal_publishers[servo] = self.create_publisher(Float32, goal_topic, 10)
+            self._goal_publishers[servo] = self.create_publisher(Float32, goal_topic(servo), 10)
             for enabled, service in ((True, 'setTorqueEnable'), (False, 'setTorqueDisable')):
                 self._torque_clients[servo, enabled] = self.create_client(
                     Trigger, f'/olive/servo/{servo}/{service}')
@@ -111,6 +119,7 @@ class RobotViewNode(Node):
         self.create_timer(PLOT_PUSH_EVERY, self._push_plots)
         self._asking: dict[str, Any] = {}  # servo -> its unanswered question for its gains
         self.create_timer(ASK_GAINS_EVERY, self._ask_for_unknown_gains)
+        self.create_timer(LOOK_AT_GRAPH_EVERY, self._look_at_graph)
         server.channel('kit', self._watch_kit, self._kit_watchers.discard)
         server.channel('camera', self._watch_camera, self._camera_watchers.discard)
         server.channel('plots', self._watch_plots, self._forget_plot_watcher)
@@ -128,9 +137,16 @@ class RobotViewNode(Node):
         x, y, z, w = orientation
         self.true_orientation.publish(Quaternion(x=x, y=y, z=z, w=w))
 
-    def _goal(self, arguments: dict[str, Any]) -> None:
+    def _goal(self, arguments: dict[str, Any]) -> dict[str, Any]:
+        """Publish the goal; what came of it: 'ignored' when the servo says its torque is off, else 'sent'.
+
+        Whether a sent goal is reached the page sees in the servo's joint.
+        """
         servo, position = goal_request(arguments)
         self._goal_publishers[servo].publish(Float32(data=position))
+        with self._lock:
+            torque = self._servos[servo]['torque']
+        return goal_outcome(servo, torque)
 
     def _torque(self, arguments: dict[str, Any]) -> None:
         servo, enabled = torque_request(arguments)
@@ -247,6 +263,18 @@ class RobotViewNode(Node):
         """The servos channel's update: each servo's gains and torque, and the controls' limits."""
         return {'state': {servo: dict(values) for servo, values in self._servos.items()},
                 'limits': control_limits()}
+
+    def _look_at_graph(self) -> None:
+        """Which of the kit's modules run, and what steers the IMU and the servos; pushed when it changes."""
+        presence = kit_presence(
+            publishers={topic: self.count_publishers(topic) for topic in (
+                IMU_TOPIC, CAMERA_TOPIC, *map(joint_topic, SERVOS), *map(goal_topic, SERVOS))},
+            subscribers={TRUE_ORIENTATION_TOPIC: self.count_subscribers(TRUE_ORIENTATION_TOPIC)})
+        with self._lock:
+            if self._state['kit'] == presence:
+                return
+            self._state['kit'] = presence
+        self._push_state()
 
     def _push_plots(self) -> None:
         for goals in self._goals.values():  # a servo that publishes no joint still shows its goals

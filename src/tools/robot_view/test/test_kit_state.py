@@ -2,7 +2,19 @@
 
 import pytest
 from owl_web.codec import ApiError
-from robot_view.kit_state import LEVEL, hold_imu_orientation, joint_position, level_orientation
+from robot_view.kit_state import (
+    CAMERA_TOPIC,
+    IMU_TOPIC,
+    LEVEL,
+    TRUE_ORIENTATION_TOPIC,
+    goal_outcome,
+    goal_topic,
+    hold_imu_orientation,
+    joint_position,
+    joint_topic,
+    kit_presence,
+    level_orientation,
+)
 from robot_view.main import parse_arguments
 
 
@@ -41,3 +53,27 @@ def test_port_argument(capsys):
             parse_arguments(['--port', bad])
         assert stopped.value.code == 2
     assert "is not a port number (0..65535)" in capsys.readouterr().err
+
+
+def test_which_modules_run_and_what_steers_them_comes_from_the_graphs_counts():
+    nothing = kit_presence({}, {})
+    assert nothing == {'modules': {'pan': False, 'tilt': False, 'imu': False, 'camera': False},
+                       'imu_steerable': False, 'steered': {'pan': False, 'tilt': False}}
+    # the kit of robot_view.launch.py: an IMU that takes the page's orientation; robot_view's own
+    # goal publishers (one per servo) steer nothing else
+    kit = kit_presence({joint_topic('pan'): 1, joint_topic('tilt'): 1, IMU_TOPIC: 1, CAMERA_TOPIC: 1,
+                        goal_topic('pan'): 1, goal_topic('tilt'): 1}, {TRUE_ORIENTATION_TOPIC: 1})
+    assert kit['modules'] == {'pan': True, 'tilt': True, 'imu': True, 'camera': True}
+    assert kit['imu_steerable'] is True
+    assert kit['steered'] == {'pan': False, 'tilt': False}
+    # imu_control_robot publishes both servos' goals too
+    steered = kit_presence({goal_topic('pan'): 2, goal_topic('tilt'): 2}, {})
+    assert steered['steered'] == {'pan': True, 'tilt': True}
+
+
+def test_a_goal_to_a_servo_whose_torque_is_off_is_ignored():
+    ignored = goal_outcome('pan', False)
+    assert ignored['outcome'] == 'ignored'
+    assert "the pan servo's torque is off, so it ignores goals" in ignored['reason']
+    assert goal_outcome('pan', True) == {'outcome': 'sent'}
+    assert goal_outcome('tilt', None) == {'outcome': 'sent'}  # not known: the joint will tell

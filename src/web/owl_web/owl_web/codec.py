@@ -110,9 +110,12 @@ def update(subscription_id: int | str, data: dict[str, Any]) -> dict[str, Any]:
     return {'type': 'update', 'id': subscription_id, 'data': data}
 
 
-def done(command_id: int | str | None) -> dict[str, Any]:
-    """The "done" message: the command with this id was carried out."""
-    return {'type': 'done', 'id': command_id}
+def done(command_id: int | str | None, result: dict[str, Any] | None = None) -> dict[str, Any]:
+    """The "done" message: the command with this id was carried out, with what came of it if it says."""
+    message: dict[str, Any] = {'type': 'done', 'id': command_id}
+    if result is not None:
+        message['result'] = result
+    return message
 
 
 def error(subscription_id: int | str | None, message: str) -> dict[str, Any]:

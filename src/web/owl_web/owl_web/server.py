@@ -217,12 +217,12 @@ class Connection:
             self._errors.append(codec.encode(codec.error(subscription_id, message)))
         self._notify()
 
-    def done(self, command_id: int | str | None) -> None:
+    def done(self, command_id: int | str | None, result: dict[str, Any] | None = None) -> None:
         """A command carried out: kept in order with the error lines (it answers a request)."""
         with self._lock:
             if self.closed:
                 return
-            self._errors.append(codec.encode(codec.done(command_id)))
+            self._errors.append(codec.encode(codec.done(command_id, result)))
         self._notify()
 
     def forget(self, subscription: Subscription) -> None:
@@ -339,12 +339,13 @@ class WebServer:
         """
         self._channels[name] = Channel(name, open, close)
 
-    def command(self, name: str, handler: Callable[[dict[str, Any]], None]) -> None:
+    def command(self, name: str, handler: Callable[[dict[str, Any]], dict[str, Any] | None]) -> None:
         """Add a command: handler(arguments) carries out a page's {"type": "command", "name": name, ...}.
 
         The arguments are the message without type, id and name; the handler raises ApiError to refuse,
-        before anything reaches ROS. Runs in a worker thread; the page gets {"type": "done"} or the
-        error line.
+        before anything reaches ROS. Runs in a worker thread; the page gets {"type": "done"} (with
+        "result": what the handler returned, when it returns a dict: what came of the command) or
+        the error line.
         """
         self._commands[name] = handler
 
@@ -593,8 +594,8 @@ class WebServer:
             raise ApiError(404, f'unknown command {json.dumps(name)[:80]}{hint}; '
                                 f"known: {', '.join(sorted(self._commands)) or 'none'}")
         arguments = {k: v for k, v in message.items() if k not in ('type', 'id', 'name')}
-        await self._in_thread(handler, arguments)
-        connection.done(message.get('id'))
+        result = await self._in_thread(handler, arguments)
+        connection.done(message.get('id'), result if isinstance(result, dict) else None)
 
     async def _unsubscribe(self, connection: Connection, subscription: Subscription) -> None:
         connection.forget(subscription)

@@ -11,18 +11,24 @@ import { startPlots } from '/static/plots.js';
 import { startScene } from '/static/scene.js';
 
 const DRAG_RADIANS_PER_PIXEL = 0.01;
-const FPS_WINDOW = 2000;  // ms of frames the shown frame rate counts
+const FPS_WINDOW = 2000;  // ms: the shown frame rate is the frames received in the last 2 s, / 2 s
+const STALE_AFTER = 2000;  // ms without a camera frame before its picture is greyed out as frozen
 
 const status = document.getElementById('status');
 const errors = document.getElementById('errors');
+// Connection lost: everything shown is frozen, and greyed out to say so, until the server is back.
 const socket = new OwlSocket((connected, detail) => {
-  status.textContent = detail || (connected ? 'connected' : 'disconnected');
+  document.body.classList.toggle('stale', !connected);
+  status.textContent = connected ? (detail || 'connected')
+    : `${detail}. What the page shows is frozen; start robot_view again `
+      + '(ros2 launch robot_view robot_view.launch.py) and it comes back by itself.';
 });
 
 // What the tests read (page.evaluate) and the page shows.
 // lastFrame: robot_view's count of the camera frames it took from DDS, sent with each frame: where
 // it grows faster than frames, frames were dropped between robot_view and this page.
-const view = { pan: null, tilt: null, imu: null, frames: 0, lastFrame: 0, fps: 0, commandsSent: 0, errors: [] };
+const view = { pan: null, tilt: null, imu: null, kit: null, frames: 0, lastFrame: 0, fps: 0, commandsSent: 0,
+               errors: [] };
 window.robotView = view;
 
 // ---- scene --------------------------------------------------------------------------------------
@@ -139,11 +145,54 @@ function visiblyChanged(state) {
 }
 
 let updateScene = () => false;  // set once the scene's objects exist (below)
+// ---- what runs of the kit, and what steers it (the server looks at the ROS graph every second) ----
+const kitState = document.getElementById('kit-state');
+const imuHint = document.getElementById('imu-hint');
+const levelButton = document.getElementById('level');
+const cameraMissing = document.getElementById('camera-missing');
+const KIT_LAUNCH = '<code>ros2 launch robot_view robot_view.launch.py</code>';
+
+function showKit(kit) {
+  view.kit = kit;
+  if (kit === null) return;  // not looked yet: the page still says it is looking
+  const modules = kit.modules;
+  const missing = Object.keys(modules).filter((name) => !modules[name]);
+  if (missing.length === Object.keys(modules).length) {
+    kitState.innerHTML = 'No Owl Kit module runs in this ROS domain. Start the simulated kit with this page: '
+      + `${KIT_LAUNCH}, or the kit alone: <code>ros2 launch olive_sim owl_kit.launch.py</code>. `
+      + 'Real modules: <code>owl network</code> checks the way to them.';
+  } else if (missing.length) {
+    kitState.innerHTML = `Not running: ${missing.join(', ')}. The whole simulated kit: `
+      + '<code>ros2 launch olive_sim owl_kit.launch.py</code>.';
+  } else {
+    kitState.textContent = '';
+  }
+  levelButton.disabled = !kit.imu_steerable;
+  if (!modules.imu) {
+    imuHint.textContent = 'No IMU runs: the block has nothing to hold.';
+  } else if (!kit.imu_steerable) {
+    imuHint.innerHTML = 'The IMU follows its own motion (the simulated hand of owl_kit.launch.py, or a '
+      + 'real module), so dragging the block does nothing. To hold it with the mouse, start the kit with '
+      + `${KIT_LAUNCH} (its IMU takes the page's orientation).`;
+  } else {
+    const steered = kit.steered.pan || kit.steered.tilt;
+    imuHint.innerHTML = 'Drag the IMU block: left/right turns it (yaw), up/down tips it (pitch).'
+      + (steered ? '' : ' Nothing steers the servos from the IMU yet: run '
+        + '<code>ros2 run olive_servo imu_control_robot</code> and the head follows it.');
+  }
+  levelButton.title = kit.imu_steerable ? 'hold the IMU flat, facing ahead'
+    : 'only a simulated IMU started with motion:=command takes an orientation from this page';
+  showCamera();
+}
+
 socket.subscribe('kit', {}, (state) => {
   const sceneChanged = updateScene(state.scene);
+  document.getElementById('ball-hint').hidden = !(state.scene && state.scene.ball);
+  if (JSON.stringify(state.kit) !== JSON.stringify(view.kit)) showKit(state.kit);
   view.pan = state.pan;
   view.tilt = state.tilt;
   view.imu = state.imu;
+  if (view.followGoal) view.followGoal();
   if (state.pan !== null) panJoint.rotation.z = state.pan;
   if (state.tilt !== null) tiltJoint.rotation.y = -state.tilt;  // about -y: a positive tilt looks down
   if (state.imu !== null && !dragging) imuBlock.quaternion.set(...state.imu);
@@ -168,18 +217,41 @@ function showError(line) {
 const image = document.getElementById('camera');
 const fpsLabel = document.getElementById('fps');
 const frameTimes = [];
+let cameraSince = null;  // when the first frame of this page came
+
+// The picture, or in its place a line saying why there is none; greyed out when frames stopped.
+function showCamera() {
+  const now = performance.now();
+  const last = frameTimes.length ? frameTimes[frameTimes.length - 1] : null;
+  const running = view.kit === null || view.kit.modules.camera;
+  image.hidden = view.frames === 0;
+  cameraMissing.hidden = view.frames > 0;
+  if (view.frames === 0) {
+    cameraMissing.innerHTML = running ? 'No camera frames yet.'
+      : 'No camera runs. Start the kit: <code>ros2 launch olive_sim owl_kit.launch.py</code>.';
+  }
+  const frozen = last !== null && now - last > STALE_AFTER;
+  image.classList.toggle('stale', frozen);
+  if (frozen) fpsLabel.textContent = `no frames for ${((now - last) / 1000).toFixed(0)} s`;
+}
+setInterval(showCamera, 500);
+
 socket.subscribe('camera', {}, (header, payload) => {
   const url = URL.createObjectURL(new Blob([payload], { type: header.content_type }));
   const previous = image.src;
   image.src = url;
   if (previous.startsWith('blob:')) URL.revokeObjectURL(previous);
   const now = performance.now();
+  if (cameraSince === null) cameraSince = now;
   frameTimes.push(now);
-  while (frameTimes[0] < now - FPS_WINDOW) frameTimes.shift();
+  while (frameTimes[0] <= now - FPS_WINDOW) frameTimes.shift();
   view.frames += 1;
   view.lastFrame = header.frame;
-  view.fps = frameTimes.length > 1 ? (frameTimes.length - 1) * 1000 / (now - frameTimes[0]) : 0;
+  // frames received over a fixed window (shorter only in the first 2 s), so the label holds still
+  const span = Math.max(Math.min(FPS_WINDOW, now - cameraSince), 250);
+  view.fps = frameTimes.length * 1000 / span;
   fpsLabel.textContent = `${view.fps.toFixed(1)} fps`;
+  if (image.hidden || image.classList.contains('stale')) showCamera();
 }, showError);
 
 // ---- holding the IMU -----------------------------------------------------------------------------

@@ -2,10 +2,15 @@
 // the page asks): Kp, Ki and Kd of each servo's PID (servo_sim's parameters kp, ki, kd), its
 // torque switch (setTorqueEnable / setTorqueDisable) and the appendix 5.3 script's goals, 0 and
 // pi/2, with its 3 s flip. The page sends what is typed as it is: the server checks every value
-// and answers a refusal with one line, shown under the table.
+// and answers a refusal with one line, shown under the table. Every outcome is what the kit says:
+// a goal the servo ignores (torque off) says so, a sent goal is followed in the servo's joint until
+// it is reached (or not); a gain field shows the servo's value except while it is being edited
+// (marked), and goes back to the servo's value when the servo refuses the edit.
 
 const FLIP_EVERY = 3000;  // ms, the appendix script's timer
 const GAINS = [['kp', 'Kp'], ['ki', 'Ki'], ['kd', 'Kd']];
+const REACHED = 0.02;  // rad from its goal: the servo is there
+const REACH_WITHIN = 5000;  // ms after which a goal not reached is said so
 
 function goalLabel(goal) {
   return Math.abs(goal - 1.57) < 1e-9 ? 'π/2' : String(goal);
@@ -16,20 +21,58 @@ export function startControls(socket, view) {
   const status = document.getElementById('command-status');
   const rows = {};  // servo -> its inputs
   view.servos = null;
-  view.commandAnswers = [];  // {name, error} of every answered command, for the tests
+  view.commandAnswers = [];  // {name, error, result} of every answered command, for the tests
+  let following = null;  // {servo, goal, since}: the sent goal whose arrival the status line follows
 
-  function send(name, args, what) {
-    const sent = socket.command(name, args, (error) => {
-      view.commandAnswers.push({ name, error });
-      status.textContent = error ? `refused: ${error}` : what;
-      status.classList.toggle('refused', Boolean(error));
-      if (error && name === 'torque') showState();  // the switch goes back to what the servo has
+  function say(line, refused = false) {
+    status.textContent = line;
+    status.classList.toggle('refused', refused);
+  }
+
+  // onDone(result) when it was carried out; a refusal is said, and the row shows the servo's values.
+  function send(name, args, what, onDone = () => say(what)) {
+    const sent = socket.command(name, args, (error, result) => {
+      view.commandAnswers.push({ name, error, result });
+      if (error) {
+        say(`refused: ${error}`, true);
+        if (args.servo) showState(args.servo, true);  // back to what the servo has
+      } else {
+        onDone(result);
+      }
     });
-    if (!sent) {
-      status.textContent = 'not connected';
-      status.classList.add('refused');
+    if (!sent) say('not connected: nothing was sent', true);
+  }
+
+  function sendGoal(servo, goal, note = '') {
+    send('goal', { servo, position: goal }, '', (result) => {
+      if (result && result.outcome === 'ignored') {
+        following = null;
+        say(`${servo}: goal ${goal} rad ignored: ${result.reason}`, true);
+        return;
+      }
+      following = { servo, goal, since: performance.now(), note };
+      followGoal();
+    });
+  }
+
+  // The status line follows the last sent goal in the joint the kit channel pushes.
+  function followGoal() {
+    if (!following) return;
+    const { servo, goal, since, note } = following;
+    const at = view[servo];
+    const elapsed = performance.now() - since;
+    const where = at === null ? 'no joint state from it' : `at ${at.toFixed(2)} rad`;
+    if (at !== null && Math.abs(at - goal) <= REACHED) {
+      say(`${servo}: goal ${goal} rad reached in ${(elapsed / 1000).toFixed(1)} s${note}`);
+      following = null;
+    } else if (elapsed > REACH_WITHIN) {
+      say(`${servo}: goal ${goal} rad not reached after ${REACH_WITHIN / 1000} s (${where})${note}`, true);
+      following = null;
+    } else {
+      say(`${servo}: goal ${goal} rad sent, moving (${where})${note}`);
     }
   }
+  view.followGoal = followGoal;  // app.js calls it at each joint update
 
   function buildRow(servo, limits) {
     const row = document.createElement('tr');
@@ -55,7 +98,11 @@ export function startControls(socket, view) {
       input.max = String(limits.gains[key]);
       input.step = 'any';
       input.setAttribute('aria-label', `${servo} ${label}`);
-      input.addEventListener('keydown', (event) => { if (event.key === 'Enter') setGains(); });
+      input.addEventListener('input', () => input.classList.add('edited'));
+      input.addEventListener('keydown', (event) => {
+        if (event.key === 'Enter') setGains();
+        if (event.key === 'Escape') showState(servo, true);  // drop the edit
+      });
       gains[key] = input;
       cells.push(input);
     }
@@ -67,7 +114,11 @@ export function startControls(socket, view) {
       // NaN (an empty or bad field) goes as null: the server names the field in its refusal
       const args = { servo };
       for (const [key] of GAINS) args[key] = gains[key].valueAsNumber;
-      send('set_gains', args, `${servo}: ${GAINS.map(([k, l]) => `${l} ${args[k]}`).join(', ')} set`);
+      send('set_gains', args, '', () => {
+        for (const [key] of GAINS) gains[key].classList.remove('edited');
+        say(`${servo}: ${GAINS.map(([k, l]) => `${l} ${args[k]}`).join(', ')} set`);
+        showState(servo);
+      });
     }
     setButton.addEventListener('click', setGains);
     cells.push(setButton);
@@ -79,7 +130,7 @@ export function startControls(socket, view) {
       button.dataset.goal = String(goal);
       button.textContent = goalLabel(goal);
       button.title = `publish ${goal} on /olive/servo/${servo}/goal/position`;
-      button.addEventListener('click', () => send('goal', { servo, position: goal }, `${servo}: goal ${goal} rad`));
+      button.addEventListener('click', () => sendGoal(servo, goal));
       goalCell.append(button, ' ');
     }
     const flipLabel = document.createElement('label');
@@ -97,7 +148,7 @@ export function startControls(socket, view) {
       flipTimer = setInterval(() => {
         const goal = goals[flipNext];
         flipNext = 1 - flipNext;
-        send('goal', { servo, position: goal }, `${servo}: goal ${goal} rad (flipping every 3 s)`);
+        sendGoal(servo, goal, ' (flipping every 3 s)');
       }, FLIP_EVERY);
     });
     goalCell.append(flipLabel);
@@ -111,15 +162,18 @@ export function startControls(socket, view) {
     rows[servo] = { torque, gains };
   }
 
-  function showState() {
+  // The servos' values in their rows; a field being edited keeps the edit unless `only` (a servo's
+  // name) is given with `drop`, after a refusal or Escape.
+  function showState(only = null, drop = false) {
     if (!view.servos) return;
     for (const [servo, state] of Object.entries(view.servos)) {
       const row = rows[servo];
-      if (!row) continue;
+      if (!row || (only !== null && servo !== only)) continue;
       if (state.torque !== null) row.torque.checked = state.torque;
       for (const [key] of GAINS) {
-        // never overwrite what the student is typing
-        if (state[key] !== null && document.activeElement !== row.gains[key]) row.gains[key].value = String(state[key]);
+        const input = row.gains[key];
+        if (drop) input.classList.remove('edited');
+        if (state[key] !== null && !input.classList.contains('edited')) input.value = String(state[key]);
       }
     }
   }

@@ -17,12 +17,14 @@ export function unpackFrame(buffer) {
 
 export class OwlSocket {
   // onStatus(connected, detail) hears about the connection, e.g. to show it on the page.
+  // this.connected says whether the socket is open now.
   constructor(onStatus = () => {}, path = '/ws') {
     this.url = `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}${path}`;
     this.onStatus = onStatus;
     this.subscriptions = new Map();  // id -> {channel, params, onUpdate, onError}
     this.pendingCommands = new Map();  // command id -> onAnswer, until its done or error comes
     this.nextId = 1;
+    this.connected = false;
     this.retry = RETRY_FIRST;
     this.connect();
   }
@@ -31,6 +33,7 @@ export class OwlSocket {
     const socket = new WebSocket(this.url);
     socket.binaryType = 'arraybuffer';
     socket.onopen = () => {
+      this.connected = true;
       this.retry = RETRY_FIRST;
       this.onStatus(true, '');
       for (const [id, entry] of this.subscriptions) this.sendSubscribe(id, entry);
@@ -38,10 +41,14 @@ export class OwlSocket {
     socket.onmessage = (event) => this.receive(event.data);
     socket.onclose = (event) => {
       if (this.socket !== socket) return;
-      const reason = event.reason || (event.code === 1009 ? 'message too big' : `code ${event.code}`);
-      this.onStatus(false, `connection closed (${reason}); reconnecting`);
+      this.connected = false;
+      // The server's own reason when it gave one; 1006 (no reason) is a server that stopped or
+      // cannot be reached, which is what a student needs to read.
+      const reason = event.reason || (event.code === 1009 ? 'a message was too big' : '');
+      const line = reason ? `connection closed: ${reason}` : "lost the connection to this page's server (did it stop?)";
+      this.onStatus(false, `${line}; trying again every few seconds`);
       // a command's answer cannot come on a new connection
-      for (const answer of this.pendingCommands.values()) answer(`connection closed (${reason})`);
+      for (const answer of this.pendingCommands.values()) answer(`${line}: the command's outcome is unknown`);
       this.pendingCommands.clear();
       setTimeout(() => this.connect(), this.retry);
       this.retry = Math.min(this.retry * 2, RETRY_MOST);
@@ -66,8 +73,9 @@ export class OwlSocket {
 
   // A command to the server ({"type": "command", "name", ...args}), e.g. the robot view's
   // "hold_imu". Sent only while connected (a command is for now, not for after a reconnection).
-  // onAnswer(null) hears that it was done, onAnswer(line) its one-line error; without onAnswer the
-  // error line goes to onStatus. Returns the command's id, or null if not sent.
+  // onAnswer(null, result) hears that it was done (result: what came of it, when the server says,
+  // else undefined), onAnswer(line) its one-line error; without onAnswer the error line goes to
+  // onStatus. Returns the command's id, or null if not sent.
   command(name, args = {}, onAnswer = null) {
     if (this.socket.readyState !== WebSocket.OPEN) return null;
     const id = `command-${this.nextId++}`;
@@ -95,7 +103,8 @@ export class OwlSocket {
     const answer = this.pendingCommands.get(message.id);
     if (answer && (message.type === 'done' || message.type === 'error')) {
       this.pendingCommands.delete(message.id);
-      answer(message.type === 'error' ? message.error : null);
+      if (message.type === 'error') answer(message.error);
+      else answer(null, message.result);
       return;
     }
     const entry = this.subscriptions.get(message.id);
