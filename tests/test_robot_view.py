@@ -13,6 +13,7 @@ import statistics
 import time
 from typing import Any
 
+import pytest
 from geometry_msgs.msg import Quaternion
 from olive_kit.description import IMU_NAMESPACE
 from ros_harness import wait_until
@@ -291,3 +292,63 @@ def test_without_a_kit_the_page_says_what_to_start_and_after_its_server_stops_it
     assert 'What the page shows is frozen' in status
     assert 'code 1006' not in status
     page.screenshot_to('robot_view_server_stopped')
+
+
+def no_sideways_scroll(page: Any) -> bool:
+    return page.evaluate('document.documentElement.scrollWidth <= window.innerWidth')
+
+
+def test_the_view_fills_the_window_turns_and_zooms_and_works_on_a_phone_with_touch(ros, page):
+    base = start_kit_and_view(ros)
+    held = ros.probe.collect(Quaternion, TRUE_ORIENTATION)
+    page.set_viewport_size({'width': 1920, 'height': 1080})
+    page.goto(base)
+    page.wait_for_function('() => window.robotView.imu !== null && window.robotView.frames > 3',
+                           timeout=30_000)
+    # A wide window is used: the 3D view and the camera grow with it (they were 600 and 400 px).
+    wait_until(lambda: page.evaluate("document.querySelector('#model canvas').clientWidth") > 1000, 10,
+               'the 3D view over half of a 1920 px window')
+    assert page.evaluate("document.getElementById('camera').clientWidth") > 600
+    assert no_sideways_scroll(page)
+    page.screenshot_to('robot_view_1920')
+
+    # Dragging the background turns the view round the robot; the wheel zooms in.
+    box = page.locator('#model canvas').bounding_box()
+    before = page.evaluate('window.robotView.cameraPosition()')
+    distance = page.evaluate('window.robotView.cameraDistance()')
+    page.mouse.move(box['x'] + 30, box['y'] + 30)
+    page.mouse.down()
+    page.mouse.move(box['x'] + 230, box['y'] + 60, steps=10)
+    page.mouse.up()
+    assert page.evaluate('window.robotView.cameraPosition()') != before
+    assert page.evaluate('window.robotView.cameraDistance()') == pytest.approx(distance, rel=0.02)
+    page.mouse.move(box['x'] + box['width'] / 2, box['y'] + box['height'] / 2)
+    page.mouse.wheel(0, -400)
+    wait_until(lambda: page.evaluate('window.robotView.cameraDistance()') < 0.9 * distance, 5, 'zoomed in')
+    # Holding the IMU block turns the IMU, not the view.
+    turned = page.evaluate('window.robotView.cameraPosition()')
+    held.clear()
+    drag(page, 80)
+    wait_until(lambda: len(held) >= 3, 10, 'the held IMU orientations')
+    assert page.evaluate('window.robotView.cameraPosition()') == turned
+
+    # A phone: one column, nothing wider than the screen, and a finger holds the IMU without the
+    # browser taking the gesture over (no pointercancel after a few moves).
+    page.set_viewport_size({'width': 390, 'height': 844})
+    wait_until(lambda: no_sideways_scroll(page), 10, 'the page within 390 px')
+    assert page.evaluate("document.querySelector('#model canvas').clientWidth") <= 390
+    page.screenshot_to('robot_view_390')
+    page.evaluate("() => { window.cancelled = 0; document.querySelector('#model canvas')"
+                  ".addEventListener('pointercancel', () => { window.cancelled += 1; }); }")
+    start = page.evaluate('window.robotView.imuOnPage()')
+    sent = page.evaluate('window.robotView.commandsSent')
+    touch = page.context.new_cdp_session(page.page)
+    point = {'x': start['x'], 'y': start['y']}
+    touch.send('Input.dispatchTouchEvent', {'type': 'touchStart', 'touchPoints': [point]})
+    for step in range(1, 16):
+        touch.send('Input.dispatchTouchEvent', {'type': 'touchMove', 'touchPoints': [
+            {'x': start['x'] + 4 * step, 'y': start['y']}]})
+        time.sleep(0.03)
+    touch.send('Input.dispatchTouchEvent', {'type': 'touchEnd', 'touchPoints': []})
+    assert page.evaluate('window.cancelled') == 0
+    assert page.evaluate('window.robotView.commandsSent') - sent >= 10, 'the finger did not hold the IMU'

@@ -5,6 +5,7 @@
 // servos' controls (controls.js), on the same socket.
 // The model works in base_link's frame (metres, z up), from shared/specs/olive_hardware.md §7.
 import * as THREE from 'three';
+import { OrbitControls } from '/lib/three/examples/jsm/controls/OrbitControls.js';
 import { OwlSocket } from '/owl/socket.js';
 import { startControls } from '/static/controls.js';
 import { startPlots } from '/static/plots.js';
@@ -35,14 +36,15 @@ window.robotView = view;
 const container = document.getElementById('model');
 const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
 renderer.setPixelRatio(window.devicePixelRatio);
-renderer.setSize(container.clientWidth, container.clientHeight);
+renderer.setSize(container.clientWidth, container.clientHeight, false);
 container.appendChild(renderer.domElement);
 const scene = new THREE.Scene();
 scene.background = new THREE.Color(0xe5e7eb);
 const camera = new THREE.PerspectiveCamera(42, container.clientWidth / container.clientHeight, 0.01, 10);
 camera.up.set(0, 0, 1);
 camera.position.set(-0.36, -0.40, 0.26);
-camera.lookAt(-0.03, 0, 0.07);
+const LOOK_AT = new THREE.Vector3(-0.03, 0, 0.07);
+camera.lookAt(LOOK_AT);
 scene.add(new THREE.HemisphereLight(0xffffff, 0x667788, 2.0));
 const sun = new THREE.DirectionalLight(0xffffff, 1.5);
 sun.position.set(-1, -2, 3);
@@ -285,6 +287,7 @@ function sendHold() {
 
 renderer.domElement.addEventListener('pointerdown', (event) => {
   if (!hitsImu(event)) return;
+  event.stopImmediatePropagation();  // the block is held: the view does not orbit
   dragging = { x: event.clientX, y: event.clientY };
   renderer.domElement.setPointerCapture(event.pointerId);
   container.style.cursor = 'grabbing';
@@ -325,6 +328,29 @@ view.imuOnPage = () => {
 updateScene = startScene({ scene, camera, renderer, render, socket, view, showError });
 view.panOfModel = () => panJoint.rotation.z;
 view.tiltOfModel = () => -tiltJoint.rotation.y;
+
+// Orbit (drag the background), zoom (wheel, pinch) and pan (right button, two fingers) the view.
+// Made last, so the IMU's and the ball's drags, which stop their pointerdown, come first.
+const orbit = new OrbitControls(camera, renderer.domElement);
+orbit.target.copy(LOOK_AT);
+orbit.minDistance = 0.15;
+orbit.maxDistance = 1.5;
+orbit.update();
+orbit.addEventListener('change', render);
+view.cameraDistance = () => camera.position.distanceTo(orbit.target);
+view.cameraPosition = () => camera.position.toArray();
+
+// The view fills its panel at any width (3:2, as the panel's CSS says).
+function fitToPanel() {
+  const width = container.clientWidth;
+  const height = container.clientHeight;
+  if (!width || !height) return;
+  renderer.setSize(width, height, false);  // the drawing buffer; the CSS sizes the canvas
+  camera.aspect = width / height;
+  camera.updateProjectionMatrix();
+  render();
+}
+new ResizeObserver(fitToPanel).observe(container);
 render();
 
 startPlots(socket, view, showError);

@@ -54,7 +54,12 @@ function makePlot(key, spec) {
     cursor: { drag: { x: false, y: false } },
     legend: { live: false },
   };
-  return new uPlot(options, [[], ...spec.series.map(() => [])], target);
+  const plot = new uPlot(options, [[], ...spec.series.map(() => [])], target);
+  // as wide as its place in the page, whatever the window's width
+  new ResizeObserver(() => {
+    if (target.clientWidth && target.clientWidth !== plot.width) plot.setSize({ width: target.clientWidth, height: HEIGHT });
+  }).observe(target);
+  return plot;
 }
 
 export function startPlots(socket, view, showError) {
