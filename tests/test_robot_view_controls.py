@@ -8,10 +8,13 @@ docs/screenshots/robot_view_plots.png is made here.
 from __future__ import annotations
 
 import math
+import re
 import statistics
 import time
+from pathlib import Path
 from typing import Any, TypedDict
 
+import pytest
 from diagnostic_msgs.msg import DiagnosticStatus
 from ros_harness import wait_until
 from sensor_msgs.msg import JointState
@@ -118,6 +121,12 @@ def test_a_kp_change_shows_in_the_plotted_step_response(ros, page):
         wait_until(lambda: abs(pan_joints[-1].position[0] - STEP) < 0.1, 10, 'the pan servo near 1.57')
         time.sleep(SETTLE)
         responses[kp] = step_response(page.evaluate('window.robotView.plotted("pan")'), STEP)
+        # The page measures the same step from the same rows, and says it under the plot.
+        measured = page.evaluate('window.robotView.plots.steps.pan')
+        assert measured['rise'] == pytest.approx(responses[kp]['rise'], abs=0.045), (measured, responses[kp])
+        assert measured['overshoot'] == pytest.approx(
+            max(responses[kp]['overshoot'], 0) / STEP * 100, abs=1.5), (measured, responses[kp])
+        assert page.inner_text('#step-pan').startswith('last step 0.00 → 1.57 rad at ')
         print(f"Kp={kp}: rise {responses[kp]['rise']:.2f} s, overshoot {responses[kp]['overshoot']:.3f} rad, "
               f"remaining error {responses[kp]['remaining']:.3f} rad (read from the page's plot)")
     # servo_sim's model (olive_sim README): Kp=1 rises in 0.36 s with no overshoot and 0.065 rad
@@ -133,6 +142,48 @@ def test_a_kp_change_shows_in_the_plotted_step_response(ros, page):
     drag(page, 40, 25)
     time.sleep(2.0)
     page.screenshot_to('robot_view_plots', full_page=True)
+
+    # The rad and N*m axes share their 0 (an effort of 0 is drawn on the 0 rad line).
+    ranges = page.evaluate('window.robotView.plots.scaleRanges("pan")')
+    zero_height = {scale: -low / (high - low) for scale, (low, high) in ranges.items()}
+    assert zero_height['rad'] == pytest.approx(zero_height['Nm'], abs=0.01), ranges
+    # Values under the cursor.
+    page.locator('#plot-pan').scroll_into_view_if_needed()
+    plot = page.locator('#plot-pan .u-over').bounding_box()
+    page.mouse.move(plot['x'] + plot['width'] * 0.7, plot['y'] + plot['height'] / 2)
+    page.mouse.move(plot['x'] + plot['width'] * 0.8, plot['y'] + plot['height'] / 2, steps=3)
+
+    def hovered_values() -> list[str]:
+        return page.locator('#plot-pan .u-legend .u-value').all_inner_texts()[1:]
+
+    wait_until(lambda: any(re.fullmatch(r'-?\d+(\.\d+)?', value) for value in hovered_values()), 5,
+               'the values under the cursor')
+    # A wider window: the page kept more than 10 s.
+    page.select_option('#plot-window', '30')
+    wait_until(lambda: page.evaluate('window.robotView.plotted("pan").x[0]') < -12, 5, 'a 30 s window')
+    assert page.evaluate('window.robotView.plotted("pan").x[0]') >= -30.05
+    # Dragging across the plot zooms in on that part, pausing the plots; a double-click zooms out.
+    page.mouse.move(plot['x'] + plot['width'] * 0.55, plot['y'] + plot['height'] / 2)
+    page.mouse.down()
+    page.mouse.move(plot['x'] + plot['width'] * 0.95, plot['y'] + plot['height'] / 2, steps=5)
+    page.mouse.up()
+    zoom = page.evaluate('window.robotView.plots.zoom')
+    assert zoom is not None, 'no zoom'
+    assert -14 < zoom[0] < zoom[1] < 0, zoom
+    assert page.evaluate('window.robotView.plots.paused') is True
+    assert page.inner_text('#pause') == 'Resume'
+    page.screenshot_to('robot_view_plots_zoomed', full_page=True)
+    page.dblclick('#plot-pan .u-over')
+    assert page.evaluate('window.robotView.plots.zoom') is None
+    # CSV export of what the page keeps, every series a column.
+    with page.expect_download() as download:
+        page.click('#export-csv')
+    lines = Path(download.value.path()).read_text().splitlines()
+    assert lines[0] == ('t,pan_goal,pan_position,pan_effort,tilt_goal,tilt_position,tilt_effort,'
+                        'roll,pitch,yaw'), lines[0]
+    assert len(lines) > 500, len(lines)  # 50 rows a second
+    assert all(len(line.split(',')) == 10 for line in lines)
+    assert any(line.split(',')[1] == '1.57' for line in lines[1:])  # the step is in it
 
 
 def test_goal_buttons_torque_switch_and_pause(ros, page):

@@ -29,7 +29,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 BUCKET = 0.02   # s: 50 points a second in the plot
-WINDOW = 10.0   # s a page shows and a new page is sent at once
+WINDOW = 60.0   # s kept and sent at once to a new page: the widest window a page may show
 OVERLAP = 0.5   # s each push repeats of the previous one
 LATE = OVERLAP / 2  # s behind the newest bucket a sample may be and still go in its own bucket
 STAMP_TRUSTED = 1.0  # s: an older stamp, or one from the future, says the clocks differ

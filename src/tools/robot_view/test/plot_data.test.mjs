@@ -2,7 +2,9 @@
 // test_plot_data_js.py.
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
-import { emptyColumns, mergeBatch, plotData } from '../robot_view/static/plot_data.js';
+import {
+  alignedRanges, columnsCsv, emptyColumns, mergeBatch, plotData, stepMeasurements,
+} from '../robot_view/static/plot_data.js';
 
 const rows = (from, to, step = 1) => {
   const t = [];
@@ -40,4 +42,59 @@ test("uPlot's data: x in seconds before the newest row, then the series", () => 
   assert.deepEqual(plotData({ t: [100.5, 101, 102.25], position: [1, 2, 3] }, ['position']),
                    [[-1.75, -1.25, 0], [1, 2, 3]]);
   assert.deepEqual(plotData(emptyColumns(['position']), ['position']), [[], []]);
+});
+
+test('a window of the kept rows: only the last seconds are plotted', () => {
+  const columns = rows(0, 60, 1);
+  const [x, position] = plotData(columns, ['position'], 5);
+  assert.deepEqual(x, [-5, -4, -3, -2, -1, 0]);
+  assert.deepEqual(position, [550, 560, 570, 580, 590, 600]);
+  assert.equal(plotData(columns, ['position'])[0].length, 61);  // 60 s kept, all drawn
+});
+
+test('the zeros of the rad and N*m scales are at the same height', () => {
+  // a servo at 1.57 rad (all positive) and an effort swinging both ways
+  const ranges = alignedRanges({ rad: [0, 1.57], Nm: [-0.3, 0.1] });
+  const zero = ([low, high]) => -low / (high - low);
+  assert.ok(Math.abs(zero(ranges.rad) - zero(ranges.Nm)) < 1e-9, JSON.stringify(ranges));
+  for (const [scale, [low, high]] of Object.entries(ranges)) {
+    assert.ok(low < 0 && high > 0, scale);
+  }
+  assert.ok(ranges.rad[1] >= 1.57 && ranges.Nm[0] <= -0.3 && ranges.Nm[1] >= 0.1);
+  // flat data (a servo at rest, no effort) still gets a range that shows the line
+  const flat = alignedRanges({ rad: [0, 0], Nm: [null, null] });
+  assert.ok(flat.rad[1] - flat.rad[0] >= 0.5);
+});
+
+test("the last goal step's rise, overshoot, settling and error", () => {
+  // goal 0 -> 1 at t = 1; the position rises linearly from t = 1 to t = 2, overshoots to 1.1 at 2.2,
+  // and is back within 2 % from t = 2.52 on (1.1 falling 0.25/s to 1.0 at 2.6)
+  const times = [];
+  const goals = [];
+  const positions = [];
+  for (let i = 0; i <= 400; i += 1) {
+    const t = i * 0.01;
+    times.push(t);
+    goals.push(t < 1 ? 0 : 1);
+    let p = 0;
+    if (t >= 1 && t < 2) p = t - 1;
+    else if (t >= 2 && t < 2.2) p = 1 + (t - 2) / 2;
+    else if (t >= 2.2 && t < 2.6) p = 1.1 - (t - 2.2) / 4;
+    else if (t >= 2.6) p = 1.005;
+    positions.push(p);
+  }
+  const step = stepMeasurements(times, goals, positions);
+  assert.equal(step.time, 1);
+  assert.equal(step.from, 0);
+  assert.equal(step.to, 1);
+  assert.ok(Math.abs(step.rise - 0.8) < 0.02, step.rise);
+  assert.ok(Math.abs(step.overshoot - 10) < 0.6, step.overshoot);
+  assert.ok(Math.abs(step.settling - 1.52) < 0.02, step.settling);
+  assert.ok(Math.abs(step.error - -0.005) < 1e-9, step.error);
+  assert.equal(stepMeasurements([0, 1], [0.5, 0.5], [0, 0]), null);  // never stepped
+});
+
+test('CSV: a header and a row per bucket, an empty cell for no sample', () => {
+  assert.equal(columnsCsv({ t: [1.5, 1.52], pan_goal: [1.57, 1.57], pan_position: [0.2, null] }),
+               't,pan_goal,pan_position\n1.5,1.57,0.2\n1.52,1.57,\n');
 });

@@ -1,8 +1,13 @@
 // The robot view's live plots (channel "plots"): each servo's goal, position and effort and the
-// IMU's roll, pitch and yaw over the last 10 s, drawn with uPlot; Pause freezes what is drawn
-// while the batches keep coming, so Resume shows the live window at once.
+// IMU's roll, pitch and yaw over the last 5 to 60 s (the page keeps 60), drawn with uPlot. Pause
+// freezes what is drawn while the batches keep coming, so Resume shows the live window at once.
+// For the PID exercise: values on hover, zoom by dragging across a plot (it pauses; double-click
+// zooms out), each servo's last goal step measured from the plotted rows (rise, overshoot,
+// settling, error), CSV export of what the page keeps, and the rad and N*m axes sharing their 0.
 import uPlot from 'uplot';
-import { WINDOW_SECONDS, emptyColumns, mergeBatch, plotData } from '/static/plot_data.js';
+import {
+  WINDOWS, WINDOW_SECONDS, alignedRanges, columnsCsv, emptyColumns, mergeBatch, plotData, stepMeasurements,
+} from '/static/plot_data.js';
 
 const SERVO_SERIES = (servo) => [
   { name: `${servo}_goal`, label: 'goal', stroke: '#6b7280', dash: [6, 4], scale: 'rad' },
@@ -24,18 +29,20 @@ const PLOTS = {
 };
 const HEIGHT = 190;
 
-// A y range at least `span` tall around the data, padded by 8 %: uPlot's own range for a flat line
-// (a servo at rest, effort 0) is 0..100, which hides the line on the axis.
-function rangeAtLeast(span) {
-  return (plot, min, max) => {
-    if (min === null || max === null) return [-span / 2, span / 2];
-    const centre = (min + max) / 2;
-    const half = Math.max(max - min, span) / 2 * 1.08;
-    return [centre - half, centre + half];
-  };
+// The y ranges of a plot's scales from what it draws, zeros aligned (plot_data.js, alignedRanges):
+// uPlot's own range for a flat line (a servo at rest, effort 0) is 0..100, which hides the line.
+function yRanges(plot, spec) {
+  const extents = {};
+  spec.series.forEach((series, index) => {
+    const values = (plot.data[index + 1] || []).filter((value) => value !== null);
+    const [low, high] = extents[series.scale] || [null, null];
+    if (!values.length) { extents[series.scale] = [low, high]; return; }
+    extents[series.scale] = [Math.min(low ?? Infinity, ...values), Math.max(high ?? -Infinity, ...values)];
+  });
+  return alignedRanges(extents);
 }
 
-function makePlot(key, spec) {
+function makePlot(key, spec, xRange, onZoom) {
   const target = document.getElementById(`plot-${key}`);
   const width = target.clientWidth || 400;
   const axes = [{ label: 's', size: 36 }, { scale: 'rad', label: spec.axes[0], size: 48 }];
@@ -44,17 +51,28 @@ function makePlot(key, spec) {
     title: spec.title,
     width,
     height: HEIGHT,
-    // x: seconds before the newest sample, always the whole window
-    scales: { x: { time: false, range: [-WINDOW_SECONDS, 0] }, rad: { range: rangeAtLeast(0.5) },
-              Nm: { range: rangeAtLeast(0.5) } },
+    // x: seconds before the newest sample: the chosen window, or the zoomed part of it
+    scales: { x: { time: false, range: () => xRange() },
+              ...Object.fromEntries([...new Set(spec.series.map((series) => series.scale))].map(
+                (scale) => [scale, { range: (plot) => yRanges(plot, spec)[scale] }])) },
     series: [{ label: 't (s)' },
              ...spec.series.map((s) => ({ label: s.label, stroke: s.stroke, dash: s.dash, scale: s.scale,
                                           width: 1.5, spanGaps: true, points: { show: false } }))],
     axes,
-    cursor: { drag: { x: false, y: false } },
-    legend: { live: false },
+    cursor: { drag: { x: true, y: false, setScale: false } },
+    legend: { live: true },  // the values under the cursor
+    hooks: {
+      setSelect: [(plot) => {
+        if (plot.select.width < 3) return;
+        const from = plot.posToVal(plot.select.left, 'x');
+        const to = plot.posToVal(plot.select.left + plot.select.width, 'x');
+        plot.setSelect({ left: 0, top: 0, width: 0, height: 0 }, false);
+        onZoom([from, to]);
+      }],
+    },
   };
   const plot = new uPlot(options, [[], ...spec.series.map(() => [])], target);
+  plot.over.addEventListener('dblclick', () => onZoom(null));
   // as wide as its place in the page, whatever the window's width
   new ResizeObserver(() => {
     if (target.clientWidth && target.clientWidth !== plot.width) plot.setSize({ width: target.clientWidth, height: HEIGHT });
@@ -65,28 +83,89 @@ function makePlot(key, spec) {
 export function startPlots(socket, view, showError) {
   const names = Object.values(PLOTS).flatMap((spec) => spec.series.map((s) => s.name));
   let columns = emptyColumns(names);
-  const plots = Object.fromEntries(Object.entries(PLOTS).map(([key, spec]) => [key, makePlot(key, spec)]));
+  let drawn = columns;  // what the plots draw: the live columns, or those of the moment of Pause
   const pauseButton = document.getElementById('pause');
-  view.plots = { paused: false, batches: 0 };
+  const windowSelect = document.getElementById('plot-window');
+  view.plots = { paused: false, batches: 0, window: WINDOW_SECONDS, zoom: null, steps: {} };
+  const xRange = () => view.plots.zoom || [-view.plots.window, 0];
+  const plots = Object.fromEntries(Object.entries(PLOTS).map(([key, spec]) => [key, makePlot(key, spec, xRange, zoom)]));
 
   function draw() {
     for (const [key, spec] of Object.entries(PLOTS)) {
-      plots[key].setData(plotData(columns, spec.series.map((s) => s.name)));
+      plots[key].setData(plotData(drawn, spec.series.map((s) => s.name), view.plots.window));
     }
+    for (const servo of ['pan', 'tilt']) showStep(servo);
+  }
+
+  // The last goal step of a servo in what its plot draws (its zoomed part too), measured.
+  function showStep(servo) {
+    const [x, goal, position] = plots[servo].data;
+    const [from, to] = xRange();
+    const shown = x.map((time, i) => i).filter((i) => x[i] >= from && x[i] <= to);
+    const pick = (column) => shown.map((i) => column[i]);
+    const step = stepMeasurements(pick(x), pick(goal), pick(position));
+    view.plots.steps[servo] = step;
+    const line = document.getElementById(`step-${servo}`);
+    if (step === null) {
+      line.textContent = 'No goal step in this window: press 0 or π/2 (torque on), or run pid_testing.';
+      return;
+    }
+    const seconds = (value) => (value === null ? '–' : `${value.toFixed(2)} s`);
+    line.textContent = `last step ${step.from.toFixed(2)} → ${step.to.toFixed(2)} rad at ${step.time.toFixed(1)} s: `
+      + `rise (10-90 %) ${seconds(step.rise)}, overshoot ${step.overshoot.toFixed(1)} %, `
+      + `settling (2 %) ${step.settling === null ? 'not yet' : seconds(step.settling)}, `
+      + `error ${step.error.toFixed(3)} rad`;
+  }
+
+  function setPaused(paused) {
+    view.plots.paused = paused;
+    pauseButton.textContent = paused ? 'Resume' : 'Pause';
+    pauseButton.setAttribute('aria-pressed', String(paused));
+    if (!paused) {
+      view.plots.zoom = null;  // live again: the whole window
+      drawn = columns;
+    }
+    draw();
+  }
+
+  function zoom(range) {
+    if (range === null && view.plots.zoom === null) return;
+    if (range !== null && !view.plots.paused) setPaused(true);  // a moving plot cannot be measured
+    view.plots.zoom = range;
+    draw();
   }
 
   socket.subscribe('plots', {}, (batch) => {
     columns = mergeBatch(columns, batch);
     view.plots.batches += 1;
-    if (!view.plots.paused) draw();
+    if (!view.plots.paused) {
+      drawn = columns;
+      draw();
+    }
   }, showError);
 
-  pauseButton.addEventListener('click', () => {
-    view.plots.paused = !view.plots.paused;
-    pauseButton.textContent = view.plots.paused ? 'Resume' : 'Pause';
-    pauseButton.setAttribute('aria-pressed', String(view.plots.paused));
-    if (!view.plots.paused) draw();
+  pauseButton.addEventListener('click', () => setPaused(!view.plots.paused));
+
+  for (const seconds of WINDOWS) windowSelect.add(new Option(`${seconds} s`, String(seconds), false,
+                                                             seconds === WINDOW_SECONDS));
+  windowSelect.addEventListener('change', () => {
+    view.plots.window = Number(windowSelect.value);
+    view.plots.zoom = null;
+    draw();
   });
+
+  document.getElementById('export-csv').addEventListener('click', () => {
+    const url = URL.createObjectURL(new Blob([columnsCsv(drawn)], { type: 'text/csv' }));
+    const link = document.createElement('a');
+    link.href = url;
+    link.download = `robot_view_plots_${new Date().toISOString().replace(/[:.]/g, '-')}.csv`;
+    link.click();
+    setTimeout(() => URL.revokeObjectURL(url), 1000);
+  });
+
+  // A plot's y scales as drawn ({rad: [min, max], Nm: [...]}), for a test.
+  view.plots.scaleRanges = (key) => Object.fromEntries(['rad', 'Nm'].filter((name) => name in plots[key].scales)
+    .map((name) => [name, [plots[key].scales[name].min, plots[key].scales[name].max]]));
 
   // What a plot draws now, for a test: {x: [...], <label>: [...]} (x in s before the newest sample).
   view.plotted = (key) => {
