@@ -23,9 +23,6 @@ PAGE_LINE = (r'\[(olive_\w+_dcm_srv)\]: web page at (http://127\.\d+\.\d+\.\d+:\
              r'\(module address ([\d.]+)\)')
 KIT_NODES = {'olive_imu_x1684267976913_dcm_srv': '10.42.0.20', 'olive_servo_pan_dcm_srv': '10.42.0.8',
              'olive_servo_tilt_dcm_srv': '10.42.0.9', 'olive_camera_eye_dcm_srv': '10.42.0.10'}
-# What Chromium logs while a module it watches is away (restart, reboot): the page's WebSocket
-# reconnecting and a fetch meeting a closed port. A real module's page shows the same.
-WHILE_AWAY = re.compile(r'ERR_CONNECTION_REFUSED|WebSocket connection to .* failed')
 
 
 def start_kit(ros: Any) -> tuple[Any, dict[str, str]]:
@@ -37,11 +34,6 @@ def start_kit(ros: Any) -> tuple[Any, dict[str, str]]:
     assert {node: url for node, url in pages.items()} == {
         node: f"http://127.{address.split('.', 1)[1]}:{port}/" for node, address in KIT_NODES.items()}
     return launch, pages
-
-
-def forgive_while_away(page: Any) -> None:
-    """Drop the console errors of a module being away (see WHILE_AWAY); any other stays."""
-    page.console_errors[:] = [error for error in page.console_errors if not WHILE_AWAY.search(error)]
 
 
 def page_line(process: Any, node: str, count: int, timeout: float = 60.0) -> str:
@@ -134,7 +126,7 @@ def test_restart_services_brings_the_servo_back_and_imu_control_robot_moves_it(r
     page.wait_for_function('() => window.modulePage.restarts === 1', timeout=20_000)
     page.wait_for_function('() => window.modulePage.samples.length >= 2', timeout=20_000)
     assert 'started again' in page.text_content('#control-result')
-    forgive_while_away(page)
+    page.forgive_server_away()  # a real module's page logs the same
     assert robot.running()
     assert 'Traceback' not in launch.output
     launch.stop_cleanly(timeout=15)  # Ctrl-C still stops the whole kit, restarted module too
@@ -186,7 +178,7 @@ def test_an_ip_change_moves_the_page_and_bad_addresses_change_nothing(ros, page)
     page.click('#restart')
     assert page_line(pan, 'olive_servo_pan_dcm_srv', 2) == moved
     page.wait_for_function('() => window.modulePage.restarts === 1', timeout=30_000)
-    forgive_while_away(page)
+    page.forgive_server_away()  # a real module's page logs the same
     assert pan.running()
     assert tilt.running()
 

@@ -292,6 +292,8 @@ def test_without_a_kit_the_page_says_what_to_start_and_after_its_server_stops_it
     assert 'What the page shows is frozen' in status
     assert 'code 1006' not in status
     page.screenshot_to('robot_view_server_stopped')
+    page.goto('about:blank')  # no more reconnecting
+    page.forgive_server_away()
 
 
 def no_sideways_scroll(page: Any) -> bool:

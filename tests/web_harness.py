@@ -13,6 +13,7 @@ from __future__ import annotations
 import asyncio
 import json
 import os
+import re
 import socket
 import threading
 import urllib.error
@@ -34,6 +35,9 @@ CHROMIUM_ARGS = ['--no-sandbox', '--disable-gpu', '--disable-background-networki
                  '--disable-sync', '--metrics-recording-only']
 VIEWPORT: ViewportSize = {'width': 1280, 'height': 800}
 SCREENSHOTS = Path(__file__).resolve().parents[1] / 'docs' / 'screenshots'
+# What Chromium logs while a page's server is away (a module restarting or rebooting, robot_view
+# stopped): the page's WebSocket reconnecting and a fetch meeting a closed port.
+SERVER_AWAY = re.compile(r'ERR_CONNECTION_REFUSED|WebSocket connection to .* failed')
 RQT_URL_LINE = r'^rqt: open (http://127\.0\.0\.1:\d+/)(#[a-z-]+)? in a browser \(Ctrl-C to quit\)$'
 
 
@@ -86,6 +90,10 @@ class BrowserPage:
 
     def __getattr__(self, name: str) -> Any:
         return getattr(self.page, name)
+
+    def forgive_server_away(self) -> None:
+        """Drop the console errors of the page's server being away (see SERVER_AWAY); any other stays."""
+        self.console_errors[:] = [error for error in self.console_errors if not SERVER_AWAY.search(error)]
 
     def screenshot_to(self, name: str, full_page: bool = False) -> Path:
         """A screenshot for the documentation: docs/screenshots/<name>.png.

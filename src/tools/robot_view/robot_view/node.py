@@ -62,6 +62,7 @@ PLOT_SERIES = (*(f'{servo}_{what}' for servo in SERVOS for what in ('goal', 'pos
                'roll', 'pitch', 'yaw')
 PLOT_PUSH_EVERY = 0.1  # s: ten batches a second keep a 10 s plot moving smoothly
 SERVICE_TIMEOUT = 3.0  # s for a servo to answer a command's service call
+DISCOVERY_WAIT = 2.0  # s a command waits for its service to be discovered before saying it is missing
 RESEND_EVERY = 1.0  # s: see _call
 ASK_GAINS_EVERY = 1.0  # s between two questions to a servo whose gains are not known yet
 LOOK_AT_GRAPH_EVERY = 1.0  # s between two looks at which modules run and what steers them
@@ -178,11 +179,12 @@ class RobotViewNode(Node):
     def _call(self, client: Client, request: Any, what: str) -> Any:
         """A service's response, waited for in this (web worker) thread while the executor spins.
 
-        A missing or silent service is one ApiError line. Every request here is idempotent, so it
-        goes out again when no answer came within RESEND_EVERY: a server that has not discovered
-        this client yet drops the request or its response.
+        A missing (not discovered within DISCOVERY_WAIT: one that has just started, or a robot_view
+        that has, may not be yet) or silent service is one ApiError line. Every request here is
+        idempotent, so it goes out again when no answer came within RESEND_EVERY: a server that has
+        not discovered this client yet drops the request or its response.
         """
-        if not client.service_is_ready():
+        if not client.wait_for_service(timeout_sec=DISCOVERY_WAIT):
             raise ApiError(503, f'{client.srv_name} is not available (is {what} running?)')
         deadline = time.monotonic() + SERVICE_TIMEOUT
         while (left := deadline - time.monotonic()) > 0:
