@@ -65,6 +65,12 @@ def test_every_module_page_loads_with_live_status_debug_view_and_log(ros, page):
         assert last['tx'] > 0
         assert page.input_value('input[name=address]') == KIT_NODES[node]
         assert page.is_visible('#menu-debug') == (kind in ('imu', 'camera'))
+        # The page leads to the kit's other pages that answer: here the three other modules'.
+        page.wait_for_function("() => Number(document.getElementById('kit-pages').dataset.pages) >= 3",
+                               timeout=20_000)
+        links = page.eval_on_selector_all('#kit-pages a', '(links) => links.map((a) => a.href)')
+        assert set(pages.values()) - {url} <= set(links), links
+        assert url not in links
         name = f"module_{kind}_{node.split('_')[2]}"
         page.screenshot_to(f'{name}_status')
 
@@ -103,8 +109,24 @@ def test_restart_services_brings_the_servo_back_and_imu_control_robot_moves_it(r
 
     page.goto(pages[pan_node])
     page.wait_for_function('() => window.modulePage.samples.length >= 1', timeout=20_000)
-    clicked = time.monotonic()
+    # Restart Services asks first, on the page; Cancel leaves the module alone.
     page.click('#restart')
+    assert page.is_visible('#control-confirm')
+    assert page.inner_text('#control-question').startswith("Restart Services stops and starts this module's "
+                                                           'services')
+    page.locator('#control-confirm').scroll_into_view_if_needed()
+    page.screenshot_to('module_restart_confirm')
+    page.set_viewport_size({'width': 390, 'height': 844})
+    page.locator('#control-confirm').scroll_into_view_if_needed()
+    page.screenshot_to('module_restart_confirm_390')
+    page.set_viewport_size({'width': 1280, 'height': 800})
+    page.click('#control-no')
+    assert not page.is_visible('#control-confirm')
+    time.sleep(1.0)
+    assert _get(pages[pan_node], 'api/device')['device']['Process ID'] == pid  # the same process
+    page.click('#restart')
+    clicked = time.monotonic()
+    page.click('#control-yes')
     page_line(launch, pan_node, 2)  # the new process serves its page again
     back = time.monotonic()
     # The new process's first joint comes after a gap; from there the head follows the IMU again.
@@ -176,6 +198,7 @@ def test_an_ip_change_moves_the_page_and_bad_addresses_change_nothing(ros, page)
 
     # The new address is kept through a restart, as the real module keeps it.
     page.click('#restart')
+    page.click('#control-yes')
     assert page_line(pan, 'olive_servo_pan_dcm_srv', 2) == moved
     page.wait_for_function('() => window.modulePage.restarts === 1', timeout=30_000)
     page.forgive_server_away()  # a real module's page logs the same

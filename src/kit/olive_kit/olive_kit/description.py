@@ -98,6 +98,19 @@ KIT_SUBNET = '10.42.0.0/24'
 STUDENT_ADDRESS = '10.42.0.1'
 
 
+# The tools' pages on 127.0.0.1 and their default ports (each takes --port to choose another).
+RQT_PORT = 8090
+ROBOT_VIEW_PORT = 8091
+WINDOWS_PORT = 8092
+
+
+def kit_pages(module_port: int = WEB_PORT, modules: tuple[KitModule, ...] = OWL_KIT) -> list[tuple[str, str]]:
+    """Every page of the kit and its tools at its default address, as (name, url): what pages link to."""
+    tools = [('robot view', ROBOT_VIEW_PORT), ('rqt', RQT_PORT), ('windows', WINDOWS_PORT)]
+    return ([(name, f'http://127.0.0.1:{port}/') for name, port in tools]
+            + [(f'{m.module_type} {m.namespace}', m.page_url(module_port)) for m in modules])
+
+
 def address_table(port: int | str = WEB_PORT, modules: tuple[KitModule, ...] = OWL_KIT) -> str:
     """The modules' addresses and web pages, printed when the kit starts."""
     rows = [('MODULE', 'ADDRESS', 'WEB PAGE')]

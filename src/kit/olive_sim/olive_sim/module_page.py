@@ -26,7 +26,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from olive_kit.description import page_host
+from olive_kit.description import kit_pages, page_host
 from owl_common.periodic import PeriodicThread
 from owl_common.quaternion import to_euler
 from owl_web import codec
@@ -143,6 +143,7 @@ class ModulePage:
         logger = self.module.get_logger()
         server = WebServer(self.module.get_name(), STATIC_DIR, self.port, host,
                            log=lambda line: logger.warning(f'web page: {line}'))
+        server.link_pages(kit_pages(self.port))
         server.route('GET', '/api/device', self._device)
         server.route('POST', '/api/network', self._network)
         server.route('POST', '/api/restart', lambda request: self._restart(request, 0.0))

@@ -9,6 +9,7 @@ import threading
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
+from olive_kit.description import WINDOWS_PORT, kit_pages
 from owl_humble.graph_partition import profile_in_effect, profile_protects
 from owl_web.server import port_number
 
@@ -62,7 +63,6 @@ def network(args: argparse.Namespace) -> int:
     return 0 if all(v.ok for v in verdicts) else 1
 
 
-WINDOWS_PORT = 8092  # rqt has 8090, robot_view 8091
 
 
 def windows(args: argparse.Namespace) -> int:
@@ -81,6 +81,7 @@ def windows(args: argparse.Namespace) -> int:
         return 1
     try:
         server = WebServer('owl windows', STATIC_DIR, args.port)
+        server.link_pages(kit_pages())
     except OSError as error:
         print(f'owl windows: cannot serve on 127.0.0.1:{args.port}: {error.strerror or error} '
               '(is another owl windows running? choose a port with --port N)', file=sys.stderr)

@@ -6,13 +6,14 @@ import argparse
 import sys
 from pathlib import Path
 
+from olive_kit.description import ROBOT_VIEW_PORT, kit_pages
 from owl_common.run import spin_node
 from owl_web.server import WebServer, port_number
 from rclpy.utilities import remove_ros_args
 
 from robot_view.node import RobotViewNode
 
-DEFAULT_PORT = 8091  # rqt has 8090
+DEFAULT_PORT = ROBOT_VIEW_PORT
 STATIC_DIR = Path(__file__).parent / 'static'
 
 
@@ -35,6 +36,7 @@ def main(argv: list[str] | None = None) -> None:
     args = parse_arguments(remove_ros_args(argv)[1:])
     try:
         server = WebServer('robot_view', STATIC_DIR, args.port)
+        server.link_pages(kit_pages())
     except OSError as error:
         print(f'robot_view: cannot serve on 127.0.0.1:{args.port}: {error.strerror or error} '
               '(is another robot_view running? choose a port with --port N)', file=sys.stderr)

@@ -7,6 +7,7 @@ import threading
 import webbrowser
 from pathlib import Path
 
+from olive_kit.description import RQT_PORT, kit_pages
 from owl_common.run import spin_node
 from owl_humble.launcher import ensure_discovery_bridge
 from owl_web.server import WebServer, port_number
@@ -14,7 +15,7 @@ from rclpy.utilities import remove_ros_args
 
 from rqt_web.node import RqtWebNode
 
-DEFAULT_PORT = 8090
+DEFAULT_PORT = RQT_PORT
 STATIC_DIR = Path(__file__).parent / 'static'
 # upstream plugin name -> the page's tab (rqt -s rqt_graph opens the Node Graph)
 PLUGINS = {'rqt_graph': 'node-graph', 'rqt_publisher': 'message-publisher',
@@ -57,6 +58,7 @@ def main(argv: list[str] | None = None) -> None:
     args = parse_arguments(remove_ros_args(argv)[1:])
     try:
         server = WebServer('rqt', STATIC_DIR, args.port)
+        server.link_pages(kit_pages())
     except OSError as error:
         print(f'rqt: cannot serve on 127.0.0.1:{args.port}: {error.strerror or error} '
               '(is another rqt running? choose a port with --port N)', file=sys.stderr)

@@ -32,6 +32,7 @@ import sys
 import threading
 from collections import deque
 from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -326,6 +327,20 @@ class WebServer:
 
     # ---- what the application adds before start() --------------------------------------------
 
+    def link_pages(self, pages: list[tuple[str, str]]) -> None:
+        """Serve GET /api/kit-pages: those of pages (name, url) that answer now, this one left out.
+
+        owl/links.js shows them as links on the page, so every page of the kit leads to the others.
+        """
+        def answering(_: Request) -> list[dict[str, str]]:
+            others = [(name, url) for name, url in pages if url != self.url]
+            with ThreadPoolExecutor(max_workers=max(len(others), 1)) as pool:
+                up = list(pool.map(lambda page: port_answers(page[1]), others))
+            return [{'name': name, 'url': url}
+                    for (name, url), alive in zip(others, up, strict=True) if alive]
+
+        self.route('GET', '/api/kit-pages', answering)
+
     def route(self, method: str, path: str, handler: Callable[[Request], Any]) -> None:
         """handler(Request) returns JSON data, or (status, data); it raises ApiError to refuse."""
         pattern = re.compile('^' + re.sub(r'\\\{(\w+)\\\}', r'(?P<\1>[^/]+)', re.escape(path)) + '$')
@@ -605,6 +620,16 @@ class WebServer:
                 await self._in_thread(close, subscription)
             except Exception as error:  # the subscription is gone anyway; say why its clean-up failed
                 self.log(f'closing a {subscription.channel} subscription: {codec.one_line(error)}')
+
+
+def port_answers(url: str, timeout: float = 0.3) -> bool:
+    """Whether something accepts a TCP connection at the url's host and port."""
+    parts = urlsplit(url)
+    try:
+        with socket.create_connection((parts.hostname or '127.0.0.1', parts.port or 80), timeout=timeout):
+            return True
+    except OSError:
+        return False
 
 
 def _flat_file(folder: Path, name: str) -> Path | None:

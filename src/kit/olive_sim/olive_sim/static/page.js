@@ -3,6 +3,7 @@
 // GUI (modules with an IMU: Euler angles and a 3D view) and Log Monitor. Live data is pushed by
 // the module over the page's one WebSocket (owl_web's OwlSocket): channels "system", "orientation"
 // and "log", each subscribed only while its menu page is shown.
+import { showKitPages } from '/owl/links.js';
 import { OwlSocket } from '/owl/socket.js';
 
 const CHART_SECONDS = 120;
@@ -217,8 +218,34 @@ async function control(path, what) {
     result('control-result', `the module did not answer: ${error.message}`, false);
   }
 }
-$('restart').addEventListener('click', () => control('/api/restart', 'Restart Services'));
-$('reboot').addEventListener('click', () => control('/api/reboot', 'Reboot Device'));
+// Both stop the module's services for a while: each asks first, on the page (no browser dialog).
+const CONTROLS = {
+  restart: ['/api/restart', 'Restart Services', 'stops and starts this module\'s services: its topics and '
+            + 'services are gone for a moment, and nodes using them may need to be restarted.'],
+  reboot: ['/api/reboot', 'Reboot Device', 'stops the whole module while it boots again (several seconds): '
+           + 'its topics, services and this page are away meanwhile.'],
+};
+let confirming = null;  // the control waiting for its confirmation
+function ask(name) {
+  const [, what, consequence] = CONTROLS[name];
+  confirming = name;
+  $('control-question').textContent = `${what} ${consequence} Go on?`;
+  $('control-yes').textContent = `Yes, ${what.toLowerCase()}`;
+  $('control-confirm').hidden = false;
+  $('control-no').focus();
+}
+function closeConfirmation() {
+  confirming = null;
+  $('control-confirm').hidden = true;
+}
+$('restart').addEventListener('click', () => ask('restart'));
+$('reboot').addEventListener('click', () => ask('reboot'));
+$('control-no').addEventListener('click', closeConfirmation);
+$('control-yes').addEventListener('click', () => {
+  const [path, what] = CONTROLS[confirming];
+  closeConfirmation();
+  control(path, what);
+});
 
 // ---- Debug GUI -------------------------------------------------------------------------------
 const DEGREES = 180 / Math.PI;
@@ -306,3 +333,4 @@ function onLog(data) {
 }
 
 loadDevice();
+showKitPages();

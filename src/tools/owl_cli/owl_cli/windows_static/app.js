@@ -1,5 +1,6 @@
 // owl windows: the list of windows (channel 'windows'), one frame subscription per shown window
 // (channel 'window'), and the keys pressed on a focused window as 'key' commands.
+import { showKitPages } from '/owl/links.js';
 import { OwlSocket } from '/owl/socket.js';
 
 const list = document.getElementById('windows');
@@ -123,3 +124,4 @@ socket.subscribe('windows', {}, (data) => {
   none.hidden = data.windows.length > 0;
   document.body.dataset.windows = String(data.windows.length);
 }, showError);
+showKitPages();

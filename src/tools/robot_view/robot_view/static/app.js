@@ -6,6 +6,7 @@
 // The model works in base_link's frame (metres, z up), from shared/specs/olive_hardware.md §7.
 import * as THREE from 'three';
 import { OrbitControls } from '/lib/three/examples/jsm/controls/OrbitControls.js';
+import { showKitPages } from '/owl/links.js';
 import { OwlSocket } from '/owl/socket.js';
 import { startControls } from '/static/controls.js';
 import { startPlots } from '/static/plots.js';
@@ -355,3 +356,4 @@ render();
 
 startPlots(socket, view, showError);
 startControls(socket, view);
+showKitPages();

@@ -1,6 +1,7 @@
 // The page of rqt_web: four plugins over the JSON API of the rqt node (see the package README);
 // the graph and image frames come pushed over the page's WebSocket (owl_web's OwlSocket), and the
 // graph is laid out here with elkjs (loaded by index.html as the global ELK).
+import { showKitPages } from '/owl/links.js';
 import { OwlSocket } from '/owl/socket.js';
 
 const $ = (id) => document.getElementById(id);
@@ -489,3 +490,4 @@ tabs['image-view'] = {
 
 window.addEventListener('hashchange', () => selectTab(location.hash.slice(1)));
 selectTab(location.hash.slice(1));
+showKitPages();
