@@ -293,7 +293,7 @@ class WebServer:
         self.libraries = library_packages(self.web)
         self._routes: list[Route] = []
         self._channels: dict[str, Channel] = {}
-        self._commands: dict[str, Callable[[dict[str, Any]], None]] = {}
+        self._commands: dict[str, Callable[[dict[str, Any]], dict[str, Any] | None]] = {}
         self._connections: set[Connection] = set()
         self._socket = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
         try:
