@@ -13,12 +13,14 @@ from gates import prerequisite_missing
 from web_harness import chromium_missing
 
 BENCH = Path(__file__).resolve().parents[1] / 'bench'
-NEEDS_CHROMIUM = {'robot_view_latency.py'}  # drives the robot view's page as the browser tests do
+# drive the robot view's page as the browser tests do
+NEEDS_CHROMIUM = {'robot_view_latency.py', 'robot_view_smoothness.py'}
 SHRUNK = {
     'dds_discovery.py': ['--runs', '1', '--nodes', '2', '--periods', '--idle-seconds', '0.5'],
     'launch_timings.py': ['--repeat', '1'],
     'olive_sim_cpu.py': ['--seconds', '0.5', '--warmup', '0.5', '--camera-seconds', '1'],
     'robot_view_latency.py': ['--samples', '1', '--pause', '0.3'],
+    'robot_view_smoothness.py': ['--seconds', '1'],
     'ros2_help.py': ['--runs', '1'],
     'ros2cli_graph.py': ['--runs', '1', '--seconds', '2.5', '--messages', '200'],
     'service_roundtrip.py': ['--calls', '20', '--long-calls', '100'],

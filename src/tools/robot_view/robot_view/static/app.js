@@ -35,7 +35,20 @@ window.robotView = view;
 
 // ---- scene --------------------------------------------------------------------------------------
 const container = document.getElementById('model');
-const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+// Whether WebGL runs in software (SwiftShader in a headless or GPU-less browser, llvmpipe): there
+// antialiasing doubled the main thread's input delay while dragging (bench/robot_view_smoothness.py),
+// so it is on only where a GPU draws.
+function softwareRendering() {
+  const canvas = document.createElement('canvas');
+  const gl = canvas.getContext('webgl2') || canvas.getContext('webgl');
+  if (!gl) return true;
+  const debug = gl.getExtension('WEBGL_debug_renderer_info');  // RENDERER alone says "WebKit WebGL"
+  const name = String(gl.getParameter(debug ? debug.UNMASKED_RENDERER_WEBGL : gl.RENDERER));
+  gl.getExtension('WEBGL_lose_context')?.loseContext();
+  return /swiftshader|llvmpipe|softpipe|software/i.test(name);
+}
+view.softwareRendering = softwareRendering();
+const renderer = new THREE.WebGLRenderer({ antialias: !view.softwareRendering, preserveDrawingBuffer: true });
 renderer.setPixelRatio(window.devicePixelRatio);
 renderer.setSize(container.clientWidth, container.clientHeight, false);
 container.appendChild(renderer.domElement);
