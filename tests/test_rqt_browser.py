@@ -131,3 +131,50 @@ def test_rqt_node_graph_draws_a_humble_module_and_drops_it_when_it_leaves(ros, p
     # rqt's own graph messages never reached the twin in Humble's layout (our partition).
     assert "malformed in Humble's layout: 0" in twin.output, twin.output
     page.wait_for_selector(drawn('/olive_imu_humble_dcm_srv'), state='detached', timeout=10_000)
+
+
+def test_rqt_graph_fits_and_zooms_two_plugins_sit_side_by_side_and_counters_count(ros, page):
+    ros.run('turtlesim', 'turtlesim_node')
+    ros.run('random_number_ps', 'random_number_publisher')
+    ros.run('random_number_ps', 'random_number_subscriber')
+    rqt = Rqt(ros)
+    page.set_viewport_size({'width': 390, 'height': 844})
+    page.goto(rqt.base)
+    page.wait_for_selector(drawn('/random_number_subscriber'), timeout=20_000)
+    # Fit (the default): the whole graph within the page's width, even on a phone.
+    layout_width = page.evaluate("document.getElementById('graph-svg').viewBox.baseVal.width")
+    box_width = page.evaluate("document.querySelector('#node-graph .canvas').clientWidth")
+    assert layout_width > box_width, (layout_width, box_width)  # it would not fit at its own size
+    assert page.evaluate("document.getElementById('graph-svg').width.baseVal.value") <= box_width
+    assert page.inner_text('#graph-zoom-level').startswith('fit (')
+    page.screenshot_to('rqt_graph_390')
+    # 100 %: the layout's own size (the box scrolls); + zooms in from there.
+    page.click('#graph-actual')
+    assert page.evaluate("document.getElementById('graph-svg').width.baseVal.value") == round(layout_width)
+    page.click('#graph-zoom-in')
+    assert page.inner_text('#graph-zoom-level') == '125 %'
+    page.click('#graph-fit')
+
+    # Two plugins side by side: the graph on the left, the Message Publisher on the right.
+    page.set_viewport_size({'width': 1280, 'height': 800})
+    page.click('#split')
+    page.wait_for_function("location.hash === '#node-graph+message-publisher'")
+    graph = page.locator('#node-graph').bounding_box()
+    publisher = page.locator('#message-publisher').bounding_box()
+    assert graph['x'] + graph['width'] <= publisher['x'] + 1
+    assert abs(graph['y'] - publisher['y']) < 2
+    # A publisher's counter goes up by itself (it used to change only with an edit).
+    page.fill('#pub-topic', '/counted')
+    page.fill('#pub-type', 'std_msgs/msg/String')
+    page.fill('#pub-rate', '10')
+    page.click('#pub-add')
+    page.wait_for_selector('#publishers .publisher input[type=checkbox]', timeout=10_000)
+    assert page.locator('#publishers table.fields th').all_inner_texts() == ['field', 'type', 'value']
+    page.check('#publishers .publisher input[type=checkbox]')
+    counted = "Number(document.querySelector('#publishers .count').textContent.split(' ')[0])"
+    page.wait_for_function(f'{counted} >= 10', timeout=10_000)
+    page.screenshot_to('rqt_side_by_side')
+    # Side by side off: one plugin again.
+    page.click('#split')
+    page.wait_for_function("location.hash === '#node-graph'")
+    assert not page.is_visible('#message-publisher')

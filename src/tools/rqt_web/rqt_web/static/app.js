@@ -50,25 +50,50 @@ function fillDatalist(id, values) {
 // ---- tabs ----------------------------------------------------------------------------------
 
 const tabs = {};  // name -> {enter, leave}: what a plugin does when its tab is shown or hidden
-let activeTab = null;
+// The plugins shown: one, or two side by side (rqt's docked plugins): [left, right]. The URL's hash
+// keeps them: #node-graph, or #node-graph+message-publisher.
+let shown = [];
 
-function selectTab(name) {
-  if (!document.getElementById(name)) name = 'node-graph';
+function isPlugin(name) {
+  return Boolean(name) && document.getElementById(name)?.classList.contains('plugin');
+}
+
+function showPlugins(names) {
+  const wanted = [...new Set(names.filter(isPlugin))].slice(0, 2);
+  if (!wanted.length) wanted.push('node-graph');
+  for (const name of shown) if (!wanted.includes(name) && tabs[name]?.leave) tabs[name].leave();
+  const entered = wanted.filter((name) => !shown.includes(name));
+  shown = wanted;
   for (const button of document.querySelectorAll('#tabs button')) {
-    button.classList.toggle('active', button.dataset.tab === name);
+    button.classList.toggle('active', shown.includes(button.dataset.tab));
   }
   for (const section of document.querySelectorAll('.plugin')) {
-    section.classList.toggle('active', section.id === name);
+    section.classList.toggle('active', shown.includes(section.id));
+    section.style.order = String(shown.indexOf(section.id));
   }
-  if (location.hash !== '#' + name) history.replaceState(null, '', '#' + name);
-  if (activeTab && activeTab !== name && tabs[activeTab]?.leave) tabs[activeTab].leave();
-  activeTab = name;
-  if (tabs[name]?.enter) tabs[name].enter();
+  document.body.classList.toggle('split', shown.length === 2);
+  $('split').setAttribute('aria-pressed', String(shown.length === 2));
+  const hash = '#' + shown.join('+');
+  if (location.hash !== hash) history.replaceState(null, '', hash);
+  for (const name of entered) if (tabs[name]?.enter) tabs[name].enter();
+}
+
+// A tab shows its plugin; side by side, it replaces the right-hand one.
+function selectTab(name) {
+  showPlugins(shown.length === 2 ? [shown[0], name === shown[0] ? shown[1] : name] : [name]);
 }
 
 for (const button of document.querySelectorAll('#tabs button')) {
   button.addEventListener('click', () => selectTab(button.dataset.tab));
 }
+$('split').addEventListener('click', () => {
+  if (shown.length === 2) {
+    showPlugins([shown[0]]);
+  } else {
+    const next = [...document.querySelectorAll('#tabs button')].map((b) => b.dataset.tab).find((t) => t !== shown[0]);
+    showPlugins([shown[0], next]);
+  }
+});
 
 // ---- field forms (Message Publisher, Service Caller) --------------------------------------
 
@@ -114,7 +139,7 @@ function fieldTable(template, values, readOnly = false) {
   const table = element('table', { class: 'fields' });
   const head = element('tr');
   head.append(element('th', {}, 'field'), element('th', {}, 'type'),
-    element('th', {}, readOnly ? 'value' : 'expression'));
+    element('th', {}, 'value'));  // upstream's column says "expression": ours takes plain values
   table.append(head, ...fieldRows(template, values, '', 0, readOnly));
   return table;
 }
@@ -198,8 +223,9 @@ async function drawGraph(graph) {
     edges: graph.edges.map((edge, index) => ({ id: `e${index}`, sources: [edge.from], targets: [edge.to] })),
   });
   const canvas = $('graph-svg');
-  canvas.setAttribute('width', Math.max(laid.width, 200));
-  canvas.setAttribute('height', Math.max(laid.height, 100));
+  graphSize = { width: Math.max(laid.width, 200), height: Math.max(laid.height, 100) };
+  canvas.setAttribute('viewBox', `0 0 ${graphSize.width} ${graphSize.height}`);
+  applyGraphZoom();
   const marker = svg('marker', { id: 'arrow', viewBox: '0 0 10 10', refX: '10', refY: '5',
     markerWidth: '8', markerHeight: '8', orient: 'auto-start-reverse' });
   marker.append(svg('path', { d: 'M 0 0 L 10 5 L 0 10 z', fill: '#333' }));
@@ -229,6 +255,39 @@ async function drawGraph(graph) {
   const count = (n, what) => `${n} ${what}${n === 1 ? '' : 's'}`;
   $('graph-status').textContent = `${count(graph.nodes.length, 'node')}, ${count(graph.topics.length, 'topic')}`;
 }
+
+// Fit (the whole graph in the page's width, the default) or a zoom factor (1 = the layout's pixels).
+let graphSize = { width: 200, height: 100 };
+let graphZoom = 'fit';
+const ZOOM_STEP = 1.25;
+
+function applyGraphZoom() {
+  const canvas = $('graph-svg');
+  const box = canvas.parentElement;
+  if (graphZoom === 'fit' && box.clientWidth < 10) return;  // hidden: fitted when shown (ResizeObserver)
+  const fitted = Math.min(1, (box.clientWidth - 2) / graphSize.width);
+  const zoom = graphZoom === 'fit' ? fitted : graphZoom;
+  canvas.setAttribute('width', String(Math.round(graphSize.width * zoom)));
+  canvas.setAttribute('height', String(Math.round(graphSize.height * zoom)));
+  $('graph-zoom-level').textContent = graphZoom === 'fit' ? `fit (${Math.round(zoom * 100)} %)` : `${Math.round(zoom * 100)} %`;
+}
+
+function zoomGraph(to) {
+  const current = graphZoom === 'fit' ? Number($('graph-svg').getAttribute('width')) / graphSize.width : graphZoom;
+  graphZoom = to === 'fit' ? 'fit' : Math.min(4, Math.max(0.1, to === 'in' ? current * ZOOM_STEP
+    : to === 'out' ? current / ZOOM_STEP : 1));
+  applyGraphZoom();
+}
+$('graph-fit').addEventListener('click', () => zoomGraph('fit'));
+$('graph-zoom-in').addEventListener('click', () => zoomGraph('in'));
+$('graph-zoom-out').addEventListener('click', () => zoomGraph('out'));
+$('graph-actual').addEventListener('click', () => zoomGraph('actual'));
+$('graph-svg').parentElement.addEventListener('wheel', (event) => {
+  if (!event.ctrlKey) return;  // the wheel alone scrolls, as everywhere
+  event.preventDefault();
+  zoomGraph(event.deltaY < 0 ? 'in' : 'out');
+}, { passive: false });
+new ResizeObserver(() => { if (graphZoom === 'fit') applyGraphZoom(); }).observe($('graph-svg').parentElement);
 
 function watchGraph() {
   if (graphSubscription !== null) socket.unsubscribe(graphSubscription);
@@ -357,8 +416,30 @@ async function loadPublishers() {
   }
 }
 
+// The "N published" counters follow the publishers while the plugin is shown (once a second).
+let countTimer = null;
+async function refreshCounts() {
+  let entries;
+  try {
+    entries = await api('GET', '/api/publishers');
+  } catch (error) {
+    return;  // the page's status says when the server is away
+  }
+  for (const entry of entries) {
+    const count = document.querySelector(`#publisher-${entry.id} .count`);
+    if (count) count.textContent = `${entry.published} published`;
+  }
+}
+
 $('pub-refresh').addEventListener('click', refreshTopics);
-tabs['message-publisher'] = { enter: loadPublishers };
+tabs['message-publisher'] = {
+  enter: () => {
+    loadPublishers();
+    clearInterval(countTimer);
+    countTimer = setInterval(refreshCounts, 1000);
+  },
+  leave: () => { clearInterval(countTimer); countTimer = null; },
+};
 
 // ---- Service Caller -------------------------------------------------------------------------
 
@@ -488,6 +569,6 @@ tabs['image-view'] = {
   leave: stopWatchingImages,
 };
 
-window.addEventListener('hashchange', () => selectTab(location.hash.slice(1)));
-selectTab(location.hash.slice(1));
+window.addEventListener('hashchange', () => showPlugins(location.hash.slice(1).split('+')));
+showPlugins(location.hash.slice(1).split('+'));
 showKitPages();
