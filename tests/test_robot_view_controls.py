@@ -258,6 +258,16 @@ def test_each_command_says_what_the_kit_did_with_it(ros, page):
     answer = click_and_wait_for_answer(page, f'{row} button.goal[data-goal="1.57"]')
     assert answer['result'] == {'outcome': 'sent'}, answer
     wait_until(lambda: status_line(page).startswith('pan: goal 1.57 rad reached in '), 10, 'the goal reached')
+    # The on-screen arrows nudge the goals by 0.1 rad from the last one (a finger on a phone).
+    page.click('#servo-pad .arrow.right')
+    wait_until(lambda: status_line(page).startswith('pan: goal 1.47 rad reached in '), 10, 'a nudge right')
+    page.click('#servo-pad .arrow.left')
+    page.click('#servo-pad .arrow.left')
+    wait_until(lambda: status_line(page).startswith('pan: goal 1.5708 rad'), 10, 'the nudge held at the top')
+    page.set_viewport_size({'width': 390, 'height': 844})
+    page.locator('#servo-pad').scroll_into_view_if_needed()
+    page.screenshot_to('robot_view_servo_pad_390')
+    page.set_viewport_size({'width': 1280, 'height': 800})
 
     # A refused Kp leaves the field showing the servo's own Kp, not the refused one.
     kp = page.evaluate('window.robotView.servos.pan.kp')

@@ -34,7 +34,7 @@ SPEED_RANGE = (0.05, 6.0)  # rad/s; 6 rad/s is about the servo's own top speed
 KEY_NAMES = {pygame.K_LEFT: 'left', pygame.K_RIGHT: 'right', pygame.K_UP: 'up', pygame.K_DOWN: 'down'}
 WINDOW_SIZE = (420, 130)
 HELP = ('Left/Right: turn the head (pan)', 'Up/Down: look up/down (tilt)',
-        'Ctrl-C in the terminal or close this window to stop')
+        'Ctrl-C in the terminal that started it stops it')  # a window in a browser has no close box
 
 
 class WindowClosed(Exception):

@@ -11,6 +11,10 @@ const FLIP_EVERY = 3000;  // ms, the appendix script's timer
 const GAINS = [['kp', 'Kp'], ['ki', 'Ki'], ['kd', 'Kd']];
 const REACHED = 0.02;  // rad from its goal: the servo is there
 const REACH_WITHIN = 5000;  // ms after which a goal not reached is said so
+const NUDGE = 0.1;  // rad an arrow of the pad moves a goal
+const NUDGE_EVERY = 250;  // ms between nudges while an arrow is held
+// [key, label, servo, sign]: left turns the head left (pan +), up looks up (tilt -: + looks down)
+const PAD = [['up', '▲', 'tilt', -1], ['left', '◀', 'pan', 1], ['down', '▼', 'tilt', 1], ['right', '▶', 'pan', -1]];
 
 function goalLabel(goal) {
   return Math.abs(goal - 1.57) < 1e-9 ? 'π/2' : String(goal);
@@ -23,6 +27,7 @@ export function startControls(socket, view) {
   view.servos = null;
   view.commandAnswers = [];  // {name, error, result} of every answered command, for the tests
   let following = null;  // {servo, goal, since}: the sent goal whose arrival the status line follows
+  const lastGoal = {};  // servo -> the goal this page sent it last
 
   function say(line, refused = false) {
     status.textContent = line;
@@ -44,6 +49,7 @@ export function startControls(socket, view) {
   }
 
   function sendGoal(servo, goal, note = '') {
+    lastGoal[servo] = goal;
     send('goal', { servo, position: goal }, '', (result) => {
       if (result && result.outcome === 'ignored') {
         following = null;
@@ -178,9 +184,42 @@ export function startControls(socket, view) {
     }
   }
 
+  // An on-screen arrow pad (a phone, a tablet): each arrow nudges a servo's goal by NUDGE from its
+  // last goal (or where it is), within its range; held, it repeats.
+  function buildPad(limits) {
+    const pad = document.getElementById('servo-pad');
+    for (const [key, label, servo, sign] of PAD) {
+      const button = document.createElement('button');
+      button.type = 'button';
+      button.className = `arrow ${key}`;
+      button.textContent = label;
+      button.setAttribute('aria-label', `${servo} ${key}`);
+      const nudge = () => {
+        const [low, high] = limits.servos[servo].range;
+        const from = lastGoal[servo] ?? view[servo] ?? 0;
+        const goal = Math.min(high, Math.max(low, Math.round((from + sign * NUDGE) * 1000) / 1000));
+        lastGoal[servo] = goal;
+        sendGoal(servo, goal);
+      };
+      let repeat = null;
+      const stop = () => { clearInterval(repeat); repeat = null; button.classList.remove('held'); };
+      button.addEventListener('pointerdown', (event) => {
+        event.preventDefault();
+        button.setPointerCapture(event.pointerId);
+        button.classList.add('held');
+        nudge();
+        clearInterval(repeat);
+        repeat = setInterval(nudge, NUDGE_EVERY);
+      });
+      for (const end of ['pointerup', 'pointercancel', 'lostpointercapture']) button.addEventListener(end, stop);
+      pad.append(button);
+    }
+  }
+
   socket.subscribe('servos', {}, (message) => {
     if (!Object.keys(rows).length) {
       for (const servo of Object.keys(message.limits.servos)) buildRow(servo, message.limits);
+      buildPad(message.limits);
     }
     view.servos = message.state;
     showState();
