@@ -63,8 +63,12 @@ def test_the_modules_are_hosts_at_the_course_addresses_and_imu_control_robot_dri
     robot = classroom.run('pc', 'ros2 run olive_servo imu_control_robot', OPEN, label='imu_control_robot')
     robot.wait_for(r'steering the pan and tilt servos', timeout=60)
     print(f'imu_control_robot steered {time.monotonic() - started:.2f} s after it started')
-    wait_until(lambda: len(positions(pan)) > 50 and max(positions(pan)) - min(positions(pan)) > 0.3
-               and max(positions(tilt)) - min(positions(tilt)) > 0.3, 40, 'both servos to follow the IMU')
+    def swept(echo) -> bool:
+        # each echo's first line comes when its own subscription is matched: pan's may be long before tilt's
+        seen = positions(echo)
+        return len(seen) > 50 and max(seen) - min(seen) > 0.3
+
+    wait_until(lambda: swept(pan) and swept(tilt), 40, 'both servos to follow the IMU')
     robot.stop_cleanly()
     assert 'torque disabled' in robot.output
 

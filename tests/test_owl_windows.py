@@ -152,6 +152,11 @@ def test_turtlesim_without_a_display_shows_on_the_page_and_its_arrows_drive_turt
     page.wait_for_function('() => document.body.dataset.windows === "0"', timeout=10_000)
     assert not keys_file.parent.exists(), 'turtlesim left its window folder behind'
     page_server.stop_cleanly(timeout=10)
+    # The page without its server says so in words, not as a WebSocket code.
+    page.wait_for_function("() => document.body.classList.contains('stale')", timeout=10_000)
+    assert 'The windows below are frozen; run owl windows again.' in page.inner_text('#status')
+    page.goto('about:blank')
+    page.forgive_server_away()
 
 
 def test_bad_input_gets_one_line_and_nothing_reaches_the_program(ros, tmp_path):

@@ -269,9 +269,7 @@ def test_without_a_kit_the_page_says_what_to_start_and_after_its_server_stops_it
     assert page.is_disabled('#level')
     assert page.inner_text('#imu-hint') == 'No IMU runs: the block has nothing to hold.'
     page.screenshot_to('robot_view_no_kit')
-    page.set_viewport_size({'width': 390, 'height': 844})
-    page.screenshot_to('robot_view_no_kit_390')
-    page.set_viewport_size({'width': 1280, 'height': 800})
+    page.screenshot_at_390('robot_view_no_kit', '#kit-state')
 
     # An IMU that follows its own script (as in owl_kit.launch.py): dragging cannot steer it, and the
     # hint says so and how to start one that can be held.
@@ -292,6 +290,7 @@ def test_without_a_kit_the_page_says_what_to_start_and_after_its_server_stops_it
     assert 'What the page shows is frozen' in status
     assert 'code 1006' not in status
     page.screenshot_to('robot_view_server_stopped')
+    page.screenshot_at_390('robot_view_server_stopped', '#status')
     page.goto('about:blank')  # no more reconnecting
     page.forgive_server_away()
 

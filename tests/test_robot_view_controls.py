@@ -173,6 +173,7 @@ def test_a_kp_change_shows_in_the_plotted_step_response(ros, page):
     assert page.evaluate('window.robotView.plots.paused') is True
     assert page.inner_text('#pause') == 'Resume'
     page.screenshot_to('robot_view_plots_zoomed', full_page=True)
+    page.screenshot_at_390('robot_view_plots_zoomed', '#step-pan')
     page.dblclick('#plot-pan .u-over')
     assert page.evaluate('window.robotView.plots.zoom') is None
     # CSV export of what the page keeps, every series a column.
@@ -252,6 +253,7 @@ def test_each_command_says_what_the_kit_did_with_it(ros, page):
     assert status_line(page).startswith("pan: goal 1.57 rad ignored: the pan servo's torque is off, so it "
                                         'ignores goals: switch it on'), status_line(page)
     page.screenshot_to('robot_view_goal_ignored')
+    page.screenshot_at_390('robot_view_goal_ignored', '#command-status')
 
     # Torque on: the goal is sent and followed in the joint until it is reached.
     click_and_wait_for_answer(page, f'{row} input.torque')
@@ -264,10 +266,7 @@ def test_each_command_says_what_the_kit_did_with_it(ros, page):
     page.click('#servo-pad .arrow.left')
     page.click('#servo-pad .arrow.left')
     wait_until(lambda: status_line(page).startswith('pan: goal 1.5708 rad'), 10, 'the nudge held at the top')
-    page.set_viewport_size({'width': 390, 'height': 844})
-    page.locator('#servo-pad').scroll_into_view_if_needed()
-    page.screenshot_to('robot_view_servo_pad_390')
-    page.set_viewport_size({'width': 1280, 'height': 800})
+    page.screenshot_at_390('robot_view_servo_pad', '#servo-pad')
 
     # A refused Kp leaves the field showing the servo's own Kp, not the refused one.
     kp = page.evaluate('window.robotView.servos.pan.kp')

@@ -174,7 +174,13 @@ def test_rqt_graph_fits_and_zooms_two_plugins_sit_side_by_side_and_counters_coun
     counted = "Number(document.querySelector('#publishers .count').textContent.split(' ')[0])"
     page.wait_for_function(f'{counted} >= 10', timeout=10_000)
     page.screenshot_to('rqt_side_by_side')
+    page.screenshot_at_390('rqt_side_by_side', '#message-publisher')
     # Side by side off: one plugin again.
     page.click('#split')
     page.wait_for_function("location.hash === '#node-graph'")
     assert not page.is_visible('#message-publisher')
+    # rqt stops: the page greys out what it shows.
+    rqt.stop_cleanly()
+    page.wait_for_function("() => document.body.classList.contains('stale')", timeout=10_000)
+    page.goto('about:blank')
+    page.forgive_server_away()

@@ -95,6 +95,18 @@ class BrowserPage:
         """Drop the console errors of the page's server being away (see SERVER_AWAY); any other stays."""
         self.console_errors[:] = [error for error in self.console_errors if not SERVER_AWAY.search(error)]
 
+    def screenshot_at_390(self, name: str, showing: str) -> Path:
+        """docs/screenshots/<name>_390.png: the page as a 390 px phone shows it, scrolled to `showing`.
+
+        The viewport goes back to VIEWPORT afterwards.
+        """
+        self.page.set_viewport_size({'width': 390, 'height': 844})
+        try:
+            self.page.locator(showing).scroll_into_view_if_needed()
+            return self.screenshot_to(f'{name}_390')
+        finally:
+            self.page.set_viewport_size(VIEWPORT)
+
     def screenshot_to(self, name: str, full_page: bool = False) -> Path:
         """A screenshot for the documentation: docs/screenshots/<name>.png.
 

@@ -10,8 +10,10 @@ const errors = document.getElementById('errors');
 const shown = new Map();  // window id -> {card, image, subscription, url, frames}
 
 // A refused key command's line comes here too (connected, with a detail).
+// Connection lost: the windows shown are frozen, and greyed out to say so.
 const socket = new OwlSocket((connected, detail) => {
-  status.textContent = connected ? 'connected' : detail;
+  document.body.classList.toggle('stale', !connected);
+  status.textContent = connected ? 'connected' : `${detail}. The windows below are frozen; run owl windows again.`;
   if (connected && detail) showError(detail);
 });
 

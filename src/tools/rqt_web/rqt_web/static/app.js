@@ -7,7 +7,9 @@ import { OwlSocket } from '/owl/socket.js';
 const $ = (id) => document.getElementById(id);
 const SVG = 'http://www.w3.org/2000/svg';
 
+// Connection lost: what the plugins show is frozen, and greyed out to say so.
 const socket = new OwlSocket((connected, detail) => {
+  document.body.classList.toggle('stale', !connected);
   $('connection').textContent = connected ? '' : 'not connected';
   $('connection').title = detail;
   if (detail) showError('page-error', detail);
