@@ -18,6 +18,7 @@ import os
 import socket
 import sys
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import partial
 
@@ -149,6 +150,20 @@ def page_port(preferred: int) -> int:
     return preferred
 
 
+def serve_page(start: Callable[[int], RosProcess], preferred: int, line: str) -> RosProcess:
+    """A page's server started with start(port) on the preferred port, or on any free one.
+
+    The preferred port may be free when looked at and taken a moment later (a second demo starting
+    beside this one): a server that says it cannot serve there is started again on port 0.
+    """
+    server = start(page_port(preferred))
+    if 'cannot serve on' in server.wait_for(f'{line}|cannot serve on', STARTUP_TIMEOUT)[0].group(0):
+        server.wait()
+        server = start(0)
+        server.wait_for(line, STARTUP_TIMEOUT)
+    return server
+
+
 def start_robot(sandbox: RosSandbox, project: str = 'imu') -> dict[str, RosProcess]:
     """The kit, the course's projects and robot_view, each waited for until it says it works."""
     if project == 'tracking':
@@ -159,16 +174,23 @@ def start_robot(sandbox: RosSandbox, project: str = 'imu') -> dict[str, RosProce
                                       label='imu_turtle'),
         'imu_control_robot': sandbox.run('olive_servo', 'imu_control_robot'),
         'display_camera': sandbox.run('olive_camera', 'display_camera'),
-        'robot_view': sandbox.run('robot_view', 'robot_view', '--port', str(page_port(ROBOT_VIEW_PORT))),
-        'owl_windows': sandbox.command(['owl', 'windows', '--port', str(page_port(WINDOWS_PORT))],
-                                       label='owl windows'),
+        'robot_view': serve_page(robot_view_on(sandbox), ROBOT_VIEW_PORT, ROBOT_VIEW_LINE),
+        'owl_windows': serve_page(owl_windows_on(sandbox), WINDOWS_PORT, WINDOWS_LINE),
     }
     processes['imu_control_robot'].wait_for(r'steering the pan and tilt servos', STARTUP_TIMEOUT)
     processes['imu_turtle'].wait_for(r'IMU data on', STARTUP_TIMEOUT)
     processes['display_camera'].wait_for(r'showing them in the window', STARTUP_TIMEOUT)
-    processes['robot_view'].wait_for(ROBOT_VIEW_LINE, STARTUP_TIMEOUT)
-    processes['owl_windows'].wait_for(WINDOWS_LINE, STARTUP_TIMEOUT)
     return processes
+
+
+def robot_view_on(sandbox: RosSandbox) -> Callable[[int], RosProcess]:
+    """start(port) for serve_page: robot_view in the sandbox on that port."""
+    return lambda port: sandbox.run('robot_view', 'robot_view', '--port', str(port))
+
+
+def owl_windows_on(sandbox: RosSandbox) -> Callable[[int], RosProcess]:
+    """start(port) for serve_page: `owl windows` in the sandbox on that port."""
+    return lambda port: sandbox.command(['owl', 'windows', '--port', str(port)], label='owl windows')
 
 
 def start_tracking_robot(sandbox: RosSandbox) -> dict[str, RosProcess]:
@@ -178,11 +200,10 @@ def start_tracking_robot(sandbox: RosSandbox) -> dict[str, RosProcess]:
                                 f'ball_speed:={BALL_SPEED}'], label='kit'),
         'track_object': sandbox.run('olive_vision', 'track_object'),
         'display_camera': sandbox.run('olive_camera', 'display_camera'),
-        'robot_view': sandbox.run('robot_view', 'robot_view', '--port', str(page_port(ROBOT_VIEW_PORT))),
+        'robot_view': serve_page(robot_view_on(sandbox), ROBOT_VIEW_PORT, ROBOT_VIEW_LINE),
     }
     processes['track_object'].wait_for(r'red ball at .* tracking it', STARTUP_TIMEOUT)
     processes['display_camera'].wait_for(r'showing them in the window', STARTUP_TIMEOUT)
-    processes['robot_view'].wait_for(ROBOT_VIEW_LINE, STARTUP_TIMEOUT)
     return processes
 
 

@@ -100,8 +100,12 @@ def test_a_module_held_up_still_stamps_its_samples_at_its_rate(ros):
     os.kill(module.pid, signal.SIGCONT)
     wait_for_messages(imu, 60, timeout=10)
     gaps = [stamp(later) - stamp(earlier) for earlier, later in itertools.pairwise(imu[:60])]
-    assert min(gaps) > 0.008, [round(g, 4) for g in gaps]
-    assert max(gaps) < 0.012, [round(g, 4) for g in gaps]
+    # Every stamp on the module's 10 ms grid. The late ones come in a burst, and a depth-10 KEEP_LAST
+    # queue may drop the oldest of a burst rather than block (seen once: a 20 ms gap, still on the grid).
+    shown = [round(g, 4) for g in gaps]
+    ticks = [gap / 0.01 for gap in gaps]
+    assert all(abs(tick - round(tick)) < 0.2 and round(tick) >= 1 for tick in ticks), shown
+    assert sum(round(tick) - 1 for tick in ticks) <= 2, shown  # at most 2 lost
 
 
 def test_commanded_motion_gravity_heading_and_zeroing(ros):
