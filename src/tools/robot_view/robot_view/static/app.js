@@ -170,7 +170,7 @@ const KIT_LAUNCH = '<code>ros2 launch robot_view robot_view.launch.py</code>';
 
 function showKit(kit) {
   view.kit = kit;
-  if (kit === null) return;  // not looked yet: the page still says it is looking
+  if (kit === null) return;  // not looked yet: nothing said (a line that then goes would move the page)
   const modules = kit.modules;
   const missing = Object.keys(modules).filter((name) => !modules[name]);
   if (missing.length === Object.keys(modules).length) {
