@@ -12,6 +12,7 @@ import subprocess
 import textwrap
 
 import pytest
+from owl_common.processes import dies_with_this_process
 from ros_harness import wait_until
 
 STARTED = r'\[INFO\] \[([\w.-]+)\]: process started with pid \[(\d+)\]'
@@ -542,7 +543,8 @@ def test_interactive_launch_leaves_ctrl_c_to_the_terminal(ros, tmp_path):
     log = tmp_path / 'interactive.log'
     with open(log, 'w') as out:
         interactive = subprocess.Popen(['ros2', 'launch', path], stdin=terminal_side, stdout=out,
-                                       stderr=subprocess.STDOUT, env=ros.env, start_new_session=True)
+                                       stderr=subprocess.STDOUT, env=ros.env, start_new_session=True,
+                                       preexec_fn=dies_with_this_process())
     os.close(terminal_side)
     try:
         wait_until(lambda: log.read_text().count('] ready') == 2, EXIT_TIMEOUT, 'both children ready')

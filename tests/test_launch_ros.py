@@ -13,6 +13,7 @@ import time
 from pathlib import Path
 
 import pytest
+from owl_common.processes import dies_with_this_process
 from ros_harness import LAUNCH_STOP_TIMEOUT, wait_until
 from std_msgs.msg import Int32
 
@@ -72,7 +73,7 @@ def test_ctrl_c_in_a_terminal_stops_the_package_launch_file(ros, tmp_path):
     with open(log, 'w') as out:
         launch = subprocess.Popen(['ros2', 'launch', 'olive_launch', 'turtle_launch.py'],
                                   stdin=terminal_side, stdout=out, stderr=subprocess.STDOUT, env=ros.env,
-                                  start_new_session=True)
+                                  start_new_session=True, preexec_fn=dies_with_this_process())
     os.close(terminal_side)
     try:
         ros.probe.wait_for_node('turtle1', timeout=30)

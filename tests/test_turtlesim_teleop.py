@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 from geometry_msgs.msg import Twist
-from owl_common.processes import installed_executable
+from owl_common.processes import dies_with_this_process, installed_executable
 from owl_common.run import TEARDOWN_LIMIT
 from ros_harness import wait_until, with_hung_teardown
 from turtlesim.msg import Pose
@@ -34,7 +34,8 @@ class TerminalProcess:
         self.master, self.slave = pty.openpty()
         self.mode_before = termios.tcgetattr(self.slave)
         self.popen = subprocess.Popen(argv, env=env, stdin=self.slave, stdout=self.slave,
-                                      stderr=self.slave, start_new_session=True)
+                                      stderr=self.slave, start_new_session=True,
+                                      preexec_fn=dies_with_this_process())
         self._chunks: list[bytes] = []
         self._stop = threading.Event()
         self._reader = threading.Thread(target=self._read, daemon=True)

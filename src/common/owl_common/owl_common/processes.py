@@ -119,6 +119,14 @@ def _prepare_child(default_sigint: bool, parent: int | None) -> Callable[[], Non
     return prepare
 
 
+def dies_with_this_process() -> Callable[[], None]:
+    """preexec_fn for a child started with subprocess itself, e.g. on a pseudo-terminal.
+
+    Like RosProcess's children, it gets SIGTERM when the calling thread ends.
+    """
+    return _prepare_child(False, os.getpid())
+
+
 class RosProcess:
     """A child process in its own process group whose merged output is collected line by line."""
 
