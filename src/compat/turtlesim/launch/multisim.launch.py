@@ -1,4 +1,4 @@
-"""Two turtlesim_nodes side by side, in namespaces turtlesim1 and turtlesim2 (as upstream ships)."""
+"""Two turtlesim_nodes side by side, /turtlesim1/turtlesim and /turtlesim2/turtlesim (as upstream ships)."""
 
 from launch import LaunchDescription
 from launch_ros.actions import Node
@@ -6,7 +6,6 @@ from launch_ros.actions import Node
 
 def generate_launch_description() -> LaunchDescription:
     return LaunchDescription([
-        Node(package='turtlesim', executable='turtlesim_node', namespace=namespace,
-             name='sim', output='screen')
+        Node(package='turtlesim', executable='turtlesim_node', namespace=namespace, output='screen')
         for namespace in ('turtlesim1', 'turtlesim2')
     ])

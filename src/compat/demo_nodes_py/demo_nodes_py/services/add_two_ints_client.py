@@ -1,0 +1,41 @@
+"""add_two_ints_client: asks `add_two_ints` for 2 + 3 once, logs the sum and exits."""
+
+import rclpy
+from example_interfaces.srv import AddTwoInts
+from rclpy.executors import ExternalShutdownException
+from rclpy.node import Node
+
+WAIT_STEP = 1.0  # s between 'service not available' lines
+
+
+class AddTwoIntsClient(Node):
+    """A client of `add_two_ints` that sends one request."""
+
+    def __init__(self, node_name: str = 'add_two_ints_client') -> None:
+        super().__init__(node_name)
+        self.client = self.create_client(AddTwoInts, 'add_two_ints')
+
+    def wait_for_server(self) -> None:
+        """Wait as long as it takes, saying so every WAIT_STEP."""
+        while not self.client.wait_for_service(timeout_sec=WAIT_STEP):
+            self.get_logger().info('service not available, waiting again...')
+
+    def request(self, a: int, b: int) -> rclpy.task.Future:
+        """Send a and b; the future completes with the response."""
+        return self.client.call_async(AddTwoInts.Request(a=a, b=b))
+
+
+def main(args: list[str] | None = None) -> None:
+    """Wait for the server, ask for 2 + 3, log the sum and exit; Ctrl-C while waiting ends quietly."""
+    rclpy.init(args=args)
+    node = AddTwoIntsClient()
+    try:
+        node.wait_for_server()
+        future = node.request(2, 3)
+        rclpy.spin_until_future_complete(node, future)
+        node.get_logger().info(f'Result of add_two_ints: {future.result().sum}')
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown()

@@ -1,0 +1,1 @@
+"""Publish and subscribe: talker and listener on `chatter`."""
