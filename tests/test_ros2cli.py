@@ -93,6 +93,7 @@ def test_help_at_every_level(graph):
     assert 'ros2 is an extensible command-line tool for ROS 2.' in top.stdout
     assert top.stdout.endswith('Commands:\n  action            Various action related sub-commands\n'
                                '  daemon            Various daemon related sub-commands\n'
+                               '  doctor            Check ROS setup and other potential issues\n'
                                '  extension_points  List extension points\n'
                                '  extensions        List extensions\n'
                                '  interface         Show information about ROS interfaces\n'
@@ -102,12 +103,13 @@ def test_help_at_every_level(graph):
                                '  pkg               Various package related sub-commands\n'
                                '  run               Run a package specific executable\n'
                                '  service           Various service related sub-commands\n'
-                               '  topic             Various topic related sub-commands\n\n'
+                               '  topic             Various topic related sub-commands\n'
+                               '  wtf               Use `wtf` as alias to `doctor`\n\n'
                                '  Call `ros2 <command> -h` for more detailed usage.\n')
     bare = ros2(graph)
     assert bare.returncode == 0
     assert bare.stdout == top.stdout
-    for command in ('action', 'daemon', 'interface', 'node', 'param', 'service', 'topic'):
+    for command in ('action', 'daemon', 'doctor', 'interface', 'node', 'param', 'service', 'topic'):
         assert ros2(graph, command, '-h').stdout.startswith(f'usage: ros2 {command}')
     topic = ros2(graph, 'topic')
     assert topic.returncode == 0

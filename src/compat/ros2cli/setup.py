@@ -79,7 +79,9 @@ setup(
         ],
         'ros2service.verb': [
             'call = ros2cli.verb.service.call:CallVerb',
+            'echo = ros2cli.verb.service.echo:EchoVerb',
             'find = ros2cli.verb.service.find:FindVerb',
+            'info = ros2cli.verb.service.info:InfoVerb',
             'list = ros2cli.verb.service.list:ListVerb',
             'type = ros2cli.verb.service.type:TypeVerb',
         ],

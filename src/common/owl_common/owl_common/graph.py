@@ -108,6 +108,14 @@ class GraphQueries:
         """The number of subscriptions to the topic, in the whole graph."""
         return self._node.count_subscribers(topic)
 
+    def count_clients(self, service: str) -> int:
+        """The number of clients of the service, in the whole graph."""
+        return self._node.count_clients(service)
+
+    def count_services(self, service: str) -> int:
+        """The number of servers of the service, in the whole graph."""
+        return self._node.count_services(service)
+
 
 def full_node_name(namespace: str, name: str) -> str:
     """'/' + 'talker' -> '/talker'; '/ns' + 'talker' -> '/ns/talker'."""

@@ -67,3 +67,11 @@ class Graph(Protocol):
     def count_subscribers(self, topic: str) -> int:
         """How many subscriptions the topic has."""
         ...
+
+    def count_clients(self, service: str) -> int:
+        """How many clients the service has."""
+        ...
+
+    def count_services(self, service: str) -> int:
+        """How many servers the service has."""
+        ...

@@ -1,0 +1,361 @@
+"""The official ROS 2 Jazzy tutorials the course sends students to, followed step by step here.
+
+Each test drives the commands a tutorial page gives, in a fresh ROS domain, and checks the output
+the page shows. Where a tutorial has the student type code, the test writes code of the same shape
+in its own words (the tutorials' files are not copied).
+"""
+
+from __future__ import annotations
+
+import re
+import subprocess
+import textwrap
+from pathlib import Path
+
+import pytest
+from owl_common.processes import RosProcess
+from ros_harness import RosHarness, wait_until
+from student_workspace import shell
+
+TIMEOUT = 60
+
+
+def ros2(ros: RosHarness, *args: str, timeout: float = TIMEOUT) -> subprocess.CompletedProcess:
+    result = subprocess.run(['ros2', *args], env=ros.env, capture_output=True, text=True, timeout=timeout,
+                            check=False)
+    assert 'Traceback' not in result.stderr, result.stderr
+    return result
+
+
+# ---- Writing a simple service and client (Python) ---------------------------------------------
+
+SERVICE = '''
+import rclpy
+from example_interfaces.srv import AddTwoInts
+from rclpy.node import Node
+
+
+class AddingService(Node):
+
+    def __init__(self):
+        super().__init__('minimal_service')
+        self.srv = self.create_service(AddTwoInts, 'add_two_ints', self.add)
+
+    def add(self, request, response):
+        response.sum = request.a + request.b
+        self.get_logger().info('Incoming request\\na: %d b: %d' % (request.a, request.b))
+        return response
+
+
+def main():
+    rclpy.init()
+    node = AddingService()
+    try:
+        rclpy.spin(node)
+    except KeyboardInterrupt:
+        pass
+    node.destroy_node()
+    rclpy.try_shutdown()
+'''
+
+CLIENT = '''
+import sys
+
+import rclpy
+from example_interfaces.srv import AddTwoInts
+from rclpy.node import Node
+
+
+class AddingClient(Node):
+
+    def __init__(self):
+        super().__init__('minimal_client_async')
+        self.cli = self.create_client(AddTwoInts, 'add_two_ints')
+        while not self.cli.wait_for_service(timeout_sec=1.0):
+            self.get_logger().info('service not available, waiting again...')
+
+    def send_request(self, a, b):
+        return self.cli.call_async(AddTwoInts.Request(a=a, b=b))
+
+
+def main():
+    rclpy.init()
+    client = AddingClient()
+    a, b = int(sys.argv[1]), int(sys.argv[2])
+    future = client.send_request(a, b)
+    rclpy.spin_until_future_complete(client, future)
+    client.get_logger().info('Result of add_two_ints: for %d + %d = %d' % (a, b, future.result().sum))
+    client.destroy_node()
+    rclpy.shutdown()
+'''
+
+
+def test_writing_a_simple_service_and_client_in_python(ros: RosHarness, tmp_path: Path):
+    workspace = tmp_path / 'ros2_ws'
+    (workspace / 'src').mkdir(parents=True)
+    created = shell(workspace / 'src', 'ros2 pkg create --build-type ament_python --license Apache-2.0 '
+                    'py_srvcli --dependencies rclpy example_interfaces', env=ros.env)
+    assert created.returncode == 0, created.stderr
+    package = workspace / 'src' / 'py_srvcli'
+    (package / 'py_srvcli' / 'service_member_function.py').write_text(SERVICE)
+    (package / 'py_srvcli' / 'client_member_function.py').write_text(CLIENT)
+    setup = package / 'setup.py'
+    setup.write_text(setup.read_text().replace(
+        "'console_scripts': [\n",
+        "'console_scripts': [\n"
+        "            'service = py_srvcli.service_member_function:main',\n"
+        "            'client = py_srvcli.client_member_function:main',\n"))
+    # The tutorial's dependency step: example_interfaces is there, so rosdep has nothing to install.
+    rosdep = shell(workspace, 'rosdep install -i --from-path src --rosdistro jazzy -y', env=ros.env)
+    assert rosdep.returncode == 0, rosdep.stdout + rosdep.stderr
+    assert '#All required rosdeps installed successfully' in rosdep.stdout
+    build = shell(workspace, 'colcon build --packages-select py_srvcli', env=ros.env)
+    assert build.returncode == 0, build.stdout + build.stderr
+    setup_file = workspace / 'install' / 'setup.bash'
+    service = ros.command(['bash', '-c', f'source {setup_file} && exec ros2 run py_srvcli service'],
+                          label='service')
+    client = shell(workspace, 'ros2 run py_srvcli client 2 3', env=ros.env, timeout=TIMEOUT)
+    assert client.returncode == 0, client.stdout + client.stderr
+    result = r'\[INFO\] \[\d+\.\d+\] \[minimal_client_async\]: Result of add_two_ints: for 2 \+ 3 = 5'
+    assert re.search(result, client.stderr), client.stderr
+    service.wait_for(r'\[minimal_service\]: Incoming request$')
+    service.wait_for(r'^a: 2 b: 3$')
+
+
+# ---- Understanding services; Configure service introspection ----------------------------------
+
+# One event as `ros2 service echo --flow-style` prints it.
+EVENT = (r'^info:\n  event_type: (\w+)\n  stamp:\n    sec: \d+\n    nanosec: \d+\n'
+         r'  client_gid: \[(?:\d+, ){15}\d+\]\n  sequence_number: (\d+)\n'
+         r'request: (.*)\nresponse: (.*)\n---$')
+
+
+def wait_for_events(process: RosProcess, pattern: str, count: int) -> list[re.Match]:
+    """The first count matches of a multi-line pattern in the process's output, once there are that many."""
+    regex = re.compile(pattern, re.M)
+    try:
+        wait_until(lambda: len(regex.findall(process.output)) >= count, 20, f'{count} events')
+    except AssertionError as error:
+        raise AssertionError(f'{process.label}: {error}; output:\n{process.tail()}') from None
+    return list(regex.finditer(process.output))[:count]
+
+
+def test_service_info_and_echo_of_the_introspection_demo(ros: RosHarness):
+    ros.command(['ros2', 'launch', 'demo_nodes_cpp', 'introspect_services_launch.py'], label='demo')
+    wait_until(lambda: ros2(ros, 'service', 'info', '/add_two_ints').stdout.endswith('Services count: 1\n')
+               and 'Clients count: 1' in ros2(ros, 'service', 'info', '/add_two_ints').stdout,
+               30, 'the introspection demo on the graph')
+    assert ros2(ros, 'service', 'info', '/add_two_ints').stdout.splitlines() == [
+        'Type: example_interfaces/srv/AddTwoInts', 'Clients count: 1', 'Services count: 1']
+    # Introspection is off: echo says so and waits.
+    echo_off = ros.command(['ros2', 'service', 'echo', '/add_two_ints'], label='echo off')
+    echo_off.wait_for(r"No publishers on topic '/add_two_ints/_service_event'; is service introspection on "
+                      r'the client or server enabled\?', timeout=20)
+    assert echo_off.stop() == 2  # Ctrl-C: the verbs exit with SIGINT's number, as upstream's
+    for node, parameter in (('/introspection_service', 'service_configure_introspection'),
+                            ('/introspection_client', 'client_configure_introspection')):
+        result = ros2(ros, 'param', 'set', node, parameter, 'contents')
+        assert result.stdout == 'Set parameter successful\n', result.stdout + result.stderr
+    echo = ros.command(['ros2', 'service', 'echo', '--flow-style', '/add_two_ints'], label='echo')
+    events = wait_for_events(echo, EVENT, 8)
+    shown = {(m.group(1), m.group(3), m.group(4)) for m in events}
+    assert shown >= {('REQUEST_SENT', '[{a: 2, b: 3}]', '[]'), ('REQUEST_RECEIVED', '[{a: 2, b: 3}]', '[]'),
+                     ('RESPONSE_SENT', '[]', '[{sum: 5}]'), ('RESPONSE_RECEIVED', '[]', '[{sum: 5}]')}, shown
+    assert echo.stop() == 2
+    # Metadata only on the client: its events come without the request and response.
+    assert ros2(ros, 'param', 'set', '/introspection_client', 'client_configure_introspection',
+                'metadata').returncode == 0
+    csv = ros.command(['ros2', 'service', 'echo', '--csv', '/add_two_ints'], label='echo csv')
+    rows = wait_for_events(csv, r'^(\d),\d+,\d+,(?:\d+,){16}\d+(,.*)?$', 8)
+    # REQUEST_SENT (0) now comes from the client without the request: nothing after the sequence number.
+    assert any(m.group(1) == '0' and not m.group(2) for m in rows), [m.group(0) for m in rows]
+    assert csv.stop() == 2
+
+
+@pytest.mark.parametrize(('value', 'reason'), [
+    ('Contents', "must be one of 'disabled', 'metadata', or 'contents'"),
+    ('1', "Wrong parameter type for 'service_configure_introspection': expected string, got integer"),
+])
+def test_an_introspection_value_that_names_no_state_is_refused(ros: RosHarness, value: str, reason: str):
+    ros.run('demo_nodes_py', 'introspection_service')
+    ros.probe.wait_for_node('introspection_service', timeout=20)
+    result = ros2(ros, 'param', 'set', '/introspection_service', 'service_configure_introspection', value)
+    assert f'Setting parameter failed: {reason}' in result.stdout + result.stderr, result
+    get = ros2(ros, 'param', 'get', '/introspection_service', 'service_configure_introspection')
+    assert get.stdout == 'String value is: disabled\n', get.stdout + get.stderr
+
+
+@pytest.mark.parametrize(('args', 'message'), [
+    (['info', '/no_such_service'], "Unknown service '/no_such_service'"),
+    (['echo', '/no_such_service'], "Cannot find type for '/no_such_service'"),
+    (['echo', '/add_two_ints', 'example_interfaces/srv/NoSuch'],
+     "The service type 'example_interfaces/srv/NoSuch' is invalid"),
+    (['echo', '/add_two_ints', 'not a type'], "The service type 'not a type' is invalid"),
+    (['echo', '/add_two_ints', '--truncate-length', '-3'], 'argument --truncate-length/-l'),
+])
+def test_service_info_and_echo_bad_input_one_line(ros: RosHarness, args: list[str], message: str):
+    result = ros2(ros, 'service', *args)
+    assert result.returncode == (2 if args[-1] == '-3' else 1), result
+    # The error is the last line (argparse's usage lines come before it).
+    assert message in result.stderr.strip().splitlines()[-1], result.stderr
+    assert result.stdout == ''
+
+
+# ---- Using talker and listener; Integrating launch files into packages -------------------------
+
+def test_cpp_talker_and_py_listener(ros: RosHarness):
+    talker = ros.command(['ros2', 'run', 'demo_nodes_cpp', 'talker'], label='talker')
+    listener = ros.command(['ros2', 'run', 'demo_nodes_py', 'listener'], label='listener')
+    talker.wait_for(r"\[INFO\] \[\d+\.\d+\] \[talker\]: Publishing: 'Hello World: 1'", timeout=20)
+    heard = listener.wait_for(r'\[listener\]: I heard: \[Hello World: (\d+)\]', timeout=20)
+    assert int(heard[0].group(1)) >= 1
+    for process in (talker, listener):
+        process.stop_cleanly()
+        assert 'Traceback' not in process.output
+
+
+def test_py_talker_counts_from_zero_and_servers_answer_the_demo_clients(ros: RosHarness):
+    talker = ros.command(['ros2', 'run', 'demo_nodes_py', 'talker'], label='talker')
+    talker.wait_for(r'\[talker\]: Publishing: "Hello World: 0"', timeout=20)
+    ros.command(['ros2', 'run', 'demo_nodes_cpp', 'add_two_ints_server'], label='server')
+    for package, executable in (('demo_nodes_py', 'add_two_ints_client'),
+                                ('demo_nodes_cpp', 'add_two_ints_client_async')):
+        client = ros2(ros, 'run', package, executable)
+        assert client.returncode == 0, client.stderr
+        assert re.search(r'\[add_two_ints_client\]: Result of add_two_ints: 5$', client.stderr, re.M), \
+            client.stderr
+
+
+LAUNCH_FILES = {
+    'my_script_launch.py': '''
+        from launch import LaunchDescription
+        from launch_ros.actions import Node
+
+
+        def generate_launch_description():
+            return LaunchDescription([
+                Node(package='demo_nodes_cpp', executable='talker', name='talker'),
+            ])
+        ''',
+    'my_script_launch.xml': '''
+        <launch>
+          <node pkg="demo_nodes_cpp" exec="talker" name="talker"/>
+        </launch>
+        ''',
+    'my_script_launch.yaml': '''
+        launch:
+        - node:
+            pkg: "demo_nodes_cpp"
+            exec: "talker"
+            name: "talker"
+        ''',
+}
+
+
+@pytest.mark.parametrize('launch_file', sorted(LAUNCH_FILES))
+def test_integrating_launch_files_into_packages(ros: RosHarness, tmp_path: Path, launch_file: str):
+    workspace = tmp_path / 'launch_ws'
+    (workspace / 'src').mkdir(parents=True)
+    created = shell(workspace / 'src', 'ros2 pkg create --build-type ament_python --license Apache-2.0 '
+                    'py_launch_example', env=ros.env)
+    assert created.returncode == 0, created.stderr
+    package = workspace / 'src' / 'py_launch_example'
+    (package / 'launch').mkdir()
+    (package / 'launch' / launch_file).write_text(textwrap.dedent(LAUNCH_FILES[launch_file]))
+    setup = package / 'setup.py'
+    text = setup.read_text()
+    text = 'import os\nfrom glob import glob\n' + text.replace(
+        "('share/' + package_name, ['package.xml']),",
+        "('share/' + package_name, ['package.xml']),\n"
+        "        (os.path.join('share', package_name, 'launch'), glob('launch/*')),")
+    setup.write_text(text)
+    build = shell(workspace, 'colcon build', env=ros.env)
+    assert build.returncode == 0, build.stdout + build.stderr
+    setup_file = workspace / 'install' / 'setup.bash'
+    command = f'source {setup_file} && exec ros2 launch py_launch_example {launch_file}'
+    launch = ros.command(['bash', '-c', command], label='launch')
+    launch.wait_for(r"\[talker-1\] \[INFO\] \[\d+\.\d+\] \[talker\]: Publishing: 'Hello World: 1'",
+                    timeout=30)
+    launch.stop_cleanly()
+
+
+# ---- Launching nodes ---------------------------------------------------------------------------
+
+def test_multisim_names_its_simulators_as_upstream(ros: RosHarness):
+    ros.command(['ros2', 'launch', 'turtlesim', 'multisim.launch.py'], label='multisim')
+    wait_until(lambda: ros2(ros, 'node', 'list').stdout == '/turtlesim1/turtlesim\n/turtlesim2/turtlesim\n',
+               30, 'both simulators in ros2 node list')
+    moved = ros2(ros, 'topic', 'pub', '-1', '/turtlesim1/turtle1/cmd_vel', 'geometry_msgs/msg/Twist',
+                 '{linear: {x: 2.0}}')
+    assert moved.returncode == 0, moved.stderr
+
+
+# ---- Using ros2doctor to identify issues -------------------------------------------------------
+
+def doctor(ros: RosHarness, *args: str, env: dict[str, str] | None = None) -> subprocess.CompletedProcess:
+    result = subprocess.run(['ros2', 'doctor', *args], env={**ros.env, **(env or {})}, capture_output=True,
+                            text=True, timeout=TIMEOUT, check=False)
+    assert 'Traceback' not in result.stderr, result.stderr
+    assert result.returncode == 0, result.stdout + result.stderr  # upstream's: findings are in the output
+    return result
+
+
+def test_doctor_checks_a_clean_setup_then_finds_what_the_tutorial_shows(ros: RosHarness):
+    clean = doctor(ros)
+    assert clean.stdout == '\nAll 5 checks passed\n\n', clean.stdout + clean.stderr
+    # The tutorial's turtlesim: its pose and color topics are published with nobody listening.
+    ros.run('turtlesim', 'turtlesim_node')
+    ros.probe.wait_for_node('turtlesim', timeout=20)
+    ignored = doctor(ros)
+    assert ignored.stdout == '\nAll 5 checks passed\n\n'  # warnings do not fail a check by default
+    assert 'UserWarning: Publisher without subscriber detected on /turtle1/pose.' in ignored.stderr
+    assert 'UserWarning: Subscriber without publisher detected on /turtle1/cmd_vel.' in ignored.stderr
+    failed = doctor(ros, '--include-warnings', '--report-failed')
+    assert failed.stdout.startswith('\n1/5 check(s) failed\n\nFailed modules: topic\n\n   TOPIC LIST\n'), \
+        failed.stdout
+    assert re.search(r'^topic {15}: /turtle1/pose\npublisher count {5}: 1\nsubscriber count {4}: 0$',
+                     failed.stdout, re.M), failed.stdout
+
+
+def test_doctor_finds_a_qos_mismatch(ros: RosHarness):
+    ros.command(['ros2', 'topic', 'pub', '--qos-reliability', 'best_effort', '/chatter',
+                 'std_msgs/msg/String', '{data: hi}'], label='best effort publisher')
+    ros.command(['ros2', 'topic', 'echo', '--qos-reliability', 'reliable', '/chatter', 'std_msgs/msg/String'],
+                label='reliable subscriber')
+    wait_until(lambda: 'QoS compatibility error' in doctor(ros).stderr, 30, 'the mismatch found')
+    result = doctor(ros)
+    assert ("UserWarning: ERROR: QoS compatibility error found on topic '/chatter': "
+            'Best effort publisher and reliable subscription;') in result.stderr, result.stderr
+    assert result.stdout == '\n1/5 check(s) failed\n\nFailed modules: middleware\n'
+    report = doctor(ros, '--report').stdout
+    status = 'compatibility status    : ERROR: Best effort publisher and reliable subscription;'
+    assert status in report, report
+    for header in ('NETWORK CONFIGURATION', 'PACKAGE VERSIONS', 'PLATFORM INFORMATION',
+                   'QOS COMPATIBILITY LIST', 'RMW MIDDLEWARE', 'ROS 2 INFORMATION', 'TOPIC LIST'):
+        assert f'\n   {header}\n' in report
+    assert re.search(r'^middleware name    : rmw_\w+$', report, re.M), report
+    assert re.search(r'^rclpy +: pinned=([\d.]+), local=\1$', report, re.M), report
+
+
+@pytest.mark.parametrize(('env', 'finding'), [
+    ({'ROS_DISTRO': ''}, 'UserWarning: ERROR: ROS_DISTRO is not set.'),
+    ({'ROS_DISTRO': 'iron'}, 'UserWarning: Distribution iron is no longer supported or deprecated.'),
+    ({'ROS_AUTOMATIC_DISCOVERY_RANGE': 'EVERYWHERE'},
+     "UserWarning: ERROR: ROS_AUTOMATIC_DISCOVERY_RANGE is 'EVERYWHERE'; it must be one of"),
+    ({'ROS_DOMAIN_ID': '300'},
+     "UserWarning: ERROR: ROS_DOMAIN_ID is '300'; it must be a number from 0 to 232."),
+])
+def test_doctor_says_what_is_wrong_with_the_setup(ros: RosHarness, env: dict[str, str], finding: str):
+    result = doctor(ros, '-iw', '--exclude-packages', env=env)
+    assert finding in result.stderr, result.stderr
+    summary = r'\n1/4 check\(s\) failed\n\nFailed modules: (network|platform)\n$'
+    assert re.match(summary, result.stdout), result.stdout
+
+
+@pytest.mark.parametrize('args', [['--report', '--report-failed'], ['--no-such-option']])
+def test_doctor_bad_options_are_one_usage_error(args: list[str]):
+    result = subprocess.run(['ros2', 'doctor', *args], capture_output=True, text=True, timeout=TIMEOUT,
+                            check=False)
+    assert result.returncode == 2
+    assert 'Traceback' not in result.stderr
+    assert re.match(r'ros2( doctor)?: error: ', result.stderr.splitlines()[-1]), result.stderr
