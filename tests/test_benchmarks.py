@@ -16,6 +16,7 @@ BENCH = Path(__file__).resolve().parents[1] / 'bench'
 # drive the robot view's page as the browser tests do
 NEEDS_CHROMIUM = {'robot_view_latency.py', 'robot_view_smoothness.py'}
 SHRUNK = {
+    'bag_record.py': ['--seconds', '1'],
     'dds_discovery.py': ['--runs', '1', '--nodes', '2', '--periods', '--idle-seconds', '0.5'],
     'launch_timings.py': ['--repeat', '1'],
     'olive_sim_cpu.py': ['--seconds', '0.5', '--warmup', '0.5', '--camera-seconds', '1'],

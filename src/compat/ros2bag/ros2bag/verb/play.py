@@ -1,0 +1,138 @@
+"""`ros2 bag play <bag>`: publish a bag's messages again, with their recorded timing."""
+
+from __future__ import annotations
+
+import argparse
+import time
+from pathlib import Path
+from typing import Any
+
+from ros2cli.api.topic import positive_float
+from ros2cli.verb import VerbExtension
+
+
+def non_negative_float(text: str) -> float:
+    """An argparse type: the text as a float, ArgumentTypeError when it is below zero."""
+    value = float(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError(f'{text} is negative')
+    return value
+
+
+def remapping(text: str) -> tuple[str, str]:
+    """An argparse type: 'old:=new' as (old, new)."""
+    old, sep, new = text.partition(':=')
+    if not sep or not old or not new:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a remapping like /old:=/new")
+    return old, new
+
+
+class PlayVerb(VerbExtension):
+    """Play back ROS data from a bag."""
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """The bag; -r/--rate, -l/--loop, --topics, --remap, -d/--delay, --start-offset, -s/--storage."""
+        parser.add_argument('bag_path', help='Bag to open')
+        parser.add_argument('-s', '--storage', default='mcap',
+                            help="Storage implementation of bag (only 'mcap').")
+        parser.add_argument('-r', '--rate', type=positive_float, default=1.0,
+                            help='rate at which to play back messages. Valid range > 0.0.')
+        parser.add_argument('-l', '--loop', action='store_true',
+                            help='enables loop playback when playing a bagfile: it starts back at the '
+                                 'beginning on reaching the end and plays indefinitely.')
+        parser.add_argument('--topics', nargs='+', default=None, help='topics to replay, separated by space. '
+                            'If none specified, all topics will be replayed.')
+        parser.add_argument('--remap', '-m', nargs='+', type=remapping, default=[],
+                            help='list of topics to be remapped: in the form "old_topic1:=new_topic1 ..."')
+        parser.add_argument('-d', '--delay', type=non_negative_float, default=0.0,
+                            help='Sleep duration before play (each loop), in seconds. Negative durations '
+                                 'invalid.')
+        parser.add_argument('--start-offset', type=non_negative_float, default=0.0,
+                            help='Start the playback player this many seconds into the bag file.')
+
+    def main(self, *, args: argparse.Namespace) -> int | str:
+        """Publish every message at its recorded moment (scaled by --rate) until the end or Ctrl-C."""
+        from ros2bag.bag import BagError, read_metadata
+
+        folder = Path(args.bag_path)
+        try:
+            info = read_metadata(folder)
+        except BagError as error:
+            return str(error)
+        recorded = {t['topic_metadata']['name']: t['topic_metadata']['type']
+                    for t in info.get('topics_with_message_count', [])}
+        if args.topics is not None:
+            unknown = [t for t in args.topics if t not in recorded]
+            if unknown:
+                held = ', '.join(sorted(recorded))
+                return f"Topic(s) not in the bag: {', '.join(unknown)} (it holds {held})"
+        try:
+            return play(folder, args, recorded)
+        except BagError as error:
+            return str(error)
+
+
+def play(folder: Path, args: argparse.Namespace, recorded: dict[str, str]) -> int | str:
+    """Publish the bag's messages; 0 at the end, or at Ctrl-C."""
+    import rclpy
+    from owl_common.run import begin_cleanup, init_with_stop_request
+    from rclpy.qos import QoSProfile
+
+    from ros2bag.interfaces import import_type
+
+    stop = init_with_stop_request([])
+    node = rclpy.create_node('rosbag2_player')
+    stop.polling = True
+    remaps = dict(args.remap)
+    publishers: dict[str, Any] = {}
+    wanted = set(args.topics) if args.topics is not None else None
+    try:
+        for topic, type_name in recorded.items():
+            if wanted is not None and topic not in wanted:
+                continue
+            try:
+                publishers[topic] = node.create_publisher(import_type(type_name), remaps.get(topic, topic),
+                                                          QoSProfile(depth=1000))
+            except ValueError as error:
+                node.get_logger().warning(f"Topic '{topic}' is not played: {error}")
+        count = len(publishers)
+        node.get_logger().info(f"Playing '{folder}' ({count} topic{'s' if count != 1 else ''})")
+        while True:
+            if not sleep_unless_stopped(args.delay, stop):
+                break
+            if not play_once(folder, args, publishers, stop):
+                break
+            if not args.loop:
+                break
+    finally:
+        begin_cleanup()
+        node.destroy_node()
+        rclpy.try_shutdown()
+    return 0
+
+
+def sleep_unless_stopped(seconds: float, stop: Any) -> bool:
+    """Sleep; False when a stop was requested meanwhile."""
+    deadline = time.monotonic() + seconds
+    while not stop.requested and (left := deadline - time.monotonic()) > 0:
+        time.sleep(min(left, 0.05))
+    return not stop.requested
+
+
+def play_once(folder: Path, args: argparse.Namespace, publishers: dict[str, Any], stop: Any) -> bool:
+    """One pass through the bag; False when stopped."""
+    from ros2bag.bag import messages
+
+    start_bag: int | None = None
+    start_wall = time.monotonic()
+    offset = int(args.start_offset * 1e9)
+    for message in messages(folder, set(publishers)):
+        if start_bag is None:
+            start_bag = message.log_time + offset
+        if message.log_time < start_bag:
+            continue
+        due = start_wall + (message.log_time - start_bag) / 1e9 / args.rate
+        if not sleep_unless_stopped(due - time.monotonic(), stop):
+            return False
+        publishers[message.topic].publish(message.data)
+    return not stop.requested
