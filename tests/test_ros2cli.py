@@ -92,6 +92,7 @@ def test_help_at_every_level(graph):
     assert top.returncode == 0
     assert 'ros2 is an extensible command-line tool for ROS 2.' in top.stdout
     assert top.stdout.endswith('Commands:\n  action            Various action related sub-commands\n'
+                               '  bag               Various rosbag related sub-commands\n'
                                '  daemon            Various daemon related sub-commands\n'
                                '  doctor            Check ROS setup and other potential issues\n'
                                '  extension_points  List extension points\n'

@@ -16,12 +16,14 @@ from launch.actions import (
     GroupAction,
     LogInfo,
     OpaqueFunction,
+    RegisterEventHandler,
     SetEnvironmentVariable,
     SetLaunchConfiguration,
     TimerAction,
     UnsetEnvironmentVariable,
 )
 from launch.conditions import IfCondition
+from launch.event_handlers import OnProcessStart
 from launch.events import matches_action
 from launch.events.process import ShutdownProcess, SignalProcess
 from launch.substitutions import (
@@ -172,11 +174,13 @@ def test_shutdown_from_another_thread():
 def test_shutdown_process_and_signal_process_events(capsys):
     sleeper = ExecuteProcess(cmd=['sleep', '60'], name='sleeper')
     stubborn = ExecuteProcess(cmd=['sleep', '61'], name='signalled')
-    assert run(sleeper, stubborn, TimerAction(period=0.3, actions=[
-        EmitEvent(event=ShutdownProcess(process_matcher=matches_action(sleeper))),
-        EmitEvent(event=SignalProcess(signal_number=signal.SIGUSR1,
-                                      process_matcher=matches_action(stubborn))),
-    ])) == 0
+    # Each event once its process runs: an event for a process not started yet is ignored (as
+    # upstream), and under load a start took longer than a fixed 0.3 s (the 'sleep 61' then ran out).
+    assert run(sleeper, stubborn, RegisterEventHandler(OnProcessStart(target_action=sleeper, on_start=[
+        EmitEvent(event=ShutdownProcess(process_matcher=matches_action(sleeper)))])),
+        RegisterEventHandler(OnProcessStart(target_action=stubborn, on_start=[
+            EmitEvent(event=SignalProcess(signal_number=signal.SIGUSR1,
+                                          process_matcher=matches_action(stubborn)))]))) == 0
     out = capsys.readouterr().out
     assert re.search(r"\[INFO\] \[sleeper-\d+\]: sending signal 'SIGINT' to process\[sleeper-\d+\]", out)
     assert re.search(r"\[INFO\] \[signalled-\d+\]: sending signal 'SIGUSR1' to process\[signalled-\d+\]", out)

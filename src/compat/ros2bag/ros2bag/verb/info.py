@@ -10,6 +10,7 @@ from typing import Any
 from ros2cli.verb import VerbExtension
 
 LABEL_WIDTH = 19  # 'Topic information: ' and every other label are padded to this
+EVENT_SUFFIX = '/_service_event'
 
 
 def size_text(size: float) -> str:
@@ -23,10 +24,10 @@ def size_text(size: float) -> str:
 
 
 def time_text(nanoseconds: int) -> str:
-    """'Nov 28 2026 07:55:54.123456789 (1795852554.123456789)', in local time."""
+    """'Nov 28 2026 07:55:54.123456789 (1795852554.123456789)', in local time (the day space-padded)."""
     seconds, fraction = divmod(nanoseconds, 10**9)
     when = datetime.datetime.fromtimestamp(seconds)
-    return f"{when.strftime('%b %d %Y %H:%M:%S')}.{fraction:09d} ({seconds}.{fraction:09d})"
+    return f"{when.strftime('%b %e %Y %H:%M:%S')}.{fraction:09d} ({seconds}.{fraction:09d})"
 
 
 def duration_text(nanoseconds: int) -> str:
@@ -38,12 +39,12 @@ def duration_text(nanoseconds: int) -> str:
 def info_lines(folder: Path, info: dict[str, Any]) -> list[str]:
     """The lines `ros2 bag info` prints for a bag's metadata."""
     files = info.get('relative_file_paths', [])
-    size = sum((folder / name).stat().st_size for name in files if (folder / name).exists())
+    size = sum(path.stat().st_size for path in folder.iterdir() if path.is_file())  # metadata.yaml too
     start = info['starting_time']['nanoseconds_since_epoch']
     duration = info['duration']['nanoseconds']
     topics = info.get('topics_with_message_count', [])
-    plain = [t for t in topics if not t['topic_metadata']['name'].endswith('/_service_event')]
-    services = [t for t in topics if t['topic_metadata']['name'].endswith('/_service_event')]
+    plain = [t for t in topics if not t['topic_metadata']['name'].endswith(EVENT_SUFFIX)]
+    services = [t for t in topics if t['topic_metadata']['name'].endswith(EVENT_SUFFIX)]
 
     def label(name: str) -> str:
         return f'{name}:'.ljust(LABEL_WIDTH)
@@ -61,12 +62,41 @@ def info_lines(folder: Path, info: dict[str, Any]) -> list[str]:
     lines.append(label('Topic information') + (entries[0] if entries else ''))
     lines += [' ' * LABEL_WIDTH + entry for entry in entries[1:]]
     lines.append(label('Service') + str(len(services)))
-    entries = [f"Service: {t['topic_metadata']['name'][:-len('/_service_event')]} | Type: "
-               f"{t['topic_metadata']['type'].removesuffix('_Event')} | Event Count: {t['message_count']} | "
-               f"Serialization Format: {t['topic_metadata']['serialization_format']}" for t in services]
-    lines.append(label('Service information') + (entries[0] if entries else ''))
-    lines += [' ' * LABEL_WIDTH + entry for entry in entries[1:]]
+    counts = request_and_response_counts(folder, {t['topic_metadata']['name'] for t in services})
+    entries = []
+    for topic in services:
+        name = topic['topic_metadata']['name']
+        requests, responses = counts.get(name, (0, 0))
+        service_type = topic['topic_metadata']['type'].removesuffix('_Event')
+        entries.append(f'Service: {name.removesuffix(EVENT_SUFFIX)} | Type: {service_type} | '
+                       f'Request Count: {requests} | Response Count: {responses} | Serialization Format: '
+                       f"{topic['topic_metadata']['serialization_format']}")
+    # Unlike the topics', the services' lines are indented by their whole label (as upstream).
+    lines.append('Service information: ' + (entries[0] if entries else ''))
+    lines += [' ' * len('Service information: ') + entry for entry in entries[1:]]
     return lines
+
+
+def request_and_response_counts(folder: Path, event_topics: set[str]) -> dict[str, tuple[int, int]]:
+    """Per service event topic: how many requests and responses its events show.
+
+    A call seen by both the client and the server has two events of each kind; a request or response
+    counts once per (client, sequence number).
+    """
+    from rclpy.serialization import deserialize_message
+
+    from ros2bag.bag import messages
+    from ros2bag.interfaces import import_type
+
+    if not event_topics:
+        return {}
+    seen: dict[str, tuple[set[tuple[bytes, int]], set[tuple[bytes, int]]]] = {}
+    for message in messages(folder, event_topics):
+        event = deserialize_message(message.data, import_type(message.type))
+        call = (bytes(event.info.client_gid), event.info.sequence_number)
+        requests, responses = seen.setdefault(message.topic, (set(), set()))
+        (requests if event.info.event_type in (0, 1) else responses).add(call)
+    return {topic: (len(requests), len(responses)) for topic, (requests, responses) in seen.items()}
 
 
 class InfoVerb(VerbExtension):

@@ -10,6 +10,9 @@ from typing import Any
 from ros2cli.api.topic import positive_float
 from ros2cli.verb import VerbExtension
 
+MATCH_WAIT = 2.0  # s: the longest play waits for the graph's subscribers to match before it plays
+MATCH_SETTLE = 0.3  # s: the shortest, so discovery has shown them
+
 
 def non_negative_float(text: str) -> float:
     """An argparse type: the text as a float, ArgumentTypeError when it is below zero."""
@@ -97,6 +100,7 @@ def play(folder: Path, args: argparse.Namespace, recorded: dict[str, str]) -> in
                 node.get_logger().warning(f"Topic '{topic}' is not played: {error}")
         count = len(publishers)
         node.get_logger().info(f"Playing '{folder}' ({count} topic{'s' if count != 1 else ''})")
+        wait_for_subscribers(node, publishers)
         while True:
             if not sleep_unless_stopped(args.delay, stop):
                 break
@@ -109,6 +113,23 @@ def play(folder: Path, args: argparse.Namespace, recorded: dict[str, str]) -> in
         node.destroy_node()
         rclpy.try_shutdown()
     return 0
+
+
+def wait_for_subscribers(node: Any, publishers: dict[str, Any]) -> None:
+    """Spin until every subscription the graph shows on a played topic has matched its publisher.
+
+    Messages published before a subscriber has matched are lost to it (the tutorial's turtle then
+    drove a shorter curve); at most MATCH_WAIT, and at least MATCH_SETTLE for discovery to show them.
+    """
+    import rclpy
+
+    started = time.monotonic()
+    while (elapsed := time.monotonic() - started) < MATCH_WAIT:
+        rclpy.spin_once(node, timeout_sec=0.05)
+        matched = all(publisher.get_subscription_count() >= node.count_subscribers(publisher.topic_name)
+                      for publisher in publishers.values())
+        if matched and elapsed >= MATCH_SETTLE:
+            return
 
 
 def sleep_unless_stopped(seconds: float, stop: Any) -> bool:

@@ -71,7 +71,7 @@ class RecordVerb(VerbExtension):
                             help='List of services to record (their introspection must be on).')
         parser.add_argument('-e', '--regex', type=regex,
                             help='Record only topics containing provided regular expression.')
-        parser.add_argument('-x', '--exclude-regex', type=regex,
+        parser.add_argument('--exclude-regex', type=regex,
                             help='Exclude topics containing provided regular expression.')
         parser.add_argument('--include-hidden-topics', action='store_true',
                             help='Record also hidden topics (topics starting with an underscore).')
