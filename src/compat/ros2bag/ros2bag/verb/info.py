@@ -55,48 +55,21 @@ def info_lines(folder: Path, info: dict[str, Any]) -> list[str]:
               label('ROS Distro') + str(info.get('ros_distro', 'unknown')),
               label('Duration') + duration_text(duration),
               label('Start') + time_text(start), label('End') + time_text(start + duration),
-              label('Messages') + str(info['message_count'])]
+              # Messages of topics; the services' events are counted below.
+              label('Messages') + str(info['message_count'] - sum(t['message_count'] for t in services))]
     entries = [f"Topic: {t['topic_metadata']['name']} | Type: {t['topic_metadata']['type']} | Count: "
                f"{t['message_count']} | Serialization Format: {t['topic_metadata']['serialization_format']}"
                for t in plain]
     lines.append(label('Topic information') + (entries[0] if entries else ''))
     lines += [' ' * LABEL_WIDTH + entry for entry in entries[1:]]
     lines.append(label('Service') + str(len(services)))
-    counts = request_and_response_counts(folder, {t['topic_metadata']['name'] for t in services})
-    entries = []
-    for topic in services:
-        name = topic['topic_metadata']['name']
-        requests, responses = counts.get(name, (0, 0))
-        service_type = topic['topic_metadata']['type'].removesuffix('_Event')
-        entries.append(f'Service: {name.removesuffix(EVENT_SUFFIX)} | Type: {service_type} | '
-                       f'Request Count: {requests} | Response Count: {responses} | Serialization Format: '
-                       f"{topic['topic_metadata']['serialization_format']}")
+    entries = [f"Service: {t['topic_metadata']['name'].removesuffix(EVENT_SUFFIX)} | Type: "
+               f"{t['topic_metadata']['type'].removesuffix('_Event')} | Event Count: {t['message_count']} | "
+               f"Serialization Format: {t['topic_metadata']['serialization_format']}" for t in services]
     # Unlike the topics', the services' lines are indented by their whole label (as upstream).
     lines.append('Service information: ' + (entries[0] if entries else ''))
     lines += [' ' * len('Service information: ') + entry for entry in entries[1:]]
     return lines
-
-
-def request_and_response_counts(folder: Path, event_topics: set[str]) -> dict[str, tuple[int, int]]:
-    """Per service event topic: how many requests and responses its events show.
-
-    A call seen by both the client and the server has two events of each kind; a request or response
-    counts once per (client, sequence number).
-    """
-    from rclpy.serialization import deserialize_message
-
-    from ros2bag.bag import messages
-    from ros2bag.interfaces import import_type
-
-    if not event_topics:
-        return {}
-    seen: dict[str, tuple[set[tuple[bytes, int]], set[tuple[bytes, int]]]] = {}
-    for message in messages(folder, event_topics):
-        event = deserialize_message(message.data, import_type(message.type))
-        call = (bytes(event.info.client_gid), event.info.sequence_number)
-        requests, responses = seen.setdefault(message.topic, (set(), set()))
-        (requests if event.info.event_type in (0, 1) else responses).add(call)
-    return {topic: (len(requests), len(responses)) for topic, (requests, responses) in seen.items()}
 
 
 class InfoVerb(VerbExtension):
