@@ -80,6 +80,14 @@ def positive_float(text: str) -> float:
     return value
 
 
+def non_negative_int(text: str) -> int:
+    """An argparse type: the text as an int, ArgumentTypeError when it is below zero."""
+    value = int(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError(f'{text} is negative; give 0 or more')
+    return value
+
+
 def positive_int(text: str) -> int:
     """An argparse type: the text as an int, ArgumentTypeError unless it is above zero."""
     value = int(text)

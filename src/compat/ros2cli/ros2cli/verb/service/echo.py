@@ -15,21 +15,11 @@ from ros2cli.api.topic import RECEIVE_DEPTH
 from ros2cli.graph_listing import types_of
 from ros2cli.node.direct import NAMED_LOOKUP_GRACE, DirectNode
 from ros2cli.verb import VerbExtension
+from ros2cli.verb.topic.echo import add_message_output_arguments
 
 EVENT_SUFFIX = '/_service_event'
 # service_msgs/msg/ServiceEventInfo's event_type constants, by value.
 EVENT_TYPE_NAMES = {0: 'REQUEST_SENT', 1: 'REQUEST_RECEIVED', 2: 'RESPONSE_SENT', 3: 'RESPONSE_RECEIVED'}
-
-
-def unsigned_int(text: str) -> int:
-    """Argparse type: an integer >= 0."""
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"'{text}' is not an integer") from None
-    if value < 0:
-        raise argparse.ArgumentTypeError(f'{value} is negative; give 0 or more')
-    return value
 
 
 def event_text(event: Any, args: argparse.Namespace) -> str:
@@ -54,18 +44,7 @@ class EchoVerb(VerbExtension):
         _service_argument(parser, "Name of the ROS service to echo (e.g. '/add_two_ints')")
         parser.add_argument('service_type', nargs='?',
                             help="Type of the ROS service (e.g. 'example_interfaces/srv/AddTwoInts')")
-        parser.add_argument('--csv', action='store_true',
-                            help='Output all recursive fields separated by commas (e.g. for plotting).')
-        parser.add_argument('--full-length', '-f', action='store_true',
-                            help="Output all elements for arrays, bytes, and string with a length > "
-                                 "'--truncate-length', by default they are truncated after "
-                                 "'--truncate-length' elements with '...'")
-        parser.add_argument('--truncate-length', '-l', type=unsigned_int, default=128,
-                            help='The length to truncate arrays, bytes, and string to (default: 128)')
-        parser.add_argument('--no-arr', action='store_true', help="Don't print array fields of messages")
-        parser.add_argument('--no-str', action='store_true', help="Don't print string fields of messages")
-        parser.add_argument('--flow-style', action='store_true',
-                            help='Print collections in the flow style (not available with csv format)')
+        add_message_output_arguments(parser, with_field=False)
 
     def main(self, *, args: argparse.Namespace) -> int | str:
         """Print each event until Ctrl-C; an unknown service or an invalid type is an error.

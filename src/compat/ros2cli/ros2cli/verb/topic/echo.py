@@ -11,6 +11,7 @@ from ros2cli.api.topic import (
     RECEIVE_DEPTH,
     _topic_argument,
     _type_argument,
+    non_negative_int,
     positive_float,
     topic_types,
     unknown_topic,
@@ -33,19 +34,20 @@ DURABLE_FALLBACK = ('Some, but not all, publishers are offering QoSDurabilityPol
                     'back to QoSDurabilityPolicy.VOLATILE as it will connect to all publishers')
 
 
-def add_message_output_arguments(parser: argparse.ArgumentParser) -> None:
-    """The formatting options echo shares with other message printers."""
+def add_message_output_arguments(parser: argparse.ArgumentParser, with_field: bool = True) -> None:
+    """The formatting options echo shares with other message printers (`ros2 service echo` has no --field)."""
     parser.add_argument('--csv', action='store_true', help='Output all recursive fields separated by commas '
                         '(e.g. for plotting)')
-    parser.add_argument('--field', type=str, default=None,
-                        help="Echo a selected field of a message. Use '.' to select sub-fields. For "
-                             'example, to echo the position field of a nav_msgs/msg/Odometry message: '
-                             "'ros2 topic echo /odom --field pose.pose.position'")
+    if with_field:
+        parser.add_argument('--field', type=str, default=None,
+                            help="Echo a selected field of a message. Use '.' to select sub-fields. For "
+                                 'example, to echo the position field of a nav_msgs/msg/Odometry message: '
+                                 "'ros2 topic echo /odom --field pose.pose.position'")
     parser.add_argument('--full-length', '-f', action='store_true',
                         help='Output all elements for arrays, bytes, and string with a length > '
                              '\'--truncate-length\', by default they are truncated after '
                              '\'--truncate-length\' elements with \'...\'')
-    parser.add_argument('--truncate-length', '-l', type=int, default=128,
+    parser.add_argument('--truncate-length', '-l', type=non_negative_int, default=128,
                         help='The length to truncate arrays, bytes, and string to (default: 128)')
     parser.add_argument('--no-arr', action='store_true', help="Don't print array fields of messages")
     parser.add_argument('--no-str', action='store_true', help="Don't print string fields of messages")
