@@ -1,9 +1,12 @@
 """add_two_ints_client: asks `add_two_ints` for 2 + 3 once, logs the sum and exits."""
 
+from collections.abc import Callable
+
 import rclpy
 from example_interfaces.srv import AddTwoInts
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
+from rclpy.task import Future
 
 WAIT_STEP = 1.0  # s between 'service not available' lines
 
@@ -25,17 +28,26 @@ class AddTwoIntsClient(Node):
         return self.client.call_async(AddTwoInts.Request(a=a, b=b))
 
 
-def main(args: list[str] | None = None) -> None:
-    """Wait for the server, ask for 2 + 3, log the sum and exit; Ctrl-C while waiting ends quietly."""
+def run_client(args: list[str] | None, wait_for_answer: Callable[[Node, Future], None]) -> None:
+    """Wait for the server, ask for 2 + 3, wait for the answer as told, log the sum and exit.
+
+    Ctrl-C while waiting ends quietly.
+    """
     rclpy.init(args=args)
     node = AddTwoIntsClient()
     try:
         node.wait_for_server()
         future = node.request(2, 3)
-        rclpy.spin_until_future_complete(node, future)
-        node.get_logger().info(f'Result of add_two_ints: {future.result().sum}')
+        wait_for_answer(node, future)
+        if future.done():
+            node.get_logger().info(f'Result of add_two_ints: {future.result().sum}')
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:
         node.destroy_node()
         rclpy.try_shutdown()
+
+
+def main(args: list[str] | None = None) -> None:
+    """One request, its answer awaited with rclpy.spin_until_future_complete."""
+    run_client(args, rclpy.spin_until_future_complete)
