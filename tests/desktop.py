@@ -14,6 +14,7 @@ import re
 import select
 import shutil
 import subprocess
+import tempfile
 import time
 
 from gates import prerequisite_missing
@@ -60,10 +61,11 @@ class VirtualDisplay:
         require('xdotool', 'xdotool')
         require('xwininfo', 'x11-utils')
         read_end, write_end = os.pipe()
+        # Xvfb's own lines (a refused client, a fatal error) for a failure message: see state().
+        self.log = tempfile.TemporaryFile()
         self.process = subprocess.Popen(
             ['Xvfb', '-displayfd', str(write_end), '-screen', '0', '1280x1024x24', '-nolisten', 'tcp'],
-            pass_fds=(write_end,), stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
-            stderr=subprocess.DEVNULL)
+            pass_fds=(write_end,), stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=self.log)
         os.close(write_end)
         try:
             number = read_line(read_end, timeout)
@@ -102,7 +104,22 @@ class VirtualDisplay:
             if found:
                 return found[0]
             time.sleep(0.2)
-        raise AssertionError(f'no window (name {name!r}, pid {pid}) on {self.name} within {timeout} s')
+        raise AssertionError(f'no window (name {name!r}, pid {pid}) on {self.name} within {timeout} s; '
+                             f'{self.state()}')
+
+    def state(self) -> str:
+        """Whether Xvfb runs and answers, and the last lines it wrote.
+
+        A failed window test needs them to tell a display problem from a program that opened no window.
+        """
+        code = self.process.poll()
+        running = 'Xvfb is running' if code is None else f'Xvfb exited with code {code}'
+        probe = subprocess.run(['xwininfo', '-root'], capture_output=True, text=True, timeout=10,
+                               env=dict(os.environ, DISPLAY=self.name), check=False)
+        answers = 'answers' if probe.returncode == 0 else f'does not answer ({probe.stderr.strip()})'
+        self.log.seek(0)
+        lines = self.log.read().decode(errors='replace').strip().splitlines()[-10:]
+        return f'{running} and {answers}; its last lines: ' + ('\n'.join(lines) or '(none)')
 
     def press(self, window: str, key: str, seconds: float) -> None:
         """Hold an X key (e.g. 'Left') in a window for the given time, as a keyboard does.
@@ -134,6 +151,7 @@ class VirtualDisplay:
                 self.process.wait(5)
             except subprocess.TimeoutExpired:
                 self.process.kill()
+        self.log.close()
 
 
 class ClientMessage(ctypes.Structure):
