@@ -26,6 +26,10 @@ class Action(LaunchDescriptionEntity):
     def describe(self) -> str:
         return f'Action({type(self).__name__})'
 
+    def get_sub_entities(self) -> list[LaunchDescriptionEntity]:
+        """The entities this action holds (none here; groups, includes, processes' on_exit...)."""
+        return []
+
     def visit(self, context: LaunchContext) -> Iterable[LaunchDescriptionEntity] | None:
         if self.__condition is not None and not self.__condition.evaluate(context):
             return None

@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:
     from launch.event import Event
     from launch.event_handler import BaseEventHandler
+    from launch.substitution import Substitution
 
 
 class _Locals:
@@ -117,6 +118,10 @@ class LaunchContext:
 
     async def emit_event(self, event: Event) -> None:
         self.emit_event_sync(event)
+
+    def perform_substitution(self, substitution: Substitution) -> str:
+        """The text of one substitution in this context."""
+        return substitution.perform(self)
 
     def add_completion_future(self, completion_future: asyncio.Future) -> None:
         """Keep launch running until this future is done (e.g. a service call in a thread)."""

@@ -7,7 +7,7 @@ import logging
 import signal
 import threading
 import traceback
-from collections.abc import Iterable
+from collections.abc import Coroutine, Iterable
 from typing import Any
 
 import launch.logging
@@ -19,6 +19,10 @@ from launch.events.shutdown import Shutdown
 from launch.launch_context import LaunchContext
 from launch.launch_description import LaunchDescription
 from launch.launch_description_entity import LaunchDescriptionEntity
+
+
+async def _shutdown_queued() -> None:
+    """What LaunchService.shutdown() gives inside the loop: the event is already queued."""
 
 
 class LaunchService:
@@ -54,13 +58,29 @@ class LaunchService:
     def _on_shutdown(self, event: Event, context: LaunchContext) -> None:
         context._is_shutdown = True
 
-    def shutdown(self, reason: str = 'LaunchService.shutdown() called') -> None:
-        """Ask a running launch to shut down; may be called from another thread."""
-        event = Shutdown(reason=reason)
-        if self.__loop is not None and self.__loop.is_running():
-            self.__loop.call_soon_threadsafe(self.__context.emit_event_sync, event)
-        else:
+    def shutdown(self, force_sync: bool = False) -> Coroutine[Any, Any, None] | None:
+        """Shut a running launch down; does nothing when it is not running.  Thread-safe.
+
+        Inside the launch's own loop it returns a coroutine, as upstream, so callers can await it or
+        make a task of it; the Shutdown event is queued at once, so one that is never awaited (Python
+        warns) still shuts down. force_sync queues the event directly instead of through the loop.
+        """
+        loop = self.__loop
+        if loop is None or not loop.is_running():
+            return None
+        event = Shutdown(reason='LaunchService.shutdown() called')
+        if force_sync:
             self.__context.emit_event_sync(event)
+            return None
+        try:
+            in_loop = asyncio.get_running_loop() is loop
+        except RuntimeError:  # no loop runs in this thread
+            in_loop = False
+        if not in_loop:
+            loop.call_soon_threadsafe(self.__context.emit_event_sync, event)
+            return None
+        self.__context.emit_event_sync(event)
+        return _shutdown_queued()
 
     def run(self, *, shutdown_when_idle: bool = True) -> int:
         if threading.current_thread() is not threading.main_thread():
@@ -99,6 +119,7 @@ class LaunchService:
         finally:
             for sig in installed:
                 loop.remove_signal_handler(sig)
+            self.__loop = None
         return self.__return_code
 
     def _install_signal_handlers(self, loop: asyncio.AbstractEventLoop, main_task: asyncio.Task) -> list[int]:

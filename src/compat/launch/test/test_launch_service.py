@@ -143,7 +143,7 @@ def test_construction_errors():
         OpaqueFunction(function='not callable')
     with pytest.raises(TypeError, match="Failed to normalize given item of type"):
         LogInfo(msg=['a', 1])
-    with pytest.raises(ValueError, match='is not a valid standard output config'):
+    with pytest.raises(ValueError, match="'printer' is not a valid output destination of stdout"):
         ExecuteProcess(cmd=['true'], output={'stdout': 'printer'})
 
 

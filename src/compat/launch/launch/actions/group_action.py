@@ -63,16 +63,23 @@ class GroupAction(Action):
     def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
         return list(self.actions)
 
+    def get_sub_entities(self) -> list[LaunchDescriptionEntity]:
+        """What executing the group runs: its actions inside the scope actions it needs."""
+        kept = {tuple(k): v for k, v in self.launch_configurations}
+        return self._scoped_actions(kept)
+
     def execute(self, context: LaunchContext) -> list[LaunchDescriptionEntity]:
+        # Kept values are read before the group resets the environment they may depend on.
+        return self._scoped_actions({perform_substitutions(context, k): perform_substitutions(context, v)
+                                     for k, v in self.launch_configurations})
+
+    def _scoped_actions(self, kept: dict[Any, Any]) -> list[LaunchDescriptionEntity]:
         settings = [SetLaunchConfiguration(k, v) for k, v in self.launch_configurations]
         if not self.scoped:
             return [*settings, *self.actions]
         if self.forwarding:
             return [PushLaunchConfigurations(), PushEnvironment(), *settings, *self.actions,
                     PopEnvironment(), PopLaunchConfigurations()]
-        kept: dict[SomeSubstitutionsType, SomeSubstitutionsType] = {
-            perform_substitutions(context, k): perform_substitutions(context, v)
-            for k, v in self.launch_configurations}
         return [PushLaunchConfigurations(), PushEnvironment(), ResetEnvironment(),
                 ResetLaunchConfigurations(kept), *self.actions,
                 PopEnvironment(), PopLaunchConfigurations()]

@@ -84,6 +84,11 @@ class IncludeLaunchDescription(Action):
         given = {''.join(getattr(s, 'text', '?') for s in name) for name, _ in self.__launch_arguments}
         return [entity for entity in description.get_launch_arguments() if entity.name not in given]
 
+    def get_sub_entities(self) -> list[LaunchDescriptionEntity]:
+        """The included description, when it can be loaded without a launch context."""
+        description = self.__source.try_get_launch_description_without_context()
+        return [] if description is None else [description]
+
     def execute(self, context: LaunchContext) -> list[LaunchDescriptionEntity]:
         try:
             description = self.__source.get_launch_description(context)

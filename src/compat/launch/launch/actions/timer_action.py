@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import asyncio
+import warnings
 from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any
 
@@ -15,8 +16,7 @@ from launch.events.timer_event import TimerEvent
 from launch.frontend.expose import expose_action
 from launch.launch_description_entity import LaunchDescriptionEntity
 from launch.some_substitutions_type import SomeSubstitutionsType
-from launch.utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
-from launch.utilities.perform_substitutions_impl import perform_substitutions
+from launch.utilities.type_utils import normalize_typed_substitution, perform_typed_substitution
 
 if TYPE_CHECKING:
     from launch.event import Event
@@ -33,22 +33,32 @@ class TimerAction(Action):
     """
 
     def __init__(self, *, period: float | SomeSubstitutionsType,
-                 actions: Iterable[LaunchDescriptionEntity], cancel_on_shutdown: bool = True,
-                 **kwargs: Any) -> None:
+                 actions: Iterable[LaunchDescriptionEntity],
+                 cancel_on_shutdown: bool | SomeSubstitutionsType = True, **kwargs: Any) -> None:
         super().__init__(**kwargs)
-        self.period = (period if isinstance(period, (int, float))
-                       else normalize_to_list_of_substitutions(period))
+        if isinstance(period, str):
+            # Jazzy still takes the text of a number, with a warning; substitutions are the way
+            warnings.warn('TimerAction: give period as a number (or substitutions), not as a string '
+                          'literal; string literals are deprecated', stacklevel=2)
+            try:
+                period = float(period)
+            except ValueError:
+                raise ValueError(f"TimerAction period must be a number of seconds, got '{period}'") from None
+        if isinstance(period, int) and not isinstance(period, bool):
+            period = float(period)
+        self.period = normalize_typed_substitution(period, float)
         self.actions = list(actions)
-        self.cancel_on_shutdown = cancel_on_shutdown
+        self.cancel_on_shutdown = normalize_typed_substitution(cancel_on_shutdown, bool)
         self._future: asyncio.Future | None = None
         self._handle: asyncio.TimerHandle | None = None
 
     @classmethod
     def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
-        kwargs: dict[str, Any] = {'period': parser.substitutions(entity.get_attr('period'))}
-        cancel = parser.boolean(entity, 'cancel_on_shutdown')
+        kwargs: dict[str, Any] = {
+            'period': parser.parse_if_substitutions(entity.get_attr('period', data_type=float))}
+        cancel = entity.get_attr('cancel_on_shutdown', data_type=bool, optional=True)
         if cancel is not None:
-            kwargs['cancel_on_shutdown'] = cancel
+            kwargs['cancel_on_shutdown'] = parser.parse_if_substitutions(cancel)
         kwargs['actions'] = parser.parse_actions(entity.action_children())
         return cls, kwargs
 
@@ -65,12 +75,11 @@ class TimerAction(Action):
             self._future.set_result(None)
 
     def execute(self, context: LaunchContext) -> None:
-        text = (str(self.period) if isinstance(self.period, (int, float))
-                else perform_substitutions(context, self.period))
         try:
-            period = float(text)
-        except ValueError:
-            raise ValueError(f"TimerAction period must be a number of seconds, got '{text}'") from None
+            period = perform_typed_substitution(context, self.period, float)
+            cancel_on_shutdown = perform_typed_substitution(context, self.cancel_on_shutdown, bool)
+        except ValueError as error:
+            raise ValueError(f'TimerAction: {error}') from None
         captured_locals = context.get_locals_as_dict()
         captured_configurations = dict(context.launch_configurations)
 
@@ -82,7 +91,7 @@ class TimerAction(Action):
         context.register_event_handler(CallbackEventHandler(
             matcher=lambda event: isinstance(event, TimerEvent) and event.timer_action is self,
             callback=on_timer, handle_once=True))
-        if self.cancel_on_shutdown:
+        if cancel_on_shutdown:
             context.register_event_handler(CallbackEventHandler(
                 matcher=lambda event: isinstance(event, Shutdown),
                 callback=lambda _event, _ctx: self.cancel(), handle_once=True))

@@ -20,7 +20,7 @@ class LaunchConfigurationEquals(Condition):
     def __init__(self, launch_configuration_name: str, expected_value: SomeSubstitutionsType | None) -> None:
         warnings.warn('The LaunchConfigurationEquals and LaunchConfigurationNotEquals Conditions are '
                       'deprecated. Use the EqualsSubstitution and NotEqualsSubstitution substitutions '
-                      'instead.', DeprecationWarning, stacklevel=2)
+                      'instead.', UserWarning, stacklevel=2)  # UserWarning, so launch files show it
         self._name = launch_configuration_name
         self._expected = (None if expected_value is None
                           else normalize_to_list_of_substitutions(expected_value))

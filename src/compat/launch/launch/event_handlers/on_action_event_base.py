@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING, TypeAlias
 
-from launch.actions.execute_process import ExecuteProcess
+from launch.actions.execute_local import ExecuteLocal
 from launch.event_handler import BaseEventHandler, reaction_callable
 from launch.events.process.running_process_event import RunningProcessEvent
 from launch.launch_description_entity import LaunchDescriptionEntity
@@ -32,15 +32,15 @@ def _action_matcher(target_action: TargetAction, *, processes_only: bool = False
     """Which actions' events a handler takes: all (None), one action, or those a callable accepts.
 
     For process events (processes_only) an action target must be a process action
-    (ExecuteProcess, Node...), as upstream requires: another action never starts a process.
+    (ExecuteLocal: ExecuteProcess, Node...), as upstream requires: another action never starts a process.
     """
     if target_action is None:
         return lambda _action: True
     if isinstance(target_action, LaunchDescriptionEntity):
         if processes_only:
-            if not isinstance(target_action, ExecuteProcess):
-                raise TypeError("target_action must be an ExecuteProcess (or Node) action, a callable "
-                                f"taking one, or None; got '{type(target_action).__name__}'")
+            if not isinstance(target_action, ExecuteLocal):
+                raise TypeError("target_action must be an ExecuteLocal (ExecuteProcess, Node...) action, "
+                                f"a callable taking one, or None; got '{type(target_action).__name__}'")
         return lambda action: action is target_action
     if callable(target_action):
         return lambda action: bool(target_action(action))

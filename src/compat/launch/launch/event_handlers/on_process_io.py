@@ -16,7 +16,7 @@ if TYPE_CHECKING:
 
 
 class OnProcessIO(BaseEventHandler):
-    """Callbacks get the ProcessIO event only (text is bytes)."""
+    """Callbacks get the ProcessIO event only (text is bytes); all three are optional."""
 
     def __init__(self, *, target_action: TargetAction = None,
                  on_stdin: Callable[[ProcessIO], SomeEntitiesType | None] | None = None,
@@ -25,9 +25,10 @@ class OnProcessIO(BaseEventHandler):
                  handle_once: bool = False) -> None:
         action_matches = _action_matcher(target_action, processes_only=True)
         self._callbacks = {0: on_stdin, 1: on_stdout, 2: on_stderr}
+        # As upstream, the IO events of the target match even without a callback for their stream
+        # (so handle_once is used up by the first one).
         super().__init__(
-            matcher=lambda event: (isinstance(event, ProcessIO) and action_matches(event.action)
-                                   and self._callback(event) is not None),
+            matcher=lambda event: isinstance(event, ProcessIO) and action_matches(event.action),
             handle_once=handle_once)
 
     def _callback(self, event: ProcessIO) -> Callable[[ProcessIO], SomeEntitiesType | None] | None:

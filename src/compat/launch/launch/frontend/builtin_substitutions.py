@@ -43,12 +43,12 @@ def _anon(name: Args) -> subs.AnonName:
     return subs.AnonName(name)
 
 
-@expose_substitution('dirname')
+@expose_substitution('dirname', 0)
 def _dirname() -> subs.ThisLaunchFileDir:
     return subs.ThisLaunchFileDir()
 
 
-@expose_substitution('filename')
+@expose_substitution('filename', 0)
 def _filename() -> subs.ThisLaunchFile:
     return subs.ThisLaunchFile()
 
@@ -98,9 +98,9 @@ def _file_content(path: Args) -> subs.FileContent:
     return subs.FileContent(path)
 
 
-@expose_substitution('launch_log_dir')
+@expose_substitution('launch_log_dir', 0)
 def _launch_log_dir() -> subs.LaunchLogDir:
     return subs.LaunchLogDir()
 
 
-expose_substitution('log_dir')(_launch_log_dir)
+expose_substitution('log_dir', 0)(_launch_log_dir)

@@ -9,6 +9,11 @@ from __future__ import annotations
 
 from typing import Any
 
+from launch.utilities.type_utils import get_typed_value, is_instance_of
+
+# get_attr's data_type when none is given: the value as the file has it.
+_RAW = object()
+
 
 class LaunchFileError(ValueError):
     """A mistake in an XML or YAML launch file; the message starts with file:line."""
@@ -34,14 +39,35 @@ class Entity:
     def error(self, message: str) -> LaunchFileError:
         return LaunchFileError(f'{self.location}: {message}')
 
-    def get_attr(self, name: str, *, optional: bool = False) -> Any:
-        """The raw value: a str in XML, any YAML value in YAML; None if optional and absent."""
+    def get_attr(self, name: str, *, data_type: Any = _RAW, optional: bool = False,
+                 can_be_str: bool = True) -> Any:
+        """An attribute's value; None if optional and absent.
+
+        Without data_type, the raw value: a str in XML, any YAML value in YAML.  With data_type
+        (one of type_utils' types, None for "whatever YAML reads"), text is converted to it as
+        upstream's frontends do; can_be_str keeps text that does not convert (it may hold a
+        `$(...)`, see Parser.parse_if_substitutions).
+        """
         self._used_attributes.add(name)
-        if name in self._attributes:
-            return self._attributes[name]
-        if optional:
-            return None
-        raise self.error(f"Attribute '{name}' of type '{self.type_name}' not found")
+        if name not in self._attributes:
+            if optional:
+                return None
+            raise self.error(f"Attribute '{name}' of type '{self.type_name}' not found")
+        value = self._attributes[name]
+        if data_type is _RAW:
+            return value
+        try:
+            if isinstance(value, str) or (isinstance(value, list)
+                                          and all(isinstance(item, str) for item in value)):
+                return get_typed_value(value, data_type, can_be_str)
+            if is_instance_of(value, data_type, can_be_str):
+                return value
+            if data_type is float and isinstance(value, int) and not isinstance(value, bool):
+                return float(value)  # YAML's `period: 2` is a float attribute's 2.0
+        except (TypeError, ValueError) as error:
+            raise self.error(f"attribute '{name}' of `{self.type_name}`: {error}") from None
+        raise self.error(f"attribute '{name}' of `{self.type_name}` must be of type "
+                         f"{getattr(data_type, '__name__', data_type)}, got {value!r}")
 
     def get_children(self, tag: str) -> list[Entity]:
         """Nested tags of one kind (`param`, `remap`, `env`, `arg`, `keep`, `choice`...)."""

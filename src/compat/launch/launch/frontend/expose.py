@@ -7,8 +7,9 @@ file or a `$(...)` value is first parsed.
 
 from __future__ import annotations
 
+import inspect
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any, Protocol, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 if TYPE_CHECKING:
     from importlib.metadata import EntryPoint
@@ -18,50 +19,90 @@ if TYPE_CHECKING:
     from launch.substitution import Substitution
 
 
-class ParsesEntity(Protocol):
-    """An action class a tag builds.
-
-    Its parse classmethod reads the tag into the class to make and that class's constructor arguments
-    (whose types only that class knows).
-    """
-
-    def parse(self, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]: ...
-
-
-ActionClass = TypeVar('ActionClass', bound=ParsesEntity)
+# What a tag's parse method gives: the action class to make and its constructor kwargs.
+ParseResult = tuple[type, dict[str, Any]]
+ParseAction = Callable[['Entity', 'Parser'], ParseResult]
+ExposedAction = TypeVar('ExposedAction', bound=Callable[..., Any])
 # One `$(name arg ...)`: each argument is the substitutions of its text.
 SubstitutionArguments = list[list['Substitution']]
 
-# tag -> class with parse(entity, parser) -> (class, constructor kwargs)
-action_parse_methods: dict[str, ParsesEntity] = {}
+# tag -> parse(entity, parser) -> (action class, constructor kwargs)
+action_parse_methods: dict[str, ParseAction] = {}
 # name -> function(list of argument substitution lists) -> Substitution
 substitution_parse_methods: dict[str, Callable[[SubstitutionArguments], Substitution]] = {}
 
 
-def expose_action(tag: str) -> Callable[[ActionClass], ActionClass]:
-    """Class decorator: the frontend tag `tag` builds this action through its parse classmethod."""
-    def register(cls: ActionClass) -> ActionClass:
-        action_parse_methods[tag] = cls
-        return cls
+def expose_action(tag: str) -> Callable[[ExposedAction], ExposedAction]:
+    """Decorator: the frontend tag `tag` builds an action through what it decorates.
+
+    A class with a `parse(entity, parser)` classmethod, or such a function, returning
+    `(action class, constructor kwargs)`.
+    """
+    def register(exposed: ExposedAction) -> ExposedAction:
+        action_parse_methods[tag] = _parse_method(f"expose_action('{tag}')", exposed)
+        return exposed
     return register
 
 
-SubstitutionMaker = TypeVar('SubstitutionMaker', bound=Callable[..., 'Substitution'])
+def _parse_method(what: str, exposed: Any) -> Callable[..., Any]:
+    """The parse classmethod of an exposed class, or the exposed function itself."""
+    if isinstance(exposed, type):
+        parse = getattr(exposed, 'parse', None)
+        if not inspect.ismethod(parse):
+            raise RuntimeError(f"{what}: class {exposed.__name__} has no 'parse' classmethod")
+        return parse
+    if inspect.isfunction(exposed):
+        return exposed
+    raise RuntimeError(f"{what}: expected a class with a 'parse' classmethod or a function, "
+                       f'got {exposed!r}')
 
 
-def expose_substitution(name: str, min_args: int = 0, max_args: int | None = None
-                        ) -> Callable[[SubstitutionMaker], SubstitutionMaker]:
-    """Function decorator: `$(name arg...)` calls it with the arguments' substitution lists."""
-    def register(function: SubstitutionMaker) -> SubstitutionMaker:
-        def checked(args: SubstitutionArguments) -> Substitution:
-            upper = min_args if max_args is None else max_args
-            if not min_args <= len(args) <= upper:
-                expected = str(min_args) if upper == min_args else f'{min_args} to {upper}'
-                raise ValueError(f"substitution '{name}' expects {expected} argument(s), got {len(args)}")
-            return function(*args)
-        substitution_parse_methods[name] = checked
-        return function
+Exposed = TypeVar('Exposed', bound=Callable[..., Any])
+
+
+def expose_substitution(name: str, min_args: int | None = None, max_args: int | None = None
+                        ) -> Callable[[Exposed], Exposed]:
+    """Decorator: `$(name arg...)` in a launch file makes a substitution through what it decorates.
+
+    Upstream's contract, for third-party packages: a class with a `parse(data)` classmethod, or a
+    function `parse(data)`, where data is the list of the arguments (each a list of
+    substitutions) and the result is `(substitution class, constructor kwargs)`.
+
+    With min_args (and max_args, default min_args), launch's own shorter form: the function is
+    called with the arguments as positional parameters and returns the substitution itself.
+    """
+    def register(exposed: Exposed) -> Exposed:
+        if min_args is not None:
+            substitution_parse_methods[name] = _counted_maker(name, exposed, min_args, max_args)
+            return exposed
+        parse = _parse_method(f"expose_substitution('{name}')", exposed)
+        substitution_parse_methods[name] = _from_parse_method(name, parse)
+        return exposed
     return register
+
+
+def _counted_maker(name: str, make: Callable[..., Substitution], min_args: int, max_args: int | None
+                   ) -> Callable[[SubstitutionArguments], Substitution]:
+    upper = min_args if max_args is None else max_args
+
+    def checked(args: SubstitutionArguments) -> Substitution:
+        if not min_args <= len(args) <= upper:
+            expected = str(min_args) if upper == min_args else f'{min_args} to {upper}'
+            raise ValueError(f"substitution '{name}' expects {expected} argument(s), got {len(args)}")
+        return make(*args)
+    return checked
+
+
+def _from_parse_method(name: str, parse: Callable[[SubstitutionArguments], Any]
+                       ) -> Callable[[SubstitutionArguments], Substitution]:
+    def instantiate(args: SubstitutionArguments) -> Substitution:
+        result = parse(args)
+        if not (isinstance(result, tuple) and len(result) == 2 and isinstance(result[1], dict)):
+            raise TypeError(f"the parse method of substitution '{name}' must return "
+                            f'(class, kwargs), got {result!r}')
+        substitution_class, kwargs = result
+        return substitution_class(**kwargs)
+    return instantiate
 
 
 # The installed entry points, read once: reading them scans every distribution (some 10 ms).

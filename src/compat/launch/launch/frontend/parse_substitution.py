@@ -7,6 +7,7 @@ or double-quoted (quotes may hold substitutions too); a backslash escapes the ne
 from __future__ import annotations
 
 import re
+from typing import Any
 
 from launch.frontend import builtin_substitutions  # noqa: F401  (registers launch's `$(...)` names)
 from launch.frontend.expose import load_launch_extensions, substitution_parse_methods
@@ -95,3 +96,28 @@ def parse_substitution(text: str) -> list[Substitution]:
     load_launch_extensions()
     parts = _Reader(text).template('')
     return parts or [TextSubstitution(text='')]
+
+
+def parse_if_substitutions(value: Any) -> Any:
+    """A typed attribute value with its text parsed: what normalize_typed_substitution accepts.
+
+    Text holding a `$(...)` becomes a substitution list, plain text stays a str, other scalars
+    stay as they are, and a list is read item by item; its items must then be of one type.
+    """
+    kinds: set[type] = set()
+
+    def parse_item(item: Any) -> Any:
+        if not isinstance(item, str):
+            kinds.add(type(item))
+            return item
+        parts = parse_substitution(item)
+        if len(parts) == 1 and isinstance(parts[0], TextSubstitution):
+            kinds.add(str)
+            return parts[0].text
+        return parts
+
+    result = [parse_item(item) for item in value] if isinstance(value, list) else parse_item(value)
+    if len(kinds) > 1:
+        raise ValueError(f'the list {value!r} mixes values of several types: '
+                         f'{", ".join(sorted(kind.__name__ for kind in kinds))}')
+    return result

@@ -9,13 +9,15 @@ from __future__ import annotations
 
 import os
 import tempfile
-from typing import TYPE_CHECKING, TextIO, overload
+import warnings
+from typing import TYPE_CHECKING, Any, TextIO, overload
 
 from launch.conditions.if_condition import IfCondition
 from launch.conditions.unless_condition import UnlessCondition
 from launch.frontend.entity import Entity, LaunchFileError
 from launch.frontend.expose import action_parse_methods, get_entry_points, load_launch_extensions
-from launch.frontend.parse_substitution import parse_substitution
+from launch.frontend.parse_substitution import parse_if_substitutions, parse_substitution
+from launch.invalid_launch_file_error import InvalidLaunchFileError
 from launch.launch_description import LaunchDescription
 from launch.substitutions.text_substitution import TextSubstitution
 from launch.utilities.type_utils import coerce_to_type
@@ -29,8 +31,8 @@ if TYPE_CHECKING:
 _implementations: dict[str, type[Parser]] | None = None
 
 
-class InvalidFrontendLaunchFileError(Exception):
-    """An XML or YAML launch file could not be read."""
+class InvalidFrontendLaunchFileError(InvalidLaunchFileError):
+    """An XML or YAML launch file could not be read (an InvalidLaunchFileError, as upstream)."""
 
 
 class Parser:
@@ -68,10 +70,34 @@ class Parser:
 
     @classmethod
     def is_extension_valid(cls, extension: str) -> bool:
-        return extension.lstrip('.') in cls.get_available_extensions()
+        """Deprecated in Jazzy (use is_filename_valid)."""
+        warnings.warn('Parser.is_extension_valid is deprecated: use Parser.is_filename_valid', stacklevel=2)
+        return cls._knows_extension(extension)
 
     @classmethod
     def get_parser_from_extension(cls, extension: str) -> type[Parser] | None:
+        """Deprecated in Jazzy (use get_parsers_from_filename)."""
+        warnings.warn('Parser.get_parser_from_extension is deprecated: use Parser.get_parsers_from_filename',
+                      stacklevel=2)
+        return cls._parser_for_extension(extension)
+
+    @classmethod
+    def get_parsers_from_filename(cls, filename: str | os.PathLike) -> list[type[Parser]]:
+        """The installed format parsers that read files of this name (by its extension)."""
+        return [implementation for implementation in cls.load_parser_implementations().values()
+                if implementation.may_parse(filename)]
+
+    @classmethod
+    def may_parse(cls, filename: str | os.PathLike) -> bool:
+        """Whether this format reads a file of this name (by its extension)."""
+        return cls.get_file_extension_from_filename(filename) in cls.get_file_extensions()
+
+    @classmethod
+    def _knows_extension(cls, extension: str) -> bool:
+        return extension.lstrip('.') in cls.get_available_extensions()
+
+    @classmethod
+    def _parser_for_extension(cls, extension: str) -> type[Parser] | None:
         """The parser of the format whose files have this extension, if one is installed."""
         for implementation in cls.load_parser_implementations().values():
             if extension.lstrip('.') in implementation.get_file_extensions():
@@ -84,7 +110,7 @@ class Parser:
 
     @classmethod
     def is_filename_valid(cls, filename: str | os.PathLike) -> bool:
-        return cls.is_extension_valid(cls.get_file_extension_from_filename(filename))
+        return cls._knows_extension(cls.get_file_extension_from_filename(filename))
 
     @classmethod
     def load(cls, file: str | os.PathLike | TextIO) -> tuple[Entity, Parser]:
@@ -116,7 +142,7 @@ class Parser:
         if cls.get_file_extensions():  # an implementation reads its own format
             implementations = [cls]
         else:
-            chosen = cls.get_parser_from_extension(cls.get_file_extension_from_filename(path))
+            chosen = cls._parser_for_extension(cls.get_file_extension_from_filename(path))
             implementations = [chosen] if chosen else list(cls.load_parser_implementations().values())
         if not implementations:
             raise LaunchFileError(f"launch file '{path}': no frontend parser is installed (entry point "
@@ -136,6 +162,10 @@ class Parser:
 
     def parse_substitution(self, text: str) -> list[Substitution]:
         return parse_substitution(text)
+
+    def parse_if_substitutions(self, value: Any) -> Any:
+        """A typed attribute's value, its text parsed for `$(...)` (see parse_substitution's module)."""
+        return parse_if_substitutions(value)
 
     @overload
     def substitutions(self, value: None) -> None: ...
@@ -181,11 +211,11 @@ class Parser:
         return None
 
     def parse_action(self, entity: Entity) -> Action:
-        cls = action_parse_methods.get(entity.type_name)
-        if cls is None:
+        parse = action_parse_methods.get(entity.type_name)
+        if parse is None:
             raise entity.error(f'Unrecognized entity of the type: {entity.type_name}')
         try:
-            action_class, kwargs = cls.parse(entity, self)
+            action_class, kwargs = parse(entity, self)
             condition = self.parse_condition(entity)
             if condition is not None:
                 kwargs['condition'] = condition
@@ -210,7 +240,7 @@ def load_launch_file(path: str, format_name: str) -> LaunchDescription:
     """Read an XML ('xml') or YAML ('yaml') launch file into a LaunchDescription."""
     Parser.load_launch_extensions()
     implementation = (Parser.load_parser_implementations().get(format_name)
-                      or Parser.get_parser_from_extension(format_name))
+                      or Parser._parser_for_extension(format_name))
     if implementation is None:
         raise LaunchFileError(f"launch file '{path}': no frontend parser for the format '{format_name}'")
     return implementation().parse_description(implementation._load_root(path))

@@ -2,8 +2,7 @@
 
 from __future__ import annotations
 
-from launch.frontend.parser import load_launch_file
-from launch.invalid_launch_file_error import InvalidLaunchFileError
+from launch.frontend.parser import InvalidFrontendLaunchFileError, load_launch_file
 from launch.launch_description import LaunchDescription
 from launch.launch_description_source import LaunchDescriptionSource, _check_file
 from launch.some_substitutions_type import SomeSubstitutionsType
@@ -24,4 +23,4 @@ class FrontendLaunchDescriptionSource(LaunchDescriptionSource):
         try:
             return load_launch_file(location, format_name)
         except Exception as error:
-            raise InvalidLaunchFileError(format_name, likely_errors=[error]) from error
+            raise InvalidFrontendLaunchFileError(format_name, likely_errors=[error]) from error

@@ -10,10 +10,12 @@ if TYPE_CHECKING:
     from launch.launch_description import LaunchDescription
 
 
-def get_launch_description_from_frontend_launch_file(frontend_launch_file_path: str) -> LaunchDescription:
-    """Read an XML or YAML launch file (format by extension, else tried as both)."""
+def get_launch_description_from_frontend_launch_file(frontend_launch_file_path: str, *,
+                                                     parser: type[Parser] = Parser) -> LaunchDescription:
+    """Read an XML or YAML launch file with parser (by default: format by extension, else tried as both)."""
     try:
-        root, parser = Parser.load(frontend_launch_file_path)
+        root, parser_instance = parser.load(frontend_launch_file_path)
     except Exception as error:
-        raise InvalidFrontendLaunchFileError(str(error)) from error
-    return parser.parse_description(root)
+        extension = parser.get_file_extension_from_filename(frontend_launch_file_path)
+        raise InvalidFrontendLaunchFileError(extension, likely_errors=[error]) from error
+    return parser_instance.parse_description(root)

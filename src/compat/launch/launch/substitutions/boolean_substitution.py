@@ -4,26 +4,34 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from launch.conditions.evaluate_condition_expression_impl import evaluate_condition_expression
-from launch.conditions.invalid_condition_expression_error import InvalidConditionExpressionError
 from launch.some_substitutions_type import SomeSubstitutionsType
 from launch.substitution import Substitution, describe_substitutions
 from launch.substitutions.substitution_failure import SubstitutionFailure
 from launch.utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
 from launch.utilities.perform_substitutions_impl import perform_substitutions
+from launch.utilities.type_utils import coerce_to_type
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
 
 
 def _truth(context: LaunchContext, value: list[Substitution]) -> bool:
-    """A boolean operand; one that is not true/false/1/0 is a SubstitutionFailure, as upstream."""
+    """A boolean operand, read as Jazzy reads a bool's text: true/false, 1/0, yes/no, on/off.
+
+    Anything else is a SubstitutionFailure, as upstream.
+    """
+    text = perform_substitutions(context, value)
     try:
-        return evaluate_condition_expression(context, value)
-    except InvalidConditionExpressionError:
-        text = perform_substitutions(context, value)
-        raise SubstitutionFailure(f"'{text}' is not a valid boolean value, expected true, false, 1 or 0 "
-                                  f"(expanded from {describe_substitutions(value)})") from None
+        return coerce_to_type(text, bool)
+    except ValueError:
+        origin = describe_substitutions(value)
+        raise SubstitutionFailure(f"'{text}' is not a valid boolean value, expected true/false, 1/0, "
+                                  f'yes/no or on/off (expanded from {origin})') from None
+
+
+def _truths(context: LaunchContext, values: list[list[Substitution]]) -> list[bool]:
+    """Every operand's truth: each is performed and checked, even once the result is decided."""
+    return [_truth(context, value) for value in values]
 
 
 class NotSubstitution(Substitution):
@@ -40,12 +48,12 @@ class AndSubstitution(Substitution):
         self.right = normalize_to_list_of_substitutions(right)
 
     def perform(self, context: LaunchContext) -> str:
-        return str(_truth(context, self.left) and _truth(context, self.right)).lower()
+        return str(all(_truths(context, [self.left, self.right]))).lower()
 
 
 class OrSubstitution(AndSubstitution):
     def perform(self, context: LaunchContext) -> str:
-        return str(_truth(context, self.left) or _truth(context, self.right)).lower()
+        return str(any(_truths(context, [self.left, self.right]))).lower()
 
 
 class AnySubstitution(Substitution):
@@ -53,9 +61,9 @@ class AnySubstitution(Substitution):
         self.args = [normalize_to_list_of_substitutions(arg) for arg in args]
 
     def perform(self, context: LaunchContext) -> str:
-        return str(any(_truth(context, arg) for arg in self.args)).lower()
+        return str(any(_truths(context, self.args))).lower()
 
 
 class AllSubstitution(AnySubstitution):
     def perform(self, context: LaunchContext) -> str:
-        return str(all(_truth(context, arg) for arg in self.args)).lower()
+        return str(all(_truths(context, self.args))).lower()

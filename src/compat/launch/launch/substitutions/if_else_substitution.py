@@ -15,8 +15,12 @@ if TYPE_CHECKING:
 
 
 class IfElseSubstitution(Substitution):
+    """if_value when the condition reads as true, else_value when false (the boolean substitutions' rule)."""
+
     def __init__(self, condition: SomeSubstitutionsType, if_value: SomeSubstitutionsType = '',
                  else_value: SomeSubstitutionsType = '') -> None:
+        if if_value == '' and else_value == '':
+            raise RuntimeError('IfElseSubstitution needs if_value or else_value (or both)')
         self.condition = normalize_to_list_of_substitutions(condition)
         self.if_value = normalize_to_list_of_substitutions(if_value)
         self.else_value = normalize_to_list_of_substitutions(else_value)

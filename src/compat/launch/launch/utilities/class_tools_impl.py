@@ -1,8 +1,13 @@
-"""is_a and is_a_subclass: isinstance checks by upstream's names."""
+"""is_a, is_a_subclass and isclassinstance: isinstance checks by upstream's names."""
 
 from __future__ import annotations
 
 from typing import Any
+
+
+def isclassinstance(obj: Any) -> bool:
+    """Whether obj is an instance of some class: in Python 3 everything is, as upstream's check says."""
+    return hasattr(obj, '__class__')
 
 
 def is_a(obj: Any, entity_type: type | tuple[type, ...]) -> bool:

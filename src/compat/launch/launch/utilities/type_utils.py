@@ -2,13 +2,13 @@
 
 A typed value is `str`, `int`, `float`, `bool` or a uniform list of one of them.  Text becomes a
 bool, a number or a list the way a YAML 1.1 reader sees it, so 'yes', 'on', 'true' are True and
-'no', 'off', 'false' are False (that is what upstream's `<node respawn="yes">` accepts); '1' is the
-integer 1 and so not a bool.
+'no', 'off', 'false' are False (that is what upstream's `<node respawn="yes">` accepts).  Read as a
+bool, '1' and '0' are True and False too, as in Jazzy; read untyped, '1' is the integer 1.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from types import GenericAlias
 from typing import TYPE_CHECKING, Any, cast, get_args, get_origin
 
@@ -23,20 +23,40 @@ if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
 
 __all__ = [
-    'AllowedTypesTuple', 'AllowedTypesType', 'AllowedValueType', 'ScalarTypesTuple', 'SomeValueType',
+    'AllowedTypesTuple', 'AllowedTypesType', 'AllowedValueType', 'ListTypesTuple', 'ListTypesType',
+    'ListValueType', 'NormalizedScalarType', 'NormalizedSequenceType', 'NormalizedValueType',
+    'ScalarTypesTuple', 'ScalarTypesType', 'ScalarValueType', 'SequenceValueType', 'SomeScalarType',
+    'SomeSequenceType', 'SomeValueType', 'StrSomeScalarType', 'StrSomeSequenceType', 'StrSomeValueType',
     'coerce_list', 'coerce_to_type', 'extract_type', 'get_typed_value', 'is_instance_of',
-    'is_instance_of_valid_type', 'is_substitution', 'is_typing_list', 'is_valid_scalar_type',
-    'normalize_typed_substitution', 'perform_typed_substitution',
+    'is_instance_of_valid_type', 'is_normalized_substitution', 'is_substitution', 'is_typing_list',
+    'is_valid_scalar_type', 'normalize_typed_substitution', 'perform_typed_substitution',
 ]
 
+# The value types a typed launch attribute may have: one scalar, or a list of one scalar type.
 ScalarTypesTuple = (int, float, bool, str)
 ListTypesTuple = (list[int], list[float], list[bool], list[str])
 AllowedTypesTuple = ScalarTypesTuple + ListTypesTuple
-# One of AllowedTypesTuple (list[int] and the other list types are generic aliases, not classes).
+ScalarTypesType = type[int] | type[float] | type[bool] | type[str]
+# list[int] and the other list types are generic aliases, not classes.
+ListTypesType = GenericAlias
 AllowedTypesType = type | GenericAlias
-AllowedValueType = int | float | bool | str | list[int] | list[float] | list[bool] | list[str]
+# The values themselves, and the same before substitution (Some*), normalized (Normalized*: text
+# already a list of substitutions) and as a launch file's text gives them (StrSome*).
+ScalarValueType = int | float | bool | str
+ListValueType = list[int] | list[float] | list[bool] | list[str]
+SequenceValueType = Sequence[int] | Sequence[float] | Sequence[bool] | Sequence[str]
+AllowedValueType = ScalarValueType | ListValueType
+SomeScalarType = ScalarValueType | SomeSubstitutionsType
+SomeSequenceType = (Sequence[int | SomeSubstitutionsType] | Sequence[float | SomeSubstitutionsType]
+                    | Sequence[bool | SomeSubstitutionsType] | Sequence[str | SomeSubstitutionsType])
 SomeValueType = AllowedValueType | SomeSubstitutionsType
-
+NormalizedScalarType = ScalarValueType | list[Substitution]
+NormalizedSequenceType = (list[int | list[Substitution]] | list[float | list[Substitution]]
+                          | list[bool | list[Substitution]] | list[str | list[Substitution]])
+NormalizedValueType = NormalizedScalarType | NormalizedSequenceType
+StrSomeScalarType = SomeScalarType
+StrSomeSequenceType = Sequence[int | str] | Sequence[float | str] | Sequence[bool | str] | Sequence[str]
+StrSomeValueType = StrSomeScalarType | StrSomeSequenceType
 
 def is_typing_list(data_type: object) -> bool:
     """list, typing.List or a subscription of either (list[int], List[str])."""
@@ -119,10 +139,12 @@ def coerce_to_type(value: str, data_type: AllowedTypesType | None = None, can_be
             if can_be_str:
                 return value
             raise ValueError(f"cannot convert '{value}' to {item_type.__name__}") from None
-    result = _yaml_reading(value, f"cannot convert '{value}' to bool", can_be_str)
+    # Jazzy reads the digits 1 and 0 as a bool's text, as conditions do
+    text = {'1': 'true', '0': 'false'}.get(value, value)
+    result = _yaml_reading(text, f"cannot convert '{value}' to bool", can_be_str)
     if isinstance(result, bool) or (can_be_str and isinstance(result, str)):
         return result
-    raise ValueError(f"cannot convert '{value}' to bool: expected true/false, yes/no or on/off")
+    raise ValueError(f"cannot convert '{value}' to bool: expected true/false, 1/0, yes/no or on/off")
 
 
 def coerce_list(value: list[str], data_type: AllowedTypesType | None = None, can_be_str: bool = False
@@ -159,6 +181,11 @@ def is_substitution(value: object) -> bool:
             and any(isinstance(item, Substitution) for item in items))
 
 
+def is_normalized_substitution(value: object) -> bool:
+    """A non-empty list holding only Substitution instances (what normalizing text gives)."""
+    return isinstance(value, list) and bool(value) and all(isinstance(item, Substitution) for item in value)
+
+
 def normalize_typed_substitution(value: Any, data_type: AllowedTypesType | None) -> Any:
     """A value of data_type stays as it is; text and substitutions become a substitution list.
 
@@ -179,12 +206,16 @@ def normalize_typed_substitution(value: Any, data_type: AllowedTypesType | None)
 def perform_typed_substitution(context: LaunchContext, value: Any, data_type: AllowedTypesType | None
                                ) -> Any:
     """Perform what normalize_typed_substitution kept, then convert it to data_type."""
-    if isinstance(value, list) and all(isinstance(item, Substitution) for item in value):
+    if is_normalized_substitution(value):
         return coerce_to_type(perform_substitutions(context, value), data_type)
     if isinstance(value, list):
+        item_type = None
+        if data_type is not None:
+            item_type, is_list = extract_type(data_type)
+            if not is_list:
+                raise ValueError(f'cannot convert the list {value!r} to a single {item_type.__name__}')
         items = [perform_substitutions(context, item) if isinstance(item, list) else item
                  for item in value]
-        item_type = extract_type(data_type)[0] if data_type is not None else None
         return [coerce_to_type(item, item_type) if isinstance(item, str) and item_type is not str
                 else item for item in items]
     return value

@@ -8,11 +8,11 @@ from typing import TYPE_CHECKING, TypeAlias
 from launch.event import Event
 
 if TYPE_CHECKING:
-    from launch.actions.execute_process import ExecuteProcess
+    from launch.actions.execute_local import ExecuteLocal
 
 
 # Which process actions (ExecuteProcess, Node...) a ShutdownProcess or SignalProcess is for.
-ProcessMatcher: TypeAlias = 'Callable[[ExecuteProcess], bool]'
+ProcessMatcher: TypeAlias = 'Callable[[ExecuteLocal], bool]'
 
 
 class ProcessTargetedEvent(Event):
