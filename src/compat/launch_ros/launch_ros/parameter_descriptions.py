@@ -56,12 +56,13 @@ class ParameterFile:
             param_file = str(param_file)
         self.param_file = normalize_to_list_of_substitutions(param_file)
         self.allow_substs = allow_substs
+        self.__substituted_copy: pathlib.Path | None = None
 
-    def evaluate(self, context: LaunchContext) -> str:
+    def evaluate(self, context: LaunchContext) -> pathlib.Path:
         """The path to pass with --params-file (a substituted copy when allow_substs)."""
         path = perform_substitutions(context, self.param_file)
         if not self.allow_substs:
-            return path
+            return pathlib.Path(path)
         with open(path, encoding='utf-8') as handle:
             text = perform_substitutions(context, parse_substitution(handle.read()))
         try:
@@ -71,7 +72,14 @@ class ParameterFile:
                              f'{error}') from None
         with tempfile.NamedTemporaryFile('w', prefix='launch_params_', delete=False) as substituted:
             substituted.write(text)
-        return substituted.name
+        self.__substituted_copy = pathlib.Path(substituted.name)
+        return self.__substituted_copy
+
+    def cleanup(self) -> None:
+        """Delete the substituted copy the last evaluate made, if any (the file itself is never touched)."""
+        if self.__substituted_copy is not None:
+            self.__substituted_copy.unlink(missing_ok=True)
+            self.__substituted_copy = None
 
 
 class Parameter:
@@ -79,12 +87,22 @@ class Parameter:
 
     def __init__(self, name: SomeSubstitutionsType, value: Any, *, value_type: Any = None) -> None:
         self.name = normalize_to_list_of_substitutions(name)
-        self.value = (value if isinstance(value, ParameterValue)
-                      else ParameterValue(value, value_type=value_type))
+        self.__parameter_value = (value if isinstance(value, ParameterValue)
+                                  else ParameterValue(value, value_type=value_type))
+
+    @property
+    def value(self) -> Any:
+        """The value as given (substitutions not performed)."""
+        return self.__parameter_value.value
+
+    @property
+    def value_type(self) -> Any:
+        """The type the value is forced to, or None for YAML's reading."""
+        return self.__parameter_value.value_type
 
     def evaluate(self, context: LaunchContext) -> tuple[str, Any]:
         """(name, value) with the substitutions performed and the value typed, for `-p name:=value`."""
-        return perform_substitutions(context, self.name), self.value.evaluate(context)
+        return perform_substitutions(context, self.name), self.__parameter_value.evaluate(context)
 
 
 # ---- the typing rules: how a value given for a parameter becomes the value the node gets ----

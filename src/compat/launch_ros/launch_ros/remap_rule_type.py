@@ -1,4 +1,4 @@
-"""Upstream's type names for Node(remappings=...)."""
+"""Upstream's type names for Node(remappings=...): as given, and once normalised."""
 
 from __future__ import annotations
 
@@ -7,7 +7,9 @@ from collections.abc import Iterable
 from launch.some_substitutions_type import SomeSubstitutionsType
 from launch.substitution import Substitution
 
-__all__ = ['RemapRules', 'SomeRemapRules']
+__all__ = ['RemapRule', 'RemapRules', 'SomeRemapRule', 'SomeRemapRules']
 
-SomeRemapRules = Iterable[tuple[SomeSubstitutionsType, SomeSubstitutionsType]]
-RemapRules = Iterable[tuple[list[Substitution], list[Substitution]]]
+SomeRemapRule = tuple[SomeSubstitutionsType, SomeSubstitutionsType]
+SomeRemapRules = Iterable[SomeRemapRule]
+RemapRule = tuple[tuple[Substitution, ...], tuple[Substitution, ...]]
+RemapRules = Iterable[RemapRule]

@@ -73,6 +73,11 @@ class ROSAdapter:
         self.__context.try_shutdown()
 
     @property
+    def argv(self) -> list[str] | None:
+        """The arguments rclpy is initialised with (None: none), as given to the constructor."""
+        return self.__argv
+
+    @property
     def ros_context(self) -> Any:
         """The adapter's own rclpy Context; None until started."""
         return self.__context

@@ -125,11 +125,11 @@ def test_param_that_was_never_set_is_a_substitution_failure():
         Parameter('nope').perform(LaunchContext())
 
 
-def test_param_with_two_arguments_is_refused(tmp_path):
+def test_param_with_three_arguments_is_refused(tmp_path):
     path = tmp_path / 'p.launch.xml'
-    path.write_text('<launch><log message="$(param a b)"/></launch>')
+    path.write_text('<launch><log message="$(param a b c)"/></launch>')
     root, parser = Parser.load(path)
-    with pytest.raises(LaunchFileError, match="'param' expects 1 argument"):
+    with pytest.raises(LaunchFileError, match="'param' expects 1 to 2 argument"):
         parser.parse_description(root)
 
 

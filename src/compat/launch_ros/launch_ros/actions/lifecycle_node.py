@@ -58,12 +58,15 @@ class LifecycleNode(Node):
     Launch subscribes to <node>/transition_event and emits a StateTransition event for each
     message; a ChangeState event whose matcher accepts this action makes launch call
     <node>/change_state.  With autostart=True launch configures and then activates the node.
+    Upstream requires namespace too; here a missing one counts as '' (the pushed namespace, or the root one),
+    so that the node's full name, and with it its services, is known.
     """
 
-    def __init__(self, *, name: Any = None, autostart: bool = False, **kwargs: Any) -> None:
+    def __init__(self, *, name: Any = None, namespace: Any = None, autostart: bool = False,
+                 **kwargs: Any) -> None:
         if name is None:
             raise TypeError("LifecycleNode requires 'name': launch finds the node's lifecycle services by it")
-        super().__init__(name=name, **kwargs)
+        super().__init__(name=name, namespace='' if namespace is None else namespace, **kwargs)
         self.__autostart = autostart
         self.__client: Any = None
         self.__subscription: Any = None
@@ -152,7 +155,7 @@ class LifecycleNode(Node):
         Raises RuntimeError if the node's full name could not be worked out.
         """
         super().execute(context)  # expands the name, starts the process
-        if '<unknown>' in self.node_name:
+        if not self.is_node_name_fully_specified():
             raise RuntimeError(f'lifecycle node name could not be expanded: {self.node_name}')
         ros_node = get_ros_node(context)
         self.__subscription = ros_node.create_subscription(

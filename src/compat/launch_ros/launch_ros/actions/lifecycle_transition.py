@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from typing import TYPE_CHECKING, Any, ClassVar
 
 import lifecycle_msgs.msg
@@ -17,6 +17,7 @@ from launch_ros.events.lifecycle import ChangeState, StateTransition
 from launch_ros.events.matchers import matches_node_name
 
 if TYPE_CHECKING:
+    from launch.event import Event
     from launch.launch_context import LaunchContext
 
 _TRANSITION = lifecycle_msgs.msg.Transition
@@ -96,11 +97,10 @@ class LifecycleTransition(Action):
                 target = self.transition_targets[transition_id]
                 finish = OpaqueFunction(function=lambda ctx, n=full_name: self._stop(ctx, n))
                 then: list[Any] = [requests[index + 1]] if index + 1 < len(ids) else [finish]
-                handlers.append(EventHandler(
-                    matcher=_reached(full_name, target['start_state'], target['goal_state']),
-                    entities=then, handle_once=True))
+                matcher = match_node_name_start_goal(full_name, target['start_state'], target['goal_state'])
+                handlers.append(EventHandler(matcher=matcher, entities=then, handle_once=True))
             error_handler = EventHandler(
-                matcher=_reached(full_name, None, 'errorprocessing'),
+                matcher=match_node_name_goal(full_name, 'errorprocessing'),
                 entities=[OpaqueFunction(function=lambda ctx, n=full_name: self._stop(
                     ctx, n, 'error occurred during transitions'))],
                 handle_once=True)
@@ -112,8 +112,15 @@ class LifecycleTransition(Action):
         return [*registrations, *first_requests]
 
 
-def _reached(node_name: str, start_state: str | None, goal_state: str) -> Any:
-    return lambda event: (isinstance(event, StateTransition)
-                          and getattr(event.action, 'node_name', None) == node_name
-                          and (start_state is None or event.start_state == start_state)
+def match_node_name_start_goal(node_name: str, start_state: str, goal_state: str) -> Callable[[Event], bool]:
+    """Matcher of the StateTransition of node node_name ('/' added if missing) from start to goal state."""
+    goal_matcher = match_node_name_goal(node_name, goal_state)
+    return lambda event: (goal_matcher(event) and isinstance(event, StateTransition)
+                          and event.start_state == start_state)
+
+
+def match_node_name_goal(node_name: str, goal_state: str) -> Callable[[Event], bool]:
+    """Matcher of a StateTransition of node node_name ('/' added if missing) into goal_state."""
+    full_name = node_name if node_name.startswith('/') else '/' + node_name
+    return lambda event: (isinstance(event, StateTransition) and event.action.node_name == full_name
                           and event.goal_state == goal_state)

@@ -10,7 +10,7 @@ from launch.some_substitutions_type import SomeSubstitutionsType
 from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
 
 from launch_ros.actions.node import validate_namespace
-from launch_ros.utilities.namespace_utils import join_namespaces, make_namespace_absolute
+from launch_ros.utilities.namespace_utils import make_namespace_absolute, prefix_namespace
 
 if TYPE_CHECKING:
     from launch.frontend import Entity, Parser
@@ -35,7 +35,7 @@ class PushROSNamespace(Action):
         """Push the namespace, under the one already pushed if relative; ValueError if it is not valid."""
         pushed = context.launch_configurations.get('ros_namespace')
         namespace = make_namespace_absolute(
-            join_namespaces(pushed, perform_substitutions(context, self.namespace)))
+            prefix_namespace(pushed, perform_substitutions(context, self.namespace)))
         validate_namespace(namespace)
         context.launch_configurations['ros_namespace'] = namespace
 
