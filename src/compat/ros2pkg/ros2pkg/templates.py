@@ -6,10 +6,11 @@ import os
 from dataclasses import dataclass, field
 from xml.sax.saxutils import escape, quoteattr
 
-# ament_lint_auto/ament_copyright/ament_flake8/ament_pep257 are not installable in this
-# environment, so the generated tests check the same things with tools that are: ruff (which
-# implements the flake8 and pep257 rules) for Python, catkin_pkg and the node itself for C++.
-PYTHON_TEST_DEPENDS = ('python3-pytest', 'python3-ruff')
+# Upstream's test dependencies for Python packages; the ament_* ones are our packages of the same
+# names in src/compat (ruff stands in for flake8 and pydocstyle).
+PYTHON_TEST_DEPENDS = ('ament_copyright', 'ament_flake8', 'ament_pep257', 'python3-pytest')
+# ament_lint_auto/ament_lint_common would need a CMake linter set this environment lacks (see the
+# README), so CMake packages' tests check the manifest and the node with what is installed.
 CMAKE_TEST_DEPENDS = ('ament_cmake_test', 'python3-catkin-pkg')
 
 
@@ -30,14 +31,14 @@ class PackageSettings:
 
     @property
     def buildtool_depends(self) -> list[str]:
-        """['ament_cmake'] for a CMake package, none for a Python one: package.xml's buildtool_depend."""
-        # Upstream uses ament_cmake_ros for libraries; it needs gtest/gmock, which are not
-        # installable here, so libraries get ament_cmake with BUILD_SHARED_LIBS on instead.
-        return ['ament_cmake'] if self.build_type == 'ament_cmake' else []
+        """package.xml's buildtool_depend: ament_cmake_ros for a CMake library, else ament_cmake or none."""
+        if self.build_type != 'ament_cmake':
+            return []
+        return ['ament_cmake_ros'] if self.library_name else ['ament_cmake']
 
     @property
     def test_depends(self) -> list[str]:
-        """The test_depend entries: pytest and ruff for Python, ament_cmake_test and catkin_pkg for CMake."""
+        """The test_depend entries: PYTHON_TEST_DEPENDS or CMAKE_TEST_DEPENDS, by build type."""
         return list(PYTHON_TEST_DEPENDS if self.build_type == 'ament_python' else CMAKE_TEST_DEPENDS)
 
     @property
@@ -83,7 +84,7 @@ def package_xml(p: PackageSettings) -> str:
 def setup_py(p: PackageSettings) -> str:
     """setup.py of an ament_python package, with a console script for the node if one was asked for."""
     scripts = [f'{p.node_name} = {p.name}.{p.node_name}:main'] if p.node_name else []
-    script_lines = ''.join(f'            {s!r},\n' for s in scripts)
+    script_lines = ''.join(f'            {s!r}\n' for s in scripts)
     return (
         'from setuptools import find_packages, setup\n'
         '\n'
@@ -124,9 +125,6 @@ def setup_cfg(p: PackageSettings) -> str:
 def python_node(p: PackageSettings) -> str:
     """The Python node: a main() that prints a greeting."""
     return (
-        f'"""The {p.node_name} executable of {p.name}."""\n'
-        '\n'
-        '\n'
         'def main():\n'
         f"    print('Hi from {p.name}.')\n"
         '\n'
@@ -136,41 +134,51 @@ def python_node(p: PackageSettings) -> str:
     )
 
 
-def _ruff_test(summary: str, options: str) -> str:
+def _linter_test(module: str, function: str, markers: tuple[str, ...], body: str,
+                 comment: str = '') -> str:
+    """A test/test_<linter>.py as upstream writes it: import the linter's entry point, mark, call."""
+    decorators = ''.join(f'@pytest.mark.{marker}\n' for marker in markers)
     return (
-        f'"""{summary}"""\n'
-        '\n'
-        'import subprocess\n'
-        'import sys\n'
-        'from pathlib import Path\n'
-        '\n'
-        'PACKAGE_DIR = Path(__file__).resolve().parents[1]\n'
-        f'RUFF_OPTIONS = {options}\n'
+        f'from {module}.main import {function}\n'
+        'import pytest\n'
         '\n'
         '\n'
-        'def test_ruff_finds_nothing():\n'
-        '    result = subprocess.run(\n'
-        "        [sys.executable, '-m', 'ruff', 'check', '--isolated', '--no-cache',\n"
-        '         *RUFF_OPTIONS, str(PACKAGE_DIR)],\n'
-        '        capture_output=True, text=True)\n'
-        '    assert result.returncode == 0, result.stdout + result.stderr\n'
+        f'{comment}'
+        f'{decorators}'
+        f'{body}'
     )
 
 
+def copyright_test(p: PackageSettings) -> str:
+    """test/test_copyright.py: ament_copyright on the package, skipped until the files carry headers."""
+    return _linter_test(
+        'ament_copyright', 'main', (
+            "skip(reason='No copyright header has been placed in the generated source file.')",
+            'copyright', 'linter'),
+        'def test_copyright():\n'
+        "    rc = main(argv=['.', 'test'])\n"
+        "    assert rc == 0, 'Found errors'\n",
+        comment='# Delete the skip mark once every source file starts with a copyright and license header\n')
+
+
 def flake8_test(p: PackageSettings) -> str:
-    """test/test_flake8.py: ament_flake8's checks, run with ruff."""
-    return _ruff_test(
-        'Code style: the pycodestyle, pyflakes and quote rules of ament_flake8, checked by ruff.',
-        """['--select', 'E,W,F,Q', '--line-length', '99',\n"""
-        """                '--config', "lint.flake8-quotes.inline-quotes='single'"]""")
+    """test/test_flake8.py: ament_flake8 on the package, failing with the list of problems."""
+    return _linter_test(
+        'ament_flake8', 'main_with_errors', ('flake8', 'linter'),
+        'def test_flake8():\n'
+        '    rc, errors = main_with_errors(argv=[])\n'
+        '    assert rc == 0, \\\n'
+        "        'Found %d code style errors / warnings:\\n' % len(errors) + \\\n"
+        "        '\\n'.join(errors)\n")
 
 
 def pep257_test(p: PackageSettings) -> str:
-    """test/test_pep257.py: the pep257 docstring checks of ament_pep257, run with ruff."""
-    return _ruff_test(
-        'Docstrings follow PEP 257 where there are any (checked by ruff).',
-        """['--select', 'D', '--config', "lint.pydocstyle.convention='pep257'",\n"""
-        """                '--ignore', 'D100,D101,D102,D103,D104,D105,D106,D107']""")
+    """test/test_pep257.py: ament_pep257 on the package's code and tests."""
+    return _linter_test(
+        'ament_pep257', 'main', ('linter', 'pep257'),
+        'def test_pep257():\n'
+        "    rc = main(argv=['.', 'test'])\n"
+        "    assert rc == 0, 'Found code style errors / warnings'\n")
 
 
 # ---------------------------------------------------------------------------- ament_cmake
@@ -189,7 +197,9 @@ def cmakelists(p: PackageSettings) -> str:
         'endif()',
         '',
         '# find dependencies',
-        f'find_package({p.buildtool_depends[0]} REQUIRED)',
+        'find_package(ament_cmake REQUIRED)',
+        # ament_cmake_ros builds libraries shared unless BUILD_SHARED_LIBS says otherwise.
+        *(['find_package(ament_cmake_ros REQUIRED)'] if p.library_name else []),
     ]
     out += [f'find_package({dep} REQUIRED)' for dep in p.dependencies] or [
         '# further dependencies: find_package(<dependency> REQUIRED) for each one']
@@ -200,7 +210,6 @@ def cmakelists(p: PackageSettings) -> str:
     if lib:
         out += [
             '',
-            'option(BUILD_SHARED_LIBS "Build shared libraries" ON)',
             f'add_library({lib} src/{lib}.cpp)',
             f'add_library({p.name}::{lib} ALIAS {lib})',
             f'target_compile_features({lib} PUBLIC c_std_99 cxx_std_17)',

@@ -2,6 +2,8 @@
 
 import ast
 import os
+import subprocess
+import sys
 import xml.etree.ElementTree as ET
 
 import pytest
@@ -16,6 +18,7 @@ from ros2pkg.api.create import (
     default_email,
     plan,
     summary,
+    write_package,
 )
 from ros2pkg.templates import LICENSES, PackageSettings, cmakelists, package_xml, setup_py
 
@@ -137,7 +140,8 @@ def test_python_plan_follows_upstream_order(tmp_path):
         f'creating folder {root}/my_pkg', f'creating {root}/setup.py', f'creating {root}/setup.cfg',
         f'creating folder {root}/resource', f'creating {root}/resource/my_pkg',
         f'creating {root}/my_pkg/__init__.py', f'creating folder {root}/test',
-        f'creating {root}/test/test_flake8.py', f'creating {root}/test/test_pep257.py',
+        f'creating {root}/test/test_copyright.py', f'creating {root}/test/test_flake8.py',
+        f'creating {root}/test/test_pep257.py',
         f'creating {root}/my_pkg/talker.py']
     assert plan(p, str(tmp_path))[-1].path == f'{root}/LICENSE'  # written silently
 
@@ -166,7 +170,7 @@ def test_setup_py_is_valid_python_even_with_quotes_in_values():
     p = PackageSettings(name='p', build_type='ament_python', description="it's \"quoted\"",
                         node_name='n')
     tree = ast.parse(setup_py(p))
-    assert "'n = p.n:main'" in setup_py(p)
+    assert "            'n = p.n:main'\n        ],\n" in setup_py(p)  # upstream's: no trailing comma
     assert tree.body
 
 
@@ -176,7 +180,8 @@ def test_cmakelists_declares_dependencies_node_library_and_tests():
     for expected in ('project(p)', 'find_package(std_msgs REQUIRED)', 'add_executable(n src/n.cpp)',
                      'add_library(lib src/lib.cpp)', 'target_link_libraries(n lib ${std_msgs_TARGETS})',
                      'ament_add_test(n_runs', 'PASS_REGULAR_EXPRESSION "hello world p package"',
-                     'ament_export_targets(export_${PROJECT_NAME})', 'ament_package()'):
+                     'ament_export_targets(export_${PROJECT_NAME})', 'ament_package()',
+                     'find_package(ament_cmake REQUIRED)\nfind_package(ament_cmake_ros REQUIRED)\n'):
         assert expected in text
     assert text.count('(') == text.count(')')
 
@@ -200,3 +205,64 @@ def test_package_format_2_is_declared(tmp_path):
     assert '<package format="2">' in text
     assert 'package_format2.xsd' in text
     assert parse_package_string(text).package_format == 2
+
+
+def written_python_package(tmp_path, **overrides):
+    p = settings(tmp_path, **overrides)
+    write_package(plan(p, str(tmp_path)), say=lambda line: None)
+    return tmp_path / p.name
+
+
+def decorators_and_calls(source):
+    """{test function: (its decorators, the linter call in it)} of a generated test file."""
+    tree = ast.parse(source)
+    return {node.name: ([ast.unparse(d) for d in node.decorator_list], ast.unparse(node.body[0].value))
+            for node in tree.body if isinstance(node, ast.FunctionDef)}
+
+
+def test_python_packages_get_upstreams_linter_tests_and_test_depends(tmp_path):
+    package = written_python_package(tmp_path)
+    tests = {path.name: path.read_text() for path in (package / 'test').iterdir()}
+    assert sorted(tests) == ['test_copyright.py', 'test_flake8.py', 'test_pep257.py']
+    assert tests['test_copyright.py'].startswith('from ament_copyright.main import main\nimport pytest\n')
+    assert decorators_and_calls(tests['test_copyright.py']) == {'test_copyright': (
+        ["pytest.mark.skip(reason='No copyright header has been placed in the generated source file.')",
+         'pytest.mark.copyright', 'pytest.mark.linter'], "main(argv=['.', 'test'])")}
+    assert tests['test_flake8.py'].startswith(
+        'from ament_flake8.main import main_with_errors\nimport pytest\n')
+    assert decorators_and_calls(tests['test_flake8.py']) == {'test_flake8': (
+        ['pytest.mark.flake8', 'pytest.mark.linter'], 'main_with_errors(argv=[])')}
+    assert tests['test_pep257.py'].startswith('from ament_pep257.main import main\nimport pytest\n')
+    assert decorators_and_calls(tests['test_pep257.py']) == {'test_pep257': (
+        ['pytest.mark.linter', 'pytest.mark.pep257'], "main(argv=['.', 'test'])")}
+    manifest = parse_package_string((package / 'package.xml').read_text())
+    assert [str(d) for d in manifest.test_depends] == [
+        'ament_copyright', 'ament_flake8', 'ament_pep257', 'python3-pytest']
+
+
+def run_package_tests(package):
+    return subprocess.run([sys.executable, '-m', 'pytest', '-p', 'no:cacheprovider', '-q'],
+                          cwd=package, capture_output=True, text=True, timeout=120)
+
+
+def test_a_fresh_python_package_passes_its_linter_tests_and_they_catch_problems(tmp_path):
+    package = written_python_package(tmp_path, node_name='talker', license_name='MIT')
+    fresh = run_package_tests(package)
+    assert fresh.returncode == 0, fresh.stdout + fresh.stderr
+    assert '2 passed, 1 skipped' in fresh.stdout
+    (package / 'my_pkg' / 'talker.py').write_text('import os\n\n\ndef main():\n    """Greet."""\n')
+    broken = run_package_tests(package)
+    assert broken.returncode == 1
+    assert 'F401' in broken.stdout
+    assert '1 failed, 1 passed, 1 skipped' in broken.stdout  # flake8's test fails, pep257's passes
+
+
+def test_cmake_libraries_build_with_ament_cmake_ros_as_upstream(tmp_path):
+    def buildtool_depends(p):
+        return [str(d) for d in parse_package_string(package_xml(p)).buildtool_depends]
+
+    library = settings(tmp_path, build_type='ament_cmake', library_name='lib')
+    assert buildtool_depends(library) == ['ament_cmake_ros']
+    node_only = settings(tmp_path, build_type='ament_cmake', node_name='n')
+    assert buildtool_depends(node_only) == ['ament_cmake']
+    assert 'ament_cmake_ros' not in cmakelists(node_only)

@@ -193,6 +193,7 @@ def plan(p: PackageSettings, destination: str) -> list[Step]:
             Step('file', os.path.join(root, 'resource', p.name)),
             Step('file', os.path.join(source, '__init__.py')),
             Step('folder', test),
+            Step('file', os.path.join(test, 'test_copyright.py'), templates.copyright_test(p)),
             Step('file', os.path.join(test, 'test_flake8.py'), templates.flake8_test(p)),
             Step('file', os.path.join(test, 'test_pep257.py'), templates.pep257_test(p)),
         ]

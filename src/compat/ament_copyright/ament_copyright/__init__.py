@@ -1,0 +1,1 @@
+"""ament_copyright: source files carry a copyright notice and a known license."""

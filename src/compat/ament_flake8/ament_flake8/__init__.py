@@ -1,0 +1,1 @@
+"""ament_flake8: ament's flake8 rules for Python code, checked here with ruff."""

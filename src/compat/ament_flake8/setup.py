@@ -1,0 +1,24 @@
+from setuptools import find_packages, setup
+
+package_name = 'ament_flake8'
+
+setup(
+    name=package_name,
+    version='0.17.1',
+    packages=find_packages(exclude=['test']),
+    data_files=[
+        ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
+        ('share/' + package_name, ['package.xml', 'README.md']),
+    ],
+    install_requires=['setuptools'],
+    zip_safe=True,
+    maintainer='Owl Kit Lab',
+    maintainer_email='team@owlkitlab.invalid',
+    description="Checks Python code against ament's flake8 rules, with ruff.",
+    license='Apache-2.0',
+    tests_require=['pytest'],
+    entry_points={
+        'console_scripts': ['ament_flake8 = ament_flake8.main:main'],
+        'pytest11': ['ament_flake8 = ament_flake8.pytest_marker'],
+    },
+)
