@@ -27,6 +27,8 @@ class Parser(BaseParser):
 
         def start(tag: str, attributes: dict[str, str]) -> None:
             entity = Entity(tag, attributes, [], path, parser.CurrentLineNumber)
+            if stack:
+                entity.parent = stack[-1]
             (stack[-1]._elements if stack else roots).append(entity)
             stack.append(entity)
 

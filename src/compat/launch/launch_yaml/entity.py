@@ -28,7 +28,10 @@ class Entity(BaseEntity):
             return []
         if not isinstance(items, list):
             raise self.error(f"'{tag}' of `{self.type_name}` must be a list")
-        return [_yaml_item(tag, item, self.file, self._line_of(item)) for item in items]
+        nested: list[BaseEntity] = [_yaml_item(tag, item, self.file, self._line_of(item)) for item in items]
+        for entity in nested:
+            entity.parent = self
+        return nested
 
     def action_children(self) -> list[BaseEntity]:
         """The actions inside a container tag (launch, group, timer)."""
@@ -37,7 +40,10 @@ class Entity(BaseEntity):
             items = self.get_attr('children', optional=True) or []
         if not isinstance(items, list):
             raise self.error(f"the children of `{self.type_name}` must be a list")
-        return [yaml_entity(item, self.file) for item in items]
+        children: list[BaseEntity] = [yaml_entity(item, self.file) for item in items]
+        for child in children:
+            child.parent = self
+        return children
 
     def _line_of(self, item: Any) -> int | None:
         return getattr(item, 'line', self.line)

@@ -4,6 +4,7 @@ import asyncio
 import os
 import sys
 import warnings
+from typing import List  # noqa: UP035 (launch-file code written for upstream uses it)
 
 import pytest
 from launch import LaunchContext, LaunchDescription, LaunchService
@@ -25,7 +26,7 @@ from launch.conditions import LaunchConfigurationEquals
 from launch.descriptions import Executable
 from launch.event_handlers import OnProcessIO
 from launch.events.process import ProcessStdout
-from launch.frontend import Parser, expose_action, expose_substitution, load_launch_file
+from launch.frontend import Entity, Parser, expose_action, expose_substitution, load_launch_file
 from launch.frontend.expose import substitution_parse_methods
 from launch.frontend.parse_substitution import parse_if_substitutions, parse_substitution
 from launch.invalid_launch_file_error import InvalidLaunchFileError
@@ -222,6 +223,29 @@ def test_an_action_may_be_exposed_through_a_parse_function(tmp_path):
     description = load_launch_file(xml_file(tmp_path, '<shout_log message="hi"/>'), 'xml')
     [action] = description.entities
     assert isinstance(action, LogInfo)
+
+
+def test_an_actions_parser_reads_nested_tags_the_upstream_way(tmp_path):
+    @expose_action('say_lines')
+    def parse_say_lines(entity, parser):
+        lines = entity.get_attr('line', data_type=List[Entity])  # noqa: UP006 (as upstream's code writes it)
+        assert all(line.parent is entity for line in lines)
+        return LogInfo, {'msg': ' / '.join(line.get_attr('text') for line in lines)}
+
+    xml = load_launch_file(xml_file(tmp_path, '<say_lines><line text="a"/><line text="b"/></say_lines>'),
+                           'xml')
+    yaml_path = tmp_path / 'surface.launch.yaml'
+    yaml_path.write_text('launch:\n- say_lines:\n    line:\n    - text: a\n    - text: b\n')
+    for description in (xml, load_launch_file(str(yaml_path), 'yaml')):
+        [action] = description.entities
+        assert [sub.text for sub in action.msg] == ['a / b']
+
+    root, _parser = Parser.load(xml_file(tmp_path, '<group><log message="x"/></group>'))
+    [group] = root.children
+    assert [child.type_name for child in group.children] == ['log']
+    assert group.get_attr('missing', data_type=list[Entity], optional=True) is None
+    with pytest.raises(ValueError, match="Nested tag 'missing' of type 'group' not found"):
+        group.get_attr('missing', data_type=list[Entity])
 
 
 def test_timer_period_is_read_as_a_float_and_a_string_literal_warns(tmp_path):

@@ -7,7 +7,7 @@ actions are written is the format's.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, get_args, get_origin
 
 from launch.utilities.type_utils import get_typed_value, is_instance_of
 
@@ -25,12 +25,19 @@ class Entity:
     # Whether the tag comes from an XML file (its errors say attributes, YAML's say keys).
     is_xml = False
 
-    def __init__(self, type_name: str, attributes: dict[str, Any], file: str, line: int | None) -> None:
+    def __init__(self, type_name: str, attributes: dict[str, Any], file: str, line: int | None,
+                 parent: Entity | None = None) -> None:
         self.type_name = type_name
         self._attributes = attributes
         self.file = file
         self.line = line
+        self.parent = parent
         self._used_attributes: set[str] = set()
+
+    @property
+    def children(self) -> list[Entity]:
+        """The actions inside this tag, as upstream's Entity.children gives them."""
+        return self.action_children()
 
     @property
     def location(self) -> str:
@@ -48,6 +55,12 @@ class Entity:
         upstream's frontends do; can_be_str keeps text that does not convert (it may hold a
         `$(...)`, see Parser.parse_if_substitutions).
         """
+        if _is_entity_list(data_type):
+            # Upstream's way for an action's parser to read nested tags: get_attr('remap', List[Entity]).
+            nested = self.get_children(name)
+            if nested or optional:
+                return nested or None
+            raise self.error(f"Nested tag '{name}' of type '{self.type_name}' not found")
         self._used_attributes.add(name)
         if name not in self._attributes:
             if optional:
@@ -82,3 +95,11 @@ class Entity:
         if unexpected:
             kind = 'attribute(s)' if self.is_xml else 'key(s)'
             raise self.error(f'Unexpected {kind} found in `{self.type_name}`: {unexpected}')
+
+
+def _is_entity_list(data_type: Any) -> bool:
+    """Whether data_type is List[Entity] or list[Entity] (of this Entity or a frontend's subclass)."""
+    if get_origin(data_type) is not list:  # typing.List[X] has list as its origin too
+        return False
+    args = get_args(data_type)
+    return len(args) == 1 and isinstance(args[0], type) and issubclass(args[0], Entity)
