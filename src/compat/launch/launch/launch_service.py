@@ -19,6 +19,8 @@ from launch.events.shutdown import Shutdown
 from launch.launch_context import LaunchContext
 from launch.launch_description import LaunchDescription
 from launch.launch_description_entity import LaunchDescriptionEntity
+from launch.utilities.signal_management import AsyncSafeSignalManager
+from launch.utilities.visit_all_entities_and_collect_futures_impl import visit_entities_into
 
 
 async def _shutdown_queued() -> None:
@@ -43,7 +45,7 @@ class LaunchService:
         self.__context.register_event_handler(OnIncludeLaunchDescription())
         self.__context.register_event_handler(CallbackEventHandler(
             matcher=lambda event: isinstance(event, Shutdown), callback=self._on_shutdown))
-        self.__futures: list[tuple[LaunchDescriptionEntity | None, asyncio.Future]] = []
+        self.__futures: list[tuple[LaunchDescriptionEntity, asyncio.Future]] = []
         self.__return_code = 0
         self.__loop: asyncio.AbstractEventLoop | None = None
         self.__sigint_count = 0
@@ -109,21 +111,20 @@ class LaunchService:
         main_task = asyncio.current_task()
         assert main_task is not None
         loop.set_exception_handler(self._on_asyncio_exception)
-        installed = self._install_signal_handlers(loop, main_task)
-        try:
-            await self._process_events(shutdown_when_idle)
-        except asyncio.CancelledError:
-            self.__logger.error('run task was canceled')
-            self.__return_code = 1
-            self._kill_leftover_processes()
-        finally:
-            for sig in installed:
-                loop.remove_signal_handler(sig)
-            self.__loop = None
+        with AsyncSafeSignalManager(loop) as signals:
+            self._install_signal_handlers(signals, main_task)
+            try:
+                await self._process_events(shutdown_when_idle)
+            except asyncio.CancelledError:
+                self.__logger.error('run task was canceled')
+                self.__return_code = 1
+                self._kill_leftover_processes()
+            finally:
+                self.__loop = None
         return self.__return_code
 
-    def _install_signal_handlers(self, loop: asyncio.AbstractEventLoop, main_task: asyncio.Task) -> list[int]:
-        def on_sigint() -> None:
+    def _install_signal_handlers(self, signals: AsyncSafeSignalManager, main_task: asyncio.Task) -> None:
+        def on_sigint(_signum: int) -> None:
             self.__sigint_count += 1
             if self.__sigint_count > 1:
                 self.__logger.warning('user interrupted with ctrl-c (SIGINT) again, ignoring...')
@@ -131,22 +132,19 @@ class LaunchService:
             self.__logger.warning('user interrupted with ctrl-c (SIGINT)')
             self.__context.emit_event_sync(Shutdown(reason='ctrl-c (SIGINT)', due_to_sigint=True))
 
-        def on_terminate(name: str) -> None:
+        def on_terminate(signum: int) -> None:
+            name = signal.Signals(signum).name
             self.__logger.error(f'user interrupted with ctrl-\\ ({name}), terminating...')
             self.__logger.error(f'using {name} can result in orphaned processes')
             self.__logger.error('make sure no processes launched are still running')
             main_task.cancel()
 
-        installed: list[int] = []
-        for sig, handler, args in ((signal.SIGINT, on_sigint, ()),
-                                   (signal.SIGTERM, on_terminate, ('SIGTERM',)),
-                                   (signal.SIGQUIT, on_terminate, ('SIGQUIT',))):
+        for signum, handler in ((signal.SIGINT, on_sigint), (signal.SIGTERM, on_terminate),
+                                (signal.SIGQUIT, on_terminate)):
             try:
-                loop.add_signal_handler(sig, handler, *args)
-                installed.append(sig)
-            except (ValueError, RuntimeError):  # not the main thread of the main interpreter
+                signals.handle(signum, handler)
+            except ValueError:  # not the main thread of the main interpreter
                 pass
-        return installed
 
     def _on_asyncio_exception(self, loop: asyncio.AbstractEventLoop, details: dict[str, Any]) -> None:
         self._report(details.get('exception') or RuntimeError(details.get('message', 'asyncio error')))
@@ -168,15 +166,7 @@ class LaunchService:
 
     def _visit(self, entity: LaunchDescriptionEntity) -> None:
         """Visit an entity and, depth first and in order, whatever it yields."""
-        if not isinstance(entity, LaunchDescriptionEntity):
-            raise TypeError(f"expected a launch description entity, got '{type(entity).__name__}': "
-                            f'{entity!r}')
-        sub_entities = entity.visit(self.__context)
-        future = entity.get_asyncio_future()
-        if future is not None:
-            self.__futures.append((entity, future))
-        for sub_entity in sub_entities or []:
-            self._visit(sub_entity)
+        visit_entities_into(entity, self.__context, self.__futures)
 
     def _handle(self, event: Event) -> None:
         context = self.__context

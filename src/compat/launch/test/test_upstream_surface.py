@@ -2,6 +2,7 @@
 
 import asyncio
 import os
+import signal
 import sys
 import warnings
 from typing import List  # noqa: UP035 (launch-file code written for upstream uses it)
@@ -43,7 +44,13 @@ from launch.substitutions import (
     SubstitutionFailure,
     TextSubstitution,
 )
-from launch.utilities import isclassinstance, normalize_to_list_of_entities, perform_substitutions
+from launch.utilities import (
+    AsyncSafeSignalManager,
+    isclassinstance,
+    normalize_to_list_of_entities,
+    perform_substitutions,
+    visit_all_entities_and_collect_futures,
+)
 from launch.utilities.type_utils import coerce_to_type, is_normalized_substitution
 
 
@@ -323,3 +330,39 @@ def test_deprecations_launch_file_authors_meet_are_shown():
     assert [parser.__module__ for parser in Parser.get_parsers_from_filename('a.launch.yml')] == \
         ['launch_yaml.parser']
 
+
+
+def test_visiting_collects_each_entitys_future_depth_first():
+    context = LaunchContext()
+    first, second = TimerAction(period=30.0, actions=[]), TimerAction(period=30.0, actions=[])
+
+    async def visit():
+        context._asyncio_loop = asyncio.get_running_loop()
+        found = visit_all_entities_and_collect_futures(
+            GroupAction([first, LogInfo(msg='no future'), GroupAction([second])]), context)
+        for _, future in found:
+            future.cancel()
+        return found
+
+    found = asyncio.run(visit())
+    assert [entity for entity, _ in found] == [first, second]
+    with pytest.raises(TypeError, match="expected a launch description entity, got 'str'"):
+        visit_all_entities_and_collect_futures('not an entity', context)
+
+
+def test_signal_manager_runs_handlers_in_the_loop_for_its_block():
+    heard = []
+
+    async def main():
+        loop = asyncio.get_running_loop()
+        with AsyncSafeSignalManager(loop) as signals:
+            assert signals.handle(signal.SIGUSR1, heard.append) is None
+            os.kill(os.getpid(), signal.SIGUSR1)
+            await asyncio.sleep(0.2)
+            assert signals.handle(signal.SIGUSR1, None) == heard.append
+            signals.handle(signal.SIGUSR2, heard.append)
+        # Leaving the block took SIGUSR2's handler away: the loop has none for it.
+        assert not loop.remove_signal_handler(signal.SIGUSR2)
+
+    asyncio.run(main())
+    assert heard == [signal.SIGUSR1]
