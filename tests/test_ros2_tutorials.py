@@ -180,7 +180,7 @@ def test_service_info_and_echo_of_the_introspection_demo(ros: RosHarness):
     ('1', "Wrong parameter type for 'service_configure_introspection': expected string, got integer"),
 ])
 def test_an_introspection_value_that_names_no_state_is_refused(ros: RosHarness, value: str, reason: str):
-    ros.run('demo_nodes_py', 'introspection_service')
+    ros.run('demo_nodes_cpp', 'introspection_service')
     ros.probe.wait_for_node('introspection_service', timeout=20)
     result = ros2(ros, 'param', 'set', '/introspection_service', 'service_configure_introspection', value)
     assert f'Setting parameter failed: {reason}' in result.stdout + result.stderr, result
@@ -220,13 +220,51 @@ def test_cpp_talker_and_py_listener(ros: RosHarness):
 def test_py_talker_counts_from_zero_and_servers_answer_the_demo_clients(ros: RosHarness):
     talker = ros.command(['ros2', 'run', 'demo_nodes_py', 'talker'], label='talker')
     talker.wait_for(r'\[talker\]: Publishing: "Hello World: 0"', timeout=20)
+    # Before there is a server, Python's clients print their waiting line and C++'s log it.
+    waiting = {package: ros.command(['ros2', 'run', package, 'add_two_ints_client'], label=package)
+               for package in ('demo_nodes_py', 'demo_nodes_cpp')}
+    line = r'service not available, waiting again\.\.\.$'
+    waiting['demo_nodes_py'].wait_for('^' + line, timeout=20)
+    waiting['demo_nodes_cpp'].wait_for(r'^\[INFO\] \[\d+\.\d+\] \[add_two_ints_client\]: ' + line, timeout=20)
     ros.command(['ros2', 'run', 'demo_nodes_cpp', 'add_two_ints_server'], label='server')
+    for client in waiting.values():
+        client.wait_for(r'\[add_two_ints_client\]: Result of add_two_ints: 5$', timeout=20)
+        assert client.wait(10) == 0, client.tail()
     for package, executable in (('demo_nodes_py', 'add_two_ints_client'),
                                 ('demo_nodes_cpp', 'add_two_ints_client_async')):
         client = ros2(ros, 'run', package, executable)
         assert client.returncode == 0, client.stderr
         assert re.search(r'\[add_two_ints_client\]: Result of add_two_ints: 5$', client.stderr, re.M), \
             client.stderr
+
+
+def test_the_cpp_server_with_one_shot_ends_after_its_first_answer(ros: RosHarness):
+    server = ros.command(['ros2', 'run', 'demo_nodes_cpp', 'add_two_ints_server', '--ros-args', '-p',
+                          'one_shot:=true'], label='one-shot server')
+    client = ros2(ros, 'run', 'demo_nodes_cpp', 'add_two_ints_client')
+    assert 'Result of add_two_ints: 5' in client.stderr, client.stderr
+    assert server.wait(10) == 0, server.tail()
+    assert 'Traceback' not in server.output
+    # demo_nodes_py's server has no such parameter, as upstream's: it keeps serving.
+    py_server = ros.command(['ros2', 'run', 'demo_nodes_py', 'add_two_ints_server', '--ros-args', '-p',
+                             'one_shot:=true'], label='py server')
+    assert 'Result of add_two_ints: 5' in ros2(ros, 'run', 'demo_nodes_py', 'add_two_ints_client').stderr
+    time.sleep(1.0)
+    assert py_server.running(), py_server.tail()
+
+
+def test_the_python_introspection_demo_is_one_executable_with_both_nodes(ros: RosHarness):
+    # The service introspection page's Python command line.
+    demo = ros.command(['ros2', 'run', 'demo_nodes_py', 'introspection', '--ros-args', '-p',
+                        'client_configure_introspection:=metadata', '-p',
+                        'service_configure_introspection:=metadata'], label='introspection')
+    demo.wait_for(r'\[introspection_client\]: Result of add_two_ints: 5', timeout=30)
+    demo.wait_for(r'\[introspection_service\]: Incoming request', timeout=5)
+    for node, parameter in (('/introspection_service', 'service_configure_introspection'),
+                            ('/introspection_client', 'client_configure_introspection')):
+        assert ros2(ros, 'param', 'get', node, parameter).stdout == 'String value is: metadata\n'
+    demo.stop_cleanly()
+    assert 'Traceback' not in demo.output
 
 
 LAUNCH_FILES = {

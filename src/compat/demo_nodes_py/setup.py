@@ -24,8 +24,7 @@ setup(
             'add_two_ints_server = demo_nodes_py.services.add_two_ints_server:main',
             'add_two_ints_client = demo_nodes_py.services.add_two_ints_client:main',
             'add_two_ints_client_async = demo_nodes_py.services.add_two_ints_client_async:main',
-            'introspection_service = demo_nodes_py.services.introspection:service_main',
-            'introspection_client = demo_nodes_py.services.introspection:client_main',
+            'introspection = demo_nodes_py.services.introspection:main',
         ],
     },
 )

@@ -73,8 +73,8 @@ def init_with_stop_request(args: list[str] | None = None) -> StopRequest:
     return stop
 
 
-def spin_until_stopped(node: Node, stop: StopRequest) -> None:
-    """rclpy.spin(node) for a process started with init_with_stop_request.
+def spin_until_stopped(node: Node | list[Node], stop: StopRequest) -> None:
+    """rclpy.spin(node) for a process started with init_with_stop_request (one node or several).
 
     Returns when ROS shuts down; raises KeyboardInterrupt at a stop request (Ctrl-C, SIGTERM), from
     here and never from inside rclpy, so a node's own clean-up (after `except KeyboardInterrupt`,
@@ -84,29 +84,33 @@ def spin_until_stopped(node: Node, stop: StopRequest) -> None:
     # constructor would leave a half-made executor whose __del__ prints a traceback (a Ctrl-C just
     # after rqt printed its address did, in one make test run).
     stop.polling = True
+    nodes = node if isinstance(node, list) else [node]
     executor = rclpy.get_global_executor()
-    executor.add_node(node)
+    for each in nodes:
+        executor.add_node(each)
     try:
         while rclpy.ok() and not stop.requested:
             executor.spin_once(timeout_sec=SIGNAL_POLL)
     finally:
-        executor.remove_node(node)
+        for each in nodes:
+            executor.remove_node(each)
     if stop.requested:
         raise KeyboardInterrupt
 
 
-def spin_node(make_node: Callable[[], Node], args: list[str] | None = None) -> None:
-    """Initialise rclpy, spin the node make_node() builds, and clean up on every exit path.
+def spin_node(make_node: Callable[[], Node | list[Node]], args: list[str] | None = None) -> None:
+    """Initialise rclpy, spin the node (or nodes) make_node() builds, and clean up on every exit path.
 
     A bad startup parameter ends the process with one error line and exit code 2.
     """
     stop = init_with_stop_request(args)
-    node = None
+    nodes: list[Node] = []
     try:
-        node = make_node()
-        spin_until_stopped(node, stop)
+        made = make_node()
+        nodes = made if isinstance(made, list) else [made]
+        spin_until_stopped(nodes, stop)
     except STARTUP_ERRORS as error:
-        if node is not None:
+        if nodes:
             raise
         print(f'error: {error}', file=sys.stderr)
         rclpy.try_shutdown()
@@ -115,6 +119,6 @@ def spin_node(make_node: Callable[[], Node], args: list[str] | None = None) -> N
         pass  # Ctrl-C is how the course stops nodes: no traceback.
     finally:
         begin_cleanup()
-        if node is not None:
+        for node in nodes:
             node.destroy_node()
         rclpy.try_shutdown()

@@ -18,25 +18,36 @@ class AddTwoIntsClient(Node):
         super().__init__(node_name)
         self.client = self.create_client(AddTwoInts, 'add_two_ints')
 
-    def wait_for_server(self) -> None:
+    def wait_for_server(self, say: Callable[[Node, str], None]) -> None:
         """Wait as long as it takes, saying so every WAIT_STEP."""
         while not self.client.wait_for_service(timeout_sec=WAIT_STEP):
-            self.get_logger().info('service not available, waiting again...')
+            say(self, 'service not available, waiting again...')
 
     def request(self, a: int, b: int) -> rclpy.task.Future:
         """Send a and b; the future completes with the response."""
         return self.client.call_async(AddTwoInts.Request(a=a, b=b))
 
 
-def run_client(args: list[str] | None, wait_for_answer: Callable[[Node, Future], None]) -> None:
+def print_line(node: Node, line: str) -> None:
+    """How demo_nodes_py's clients say they wait: a plain line on stdout, not a log line."""
+    print(line, flush=True)
+
+
+def log_line(node: Node, line: str) -> None:
+    """How demo_nodes_cpp's clients say they wait: an info line of the node's logger."""
+    node.get_logger().info(line)
+
+
+def run_client(args: list[str] | None, wait_for_answer: Callable[[Node, Future], None],
+               say_waiting: Callable[[Node, str], None] = print_line) -> None:
     """Wait for the server, ask for 2 + 3, wait for the answer as told, log the sum and exit.
 
-    Ctrl-C while waiting ends quietly.
+    say_waiting says the server is not there yet. Ctrl-C while waiting ends quietly.
     """
     rclpy.init(args=args)
     node = AddTwoIntsClient()
     try:
-        node.wait_for_server()
+        node.wait_for_server(say_waiting)
         future = node.request(2, 3)
         wait_for_answer(node, future)
         if future.done():

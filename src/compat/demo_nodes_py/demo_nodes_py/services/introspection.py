@@ -97,6 +97,11 @@ class IntrospectionClient(Node):
         self.get_logger().info(f'Result of add_two_ints: {future.result().sum}')
 
 
+def main(args: list[str] | None = None) -> None:
+    """demo_nodes_py's `introspection`: the service and the client in one process, until Ctrl-C."""
+    spin_node(lambda: [IntrospectionService(), IntrospectionClient()], args)
+
+
 def service_main(args: list[str] | None = None) -> None:
     """Run introspection_service until Ctrl-C."""
     spin_node(IntrospectionService, args)

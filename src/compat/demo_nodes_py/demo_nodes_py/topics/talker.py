@@ -10,14 +10,14 @@ PERIOD = 1.0  # s
 class Talker(Node):
     """Publishes a counted greeting every PERIOD and logs each one.
 
-    demo_nodes_cpp's talker differs only in the count it starts at and its log line's quotes.
+    demo_nodes_cpp's talker differs in the count it starts at, its log line's quotes and its depth.
     """
 
-    def __init__(self, first_count: int = 0, log_line: str = 'Publishing: "{}"') -> None:
+    def __init__(self, first_count: int = 0, log_line: str = 'Publishing: "{}"', depth: int = 10) -> None:
         super().__init__('talker')
         self.count = first_count
         self.log_line = log_line
-        self.publisher = self.create_publisher(String, 'chatter', 10)
+        self.publisher = self.create_publisher(String, 'chatter', depth)
         self.timer = self.create_timer(PERIOD, self.publish_greeting)
 
     def publish_greeting(self) -> None:
