@@ -232,10 +232,10 @@ def test_py_talker_counts_from_zero_and_servers_answer_the_demo_clients(ros: Ros
         assert client.wait(10) == 0, client.tail()
     for package, executable in (('demo_nodes_py', 'add_two_ints_client'),
                                 ('demo_nodes_cpp', 'add_two_ints_client_async')):
-        client = ros2(ros, 'run', package, executable)
-        assert client.returncode == 0, client.stderr
-        assert re.search(r'\[add_two_ints_client\]: Result of add_two_ints: 5$', client.stderr, re.M), \
-            client.stderr
+        result = ros2(ros, 'run', package, executable)
+        assert result.returncode == 0, result.stderr
+        assert re.search(r'\[add_two_ints_client\]: Result of add_two_ints: 5$', result.stderr, re.M), \
+            result.stderr
 
 
 def test_the_cpp_server_with_one_shot_ends_after_its_first_answer(ros: RosHarness):
