@@ -36,15 +36,7 @@ from launch.substitutions import (
     PythonExpression,
 )
 
-
-@pytest.fixture(autouse=True)
-def isolated(tmp_path, monkeypatch):
-    """Logs under tmp_path; the environment launch changes is restored afterwards."""
-    monkeypatch.setenv('ROS_LOG_DIR', str(tmp_path / 'log'))
-    saved = dict(os.environ)
-    yield
-    os.environ.clear()
-    os.environ.update(saved)
+pytestmark = pytest.mark.usefixtures('isolated_launch')
 
 
 def run(*entities, argv=None) -> int:

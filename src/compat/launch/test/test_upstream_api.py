@@ -7,7 +7,6 @@ differ.
 import asyncio
 import importlib
 import io
-import os
 
 import pytest
 from launch import Condition, LaunchContext, LaunchDescription, LaunchService
@@ -30,6 +29,8 @@ from launch.substitutions import (
     SubstitutionFailure,
 )
 from launch.utilities.type_utils import coerce_to_type, get_typed_value
+
+pytestmark = pytest.mark.usefixtures('isolated_launch')
 
 # Module path -> a name upstream code imports from it.
 UPSTREAM_PATHS = {
@@ -62,15 +63,6 @@ UPSTREAM_PATHS = {
     'launch_xml.launch_description_sources.xml_launch_description_source': 'XMLLaunchDescriptionSource',
     'launch_yaml.launch_description_sources.yaml_launch_description_source': 'YAMLLaunchDescriptionSource',
 }
-
-
-@pytest.fixture(autouse=True)
-def isolated(tmp_path, monkeypatch):
-    monkeypatch.setenv('ROS_LOG_DIR', str(tmp_path / 'log'))
-    saved = dict(os.environ)
-    yield
-    os.environ.clear()
-    os.environ.update(saved)
 
 
 def run(*entities) -> int:

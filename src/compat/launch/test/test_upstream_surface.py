@@ -53,15 +53,7 @@ from launch.utilities import (
 )
 from launch.utilities.type_utils import coerce_to_type, is_normalized_substitution
 
-
-@pytest.fixture(autouse=True)
-def isolated(tmp_path, monkeypatch):
-    """Logs under tmp_path; the environment launch changes is restored afterwards."""
-    monkeypatch.setenv('ROS_LOG_DIR', str(tmp_path / 'log'))
-    saved = dict(os.environ)
-    yield
-    os.environ.clear()
-    os.environ.update(saved)
+pytestmark = pytest.mark.usefixtures('isolated_launch')
 
 
 def run(*entities) -> int:

@@ -27,6 +27,9 @@ from launch_ros.event_handlers import OnStateTransition
 from launch_ros.events.lifecycle import ChangeState
 from launch_ros.substitutions import Parameter
 
+pytestmark = pytest.mark.usefixtures('isolated_launch')
+
+
 UPSTREAM_PATHS = {
     'launch_ros.utilities': 'make_namespace_absolute',
     'launch_ros.utilities.evaluate_parameters': 'evaluate_parameters',
@@ -63,15 +66,6 @@ UPSTREAM_PATHS = {
     'launch_ros.remap_rule_type': 'SomeRemapRules',
     'launch_ros.ros_adapters': 'get_ros_node',
 }
-
-
-@pytest.fixture(autouse=True)
-def isolated(tmp_path, monkeypatch):
-    monkeypatch.setenv('ROS_LOG_DIR', str(tmp_path / 'log'))
-    saved = dict(os.environ)
-    yield
-    os.environ.clear()
-    os.environ.update(saved)
 
 
 def run(*entities) -> int:

@@ -44,10 +44,7 @@ from launch_ros.utilities.plugin_support import (
 )
 from packaging.version import Version
 
-
-@pytest.fixture(autouse=True)
-def isolated(tmp_path, monkeypatch):
-    monkeypatch.setenv('ROS_LOG_DIR', str(tmp_path / 'log'))
+pytestmark = pytest.mark.usefixtures('isolated_launch')
 
 
 def prepare(node: Node, *scope) -> list[str]:
