@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import re
+import socket
 import subprocess
 import textwrap
 import time
@@ -16,6 +17,7 @@ from pathlib import Path
 
 import pytest
 import yaml
+from gates import prerequisite_missing
 from owl_common.processes import RosProcess
 from ros_harness import RosHarness, wait_until
 from student_workspace import shell
@@ -400,6 +402,74 @@ def test_doctor_bad_options_are_one_usage_error(args: list[str]):
     assert result.returncode == 2
     assert 'Traceback' not in result.stderr
     assert re.match(r'ros2( doctor)?: error: ', result.stderr.splitlines()[-1]), result.stderr
+
+
+def unshare_uts_works() -> bool:
+    """Whether this process may give a child its own hostname (a UTS namespace; root)."""
+    try:
+        return subprocess.run(['unshare', '--uts', 'hostname', 'uts-check'], capture_output=True,
+                              timeout=TIMEOUT, check=False).returncode == 0
+    except FileNotFoundError:
+        return False
+
+
+def loopback_multicast_works() -> bool:
+    """Whether a datagram sent to a multicast group comes back to a member on this machine."""
+    group = '225.0.0.1'
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as member, \
+            socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as sender:
+        try:
+            member.bind(('', 0))
+            member.setsockopt(socket.IPPROTO_IP, socket.IP_ADD_MEMBERSHIP,
+                              socket.inet_aton(group) + socket.inet_aton('0.0.0.0'))
+            member.settimeout(2)
+            sender.sendto(b'ping', (group, member.getsockname()[1]))
+            return member.recv(16) == b'ping'
+        except OSError:
+            return False
+
+
+def hello_tables(process: RosProcess) -> list[dict[str, list[str]]]:
+    """The hostnames under 'Subscribed from:' and 'Received from:' of each complete table printed so far."""
+    tables: list[dict[str, list[str]]] = []
+    table: dict[str, list[str]] = {}
+    section = None
+    for line in process.output.splitlines():
+        if line == 'MULTIMACHINE COMMUNICATION SUMMARY':
+            table, section = {'Subscribed from:': [], 'Received from:': []}, None
+        elif line in table:
+            section = line
+        elif line == '-' * 60:
+            tables.append(table)
+            section = None
+        elif not line.startswith(' ' * 16):  # a count line ends the section of hosts
+            section = None
+        elif section and line.split()[0] != 'Hostname':
+            table[section].append(line.split()[0])
+    return tables
+
+
+def test_doctor_hello_on_two_hosts_hear_each_other(ros: RosHarness):
+    if not unshare_uts_works():
+        prerequisite_missing('`unshare --uts` cannot give a process another hostname here (it needs root)')
+    multicast = loopback_multicast_works()
+    here = socket.gethostname()
+    local = ros.command(['ros2', 'doctor', 'hello', '-pp', '0.5'], label='hello here')
+    other = ros.command(['unshare', '--uts', 'sh', '-c',
+                         'hostname other-host && exec ros2 doctor hello -pp 0.5'], label='hello other-host')
+
+    def heard(process: RosProcess, host: str) -> bool:  # over ROS, and over multicast where it works here
+        return any(host in table['Subscribed from:'] and (host in table['Received from:'] or not multicast)
+                   for table in hello_tables(process))
+
+    wait_until(lambda: heard(local, 'other-host') and heard(other, here), 40, 'each hello hearing the other')
+    assert all(here not in [*table['Subscribed from:'], *table['Received from:']]
+               for table in hello_tables(local))  # its own hellos are not counted
+    assert 'Multicast Group/Port: 225.0.0.1/49150, Sent Msg Count: ' in local.output
+    assert '                Hostname             Msg Count /0.5s' in local.output
+    for process in (local, other):
+        assert process.stop() == 0, process.tail()  # Ctrl-C is how hello ends, as upstream's
+        assert 'Traceback' not in process.output, process.output
 
 
 # ---- Recording and playing back data -----------------------------------------------------------

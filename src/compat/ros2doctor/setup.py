@@ -38,5 +38,7 @@ setup(
             'RosdistroReport = ros2doctor.api.platform:RosdistroReport',
             'TopicReport = ros2doctor.api.topic:TopicReport',
         ],
+        'ros2cli.extension_point': ['ros2doctor.verb = ros2doctor.verb:VerbExtension'],
+        'ros2doctor.verb': ['hello = ros2doctor.verb.hello:HelloVerb'],
     },
 )
