@@ -49,8 +49,10 @@ def test_options_ruff_refuses_are_a_clear_error(tmp_path):
         run_ruff([str(tmp_path / 'a.py')], ['--select', 'NOT_A_RULE'])
 
 
-def test_the_linter_marker_is_registered_with_pytest():
+def test_the_linter_marker_is_registered_with_pytest(tmp_path):
+    # In an empty folder, as a created package's tests run: from the repository this pytest would
+    # also load tests/conftest.py, whose start clears the running suite's rerun reports.
     markers = subprocess.run([sys.executable, '-m', 'pytest', '--markers', '-p', 'no:cacheprovider'],
-                             capture_output=True, text=True, check=True).stdout
+                             cwd=tmp_path, capture_output=True, text=True, check=True).stdout
     for marker in ('linter', 'flake8', 'pep257', 'copyright'):
         assert f'@pytest.mark.{marker}:' in markers
