@@ -84,6 +84,14 @@ def broken_tracker(tmp_path_factory) -> Path:
     )
 
 
+@pytest.fixture(scope='module')
+def slow_tracker(tmp_path_factory) -> Path:
+    """A tracker that centres a still ball but sends goals too seldom to follow a moving one."""
+    return build_from(
+        tmp_path_factory.mktemp('slow_tracker_ws'), [VARIANTS / 'track_slow_goals' / 'olive_vision']
+    )
+
+
 def test_list_gives_every_exercise_with_its_section_and_description():
     done = owl_check('--list')
     assert done.returncode == 0, done.stderr
@@ -275,8 +283,9 @@ def test_a_broken_variant_fails_with_the_right_hint(broken, exercise, criterion,
         ('broken', 'the pan servo points the camera at the still ball', 'turns away from the ball'),
         ('broken_too', 'enables the pan torque', 'ignores every goal while its torque is off'),
         ('broken_tracker', 'the tilt servo points the camera at the still ball', 'does not follow the ball'),
+        ('slow_tracker', 'the head follows the ball going round', 'the head falls behind or loses the ball'),
     ],
-    ids=['track_pan_reversed', 'track_no_torque', 'track_ignores_tilt'],
+    ids=['track_pan_reversed', 'track_no_torque', 'track_ignores_tilt', 'track_slow_goals'],
 )
 def test_a_broken_tracker_fails_with_the_right_hint(request, workspace, criterion, hint):
     folder = request.getfixturevalue(workspace)

@@ -166,6 +166,19 @@ def oscillates(values: Sequence[float], least_swing: float = 0.2) -> bool:
     return False
 
 
+def lag_behind_moving_target(position: float, at: float, start: float, speed: float,
+                             left_between: tuple[float, float]) -> float:
+    """How far position, measured at time at, is from a target that left start at speed.
+
+    When it left is known only within left_between (the call that set it going took a while), so
+    this is the smallest distance over that interval: the doubt is ours, not the tracker's.
+    """
+    reach = sorted(start + speed * (at - left) for left in left_between)
+    if reach[0] <= position <= reach[1]:
+        return 0.0
+    return min(abs(position - reach[0]), abs(position - reach[1]))
+
+
 def mean(values: Sequence[float]) -> float:
     """The arithmetic mean of values; 0.0 for none."""
     return sum(values) / len(values) if values else 0.0

@@ -320,6 +320,15 @@ def test_bounds_rate_and_sine():
     assert not judge.in_range('numbers', [1, 50], 1, 3, 'x').passed
 
 
+def test_lag_behind_a_moving_target_gives_the_benefit_of_the_doubt_about_its_start():
+    # A ball leaving 0.3 rad at 0.2 rad/s some time between t=10.0 and t=10.1; measured at t=12.0
+    # it is between 0.68 and 0.70 rad.
+    assert judge.lag_behind_moving_target(0.69, 12.0, 0.3, 0.2, (10.0, 10.1)) == 0.0
+    assert judge.lag_behind_moving_target(0.60, 12.0, 0.3, 0.2, (10.0, 10.1)) == pytest.approx(0.08)
+    assert judge.lag_behind_moving_target(0.75, 12.0, 0.3, 0.2, (10.0, 10.1)) == pytest.approx(0.05)
+    assert judge.lag_behind_moving_target(0.3, 9.0, 0.3, 0.0, (10.0, 10.0)) == 0.0  # a still target
+
+
 def test_currency_and_factorial_answers():
     good = judge.currency_answers([116.0, 88.0, 93.0], [290.0, 220.0, 232.5])
     assert all(c.passed for c in good)
