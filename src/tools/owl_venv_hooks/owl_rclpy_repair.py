@@ -17,7 +17,10 @@ of the last is the same Ctrl-C passed on by `ros2 launch` and is not raised agai
 exits after a Ctrl-C, the default context is shut down before Python joins the program's threads,
 so an executor spinning in a thread of its own stops as it did with rclpy's handler; a Ctrl-C
 that lands while Python joins those threads (after the program's main code ended) does the same
-instead of raising where nothing can catch it. Code that asks
+instead of raising where nothing can catch it. A Ctrl-C that lands while Python runs a finalizer
+(the executor drops a Task after each callback: Future.__del__) would be printed there as "Exception
+ignored" and lost, the node spinning on; it is given back to the main thread once the finalizer
+is over. Code that asks
 for upstream's behaviour keeps it: signal_handler_options given to rclpy.init, a SIGINT handler or
 wake-up fd of the program's own, rclpy.init outside the main thread or for another context.
 
@@ -79,6 +82,8 @@ __del__ does.
 
 from __future__ import annotations
 
+import _thread
+import contextlib
 import os
 import signal
 import sys
@@ -101,6 +106,8 @@ SPINS_UNTIL_FUTURE = ('spin_until_future_complete', 'spin_once_until_future_comp
 SENDS = ('send_goal_async', '_cancel_goal_async', '_get_result_async')  # ActionClient's requests
 CONVERSION_ERROR = 'Unable to convert call argument'
 SHUTDOWN_GRACE = 0.5  # s for rclpy's signal thread to shut the context down after its handler ran
+REDELIVER = 0  # a byte on the wake-up fd that is no signal's number: see raise_ctrl_c
+REDELIVER_AFTER = 0.002  # s: longer than a finalizer runs
 SAME_PRESS = 0.3  # s: SIGINTs this close together are one Ctrl-C (the terminal's and a launcher's)
 
 
@@ -141,6 +148,7 @@ class CtrlCAsOnHumble:
 
     sigint_guards: ClassVar[weakref.WeakSet[Any]] = weakref.WeakSet()
     installed = False
+    wake_up_fd = -1  # the write end of Python's signal wake-up fd, read by the owl-ctrl-c thread
     pressed_at: float | None = None  # time.monotonic() of the last Ctrl-C
 
     @classmethod
@@ -160,6 +168,7 @@ class CtrlCAsOnHumble:
             os.close(write_end)
             return False
         signal.signal(signal.SIGINT, raise_ctrl_c)
+        cls.wake_up_fd = write_end
         threading.Thread(target=cls.wake_executors, args=(read_end,), name='owl-ctrl-c',
                          daemon=True).start()
         threading._register_atexit(cls.shut_down_after_ctrl_c)  # type: ignore[attr-defined]
@@ -170,15 +179,21 @@ class CtrlCAsOnHumble:
     def wake_executors(cls, read_end: int) -> None:
         """The owl-ctrl-c thread: at each SIGINT on the wake-up fd, trigger every SIGINT guard condition.
 
-        That wakes the executors blocked in their wait, as rclpy's own handler does; it never returns.
+        That wakes the executors blocked in their wait, as rclpy's own handler does. At each
+        REDELIVER, a Ctrl-C that landed in a finalizer, it gives the main thread the Ctrl-C again a
+        moment later. It never returns.
         """
         while True:
-            if signal.SIGINT in os.read(read_end, 64):
+            received = os.read(read_end, 64)
+            if signal.SIGINT in received:
                 for guard in list(cls.sigint_guards):
                     try:
                         guard.trigger()
                     except Exception:  # destroyed meanwhile: nothing left to wake
                         pass
+            if REDELIVER in received:
+                time.sleep(REDELIVER_AFTER)
+                _thread.interrupt_main(signal.SIGINT)
 
     @classmethod
     def shut_down_after_ctrl_c(cls) -> None:
@@ -204,12 +219,33 @@ def raise_ctrl_c(signum: int, frame: FrameType | None) -> None:
     last = CtrlCAsOnHumble.pressed_at
     if last is not None and now - last < SAME_PRESS:
         return
+    shutting_down = in_threading_shutdown(frame)
+    if in_finalizer(frame) and not shutting_down:
+        # Raised here, Python would print it ("Exception ignored in: ... __del__") and drop it: the
+        # node would go on spinning. The owl-ctrl-c thread gives it back once the finalizer is over.
+        # (Not _thread.interrupt_main here: Python would call this handler again at once, in it.)
+        with contextlib.suppress(OSError):  # a full pipe holds a REDELIVER already
+            os.write(CtrlCAsOnHumble.wake_up_fd, bytes([REDELIVER]))
+        return
     CtrlCAsOnHumble.pressed_at = now
-    if in_threading_shutdown(frame):
+    if shutting_down:
         import rclpy
         rclpy.try_shutdown()
         return
     raise CtrlC
+
+
+def in_finalizer(frame: FrameType | None) -> bool:
+    """Whether the main thread runs a __del__ method, e.g. of one of the Tasks an executor drops.
+
+    Python runs a signal handler at any function call, a finalizer's too, and an exception raised in
+    a finalizer is printed and dropped. The executor drops a Task (Future.__del__) after each callback.
+    """
+    while frame is not None:
+        if frame.f_code.co_name == '__del__':
+            return True
+        frame = frame.f_back
+    return False
 
 
 def in_threading_shutdown(frame: FrameType | None) -> bool:
@@ -335,11 +371,11 @@ def drop_stale_wakers(spin: Callable[..., Any], executors_file: str) -> Callable
 def skip_half_built(delete: Callable[[Any], None]) -> Callable[[Any], None]:
     """Future.__del__, doing nothing for a future whose __init__ a Ctrl-C cut short."""
     @wraps(delete)
-    def delete_when_built(future: Any) -> None:
+    def __del__(future: Any) -> None:  # named so that in_finalizer knows it
         if hasattr(future, '_exception_fetched'):  # set after _exception: __init__ got past both
             delete(future)
 
-    return delete_when_built
+    return __del__
 
 
 def forgive_gone_guard(delete: Callable[[Any], None]) -> Callable[[Any], None]:
@@ -347,13 +383,13 @@ def forgive_gone_guard(delete: Callable[[Any], None]) -> Callable[[Any], None]:
     from rclpy.exceptions import InvalidHandle
 
     @wraps(delete)
-    def delete_after_guard(executor: Any) -> None:
+    def __del__(executor: Any) -> None:  # named so that in_finalizer knows it
         try:
             delete(executor)
         except InvalidHandle:  # the guard finalised itself first, at interpreter exit
             pass
 
-    return delete_after_guard
+    return __del__
 
 
 def keep_ctrl_c_out(take: Callable[..., Any]) -> Callable[..., Any]:
