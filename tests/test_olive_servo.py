@@ -22,6 +22,7 @@ from servo_helpers import (
     start_servo,
     torque_enabled,
 )
+from std_srvs.srv import Trigger
 
 IMU_NODE = 'olive_imu_x1684267976913_dcm_srv'
 
@@ -58,6 +59,37 @@ def test_control_servo_waits_for_the_servo_enables_its_torque_before_any_goal_an
     wait_until(lambda: len(diagnostics) > count and not torque_enabled(diagnostics), 10,
                'torque_enabled false after Ctrl-C')
     assert_clean_servo(servo)
+
+
+def test_a_servo_that_answers_late_is_asked_again_until_it_answers(ros):
+    """A kit started with the node on a busy machine once took 11 s to answer the first torque request.
+
+    control_servo gave up after 5 s and ended with an error; now it asks again. The stand-in servo
+    here answers its first request 6 s late and the next at once.
+    """
+    enable_requests = []
+
+    def enable_late_at_first(request, response):
+        enable_requests.append(request)
+        if len(enable_requests) == 1:
+            time.sleep(6.0)  # the node's wait is 5 s
+        response.success = True
+        return response
+
+    def disable(request, response):
+        response.success = True
+        return response
+
+    ros.probe.node.create_service(Trigger, '/olive/servo/pan/setTorqueEnable', enable_late_at_first)
+    ros.probe.node.create_service(Trigger, '/olive/servo/pan/setTorqueDisable', disable)
+    control_servo = ros.run('olive_servo', 'control_servo')
+    control_servo.wait_for(r'/olive/servo/pan/setTorqueEnable did not answer within 5.0 s: asking again',
+                           timeout=30)
+    control_servo.wait_for(r'torque enabled: pan', timeout=30)
+    assert len(enable_requests) == 2
+    control_servo.stop_cleanly(timeout=10)
+    assert 'torque disabled: pan' in control_servo.output
+    assert 'Traceback' not in control_servo.output
 
 
 def goal_rate(goals, seconds=2.0):

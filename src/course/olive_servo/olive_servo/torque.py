@@ -9,7 +9,7 @@ from rclpy.duration import Duration
 from rclpy.node import Node
 from std_srvs.srv import Trigger
 
-ANSWER_TIMEOUT = 5.0    # s for a servo to answer a torque request once its service is there
+ANSWER_TIMEOUT = 5.0    # s for a servo to answer a torque request before it is asked again
 # At shutdown, all of it within the 5 s that ros2 launch waits before it escalates to SIGTERM: first
 # up to GOALS_ARRIVED_TIMEOUT s for the servos to have every goal sent, then DISABLE_TIMEOUT s for
 # their answers (a loaded machine answered after more than 2 s).
@@ -19,7 +19,7 @@ WAITING_EVERY = 5.0     # s between two "waiting for service" lines
 
 
 class TorqueError(RuntimeError):
-    """A servo refused to enable its torque or did not answer."""
+    """A servo refused to enable its torque."""
 
 
 class ServoTorque:
@@ -37,18 +37,28 @@ class ServoTorque:
         self.enabled: list[str] = []
 
     def enable(self) -> None:
-        """Wait for the services, then enable every servo's torque; TorqueError if one fails."""
+        """Wait for the services, then enable every servo's torque; TorqueError if one refuses.
+
+        A servo that does not answer within ANSWER_TIMEOUT is asked again, as long as it takes:
+        a kit started at the same moment as this node, on a busy machine, took 11 s to answer.
+        """
         for client in self.enable_clients.values():
             while not client.wait_for_service(timeout_sec=1.0):
                 self.node.get_logger().info(
                     f'waiting for service {client.srv_name}', throttle_duration_sec=WAITING_EVERY)
-        for servo, response in self._call(self.enable_clients, ANSWER_TIMEOUT).items():
-            service = self.enable_clients[servo].srv_name
-            if response is None:
-                raise TorqueError(f'{service} did not answer within {ANSWER_TIMEOUT} s')
-            if not response.success:
-                raise TorqueError(f'{service} refused: {response.message}')
-            self.enabled.append(servo)
+        unanswered = dict(self.enable_clients)
+        while unanswered:
+            for servo, response in self._call(unanswered, ANSWER_TIMEOUT).items():
+                service = self.enable_clients[servo].srv_name
+                if response is None:
+                    self.node.get_logger().warning(
+                        f'{service} did not answer within {ANSWER_TIMEOUT} s: asking again')
+                    continue
+                if not response.success:
+                    raise TorqueError(f'{service} refused: {response.message}')
+                del unanswered[servo]
+                self.enabled.append(servo)
+        self.enabled.sort(key=list(self.enable_clients).index)
         self.node.get_logger().info(f"torque enabled: {', '.join(self.enabled)}")
 
     def disable(self) -> None:
