@@ -24,8 +24,7 @@ URL_LINE = r'robot_view: open (http://127\.0\.0\.1:\d+/) in a browser \(Ctrl-C t
 IMU_TOPIC = f'/olive/imu/{IMU_NAMESPACE}/imu'
 TRUE_ORIENTATION = f'/olive_imu_{IMU_NAMESPACE}_dcm_srv/true_orientation'
 CAMERA_NODE = '/olive_camera_eye_dcm_srv'
-MIN_FPS = 15.0  # the camera publishes 30 frames/s; a busy suite once left robot_view 22.5
-PAGE_SHARE = 0.9  # of the frames robot_view takes, the page shows at least this share
+MIN_FPS = 15.0  # the camera publishes 30 frames/s; the target is in bench/, this is "it streams"
 LATENCY_SAMPLES = 6
 
 
@@ -120,11 +119,11 @@ def test_the_model_follows_the_kit_and_the_mouse_turns_the_head(ros, page):
     after = page.evaluate('[window.robotView.frames, window.robotView.lastFrame]')
     fps, taken = ((end - start) / 4.0 for start, end in zip(before, after, strict=True))
     print(f'camera in the page: {fps:.1f} frames/s; robot_view took {taken:.1f} frames/s from DDS')
-    # The page shows what robot_view took, and that is a video's rate. How close to the camera's 30
-    # frames/s it stays is bench/robot_view_smoothness.py's: in a suite on 2 cores the camera itself
-    # fell to 22.5 frames/s once.
-    assert fps >= PAGE_SHARE * taken, f'{fps:.1f} frames/s in the page; robot_view took {taken:.1f}/s'
-    assert taken >= MIN_FPS, f'robot_view took {taken:.1f} frames/s from DDS'
+    # A video's rate in the page. How close to the camera's 30 frames/s it stays is
+    # bench/robot_view_smoothness.py's: a suite on 2 cores showed 21.5/s once (the camera itself fell
+    # to 22.5/s), and 27.8/s while robot_view's count seemed to say 35/s (the page was 0.7 s behind
+    # at the first look). Both numbers say which side of robot_view a drop is on.
+    assert fps >= MIN_FPS, f'{fps:.1f} frames/s in the page; robot_view took {taken:.1f}/s from DDS'
 
     drag(page, 30, 25)  # a pose worth a picture
     time.sleep(2.0)
