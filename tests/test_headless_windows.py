@@ -76,6 +76,9 @@ def test_cv2_viewer_seam_gets_the_latest_frames_and_sends_keys(ros, tmp_path):
     folder = tmp_path / f'cv2_viewer-{viewer.pid}'
     frame_file = folder / 'cv2-camera.jpg'
     wait_until(frame_file.exists, 30, 'the first frame in the seam')
+    # The notice comes first, but the harness reads it from a pipe: on a busy machine it was not read
+    # yet when the frame was there.
+    viewer.wait_for(re.escape(CV2_NOTICE), timeout=10)
     assert viewer.lines == [f'{CV2_NOTICE} (its frames go to {folder})']
     frame = read_image(frame_file)
     assert frame.shape == (120, 160, 3)
