@@ -1,10 +1,13 @@
+import faulthandler
 import os
 import re
 import shutil
 import time
 from collections.abc import Generator
+from contextlib import ExitStack
 from dataclasses import dataclass
 from pathlib import Path
+from typing import IO, Any
 
 import pytest
 
@@ -104,6 +107,18 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
 # instead of running six robots on two cores, where tests miss deadlines no user would meet.
 SYSTEM_TEST_SLOTS = range((os.cpu_count() or 1) + 1)
 SLOT_DIR = Path(os.environ.get('OWL_TEST_SLOT_DIR', LEASE_DIR.parent / 'owl-kit-lab-test-slots'))
+# The whole simulated kit with robot_view's 3D page in Chromium (software WebGL, with the camera's
+# 30 frames/s) is the heaviest load a test makes: two such tests beside a third stretched both past
+# their timeouts on a 2-core machine. One runs at a time, machine-wide (and takes a slot too).
+KIT_AND_3D_PAGE = 'kit_and_3d_page'
+KIT_AND_3D_PAGE_DIR = SLOT_DIR / KIT_AND_3D_PAGE
+
+
+def wait_for_lock(directory: Path, ids: range) -> IO[str]:
+    """The handle of one of ids' lock files in directory, once one is free; closing it frees it."""
+    while (held := try_lock_file(directory, ids, os.getpid())) is None:
+        time.sleep(0.1)
+    return held[1]
 
 
 @pytest.hookimpl(wrapper=True, tryfirst=True)
@@ -111,16 +126,16 @@ def pytest_runtest_protocol(item: pytest.Item,
                             nextitem: pytest.Item | None) -> Generator[None, object, object]:
     """A system test runs (with its rerun, fixtures and timeout) only while it holds a slot.
 
-    The wait is outside its timeout.
+    A test marked kit_and_3d_page first waits for the one lock of its kind, then for a slot; the
+    waits are outside its timeout.
     """
     if not item.path.is_relative_to(SYSTEM_TESTS):
         return (yield)
-    while (slot := try_lock_file(SLOT_DIR, SYSTEM_TEST_SLOTS, os.getpid())) is None:
-        time.sleep(0.1)
-    try:
+    with ExitStack() as held:
+        if item.get_closest_marker(KIT_AND_3D_PAGE):
+            held.enter_context(wait_for_lock(KIT_AND_3D_PAGE_DIR, range(1)))
+        held.enter_context(wait_for_lock(SLOT_DIR, SYSTEM_TEST_SLOTS))
         return (yield)
-    finally:
-        slot[1].close()
 
 
 @dataclass
@@ -139,11 +154,33 @@ RERUN_REPORTS = SYSTEM_TESTS.parent / 'log' / 'reruns'
 IN_WORKER = False  # True in a pytest-xdist worker, whose reports reach the controller
 
 
+# Where a test that reaches its timeout leaves every thread's stack: the process's own stderr,
+# taken before pytest captures it. pytest-timeout's own dump goes to the terminal, which in a
+# pytest-xdist worker is /dev/null: the report then says only "worker 'gw1' crashed".
+STACKS_AT_TIMEOUT: IO[str] | None = None
+
+
 def pytest_configure(config: pytest.Config) -> None:
-    global IN_WORKER
+    global IN_WORKER, STACKS_AT_TIMEOUT
     IN_WORKER = hasattr(config, 'workerinput')
     if not IN_WORKER:
         shutil.rmtree(RERUN_REPORTS, ignore_errors=True)  # this run's reports only
+    STACKS_AT_TIMEOUT = os.fdopen(os.dup(2), 'w')
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_timeout_set_timer(item: pytest.Item, settings: Any) -> None:
+    """Also dump every thread's stack to STACKS_AT_TIMEOUT a second before pytest-timeout ends the run.
+
+    pytest-timeout's own timer is set after this (None lets it go on).
+    """
+    if STACKS_AT_TIMEOUT is not None:
+        faulthandler.dump_traceback_later(max(settings.timeout - 1.0, 0.5), file=STACKS_AT_TIMEOUT)
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_timeout_cancel_timer(item: pytest.Item) -> None:
+    faulthandler.cancel_dump_traceback_later()
 
 
 def rerun_report_path(nodeid: str) -> Path:

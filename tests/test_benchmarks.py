@@ -36,7 +36,9 @@ def test_every_benchmark_has_a_shrunk_run():
     assert scripts == set(SHRUNK)
 
 
-@pytest.mark.parametrize('script', sorted(SHRUNK))
+@pytest.mark.parametrize('script', [
+    pytest.param(script, marks=pytest.mark.kit_and_3d_page) if script in NEEDS_CHROMIUM else script
+    for script in sorted(SHRUNK)])
 def test_benchmark_runs(script):
     if script in NEEDS_CHROMIUM and (missing := chromium_missing()):
         prerequisite_missing(missing)

@@ -9,9 +9,11 @@ folder of their own (the suite running them holds the machine's slots).
 
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
+from itertools import pairwise
 from pathlib import Path
 
 REPOSITORY = Path(__file__).resolve().parent.parent
@@ -140,6 +142,8 @@ def test_a_failure_showing_a_process_output_is_reported_by_the_exception_it_name
 # Each test appends when it ran to a file of its session's.
 TIMED_TESTS = '''
 import json
+import re
+from itertools import pairwise
 import time
 from pathlib import Path
 
@@ -167,3 +171,65 @@ def test_suites_side_by_side_run_no_more_system_tests_at_once_than_the_machine_h
     assert len(runs) == 2 * slots
     at_once = max(sum(start <= moment < end for start, end in runs) for moment, _ in runs)
     assert at_once <= slots, runs  # without slots, up to twice as many
+
+
+
+# Three tests marked kit_and_3d_page and one not; each appends its name and when it ran.
+MARKED_TESTS = '''
+import json
+import re
+from itertools import pairwise
+import time
+from pathlib import Path
+
+import pytest
+
+
+def run_for_3_s(name):
+    started = time.time()
+    time.sleep(3)
+    with open(Path(__file__).parents[1] / 'ran.jsonl', 'a') as ran:
+        ran.write(json.dumps([name, started, time.time()]) + '\\n')
+
+
+@pytest.mark.kit_and_3d_page
+@pytest.mark.parametrize('n', range(3))
+def test_marked(n):
+    run_for_3_s(f'marked {n}')
+
+
+def test_unmarked():
+    run_for_3_s('unmarked')
+'''
+
+
+def test_tests_marked_kit_and_3d_page_run_one_at_a_time_beside_the_others(tmp_path):
+    lay_out(tmp_path, MARKED_TESTS)
+    session = start_session(tmp_path, tmp_path / 'slots', '-n', '4', 'tests')
+    stdout, _ = session.communicate(timeout=120)
+    assert session.returncode == 0, stdout
+    runs = {name: (start, end) for name, start, end in
+            (json.loads(line) for line in (tmp_path / 'ran.jsonl').read_text().splitlines())}
+    marked = sorted(times for name, times in runs.items() if name.startswith('marked'))
+    assert len(marked) == 3, runs
+    assert all(earlier[1] <= later[0] for earlier, later in pairwise(marked)), runs  # in turn
+    assert runs['unmarked'][0] < marked[0][1], runs  # beside the first of them, not after
+
+
+HANGING_TEST = '''
+import time
+
+
+def test_hangs_in_a_worker():
+    time.sleep(60)
+'''
+
+
+def test_a_test_at_its_timeout_in_a_worker_leaves_every_stack_in_the_output(tmp_path):
+    lay_out(tmp_path, HANGING_TEST)
+    session = start_session(tmp_path, tmp_path / 'slots', '-n', '1', '-o', 'timeout=3',
+                            '-p', 'no:rerunfailures', 'tests')
+    stdout, _ = session.communicate(timeout=120)
+    assert session.returncode == 1, stdout
+    assert "crashed while running 'tests/test_system.py::test_hangs_in_a_worker'" in stdout, stdout
+    assert re.search(r'File ".*test_system\.py", line 6 in test_hangs_in_a_worker', stdout), stdout
