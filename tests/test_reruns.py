@@ -142,8 +142,6 @@ def test_a_failure_showing_a_process_output_is_reported_by_the_exception_it_name
 # Each test appends when it ran to a file of its session's.
 TIMED_TESTS = '''
 import json
-import re
-from itertools import pairwise
 import time
 from pathlib import Path
 
@@ -173,12 +171,9 @@ def test_suites_side_by_side_run_no_more_system_tests_at_once_than_the_machine_h
     assert at_once <= slots, runs  # without slots, up to twice as many
 
 
-
 # Three tests marked kit_and_3d_page and one not; each appends its name and when it ran.
 MARKED_TESTS = '''
 import json
-import re
-from itertools import pairwise
 import time
 from pathlib import Path
 
