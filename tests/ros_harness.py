@@ -124,6 +124,25 @@ def wait_for_messages(received: list[Any], count: int, timeout: float = 15.0, wh
     wait_until(lambda: len(received) >= count, timeout, f'{count} {what} (got {len(received)})')
 
 
+def wait_for_quiet(received: list[Any], quiet: float, timeout: float = 15.0, what: str = 'messages') -> int:
+    """Wait until a list filled by Probe.collect has grown by nothing for quiet seconds; its length then.
+
+    A node's log line can reach the test before the messages the node published just before it: they
+    travel through DDS and the probe's executor, the line through a pipe.
+    """
+    last = (len(received), time.monotonic())
+
+    def settled() -> bool:
+        nonlocal last
+        now = time.monotonic()
+        if len(received) != last[0]:
+            last = (len(received), now)
+        return now - last[1] >= quiet
+
+    wait_until(settled, timeout, f'no new {what} for {quiet} s (got {len(received)})')
+    return last[0]
+
+
 def endpoints(probe: Probe, topic: str, kind: str = 'publishers', count: int = 1,
               timeout: float = 15.0) -> list[Any]:
     """The graph's TopicEndpointInfo list of a topic's publishers or subscriptions, once it has count.

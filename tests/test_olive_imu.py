@@ -10,8 +10,9 @@ import time
 
 import pytest
 from geometry_msgs.msg import Quaternion, Twist
+from olive_imu.imu_turtle import PUBLISH_PERIOD
 from owl_common import quaternion as quat
-from ros_harness import wait_for_messages, wait_until
+from ros_harness import wait_for_messages, wait_for_quiet, wait_until
 from sensor_msgs.msg import Imu
 from turtlesim.msg import Pose
 
@@ -173,7 +174,7 @@ def test_it_names_the_topic_it_waits_for_and_ignores_unusable_orientations_with_
     publish_for(imu, imu_message(x, y, z, w), 1.0)
     wait_until(lambda: twists and twists[-1].linear.x == pytest.approx(0.3), 10, 'driving at 0.3 m/s')
     imu_turtle.wait_for(r'no usable IMU message on /test_imu for 0.5 s: the turtle stops', timeout=10)
-    count = len(twists)
+    count = wait_for_quiet(twists, 5 * PUBLISH_PERIOD, what='velocities after the stale warning')
     time.sleep(0.5)
     assert len(twists) == count  # stale: no more commands
     publish_for(imu, imu_message(x, y, z, w), 0.5)  # and the node is alive: a usable message drives again
