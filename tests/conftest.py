@@ -1,8 +1,12 @@
 import faulthandler
+import gc
 import os
 import re
 import shutil
+import sys
+import threading
 import time
+import traceback
 from collections.abc import Generator
 from contextlib import ExitStack
 from dataclasses import dataclass
@@ -108,10 +112,12 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
 SYSTEM_TEST_SLOTS = range((os.cpu_count() or 1) + 1)
 SLOT_DIR = Path(os.environ.get('OWL_TEST_SLOT_DIR', LEASE_DIR.parent / 'owl-kit-lab-test-slots'))
 # The whole simulated kit with robot_view's 3D page in Chromium (software WebGL, with the camera's
-# 30 frames/s) is the heaviest load a test makes: two such tests beside a third stretched both past
-# their timeouts on a 2-core machine. One runs at a time, machine-wide (and takes a slot too).
+# 30 frames/s) is the heaviest load a test makes: alone it keeps two cores busy, so anything beside
+# it slows both. Beside two other tests it ran 3x slower, past its timeout on a slower machine.
+# Such a test takes every slot: it runs alone.
 KIT_AND_3D_PAGE = 'kit_and_3d_page'
-KIT_AND_3D_PAGE_DIR = SLOT_DIR / KIT_AND_3D_PAGE
+# One test at a time takes its slots, so two tests taking several never wait for each other's.
+TAKING_SLOTS_DIR = SLOT_DIR / 'taking'
 
 
 def wait_for_lock(directory: Path, ids: range) -> IO[str]:
@@ -126,15 +132,15 @@ def pytest_runtest_protocol(item: pytest.Item,
                             nextitem: pytest.Item | None) -> Generator[None, object, object]:
     """A system test runs (with its rerun, fixtures and timeout) only while it holds a slot.
 
-    A test marked kit_and_3d_page first waits for the one lock of its kind, then for a slot; the
-    waits are outside its timeout.
+    A test marked kit_and_3d_page holds every slot. The waits are outside its timeout.
     """
     if not item.path.is_relative_to(SYSTEM_TESTS):
         return (yield)
+    count = len(SYSTEM_TEST_SLOTS) if item.get_closest_marker(KIT_AND_3D_PAGE) else 1
     with ExitStack() as held:
-        if item.get_closest_marker(KIT_AND_3D_PAGE):
-            held.enter_context(wait_for_lock(KIT_AND_3D_PAGE_DIR, range(1)))
-        held.enter_context(wait_for_lock(SLOT_DIR, SYSTEM_TEST_SLOTS))
+        with wait_for_lock(TAKING_SLOTS_DIR, range(1)):
+            for _ in range(count):
+                held.enter_context(wait_for_lock(SLOT_DIR, SYSTEM_TEST_SLOTS))
         return (yield)
 
 
@@ -168,18 +174,46 @@ def pytest_configure(config: pytest.Config) -> None:
     STACKS_AT_TIMEOUT = os.fdopen(os.dup(2), 'w')
 
 
+GREENLET_STACKS_TIMER: threading.Timer | None = None
+
+
+def dump_greenlet_stacks(out: IO[str]) -> None:
+    """Write the stack of every suspended greenlet to out.
+
+    Playwright's sync API runs the test in a greenlet and waits in another one's event loop: a
+    thread dump shows only the loop, not the test line that waits for the page.
+    """
+    greenlet = sys.modules.get('greenlet')
+    if greenlet is None:
+        return
+    for candidate in gc.get_objects():
+        if isinstance(candidate, greenlet.greenlet) and candidate.gr_frame is not None:
+            out.write('Greenlet (most recent call last):\n')
+            out.write(''.join(traceback.format_stack(candidate.gr_frame)))
+    out.flush()
+
+
 @pytest.hookimpl(tryfirst=True)
 def pytest_timeout_set_timer(item: pytest.Item, settings: Any) -> None:
-    """Also dump every thread's stack to STACKS_AT_TIMEOUT a second before pytest-timeout ends the run.
+    """Also dump every thread's and greenlet's stack to STACKS_AT_TIMEOUT before pytest-timeout ends the run.
 
-    pytest-timeout's own timer is set after this (None lets it go on).
+    The greenlets' first (a Python thread, which needs the interpreter), then the threads' a second
+    before the end (faulthandler, which does not). pytest-timeout's own timer is set after this
+    (None lets it go on).
     """
+    global GREENLET_STACKS_TIMER
     if STACKS_AT_TIMEOUT is not None:
+        GREENLET_STACKS_TIMER = threading.Timer(max(settings.timeout - 2.0, 0.5), dump_greenlet_stacks,
+                                                (STACKS_AT_TIMEOUT,))
+        GREENLET_STACKS_TIMER.daemon = True
+        GREENLET_STACKS_TIMER.start()
         faulthandler.dump_traceback_later(max(settings.timeout - 1.0, 0.5), file=STACKS_AT_TIMEOUT)
 
 
 @pytest.hookimpl(tryfirst=True)
 def pytest_timeout_cancel_timer(item: pytest.Item) -> None:
+    if GREENLET_STACKS_TIMER is not None:
+        GREENLET_STACKS_TIMER.cancel()
     faulthandler.cancel_dump_traceback_later()
 
 

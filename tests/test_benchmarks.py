@@ -4,6 +4,8 @@ Only that they run is checked here; their numbers are for `make bench` and the c
 assertions would be flaky on a shared machine and belong in bench/, not in tests).
 """
 
+import os
+import signal
 import subprocess
 import sys
 from pathlib import Path
@@ -13,6 +15,7 @@ from gates import prerequisite_missing
 from web_harness import chromium_missing
 
 BENCH = Path(__file__).resolve().parents[1] / 'bench'
+BENCH_TIMEOUT = 110.0  # s: under the test's own 120 s, so a hang fails here with its stacks
 # drive the robot view's page as the browser tests do
 NEEDS_CHROMIUM = {'robot_view_latency.py', 'robot_view_smoothness.py'}
 SHRUNK = {
@@ -42,11 +45,43 @@ def test_every_benchmark_has_a_shrunk_run():
 def test_benchmark_runs(script):
     if script in NEEDS_CHROMIUM and (missing := chromium_missing()):
         prerequisite_missing(missing)
-    result = subprocess.run([sys.executable, str(BENCH / script), *SHRUNK[script]], capture_output=True,
-                            text=True, timeout=110, check=False)
+    result = run_benchmark([str(BENCH / script), *SHRUNK[script]], BENCH_TIMEOUT)
     assert result.returncode == 0, result.stdout + result.stderr
     assert 'Traceback' not in result.stderr
     assert any(character.isdigit() for character in result.stdout), result.stdout
+
+
+def run_benchmark(argv: list[str], timeout: float) -> subprocess.CompletedProcess:
+    """Run a Python script; past timeout, fail with its output and every thread's stack.
+
+    A benchmark that hangs is ended with SIGABRT, which Python's faulthandler (PYTHONFAULTHANDLER)
+    answers by printing where each thread waits: a SIGKILL would leave only "timed out".
+    """
+    command = [sys.executable, *argv]
+    with subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                          env={**os.environ, 'PYTHONFAULTHANDLER': '1'}) as process:
+        try:
+            stdout, stderr = process.communicate(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            process.send_signal(signal.SIGABRT)
+            try:
+                stdout, stderr = process.communicate(timeout=10)
+            except subprocess.TimeoutExpired:
+                process.kill()
+                stdout, stderr = process.communicate()
+            pytest.fail(f'{Path(argv[0]).name} ran past {timeout} s; its output, then its stacks:\n'
+                        f'{stdout}{stderr}', pytrace=False)
+    return subprocess.CompletedProcess(command, process.returncode, stdout, stderr)
+
+
+def test_a_benchmark_past_its_time_fails_with_the_stack_it_waits_in(tmp_path):
+    script = tmp_path / 'hangs.py'
+    script.write_text('import time\nprint("started", flush=True)\n'
+                      'def wait_for_the_page():\n    time.sleep(60)\nwait_for_the_page()\n')
+    with pytest.raises(pytest.fail.Exception) as failure:
+        run_benchmark([str(script)], 2.0)
+    assert 'started' in str(failure.value)
+    assert 'in wait_for_the_page' in str(failure.value)
 
 
 @pytest.mark.parametrize('argv', [['--calls', '0'], ['--long-calls', '5'], ['--long-calls', 'many']])
