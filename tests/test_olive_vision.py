@@ -71,10 +71,14 @@ def test_the_tracker_centres_a_still_ball_from_a_0_4_rad_offset_within_2_s(ros):
     first = errors[0][1]
     assert first is not None, errors[:3]
     assert first > 0.25, errors[:3]  # the ball starts well off the middle
-    centred = next(t for t, e in errors if e is not None and e < 0.02)
-    print(f'still ball from 0.4 rad: centred (< 2 % of the width) {centred:.2f} s after tracking began')
-    assert centred < 2.0
-    assert all(e is not None and e < 0.02 for t, e in errors if t > centred + 0.5), errors
+    # Centred: from the first image after the last one off the middle (a settling time). A swing
+    # through the middle on the way is not centred: on a busy machine the tilt still settled after it.
+    last_off = max(index for index, (_, e) in enumerate(errors) if e is None or e >= 0.02)
+    assert last_off + 1 < len(errors), f'the ball was still off the middle in the last image: {errors[-5:]}'
+    settled = errors[last_off + 1][0]
+    print(f'still ball from 0.4 rad: centred (< 2 % of the width) {settled:.2f} s after tracking began, '
+          'and stayed')
+    assert settled < 2.0, [(round(t, 2), e) for t, e in errors if t > 1.5 and (e is None or e >= 0.02)]
     keep_screenshot('camera_ball_tracked', png(images[-1]))
     tracker.stop_cleanly(timeout=15)
     for servo in servos.values():
