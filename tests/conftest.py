@@ -116,6 +116,10 @@ SLOT_DIR = Path(os.environ.get('OWL_TEST_SLOT_DIR', LEASE_DIR.parent / 'owl-kit-
 # it slows both. Beside two other tests it ran 3x slower, past its timeout on a slower machine.
 # Such a test takes every slot: it runs alone.
 KIT_AND_3D_PAGE = 'kit_and_3d_page'
+# The whole simulated kit (four modules, the camera rendering 30 frames/s) with more beside it: such
+# a test took 45-55 s alone on a slower 2-core machine and passed 120 s beside two others. It holds
+# two slots, so at most one other test runs beside it.
+WHOLE_KIT = 'whole_kit'
 # One test at a time takes its slots, so two tests taking several never wait for each other's.
 TAKING_SLOTS_DIR = SLOT_DIR / 'taking'
 
@@ -127,19 +131,28 @@ def wait_for_lock(directory: Path, ids: range) -> IO[str]:
     return held[1]
 
 
+def slots_needed(item: pytest.Item) -> int:
+    """How many of SYSTEM_TEST_SLOTS a system test holds while it runs: its share of the machine."""
+    if item.get_closest_marker(KIT_AND_3D_PAGE):
+        return len(SYSTEM_TEST_SLOTS)
+    if item.get_closest_marker(WHOLE_KIT):
+        return min(2, len(SYSTEM_TEST_SLOTS))
+    return 1
+
+
 @pytest.hookimpl(wrapper=True, tryfirst=True)
 def pytest_runtest_protocol(item: pytest.Item,
                             nextitem: pytest.Item | None) -> Generator[None, object, object]:
     """A system test runs (with its rerun, fixtures and timeout) only while it holds a slot.
 
-    A test marked kit_and_3d_page holds every slot. The waits are outside its timeout.
+    A test marked kit_and_3d_page holds every slot, one marked whole_kit two. The waits are outside
+    its timeout.
     """
     if not item.path.is_relative_to(SYSTEM_TESTS):
         return (yield)
-    count = len(SYSTEM_TEST_SLOTS) if item.get_closest_marker(KIT_AND_3D_PAGE) else 1
     with ExitStack() as held:
         with wait_for_lock(TAKING_SLOTS_DIR, range(1)):
-            for _ in range(count):
+            for _ in range(slots_needed(item)):
                 held.enter_context(wait_for_lock(SLOT_DIR, SYSTEM_TEST_SLOTS))
         return (yield)
 

@@ -353,6 +353,7 @@ def test_imu_turtle_and_its_launch_file_drive_the_turtle(ros, workspace):
     stop(launch, launch=True)
 
 
+@pytest.mark.whole_kit
 def test_control_servo_moves_the_pan_servo_in_a_sine(ros, workspace):
     start_kit(ros)
     joints = positions(ros, 'pan')
@@ -361,6 +362,7 @@ def test_control_servo_moves_the_pan_servo_in_a_sine(ros, workspace):
     stop(node)
 
 
+@pytest.mark.whole_kit
 def test_imu_control_robot_turns_both_servos(ros, workspace):
     start_kit(ros)
     pan, tilt = positions(ros, 'pan'), positions(ros, 'tilt')
@@ -369,6 +371,7 @@ def test_imu_control_robot_turns_both_servos(ros, workspace):
     stop(node)
 
 
+@pytest.mark.whole_kit
 def test_keyboard_servos_without_a_display_says_so_in_one_line_and_keeps_running(ros, workspace):
     start_kit(ros)
     goals = ros.probe.collect(Float32, '/olive/servo/pan/goal/position')
@@ -381,6 +384,7 @@ def test_keyboard_servos_without_a_display_says_so_in_one_line_and_keeps_running
     stop(node)
 
 
+@pytest.mark.whole_kit
 def test_keyboard_servos_with_a_display_turns_the_pan_servo_on_the_left_arrow(ros, workspace, x_display):
     start_kit(ros)
     goals = ros.probe.collect(Float32, '/olive/servo/pan/goal/position')
@@ -394,6 +398,7 @@ def test_keyboard_servos_with_a_display_turns_the_pan_servo_on_the_left_arrow(ro
     stop(node)
 
 
+@pytest.mark.whole_kit
 def test_display_camera_without_a_display_says_so_in_one_line_and_keeps_showing_frames(ros, workspace):
     start_kit(ros)
     node = student(ros, workspace, 'ros2 run olive_camera display_camera', 'student display_camera',
@@ -403,6 +408,7 @@ def test_display_camera_without_a_display_says_so_in_one_line_and_keeps_showing_
     stop(node)
 
 
+@pytest.mark.whole_kit
 def test_display_camera_with_a_display_opens_its_window(ros, workspace, x_display):
     start_kit(ros)
     node = student(ros, workspace, 'ros2 run olive_camera display_camera', 'student display_camera',
@@ -413,6 +419,7 @@ def test_display_camera_with_a_display_opens_its_window(ros, workspace, x_displa
     stop(node)
 
 
+@pytest.mark.whole_kit
 def test_the_camera_launch_file_runs_the_robot_and_the_camera(ros, workspace):
     start_kit(ros)
     pan = positions(ros, 'pan')

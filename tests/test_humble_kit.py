@@ -81,6 +81,7 @@ def turtle_x(sandbox):
 
 
 @pytest.mark.parametrize('network', sorted(RANGES))
+@pytest.mark.whole_kit
 def test_a_humble_module_beside_the_kit_and_chapter_4_nodes_is_safe_listed_and_talked_to(network):
     with RosSandbox(discovery_range=RANGES[network]) as sandbox:
         kit = sandbox.command(['ros2', 'launch', 'olive_sim', 'owl_kit.launch.py', 'web_port:=0'],

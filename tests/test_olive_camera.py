@@ -156,6 +156,7 @@ def test_the_courses_qos_receives_the_camera_and_a_reliable_subscription_receive
     display_camera.stop_cleanly(timeout=10)
 
 
+@pytest.mark.whole_kit
 def test_the_launch_file_starts_imu_control_robot_and_display_camera_with_the_kit(ros):
     kit = ros.command(['ros2', 'launch', 'olive_sim', 'owl_kit.launch.py'], label='owl_kit.launch')
     launch = ros.command(['ros2', 'launch', 'olive_camera', 'robot_camera.launch.py'], env=NO_DISPLAY,

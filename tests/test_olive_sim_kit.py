@@ -1,5 +1,6 @@
 """`ros2 launch olive_sim owl_kit.launch.py`: the whole Owl Kit as the course's chapter 4 sees it."""
 
+import pytest
 from olive_kit.description import OWL_KIT
 from ros_harness import wait_until
 from sensor_msgs.msg import JointState
@@ -17,6 +18,7 @@ def first_answer(ros, argv):
     return process
 
 
+@pytest.mark.whole_kit
 def test_the_kit_launch_brings_up_four_modules_with_the_course_topics(ros):
     kit = ros.command(['ros2', 'launch', 'olive_sim', 'owl_kit.launch.py'], label='owl_kit')
     kit.wait_for(r'Owl Kit simulated modules:', timeout=20)

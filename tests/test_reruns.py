@@ -193,28 +193,36 @@ def test_marked(n):
     run_for_3_s(f'marked {n}')
 
 
+@pytest.mark.whole_kit
+@pytest.mark.parametrize('n', range(2))
+def test_whole_kit(n):
+    run_for_3_s(f'whole_kit {n}')
+
+
 @pytest.mark.parametrize('n', range(4))
 def test_unmarked(n):
     run_for_3_s(f'unmarked {n}')
 '''
 
 
-def test_tests_marked_kit_and_3d_page_run_alone_and_the_others_side_by_side(tmp_path):
+def test_marked_tests_hold_their_share_of_the_slots_and_the_others_run_side_by_side(tmp_path):
+    """kit_and_3d_page runs alone; whole_kit holds two of the CPUs + 1 slots; the rest one each."""
     lay_out(tmp_path, MARKED_TESTS)
     session = start_session(tmp_path, tmp_path / 'slots', '-n', '4', 'tests')
     stdout, _ = session.communicate(timeout=120)
     assert session.returncode == 0, stdout
     runs = {name: (start, end) for name, start, end in
             (json.loads(line) for line in (tmp_path / 'ran.jsonl').read_text().splitlines())}
-    assert len(runs) == 6, runs
+    assert len(runs) == 8, runs
+    slots = (os.cpu_count() or 1) + 1
+    share = {'marked': slots, 'whole_kit': min(2, slots), 'unmarked': 1}
+    for name, (start, _) in runs.items():
+        running = [other for other, (begun, ended) in runs.items() if begun <= start < ended]
+        assert sum(share[other.split()[0]] for other in running) <= slots, (name, running, runs)
 
     def overlap(a: tuple[float, float], b: tuple[float, float]) -> bool:
         return a[0] < b[1] and b[0] < a[1]
 
-    for name, times in runs.items():
-        if name.startswith('marked'):
-            beside = [other for other, when in runs.items() if other != name and overlap(times, when)]
-            assert beside == [], runs
     unmarked = [times for name, times in runs.items() if name.startswith('unmarked')]
     assert any(overlap(a, b) for a, b in combinations(unmarked, 2)), runs  # not one at a time
 
