@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import math
 import re
-import socket
 import subprocess
 import textwrap
 import time
@@ -18,6 +17,8 @@ from pathlib import Path
 import pytest
 import yaml
 from gates import prerequisite_missing
+from netns import TestLan
+from olive_sim.network_hosts import ip
 from owl_common.processes import RosProcess
 from ros_harness import RosHarness, wait_until
 from student_workspace import shell
@@ -413,22 +414,6 @@ def unshare_uts_works() -> bool:
         return False
 
 
-def loopback_multicast_works() -> bool:
-    """Whether a datagram sent to a multicast group comes back to a member on this machine."""
-    group = '225.0.0.1'
-    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as member, \
-            socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as sender:
-        try:
-            member.bind(('', 0))
-            member.setsockopt(socket.IPPROTO_IP, socket.IP_ADD_MEMBERSHIP,
-                              socket.inet_aton(group) + socket.inet_aton('0.0.0.0'))
-            member.settimeout(2)
-            sender.sendto(b'ping', (group, member.getsockname()[1]))
-            return member.recv(16) == b'ping'
-        except OSError:
-            return False
-
-
 def hello_tables(process: RosProcess) -> list[dict[str, list[str]]]:
     """The hostnames under 'Subscribed from:' and 'Received from:' of each complete table printed so far."""
     tables: list[dict[str, list[str]]] = []
@@ -450,26 +435,41 @@ def hello_tables(process: RosProcess) -> list[dict[str, list[str]]]:
 
 
 def test_doctor_hello_on_two_hosts_hear_each_other(ros: RosHarness):
+    """Two laptops on one LAN, each a network namespace with a hostname of its own.
+
+    Namespaces, because hello's multicast port (49150) is fixed and inside Linux's ephemeral range: on
+    this machine any other test's DDS participant may hold it by chance, and hello then says it cannot
+    receive (as it should for a user). A suite run once saw exactly that.
+    """
     if not unshare_uts_works():
         prerequisite_missing('`unshare --uts` cannot give a process another hostname here (it needs root)')
-    multicast = loopback_multicast_works()
-    here = socket.gethostname()
-    local = ros.command(['ros2', 'doctor', 'hello', '-pp', '0.5'], label='hello here')
-    other = ros.command(['unshare', '--uts', 'sh', '-c',
-                         'hostname other-host && exec ros2 doctor hello -pp 0.5'], label='hello other-host')
+    lan = TestLan()
+    try:
+        hellos = {}
+        for host, address in (('laptop-a', '10.42.0.101'), ('laptop-b', '10.42.0.102')):
+            namespace = lan.add_host(host, address)
+            # A LAN host reaches multicast groups through its default route; these hosts have none.
+            ip('-n', namespace, 'route', 'add', '224.0.0.0/4', 'dev', 'eth0')
+            hellos[host] = lan.run(
+                host, f"unshare --uts sh -c 'hostname {host} && exec ros2 doctor hello -pp 0.5'",
+                {'OWL_NETWORK': 'open', 'ROS_DOMAIN_ID': str(ros.domain_id)}, label=f'hello on {host}')
 
-    def heard(process: RosProcess, host: str) -> bool:  # over ROS, and over multicast where it works here
-        return any(host in table['Subscribed from:'] and (host in table['Received from:'] or not multicast)
-                   for table in hello_tables(process))
+        def heard(listener: str, speaker: str) -> bool:  # over ROS and over multicast, in one table
+            return any(speaker in table['Subscribed from:'] and speaker in table['Received from:']
+                       for table in hello_tables(hellos[listener]))
 
-    wait_until(lambda: heard(local, 'other-host') and heard(other, here), 40, 'each hello hearing the other')
-    assert all(here not in [*table['Subscribed from:'], *table['Received from:']]
-               for table in hello_tables(local))  # its own hellos are not counted
-    assert 'Multicast Group/Port: 225.0.0.1/49150, Sent Msg Count: ' in local.output
-    assert '                Hostname             Msg Count /0.5s' in local.output
-    for process in (local, other):
-        assert process.stop() == 0, process.tail()  # Ctrl-C is how hello ends, as upstream's
-        assert 'Traceback' not in process.output, process.output
+        wait_until(lambda: heard('laptop-a', 'laptop-b') and heard('laptop-b', 'laptop-a'), 40,
+                   'each hello hearing the other')
+        local = hellos['laptop-a']
+        assert all('laptop-a' not in [*table['Subscribed from:'], *table['Received from:']]
+                   for table in hello_tables(local))  # its own hellos are not counted
+        assert 'Multicast Group/Port: 225.0.0.1/49150, Sent Msg Count: ' in local.output
+        assert '                Hostname             Msg Count /0.5s' in local.output
+        for process in hellos.values():
+            assert process.stop() == 0, process.tail()  # Ctrl-C is how hello ends, as upstream's
+            assert 'Traceback' not in process.output, process.output
+    finally:
+        lan.close()
 
 
 # ---- Recording and playing back data -----------------------------------------------------------
