@@ -6,6 +6,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 DEMO = Path(__file__).parents[1] / 'scripts' / 'demo.py'
 STATUS = re.compile(
     r'IMU roll +[+-]\d+° pitch +[+-]\d+° yaw +[+-]\d+° \| pan goal ([+-]\d\.\d\d) at ([+-]\d\.\d\d) rad \| '
@@ -19,6 +21,7 @@ def run_demo(*args: str, timeout: float = 150) -> subprocess.CompletedProcess:
                           timeout=timeout, env=env, check=False)
 
 
+@pytest.mark.whole_kit
 def test_demo_runs_the_robot_reports_it_and_stops_every_node_cleanly():
     result = run_demo('--seconds', '10', '--report-every', '2.5')
     assert result.returncode == 0, result.stdout + result.stderr
@@ -48,6 +51,9 @@ def test_demo_runs_the_robot_reports_it_and_stops_every_node_cleanly():
 TRACKING = re.compile(r'ball +([+-]\d+\.\d) % right, +([+-]\d+\.\d) % down of the middle \| pan goal')
 
 
+# whole_kit: the head's lag grows with the pipeline's latency, camera to servo. Beside two other tests
+# on 2 cores a run's mean was 6.1 %, with a 1 s gap in the demo's reports.
+@pytest.mark.whole_kit
 def test_the_tracking_demo_keeps_the_ball_in_the_middle_and_says_how_far_off_it_is():
     result = run_demo('--project', 'tracking', '--seconds', '6', '--report-every', '1')
     assert result.returncode == 0, result.stdout + result.stderr
