@@ -215,7 +215,6 @@ def run_marked_tests(root: Path, *args: str) -> dict[str, tuple[float, float]]:
             (json.loads(line) for line in (root / 'ran.jsonl').read_text().splitlines())}
 
 
-
 def test_marked_tests_hold_their_share_of_the_slots(tmp_path):
     """kit_and_3d_page runs alone; whole_kit holds two of the CPUs + 1 slots; the rest one each."""
     runs = run_marked_tests(tmp_path)
