@@ -19,10 +19,12 @@ so an executor spinning in a thread of its own stops as it did with rclpy's hand
 that lands while Python joins those threads (after the program's main code ended) does the same
 instead of raising where nothing can catch it. A Ctrl-C that lands while Python runs a finalizer
 (the executor drops a Task after each callback: Future.__del__) would be printed there as "Exception
-ignored" and lost, the node spinning on; it is given back to the main thread once the finalizer
-is over. Code that asks
-for upstream's behaviour keeps it: signal_handler_options given to rclpy.init, a SIGINT handler or
-wake-up fd of the program's own, rclpy.init outside the main thread or for another context.
+ignored" and lost, the node spinning on, and one in a __set_name__ would become a RuntimeError
+traceback; each is given back to the main thread once that code is over. So is one that lands
+where Python drops it anyway (sys.unraisablehook), e.g. in a weakref callback: importlib's, as a
+module lock is freed at startup. Code that asks for upstream's behaviour keeps it:
+signal_handler_options given to rclpy.init, a SIGINT handler or wake-up fd of the program's own,
+rclpy.init outside the main thread or for another context.
 
 The repair of Ctrl-C that lands while rclpy builds a message (a defect of the rclpy wheel):
 
@@ -52,6 +54,16 @@ or CtrlC's:
   and stays as it is.
 A program with a SIGINT handler of its own, and executors spinning in other threads, are untouched.
 
+A Ctrl-C that lands while the executor handles a message, request or response, around the take,
+used to leave the executor unable to handle anything of that node again, and the course's clean-up
+after Ctrl-C (the appendix's torque-off call) waited forever for its response: rclpy claims the
+node's callback group and marks the entity as handled before the take, and gives both back only
+when the callback ends or the take is done; a KeyboardInterrupt raised in between escapes the
+handler with both still taken (seen once in 80 Ctrl-C of the 5.3 listing in a suite). A handler
+cut short by a Ctrl-C now gives its entity and its callback group back, and is cancelled. A Ctrl-C
+that lands while the executor files a handler (it has marked the entity, the handler is not yet
+in its list) is held until it is filed, as in a take.
+
 rclpy's ActionClient sends a goal, cancel or result request first and files the Future that its
 response completes afterwards, unlocked: when the executor spins in another thread (a GUI, a test
 harness) and the response is taken in between, it is dropped ("Ignoring unexpected cancel
@@ -77,11 +89,14 @@ finalised after its SIGINT guard condition, which destroys itself first: Executo
 printed "Exception ignored in: <function Executor.__del__ ...> ... InvalidHandle: cannot use
 Destroyable because destruction was requested" (seen at the end of `ros2 topic echo --once`).
 Executor.__del__ now leaves a guard condition that is already gone alone, as the guard's own
-__del__ does.
+__del__ does, and one that was never made: a Ctrl-C in Executor.__init__ (rclpy.spin makes an
+executor; seen once in 20 Ctrl-C of a listing) printed "... AttributeError: 'SingleThreadedExecutor'
+object has no attribute '_sigint_gc'".
 """
 
 from __future__ import annotations
 
+import _signal  # type: ignore[import-not-found]  # the C half of signal: typeshed has no stub
 import _thread
 import contextlib
 import os
@@ -150,6 +165,9 @@ class CtrlCAsOnHumble:
     installed = False
     wake_up_fd = -1  # the write end of Python's signal wake-up fd, read by the owl-ctrl-c thread
     pressed_at: float | None = None  # time.monotonic() of the last Ctrl-C
+    python_unraisablehook: Callable[[Any], object] = sys.__unraisablehook__  # the one before ours
+    holding = False  # the main thread is in hold_ctrl_c: a Ctrl-C is only noted, as held
+    held = False
 
     @classmethod
     def take_over(cls) -> bool:
@@ -172,6 +190,8 @@ class CtrlCAsOnHumble:
         threading.Thread(target=cls.wake_executors, args=(read_end,), name='owl-ctrl-c',
                          daemon=True).start()
         threading._register_atexit(cls.shut_down_after_ctrl_c)  # type: ignore[attr-defined]
+        cls.python_unraisablehook = sys.unraisablehook
+        sys.unraisablehook = cls.give_back_unraisable
         cls.installed = True
         return True
 
@@ -180,8 +200,8 @@ class CtrlCAsOnHumble:
         """The owl-ctrl-c thread: at each SIGINT on the wake-up fd, trigger every SIGINT guard condition.
 
         That wakes the executors blocked in their wait, as rclpy's own handler does. At each
-        REDELIVER, a Ctrl-C that landed in a finalizer, it gives the main thread the Ctrl-C again a
-        moment later. It never returns.
+        REDELIVER (give_back_later), it gives the main thread the Ctrl-C again a moment later. It
+        never returns.
         """
         while True:
             received = os.read(read_end, 64)
@@ -194,6 +214,30 @@ class CtrlCAsOnHumble:
             if REDELIVER in received:
                 time.sleep(REDELIVER_AFTER)
                 _thread.interrupt_main(signal.SIGINT)
+
+    @classmethod
+    def give_back_later(cls) -> None:
+        """Have the owl-ctrl-c thread give the main thread this Ctrl-C again REDELIVER_AFTER from now.
+
+        For a Ctrl-C that Python cannot raise where it landed: it would print it ("Exception ignored
+        in: ...") and drop it, and the node would go on spinning. (Not _thread.interrupt_main here:
+        Python would call the handler again at once, where it is.)
+        """
+        with contextlib.suppress(OSError):  # a full pipe holds a REDELIVER already
+            os.write(cls.wake_up_fd, bytes([REDELIVER]))
+
+    @classmethod
+    def give_back_unraisable(cls, unraisable: Any) -> None:
+        """sys.unraisablehook: a CtrlC raised where Python drops exceptions is given back later.
+
+        A finalizer is kept out in raise_ctrl_c; this catches the rest, e.g. a weakref callback
+        (importlib's, as a module lock is freed at startup: seen in a suite).
+        """
+        if isinstance(unraisable.exc_type, type) and issubclass(unraisable.exc_type, CtrlC):
+            cls.pressed_at = None  # the same press, raised again: not a copy to ignore
+            cls.give_back_later()
+            return
+        cls.python_unraisablehook(unraisable)
 
     @classmethod
     def shut_down_after_ctrl_c(cls) -> None:
@@ -210,22 +254,21 @@ class CtrlCAsOnHumble:
 
 
 def raise_ctrl_c(signum: int, frame: FrameType | None) -> None:
-    """SIGINT's handler: raise CtrlC, unless this SIGINT follows the last within SAME_PRESS.
+    """SIGINT's handler: raise CtrlC, unless it is held (hold_ctrl_c) or follows the last within SAME_PRESS.
 
     One Ctrl-C, one CtrlC: the copy that `ros2 launch` passes on to a node that the terminal
     already signalled must not cut the clean-up that the first one started.
     """
+    if CtrlCAsOnHumble.holding:
+        CtrlCAsOnHumble.held = True
+        return
     now = time.monotonic()
     last = CtrlCAsOnHumble.pressed_at
     if last is not None and now - last < SAME_PRESS:
         return
     shutting_down = in_threading_shutdown(frame)
-    if in_finalizer(frame) and not shutting_down:
-        # Raised here, Python would print it ("Exception ignored in: ... __del__") and drop it: the
-        # node would go on spinning. The owl-ctrl-c thread gives it back once the finalizer is over.
-        # (Not _thread.interrupt_main here: Python would call this handler again at once, in it.)
-        with contextlib.suppress(OSError):  # a full pipe holds a REDELIVER already
-            os.write(CtrlCAsOnHumble.wake_up_fd, bytes([REDELIVER]))
+    if in_code_that_loses_exceptions(frame) and not shutting_down:
+        CtrlCAsOnHumble.give_back_later()  # once that code is over, which runs to its end
         return
     CtrlCAsOnHumble.pressed_at = now
     if shutting_down:
@@ -235,14 +278,16 @@ def raise_ctrl_c(signum: int, frame: FrameType | None) -> None:
     raise CtrlC
 
 
-def in_finalizer(frame: FrameType | None) -> bool:
-    """Whether the main thread runs a __del__ method, e.g. of one of the Tasks an executor drops.
+def in_code_that_loses_exceptions(frame: FrameType | None) -> bool:
+    """Whether the main thread runs code whose exceptions never reach the program as they are.
 
-    Python runs a signal handler at any function call, a finalizer's too, and an exception raised in
-    a finalizer is printed and dropped. The executor drops a Task (Future.__del__) after each callback.
+    Python runs a signal handler at any function call. An exception raised in a finalizer (__del__:
+    the executor drops a Task, Future.__del__, after each callback) is printed and dropped; one
+    raised in a __set_name__ (as a class is made, e.g. numpy's while the node's first service imports
+    it: seen once in 20 Ctrl-C of a listing) becomes a RuntimeError (Python 3.11).
     """
     while frame is not None:
-        if frame.f_code.co_name == '__del__':
+        if frame.f_code.co_name in ('__del__', '__set_name__'):
             return True
         frame = frame.f_back
     return False
@@ -264,7 +309,10 @@ def in_threading_shutdown(frame: FrameType | None) -> bool:
 
 
 def patch_signals(signals: Any) -> None:
-    """Patch rclpy.signals: every SIGINT guard condition made is tracked, for wake_executors to trigger."""
+    """Patch rclpy.signals: every SIGINT guard condition made is tracked, for wake_executors to trigger.
+
+    Its handler options are kept for rclpy_handles_ctrl_c.
+    """
     guard_init = signals.SignalHandlerGuardCondition.__init__
 
     @wraps(guard_init)
@@ -273,6 +321,9 @@ def patch_signals(signals: Any) -> None:
         CtrlCAsOnHumble.sigint_guards.add(self)
 
     signals.SignalHandlerGuardCondition.__init__ = init_and_track
+    RclpyHandlerOptions.current = signals.get_current_signal_handlers_options
+    options = signals.SignalHandlerOptions
+    RclpyHandlerOptions.with_sigint = frozenset({options.ALL.value, options.SIGINT.value})
 
 
 def patch_init(rclpy: Any) -> None:
@@ -300,14 +351,18 @@ def install() -> None:
 def patch_executors(executors: Any) -> None:
     """Patch rclpy.executors: takes keep Ctrl-C out, the spin-until-future methods leave no wake-ups.
 
+    A handler cut short by a Ctrl-C gives back what it claimed (Task.__call__, from rclpy.task).
+
     Future.__del__ (rclpy.task) is patched here too, to skip the futures a Ctrl-C left half built,
     and Executor.__del__, to leave a guard condition that finalised itself first alone.
     """
     for name in TAKES:
         setattr(executors.Executor, name, keep_ctrl_c_out(getattr(executors.Executor, name)))
-    from rclpy.task import Future
+    executors.Executor._make_handler = file_with_claim(executors.Executor._make_handler)
+    from rclpy.task import Future, Task
     Future.__del__ = skip_half_built(Future.__del__)  # type: ignore[method-assign]
-    executors.Executor.__del__ = forgive_gone_guard(executors.Executor.__del__)
+    Task.__call__ = give_back_on_ctrl_c(Task.__call__)  # type: ignore[method-assign]
+    executors.Executor.__del__ = forgive_missing_guard(executors.Executor.__del__)
     for cls in (executors.Executor, executors.SingleThreadedExecutor, executors.MultiThreadedExecutor):
         for name in SPINS_UNTIL_FUTURE:
             if name in vars(cls):
@@ -371,19 +426,21 @@ def drop_stale_wakers(spin: Callable[..., Any], executors_file: str) -> Callable
 def skip_half_built(delete: Callable[[Any], None]) -> Callable[[Any], None]:
     """Future.__del__, doing nothing for a future whose __init__ a Ctrl-C cut short."""
     @wraps(delete)
-    def __del__(future: Any) -> None:  # named so that in_finalizer knows it
+    def __del__(future: Any) -> None:  # named so that in_code_that_loses_exceptions knows it
         if hasattr(future, '_exception_fetched'):  # set after _exception: __init__ got past both
             delete(future)
 
     return __del__
 
 
-def forgive_gone_guard(delete: Callable[[Any], None]) -> Callable[[Any], None]:
-    """Executor.__del__, quiet when its SIGINT guard condition was destroyed before it."""
+def forgive_missing_guard(delete: Callable[[Any], None]) -> Callable[[Any], None]:
+    """Executor.__del__, quiet when its SIGINT guard condition was destroyed before it or never made."""
     from rclpy.exceptions import InvalidHandle
 
     @wraps(delete)
-    def __del__(executor: Any) -> None:  # named so that in_finalizer knows it
+    def __del__(executor: Any) -> None:  # named so that in_code_that_loses_exceptions knows it
+        if '_sigint_gc' not in vars(executor):  # a Ctrl-C cut its __init__ short
+            return
         try:
             delete(executor)
         except InvalidHandle:  # the guard finalised itself first, at interpreter exit
@@ -392,34 +449,104 @@ def forgive_gone_guard(delete: Callable[[Any], None]) -> Callable[[Any], None]:
     return __del__
 
 
+def file_with_claim(make_handler: Callable[..., Any]) -> Callable[..., Any]:
+    """Executor._make_handler, filing its Task whole and telling it which entity it claims."""
+    @wraps(make_handler)
+    def make_handler_filed_whole(executor: Any, entity: Any, *args: Any) -> Any:
+        python_handler = pythons_ctrl_c()
+        if python_handler is None or rclpy_handles_ctrl_c():
+            task = make_handler(executor, entity, *args)
+        else:
+            task = hold_ctrl_c(python_handler, make_handler, executor, entity, *args)
+        task._owl_claimed = entity
+        return task
+
+    return make_handler_filed_whole
+
+
+def give_back_on_ctrl_c(call: Callable[[Any], None]) -> Callable[[Any], None]:
+    """Task.__call__, giving back the entity and callback group a handler claimed if a Ctrl-C ends it."""
+    @wraps(call)
+    def call_giving_back(task: Any) -> None:
+        try:
+            call(task)
+        except KeyboardInterrupt:
+            entity = getattr(task, '_owl_claimed', None)
+            if entity is not None:
+                entity._executor_event = False
+                group = entity.callback_group
+                if getattr(group, '_active_entity', None) is entity:
+                    group.ending_execution(entity)
+                task.cancel()  # else it stays "executing" in the executor's list for good
+            raise
+
+    return call_giving_back
+
+
+def pythons_ctrl_c() -> Callable[[int, FrameType | None], Any] | None:
+    """SIGINT's handler if a Ctrl-C raises in this thread through it (Python's default or CtrlC's)."""
+    python_handler = _signal.getsignal(signal.SIGINT)  # signal.getsignal's enum lookup costs 5 us
+    if (threading.current_thread() is not threading.main_thread()
+            or python_handler not in (signal.default_int_handler, raise_ctrl_c)):
+        return None
+    return python_handler
+
+
+def rclpy_handles_ctrl_c() -> bool:
+    """Whether rclpy's own SIGINT handler is installed (under Python's, which it calls)."""
+    return RclpyHandlerOptions.current().value in RclpyHandlerOptions.with_sigint
+
+
+class RclpyHandlerOptions:
+    """rclpy.signals' SignalHandlerOptions, as patch_signals finds them (compared as ints: faster)."""
+
+    current: ClassVar[Callable[[], Any]]
+    with_sigint: ClassVar[frozenset[int]]
+
+
+def hold_ctrl_c(python_handler: Callable[[int, FrameType | None], Any], call: Callable[..., Any],
+                *args: Any) -> Any:
+    """call(*args), with a Ctrl-C that lands inside it given to python_handler as it returns.
+
+    Not while rclpy's handler is installed: signal.signal would replace it in the kernel too.
+    """
+    if python_handler is raise_ctrl_c:  # ours reads a flag: cheaper than two signal.signal (15 us)
+        outer = CtrlCAsOnHumble.holding
+        CtrlCAsOnHumble.holding = True
+        try:
+            result = call(*args)
+        finally:
+            CtrlCAsOnHumble.holding = outer
+        if CtrlCAsOnHumble.held and not outer:
+            CtrlCAsOnHumble.held = False
+            raise_ctrl_c(signal.SIGINT, None)
+        return result
+    held: list[int] = []
+    signal.signal(signal.SIGINT, lambda signum, frame: held.append(signum))
+    try:
+        result = call(*args)
+    finally:
+        signal.signal(signal.SIGINT, python_handler)
+    if held:
+        python_handler(signal.SIGINT, None)
+    return result
+
+
 def keep_ctrl_c_out(take: Callable[..., Any]) -> Callable[..., Any]:
     """take, with a Ctrl-C that lands inside it raised as KeyboardInterrupt (see the module's text)."""
-    from rclpy.signals import SignalHandlerOptions, get_current_signal_handlers_options
-
-    rclpy_handles = (SignalHandlerOptions.ALL, SignalHandlerOptions.SIGINT)
-
     @wraps(take)
     def take_keeping_ctrl_c_out(executor: Any, entity: Any) -> Any:
-        python_handler: Any = signal.getsignal(signal.SIGINT)  # callable past the check below
-        if (threading.current_thread() is not threading.main_thread()
-                or python_handler not in (signal.default_int_handler, raise_ctrl_c)):
+        python_handler = pythons_ctrl_c()
+        if python_handler is None:
             return take(executor, entity)
-        if get_current_signal_handlers_options() in rclpy_handles:
+        if rclpy_handles_ctrl_c():
             try:
                 return take(executor, entity)
             except Exception as error:
                 if was_ctrl_c(error, executor.context):
                     raise KeyboardInterrupt from None
                 raise
-        held: list[int] = []
-        signal.signal(signal.SIGINT, lambda signum, frame: held.append(signum))
-        try:
-            result = take(executor, entity)
-        finally:
-            signal.signal(signal.SIGINT, python_handler)
-        if held:
-            python_handler(signal.SIGINT, None)
-        return result
+        return hold_ctrl_c(python_handler, take, executor, entity)
 
     return take_keeping_ctrl_c_out
 
