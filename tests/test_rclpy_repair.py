@@ -189,8 +189,8 @@ def test_a_ctrl_c_while_a_response_is_handled_leaves_the_node_able_to_call_again
 # keyboard_servos' shape (section 4.4.1): a timer publishes goals; at Ctrl-C the clean-up cancels it
 # (no goal may follow the torque-off) and spins the node for the torque-off responses. The Ctrl-C
 # is raised from inside the constructor of the Task the executor files for the timer, so it lands
-# after the timer's handler is filed and before it runs, as it did once in a suite run (10 of
-# 11 course suites). rclpy 7.1.6 runs that leftover handler at the clean-up's first spin, and its
+# after the timer's handler is filed and before it runs (seen once in 11 suite runs, in
+# keyboard_servos). rclpy 7.1.6 runs that leftover handler at the clean-up's first spin, and its
 # take of the cancelled timer raised "RCLError: failed to call timer: timer is canceled".
 TIMER_CANCELLED_IN_CLEAN_UP = """
 import signal
