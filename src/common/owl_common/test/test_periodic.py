@@ -3,7 +3,7 @@ import threading
 import time
 
 import pytest
-from owl_common.periodic import PeriodicThread, next_call, scheduled_time
+from owl_common.periodic import PeriodicThread, next_call, scheduled_time, wall_time_ns
 
 
 def test_calls_at_its_rate_until_stopped_then_finishes_on_its_own_thread():
@@ -75,3 +75,43 @@ def test_a_call_held_up_keeps_its_due_time_and_the_schedule_goes_on():
     periodic.stop()
     gaps = [later - earlier for earlier, later in itertools.pairwise(due_times[:12])]
     assert gaps == pytest.approx([0.01] * 11, abs=1e-9)
+
+
+def test_a_hold_up_longer_than_catch_up_is_reported_with_the_calls_skipped():
+    reports = []
+
+    def call():
+        if not reports and scheduled_time() > started + 0.02:
+            time.sleep(0.25)  # the machine holds the thread up for 25 periods, beyond catch_up
+
+    started = time.monotonic()
+    periodic = PeriodicThread(100.0, call, 'test', alive=lambda: True, catch_up=0.1,
+                              skipped=lambda count, jump: reports.append((count, jump)))
+    deadline = time.monotonic() + 5.0
+    while not reports and time.monotonic() < deadline:
+        time.sleep(0.01)
+    time.sleep(0.1)
+    periodic.stop()
+    assert reports, 'no hold-up reported'
+    count, jump = reports[0]  # (a busy machine may hold the thread up again later)
+    assert count >= 24, reports
+    assert jump == pytest.approx((count + 1) * 0.01, abs=0.005), reports
+
+
+def test_wall_time_at_a_monotonic_instant_is_not_skewed_by_a_hold_up_between_the_clock_readings(monkeypatch):
+    # One timeline: the wall clock reads monotonic + 1000 s, each reading takes 100 ns, and the
+    # machine holds the thread up 3 ms right after its first reading.
+    now = [5_000_000_000]
+
+    def reading(offset):
+        value = now[0] + offset
+        now[0] += 3_000_000 if now[0] == 5_000_000_000 else 100
+        return value
+
+    monkeypatch.setattr(time, 'monotonic_ns', lambda: reading(0))
+    monkeypatch.setattr(time, 'time_ns', lambda: reading(1_000_000_000_000))
+    assert abs(wall_time_ns(7.5) - 1_007_500_000_000) <= 100
+
+
+def test_wall_time_follows_the_system_clock():
+    assert abs(wall_time_ns(time.monotonic()) - time.time_ns()) < 5_000_000

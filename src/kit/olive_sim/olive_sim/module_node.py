@@ -19,7 +19,7 @@ from typing import Any, ClassVar
 import yaml
 from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
 from olive_kit.description import WEB_PORT, node_name
-from owl_common.periodic import PeriodicThread
+from owl_common.periodic import PeriodicThread, wall_time_ns
 from owl_common.polled_subscription import PolledSubscription
 from owl_common.quaternion import Quaternion
 from owl_common.run import spin_node
@@ -200,8 +200,7 @@ class OliveModule(Node):
         clock = self.get_clock()
         if isinstance(clock, ROSClock) and clock.ros_time_is_active:
             return clock.now().nanoseconds - round((time.monotonic() - monotonic) * 1e9)
-        # One expression of C calls: no other thread runs between the two clock readings.
-        return time.time_ns() - time.monotonic_ns() + round(monotonic * 1e9)
+        return wall_time_ns(monotonic)
 
     def create_polled_subscription(self, msg_type: type, topic: str, callback: Callable[[Any], None],
                                    qos: QoSProfile | int, raw: bool = False) -> PolledSubscription:
@@ -212,10 +211,15 @@ class OliveModule(Node):
                         catch_up: float = 0.0) -> PeriodicThread:
         """Run callback at rate Hz on a thread of its own until the node is destroyed.
 
-        catch_up: see PeriodicThread.
+        catch_up: see PeriodicThread. A sensor that makes up its samples says so when the machine
+        held it up too long to make them up: its stamps then have a gap a real module's would not.
         """
+        def skipped(count: int, jump: float) -> None:
+            self.warn(f'{name} skipped', f'{name}: the machine held this module up {jump:.2f} s, longer '
+                      f'than the {catch_up} s it makes up; {count} samples skipped')
+
         periodic = PeriodicThread(rate, callback, f'{self.get_name()}.{name}', self.context.ok,
-                                  catch_up=catch_up)
+                                  catch_up=catch_up, skipped=skipped if catch_up > 0 else None)
         self._periodic.append(periodic)
         return periodic
 
