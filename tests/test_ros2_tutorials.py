@@ -8,7 +8,9 @@ in its own words (the tutorials' files are not copied).
 from __future__ import annotations
 
 import math
+import os
 import re
+import signal
 import subprocess
 import textwrap
 import time
@@ -520,6 +522,36 @@ def test_record_info_and_play_move_the_turtle_along_the_same_path(ros: RosHarnes
     time.sleep(1.5)
     replayed = pose_of(ros)
     assert math.dist(replayed[:2], end[:2]) < 0.5, (replayed, end)
+
+
+def test_play_waits_for_a_subscriber_that_discovery_has_not_shown_yet(ros: RosHarness, tmp_path: Path):
+    # On a busy machine a subscriber can take over a second to show up in a new node's graph. Play
+    # waits until every participant of this machine is seen (ros2cli.node.settle), then for its
+    # subscribers to match, so the listener hears the bag from its first message.
+    from rclpy.serialization import serialize_message
+    from ros2bag.bag import BagWriter
+    from std_msgs.msg import String
+
+    bag = tmp_path / 'chatter'
+    writer = BagWriter(bag)
+    writer.add_topic('/chatter', 'std_msgs/msg/String', 'string data', [], '')
+    for count in range(5):
+        writer.write('/chatter', serialize_message(String(data=f'Hello World: {count}')), (count + 1) * 10**8)
+    writer.close()
+    listener = ros.run('demo_nodes_py', 'listener')
+    ros.probe.wait_for_node('listener', timeout=20)
+    # Held up, the listener cannot answer the player's discovery until it goes on.
+    os.kill(listener.pid, signal.SIGSTOP)
+    try:
+        player = ros.command(['ros2', 'bag', 'play', str(bag)], label='play')
+        player.wait_for(r'\[rosbag2_player\]: Playing', timeout=20)
+        time.sleep(0.7)  # past the 0.3 s play once gave discovery
+    finally:
+        os.kill(listener.pid, signal.SIGCONT)
+    assert player.wait(timeout=20) == 0, player.output
+    listener.wait_for(r'I heard: \[Hello World: 4\]', timeout=10)
+    heard = re.findall(r'I heard: \[Hello World: (\d)\]', listener.output)
+    assert heard == ['0', '1', '2', '3', '4'], listener.output
 
 
 def test_a_recorded_bag_reads_back_with_the_mcap_librarys_own_reader(ros: RosHarness, tmp_path: Path):

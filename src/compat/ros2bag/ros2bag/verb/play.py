@@ -11,7 +11,6 @@ from ros2cli.api.topic import positive_float
 from ros2cli.verb import VerbExtension
 
 MATCH_WAIT = 2.0  # s: the longest play waits for the graph's subscribers to match before it plays
-MATCH_SETTLE = 0.3  # s: the shortest, so discovery has shown them
 
 
 def non_negative_float(text: str) -> float:
@@ -116,20 +115,23 @@ def play(folder: Path, args: argparse.Namespace, recorded: dict[str, str]) -> in
 
 
 def wait_for_subscribers(node: Any, publishers: dict[str, Any]) -> None:
-    """Spin until every subscription the graph shows on a played topic has matched its publisher.
+    """Spin until discovery has settled and every subscription it shows on a played topic has matched.
 
     Messages published before a subscriber has matched are lost to it (the tutorial's turtle then
-    drove a shorter curve); at most MATCH_WAIT, and at least MATCH_SETTLE for discovery to show them.
+    drove a shorter curve). The graph must be complete first: on a busy machine a fixed 0.3 s once
+    showed no subscriber yet, and the replayed curve came out 0.4 rad short. Matching then takes at
+    most MATCH_WAIT.
     """
     import rclpy
+    from ros2cli.node.direct import settle_discovery
 
-    started = time.monotonic()
-    while (elapsed := time.monotonic() - started) < MATCH_WAIT:
-        rclpy.spin_once(node, timeout_sec=0.05)
-        matched = all(publisher.get_subscription_count() >= node.count_subscribers(publisher.topic_name)
-                      for publisher in publishers.values())
-        if matched and elapsed >= MATCH_SETTLE:
+    settle_discovery(node)
+    deadline = time.monotonic() + MATCH_WAIT
+    while not all(publisher.get_subscription_count() >= node.count_subscribers(publisher.topic_name)
+                  for publisher in publishers.values()):
+        if time.monotonic() >= deadline:
             return
+        rclpy.spin_once(node, timeout_sec=0.05)
 
 
 def sleep_unless_stopped(seconds: float, stop: Any) -> bool:

@@ -45,6 +45,20 @@ def tear_down(node: 'Node', *owned: Any) -> None:
     rclpy.try_shutdown()
 
 
+def settle_discovery(node: 'Node', graph: GraphQueries | None = None) -> None:
+    """Serve node's callbacks until discovery has settled (see ros2cli.node.settle).
+
+    graph: node's GraphQueries, if the caller has one already.
+    """
+    import rclpy  # lazy, as in tear_down
+
+    graph = graph or GraphQueries(node)
+    settling = DiscoverySettling()
+    started = time.monotonic()
+    while not settling.settled(time.monotonic() - started, *graph_view(graph, local_participants())):
+        rclpy.spin_once(node, timeout_sec=POLL)
+
+
 class DirectNode:
     """Owns rclpy for the verb: init on creation, shutdown on close()."""
 
@@ -65,16 +79,9 @@ class DirectNode:
             parameter_overrides=[Parameter('use_sim_time', value=use_sim_time)])
         self._graph: GraphQueries | None = None
         if spin_time is None:
-            self.settle()
+            settle_discovery(self.node, self.graph)
         else:
             self.spin_for(spin_time)
-
-    def settle(self) -> None:
-        """Serve callbacks until discovery has settled (see ros2cli.node.settle)."""
-        settling = DiscoverySettling()
-        started = time.monotonic()
-        while not settling.settled(time.monotonic() - started, *graph_view(self.graph, local_participants())):
-            self._rclpy.spin_once(self.node, timeout_sec=POLL)
 
     def spin_for(self, seconds: float) -> None:
         """Serve callbacks for that long; what DDS discovery needs to fill the graph cache."""
