@@ -16,6 +16,7 @@ from pathlib import Path
 
 import pytest
 from owl_cli.check_catalogue import EXERCISES
+from owl_common.processes import dies_with_this_process
 from student_workspace import build_from, shell
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -31,10 +32,11 @@ CALIBRATED = [
 ]
 
 
-def owl_check(*args: str, cwd: Path | None = None, timeout: float = 120) -> subprocess.CompletedProcess:
-    return subprocess.run(
-        ['owl', 'check', *args], capture_output=True, text=True, cwd=cwd, timeout=timeout, check=False
-    )
+def owl_check(*args: str, cwd: Path | None = None, timeout: float = 120,
+              env: dict[str, str] | None = None) -> subprocess.CompletedProcess:
+    # It runs for up to minutes and starts nodes of its own: a killed test run must take it along.
+    return subprocess.run(['owl', 'check', *args], capture_output=True, text=True, cwd=cwd, env=env,
+                          timeout=timeout, check=False, preexec_fn=dies_with_this_process())
 
 
 def results(done: subprocess.CompletedProcess) -> dict[str, dict]:
@@ -207,15 +209,8 @@ def test_all_in_a_workspace_of_ros2_pkg_create_and_an_unedited_parameter_file(tm
     (home / 'Documents' / 'turtlesim.yaml').write_text(FRESH_DUMP)
     created = shell(workspace / 'src', 'ros2 pkg create test_package --build-type ament_python')
     assert created.returncode == 0, created.stdout + created.stderr
-    done = subprocess.run(
-        ['owl', 'check', '--all', '--json'],
-        capture_output=True,
-        text=True,
-        cwd=workspace / 'src' / 'test_package',
-        env={**os.environ, 'HOME': str(home)},
-        timeout=280,
-        check=False,
-    )
+    done = owl_check('--all', '--json', cwd=workspace / 'src' / 'test_package',
+                     env={**os.environ, 'HOME': str(home)}, timeout=280)
     assert done.returncode == 1, done.stdout + done.stderr
     found = results(done)
     assert sorted(found) == ['params_file', 'test_package']
