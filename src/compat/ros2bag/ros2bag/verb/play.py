@@ -11,6 +11,13 @@ from ros2cli.api.topic import positive_float
 from ros2cli.verb import VerbExtension
 
 MATCH_WAIT = 2.0  # s: the longest play waits for the graph's subscribers to match before it plays
+# s: then how long it gives the subscribers to match the player in turn. DDS matches the two ends
+# one at a time, and a volatile reader drops what arrives before its end has matched; a listener
+# that was held up while play started lost the first message once, matched within 0.1 s of play.
+READER_MATCH = 0.3
+# s: at the end, the longest play waits for its subscribers to acknowledge what it sent: a
+# publication is sent on a thread of rmw's own, and a player that exits at once lost its last message
+ACK_WAIT = 1.0
 
 
 def non_negative_float(text: str) -> float:
@@ -106,6 +113,7 @@ def play(folder: Path, args: argparse.Namespace, recorded: dict[str, str]) -> in
             if not play_once(folder, args, publishers, stop):
                 break
             if not args.loop:
+                wait_for_acknowledgements(publishers)
                 break
     finally:
         begin_cleanup()
@@ -120,7 +128,7 @@ def wait_for_subscribers(node: Any, publishers: dict[str, Any]) -> None:
     Messages published before a subscriber has matched are lost to it (the tutorial's turtle then
     drove a shorter curve). The graph must be complete first: on a busy machine a fixed 0.3 s once
     showed no subscriber yet, and the replayed curve came out 0.4 rad short. Matching then takes at
-    most MATCH_WAIT.
+    most MATCH_WAIT, and a subscriber's own end READER_MATCH more.
     """
     import rclpy
     from ros2cli.node.direct import settle_discovery
@@ -132,6 +140,17 @@ def wait_for_subscribers(node: Any, publishers: dict[str, Any]) -> None:
         if time.monotonic() >= deadline:
             return
         rclpy.spin_once(node, timeout_sec=0.05)
+    if any(publisher.get_subscription_count() for publisher in publishers.values()):
+        time.sleep(READER_MATCH)  # DDS's own threads do the matching
+
+
+def wait_for_acknowledgements(publishers: dict[str, Any]) -> None:
+    """Give the subscribers up to ACK_WAIT s in all to acknowledge every message played."""
+    from rclpy.duration import Duration
+
+    deadline = time.monotonic() + ACK_WAIT
+    for publisher in publishers.values():
+        publisher.wait_for_all_acked(Duration(seconds=max(0.0, deadline - time.monotonic())))
 
 
 def sleep_unless_stopped(seconds: float, stop: Any) -> bool:
