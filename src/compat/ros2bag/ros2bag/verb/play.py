@@ -11,6 +11,10 @@ from ros2cli.api.topic import positive_float
 from ros2cli.verb import VerbExtension
 
 MATCH_WAIT = 2.0  # s: the longest play waits for the graph's subscribers to match before it plays
+# s without a change in a complete graph before play looks for its subscribers: a participant's
+# subscriptions are announced apart from its publications and can come later (a held-up listener's
+# did, and play then saw it without its subscription); the `ros2` graph verbs wait 0.05 s
+GRAPH_QUIET = 0.3
 # s: then how long it gives the subscribers to match the player in turn. DDS matches the two ends
 # one at a time, and a volatile reader drops what arrives before its end has matched; a listener
 # that was held up while play started lost the first message once, matched within 0.1 s of play.
@@ -133,7 +137,7 @@ def wait_for_subscribers(node: Any, publishers: dict[str, Any]) -> None:
     import rclpy
     from ros2cli.node.direct import settle_discovery
 
-    settle_discovery(node)
+    settle_discovery(node, quiet_complete=GRAPH_QUIET)
     deadline = time.monotonic() + MATCH_WAIT
     while not all(publisher.get_subscription_count() >= node.count_subscribers(publisher.topic_name)
                   for publisher in publishers.values()):

@@ -8,7 +8,15 @@ from typing import TYPE_CHECKING, Any
 
 from owl_common.graph import GraphQueries
 
-from ros2cli.node.settle import MOST, MOST_COUNTED, POLL, DiscoverySettling, graph_view, local_participants
+from ros2cli.node.settle import (
+    MOST,
+    MOST_COUNTED,
+    POLL,
+    QUIET_COMPLETE,
+    DiscoverySettling,
+    graph_view,
+    local_participants,
+)
 
 if TYPE_CHECKING:  # rclpy is imported when a node is made: `ros2 <command> -h` does not need it
     from rclpy.node import Node
@@ -45,15 +53,16 @@ def tear_down(node: 'Node', *owned: Any) -> None:
     rclpy.try_shutdown()
 
 
-def settle_discovery(node: 'Node', graph: GraphQueries | None = None) -> None:
+def settle_discovery(node: 'Node', graph: GraphQueries | None = None,
+                     quiet_complete: float = QUIET_COMPLETE) -> None:
     """Serve node's callbacks until discovery has settled (see ros2cli.node.settle).
 
-    graph: node's GraphQueries, if the caller has one already.
+    graph: node's GraphQueries, if the caller has one already; quiet_complete: see DiscoverySettling.
     """
     import rclpy  # lazy, as in tear_down
 
     graph = graph or GraphQueries(node)
-    settling = DiscoverySettling()
+    settling = DiscoverySettling(quiet_complete=quiet_complete)
     started = time.monotonic()
     while not settling.settled(time.monotonic() - started, *graph_view(graph, local_participants())):
         rclpy.spin_once(node, timeout_sec=POLL)
