@@ -59,14 +59,25 @@ def test_nothing_but_itself_is_believed_only_at_the_bound():
 def test_a_participant_bound_here_but_unseen_is_waited_for_up_to_the_longer_bound():
     assert answered_at([(t, 'self', False, False) for t in ticks()]) == MOST_COUNTED
     # A loaded machine: the second turtle's announcement repaired at 2.1 s, past MOST, is answered
-    # as soon as it is seen.
+    # after the short quiet once it is seen.
     timeline = [(t, 'one' if t < 2.1 else 'two', True, t >= 2.1) for t in ticks()]
-    assert answered_at(timeline) == 2.1
+    assert answered_at(timeline) == first_tick_quiet(2.1, QUIET_COMPLETE)
 
 
 def test_a_graph_that_never_stops_changing_is_answered_at_the_bound():
     assert answered_at([(t, str(t), True, True) for t in ticks()]) == MOST
     assert answered_at([(t, str(t), True, None) for t in ticks()]) == MOST
+    # Complete only from 0.8 s (a participant held up while the asker joined): MOST from then.
+    assert answered_at([(t, str(t), True, t >= 0.8) for t in ticks()]) == 0.8 + MOST
+
+
+def test_a_participant_seen_late_is_given_time_for_the_rest_of_its_endpoints():
+    # A listener held up until 0.76 s is seen at 0.8 s; on a busy machine its endpoints then arrive
+    # one by one, 0.04 s apart, the last (its subscription) at 1.4 s, past MOST from the start.
+    def graph(t: float) -> str:
+        return 'self' if t < 0.8 else str(min(int(round((t - 0.8) / 0.04, 6)), 15))
+    timeline = [(t, graph(t), t >= 0.8, t >= 0.8) for t in ticks()]
+    assert answered_at(timeline) == first_tick_quiet(1.4, QUIET_COMPLETE)
 
 
 PROC_NET_UDP = """   sl  local_address rem_address   st tx_queue rx_queue tr tm->when retrnsmt   uid

@@ -13,8 +13,10 @@ every participant of the domain is a process of this machine, bound to a discove
 endpoints of their nodes) as there are such ports, every endpoint's node is named, and nothing has
 changed for QUIET_COMPLETE s; while a participant bound here is still unseen, the answer waits for
 it up to MOST_COUNTED s (on a loaded machine a lost announcement can be repaired later than MOST).
-Elsewhere (other hosts can take part) it is given once a node that is not a hidden one is in sight
-and nothing has changed for QUIET s. A graph that never gets there is answered at MOST s.
+A complete graph that keeps changing is answered MOST s after it became complete: a participant
+seen late (one held up while the asker joined) sends its endpoints late too. Elsewhere (other hosts
+can take part) it is given once a node that is not a hidden one is in sight and nothing has changed
+for QUIET s. A graph that never gets there is answered at MOST s.
 """
 
 from __future__ import annotations
@@ -48,6 +50,7 @@ class DiscoverySettling:
         self.most_counted = most_counted
         self._seen: Hashable = None
         self._changed_at = 0.0
+        self._complete_since: float | None = None
 
     def settled(self, elapsed: float, graph: Hashable, others_seen: bool, complete: bool | None) -> bool:
         """Whether to answer now, elapsed s after joining.
@@ -60,7 +63,14 @@ class DiscoverySettling:
             self._seen = graph
             self._changed_at = elapsed
         quiet_for = elapsed - self._changed_at
-        if elapsed >= (self.most_counted if complete is False else self.most):
+        if complete is True:
+            if self._complete_since is None:
+                self._complete_since = elapsed
+            bound = self._complete_since + self.most
+        else:
+            self._complete_since = None
+            bound = self.most_counted if complete is False else self.most
+        if elapsed >= bound:
             return True
         if complete is None:
             return others_seen and quiet_for >= self.quiet
