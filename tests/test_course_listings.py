@@ -39,6 +39,12 @@ LATEST_CTRL_C = 1.5  # s after the node appeared
 EXIT_TIMEOUT = 10.0
 DOUBLE_PRESS = 0.01  # s
 TRACEBACK = re.compile(r'Traceback|Error|Exception ignored')
+# Fast DDS's shared-memory transport logs this at start when a port's segment is gone or unfinished
+# while another process still holds the port's lock (one starting or ending at that moment); the
+# participant then takes the next port and works. It is the middleware's, before any Ctrl-C, and a
+# real install prints it too (eProsima/Fast-DDS#2003); seen once in 20 suite runs.
+FASTDDS_SHM_PORT_TAKEN = re.compile(
+    r'^.*RTPS_TRANSPORT_SHM.*Failed init_port fastrtps_port\d+: open_and_lock_file failed.*$\n?', re.M)
 
 
 @dataclass
@@ -118,7 +124,7 @@ def test_ctrl_c_at_any_moment_ends_a_listing_cleanly(ros: RosHarness, listing: L
         delays = [rng.uniform(0.0, listing.latest_ctrl_c) for _ in range(RUNS_AT_ONCE)]
         for process, delay in run_once(ros, listing, round_number, delays):
             code = process.popen.returncode
-            if code != 0 or TRACEBACK.search(process.output):
+            if code != 0 or TRACEBACK.search(FASTDDS_SHM_PORT_TAKEN.sub('', process.output)):
                 failures.append(f'Ctrl-C {delay:.2f} s after its node appeared: exit code {code}, '
                                 f'output:\n{process.tail(60)}')
     assert not failures, f'{len(failures)} of {RUNS} runs did not end cleanly; the first:\n{failures[0]}'
