@@ -542,14 +542,21 @@ def test_play_waits_for_a_subscriber_that_discovery_has_not_shown_yet(ros: RosHa
     ros.probe.wait_for_node('listener', timeout=20)
     # Held up, the listener cannot answer the player's discovery until it goes on.
     os.kill(listener.pid, signal.SIGSTOP)
+    held_at = time.monotonic()
     try:
         player = ros.command(['ros2', 'bag', 'play', str(bag)], label='play')
         player.wait_for(r'\[rosbag2_player\]: Playing', timeout=20)
         time.sleep(0.7)  # past the 0.3 s play once gave discovery
     finally:
         os.kill(listener.pid, signal.SIGCONT)
+    went_on_at = time.monotonic()
     assert player.wait(timeout=20) == 0, player.output
-    listener.wait_for(r'I heard: \[Hello World: 4\]', timeout=10)
+    ended = time.monotonic() - went_on_at
+    timing = f'listener held up {went_on_at - held_at:.2f} s; play ended {ended:.2f} s after'
+    try:
+        listener.wait_for(r'I heard: \[Hello World: 4\]', timeout=10)
+    except AssertionError as error:
+        raise AssertionError(f'{error}\n{timing}') from None
     heard = re.findall(r'I heard: \[Hello World: (\d)\]', listener.output)
     assert heard == ['0', '1', '2', '3', '4'], listener.output
 

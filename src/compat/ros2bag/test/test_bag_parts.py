@@ -1,4 +1,4 @@
-"""ros2bag's plain parts without a ROS graph: schemas, the bag folder, info's text, type names."""
+"""ros2bag's plain parts without a ROS graph: schemas, the bag folder, info's text, types, play's rules."""
 
 from pathlib import Path
 
@@ -10,6 +10,7 @@ from ros2bag.bag import BagError, BagWriter, messages, read_metadata
 from ros2bag.definitions import SEPARATOR, message_definition
 from ros2bag.interfaces import import_type
 from ros2bag.verb.info import duration_text, info_lines, size_text
+from ros2bag.verb.play import writers_without_readers
 from sensor_msgs.msg import Image
 
 
@@ -70,3 +71,13 @@ def test_type_names_that_do_not_resolve_say_why(name: str, reason: str):
     with pytest.raises(ValueError, match=reason):
         import_type(name)
     assert import_type('example_interfaces/srv/AddTwoInts_Event') is AddTwoInts.Event
+
+
+def test_play_waits_for_a_participant_whose_writers_it_has_seen_but_no_reader():
+    listener, player, daemon = b'listener', b'player', b'daemon'
+    assert writers_without_readers([]) == set()
+    # The listener's writers came first; its readers (rmw's ros_discovery_info one among them) later.
+    seen = [(player, False), (player, True), (listener, False), (daemon, True), (daemon, False)]
+    assert writers_without_readers(seen) == {listener}
+    assert writers_without_readers([*seen, (listener, True)]) == set()
+    assert writers_without_readers([(listener, True)]) == set()  # readers first: nothing to wait for

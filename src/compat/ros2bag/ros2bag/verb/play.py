@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import time
+from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
@@ -15,6 +16,12 @@ MATCH_WAIT = 2.0  # s: the longest play waits for the graph's subscribers to mat
 # subscriptions are announced apart from its publications and can come later (a held-up listener's
 # did, and play then saw it without its subscription); the `ros2` graph verbs wait 0.05 s
 GRAPH_QUIET = 0.3
+# s: the longest play then waits for the readers of a participant it knows only the writers of.
+# A participant announces its readers apart from its writers: a listener held up while play started
+# on a loaded machine had all its readers (its /chatter subscription among them) come 0.4-0.65 s
+# after its writers, after discovery had settled (4 of 30 tries; that listener used UDP only). Every
+# ROS 2 participant has a reader (rmw's own, of ros_discovery_info), so only a late one is waited for.
+READERS_WAIT = 1.0
 # s: then how long it gives the subscribers to match the player in turn. DDS matches the two ends
 # one at a time, and a volatile reader drops what arrives before its end has matched; a listener
 # that was held up while play started lost the first message once, matched within 0.1 s of play.
@@ -131,13 +138,16 @@ def wait_for_subscribers(node: Any, publishers: dict[str, Any]) -> None:
 
     Messages published before a subscriber has matched are lost to it (the tutorial's turtle then
     drove a shorter curve). The graph must be complete first: on a busy machine a fixed 0.3 s once
-    showed no subscriber yet, and the replayed curve came out 0.4 rad short. Matching then takes at
-    most MATCH_WAIT, and a subscriber's own end READER_MATCH more.
+    showed no subscriber yet, and the replayed curve came out 0.4 rad short; so must each
+    participant's readers (READERS_WAIT). Matching then takes at most MATCH_WAIT, and a subscriber's
+    own end READER_MATCH more.
     """
     import rclpy
     from ros2cli.node.direct import settle_discovery
 
     settle_discovery(node, quiet_complete=GRAPH_QUIET)
+    if wait_for_readers(node):
+        settle_discovery(node, quiet_complete=GRAPH_QUIET)  # the rest of those readers
     deadline = time.monotonic() + MATCH_WAIT
     while not all(publisher.get_subscription_count() >= node.count_subscribers(publisher.topic_name)
                   for publisher in publishers.values()):
@@ -146,6 +156,36 @@ def wait_for_subscribers(node: Any, publishers: dict[str, Any]) -> None:
         rclpy.spin_once(node, timeout_sec=0.05)
     if any(publisher.get_subscription_count() for publisher in publishers.values()):
         time.sleep(READER_MATCH)  # DDS's own threads do the matching
+
+
+def wait_for_readers(node: Any) -> bool:
+    """Spin until each participant in the graph has a reader (READERS_WAIT s at most); True if it waited."""
+    import rclpy
+
+    deadline = time.monotonic() + READERS_WAIT
+    waited = False
+    while writers_without_readers(graph_endpoints(node)) and time.monotonic() < deadline:
+        waited = True
+        rclpy.spin_once(node, timeout_sec=0.05)
+    return waited
+
+
+def graph_endpoints(node: Any) -> list[tuple[bytes, bool]]:
+    """(participant, is a reader) of every endpoint the graph shows, rmw's and services' included."""
+    endpoints = []
+    for name, _ in node.get_topic_names_and_types(no_demangle=True):
+        endpoints += [(bytes(info.endpoint_gid[:12]), False)
+                      for info in node.get_publishers_info_by_topic(name, no_mangle=True)]
+        endpoints += [(bytes(info.endpoint_gid[:12]), True)
+                      for info in node.get_subscriptions_info_by_topic(name, no_mangle=True)]
+    return endpoints
+
+
+def writers_without_readers(endpoints: Iterable[tuple[bytes, bool]]) -> set[bytes]:
+    """The participants with a writer and no reader among endpoints, each (participant, is a reader)."""
+    endpoints = list(endpoints)
+    with_readers = {participant for participant, is_reader in endpoints if is_reader}
+    return {participant for participant, is_reader in endpoints if participant not in with_readers}
 
 
 def wait_for_acknowledgements(publishers: dict[str, Any]) -> None:
