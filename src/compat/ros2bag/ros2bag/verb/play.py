@@ -12,10 +12,13 @@ from ros2cli.api.topic import positive_float
 from ros2cli.verb import VerbExtension
 
 MATCH_WAIT = 2.0  # s: the longest play waits for the graph's subscribers to match before it plays
-# s without a change in a complete graph before play looks for its subscribers: a participant's
-# subscriptions are announced apart from its publications and can come later (a held-up listener's
-# did, and play then saw it without its subscription); the `ros2` graph verbs wait 0.05 s
-GRAPH_QUIET = 0.3
+# s without a change in a complete graph before play looks for its subscribers, and the longest it
+# waits once the graph is complete: a participant's subscriptions are announced apart from its
+# publications and can come later. In suite runs a held-up listener's /chatter subscription came
+# after 0.3 s of quiet in 5 of 9 tries (it missed the first 1-4 messages); the `ros2` graph verbs
+# wait 0.05 s and 1.2 s, for they lose nothing by answering early.
+GRAPH_QUIET = 1.0
+GRAPH_MOST = 2.0
 # s: the longest play then waits for the readers of a participant it knows only the writers of.
 # A participant announces its readers apart from its writers: a listener held up while play started
 # on a loaded machine had all its readers (its /chatter subscription among them) come 0.4-0.65 s
@@ -145,9 +148,9 @@ def wait_for_subscribers(node: Any, publishers: dict[str, Any]) -> None:
     import rclpy
     from ros2cli.node.direct import settle_discovery
 
-    settle_discovery(node, quiet_complete=GRAPH_QUIET)
+    settle_discovery(node, quiet_complete=GRAPH_QUIET, most=GRAPH_MOST)
     if wait_for_readers(node):
-        settle_discovery(node, quiet_complete=GRAPH_QUIET)  # the rest of those readers
+        settle_discovery(node, quiet_complete=GRAPH_QUIET, most=GRAPH_MOST)  # the rest of those readers
     deadline = time.monotonic() + MATCH_WAIT
     while not all(publisher.get_subscription_count() >= node.count_subscribers(publisher.topic_name)
                   for publisher in publishers.values()):

@@ -54,15 +54,16 @@ def tear_down(node: 'Node', *owned: Any) -> None:
 
 
 def settle_discovery(node: 'Node', graph: GraphQueries | None = None,
-                     quiet_complete: float = QUIET_COMPLETE) -> None:
+                     quiet_complete: float = QUIET_COMPLETE, most: float = MOST) -> None:
     """Serve node's callbacks until discovery has settled (see ros2cli.node.settle).
 
-    graph: node's GraphQueries, if the caller has one already; quiet_complete: see DiscoverySettling.
+    graph: node's GraphQueries, if the caller has one already; quiet_complete, most: see
+    DiscoverySettling.
     """
     import rclpy  # lazy, as in tear_down
 
     graph = graph or GraphQueries(node)
-    settling = DiscoverySettling(quiet_complete=quiet_complete)
+    settling = DiscoverySettling(quiet_complete=quiet_complete, most=most)
     started = time.monotonic()
     while not settling.settled(time.monotonic() - started, *graph_view(graph, local_participants())):
         rclpy.spin_once(node, timeout_sec=POLL)
