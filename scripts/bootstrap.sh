@@ -65,12 +65,19 @@ if [ "$(cat "$REQ_STAMP" 2>/dev/null)" != "$req_hash" ]; then
   # (0.5 s of CPU per node instead of 0.16 s).
   run_logged wheels env _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/uv" pip install --no-progress \
     --compile-bytecode --python "$VENV/bin/python" -r requirements.txt
-  run_logged cmake-repair "$VENV/bin/python" scripts/repair_cmake_paths.py
   # colcon warns about an underlay prefix with no local_setup file; the venv is one.
   for shell_ext in sh bash zsh; do
     printf '# The venv is the ROS underlay; env.sh sets its paths.\n' >"$VENV/local_setup.$shell_ext"
   done
   echo "$req_hash" >"$REQ_STAMP"
+fi
+# The wheels' CMake exports pointed at this venv: again whenever the wheels or the repair changed
+# (an earlier repair wrote through uv's cache links and could leave another venv's paths here).
+CMAKE_STAMP="$VENV/.owl-cmake-repair.sha256"
+cmake_hash="$( (echo "$req_hash"; cat scripts/repair_cmake_paths.py) | sha256sum | cut -d' ' -f1)"
+if [ "$(cat "$CMAKE_STAMP" 2>/dev/null)" != "$cmake_hash" ]; then
+  run_logged cmake-repair "$VENV/bin/python" scripts/repair_cmake_paths.py
+  echo "$cmake_hash" >"$CMAKE_STAMP"
 fi
 
 # --- OpenCV's headless build beside the GUI build, and the venv's start-up hooks (GUI libraries, rclpy). ---
