@@ -211,8 +211,11 @@ def drag_ball(page: Any, azimuth: float, elevation: float) -> None:
     """Drag the ball to that direction with the mouse, once the page has stopped moving the ball on it.
 
     The page's layout settles as its camera frames, plots and links arrive; a drag computed before
-    a shift ends somewhere else (seen once in a clean-clone run).
+    a shift ends somewhere else (seen in two clean-clone runs). The kit line above the view is
+    settled once the page knows every module runs.
     """
+    page.wait_for_function('() => window.robotView.kit && Object.values(window.robotView.kit.modules)'
+                           '.every(Boolean)', timeout=20_000)
     start = page.evaluate('window.robotView.ballOnPage()')
     deadline = time.monotonic() + 10
     while True:
@@ -247,7 +250,9 @@ def test_the_ball_is_shown_and_dragged_and_a_place_out_of_its_world_is_refused_i
     try:
         wait_until(placed, 10, 'the ball put at (-0.3, 0.1) rad by the mouse')
     except AssertionError as failure:
-        raise AssertionError(f'{failure}; the page: {page.evaluate(sent)}') from None
+        where = ros.probe.get_parameters(camera, 'ball_azimuth', 'ball_elevation')
+        raise AssertionError(f'{failure}; the camera has it at {where}; '
+                             f'the page: {page.evaluate(sent)}') from None
     page.wait_for_function('() => Math.abs(window.robotView.scene.ball[0] + 0.3) < 0.02', timeout=10_000)
     assert page.evaluate('window.robotView.ballAnswers').count(None) > 0
     # Above the ball's world (elevation 0.6 at most): the camera says no, in one line on the page.

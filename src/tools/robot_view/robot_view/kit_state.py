@@ -19,6 +19,10 @@ TRUE_ORIENTATION_TOPIC = f"/{node_name('imu', IMU_NAMESPACE)}/true_orientation"
 CAMERA_TOPIC = f'/olive/camera/{CAMERA_NAMESPACE}/image/compressed'
 
 LEVEL = (0.0, 0.0, 0.0, 1.0)  # x, y, z, w: the IMU lying flat, pointing along base_link's x
+# s after robot_view starts during which a module not seen yet is not said to be missing: the
+# launch starts the modules beside robot_view, and on a loaded machine its first look at 1 s found
+# some still starting, so a "Not running" line came and went and the page shifted under the mouse.
+STARTUP_GRACE = 3.0
 
 
 def hold_imu_orientation(arguments: dict[str, Any]) -> tuple[float, float, float, float]:
@@ -65,6 +69,15 @@ def kit_presence(publishers: dict[str, int], subscribers: dict[str, int]) -> dic
     return {'modules': modules,
             'imu_steerable': subscribers.get(TRUE_ORIENTATION_TOPIC, 0) > 0,
             'steered': {servo: publishers.get(goal_topic(servo), 0) > 1 for servo in SERVOS}}
+
+
+def first_presence_due(presence: dict[str, Any], since_start: float) -> bool:
+    """Whether robot_view says its first look's kit_presence, since_start s after it started.
+
+    At once when every module runs; otherwise once STARTUP_GRACE has passed (then the missing ones
+    are named). Later changes are said at once: a module that stops is missing.
+    """
+    return all(presence['modules'].values()) or since_start >= STARTUP_GRACE
 
 
 def goal_outcome(servo: str, torque: bool | None) -> dict[str, Any]:

@@ -46,6 +46,7 @@ from robot_view.kit_state import (
     CAMERA_TOPIC,
     IMU_TOPIC,
     TRUE_ORIENTATION_TOPIC,
+    first_presence_due,
     goal_outcome,
     goal_topic,
     hold_imu_orientation,
@@ -73,6 +74,7 @@ class RobotViewNode(Node):
 
     def __init__(self, server: WebServer) -> None:
         super().__init__('robot_view')
+        self._started = time.monotonic()
         self._lock = threading.Lock()
         # 'kit' is what runs of the kit and what steers it (kit_presence), None until the first look
         self._state: dict[str, Any] = {'pan': None, 'tilt': None, 'imu': None, 'scene': None, 'kit': None}
@@ -274,6 +276,9 @@ class RobotViewNode(Node):
             subscribers={TRUE_ORIENTATION_TOPIC: self.count_subscribers(TRUE_ORIENTATION_TOPIC)})
         with self._lock:
             if self._state['kit'] == presence:
+                return
+            since_start = time.monotonic() - self._started
+            if self._state['kit'] is None and not first_presence_due(presence, since_start):
                 return
             self._state['kit'] = presence
         self._push_state()

@@ -6,7 +6,9 @@ from robot_view.kit_state import (
     CAMERA_TOPIC,
     IMU_TOPIC,
     LEVEL,
+    STARTUP_GRACE,
     TRUE_ORIENTATION_TOPIC,
+    first_presence_due,
     goal_outcome,
     goal_topic,
     hold_imu_orientation,
@@ -69,6 +71,17 @@ def test_which_modules_run_and_what_steers_them_comes_from_the_graphs_counts():
     # imu_control_robot publishes both servos' goals too
     steered = kit_presence({goal_topic('pan'): 2, goal_topic('tilt'): 2}, {})
     assert steered['steered'] == {'pan': True, 'tilt': True}
+
+
+def test_a_module_still_starting_is_not_said_to_be_missing_in_the_first_seconds():
+    starting = kit_presence({joint_topic('tilt'): 1, IMU_TOPIC: 1, CAMERA_TOPIC: 1}, {})
+    everything = kit_presence({joint_topic('pan'): 1, joint_topic('tilt'): 1, IMU_TOPIC: 1, CAMERA_TOPIC: 1},
+                              {})
+    assert first_presence_due(everything, 1.0)
+    assert not first_presence_due(starting, 1.0)
+    assert not first_presence_due(kit_presence({}, {}), STARTUP_GRACE - 0.1)
+    assert first_presence_due(starting, STARTUP_GRACE)
+    assert first_presence_due(kit_presence({}, {}), STARTUP_GRACE + 5)
 
 
 def test_a_goal_to_a_servo_whose_torque_is_off_is_ignored():
