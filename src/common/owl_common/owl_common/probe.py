@@ -45,3 +45,19 @@ class Probe:
         received: list[Any] = []
         self.node.create_subscription(msg_type, topic, received.append, qos)
         return received
+
+    def collect_numbered(self, msg_type: Any, topic: str,
+                         qos: QoSProfile | int = 10) -> list[tuple[int, Any]]:
+        """As collect, each message with its publisher's sequence number (its first message is 1).
+
+        The number tells which of the publisher's messages this is, even when the probe missed the
+        first ones: a subscription made just before a publisher starts may match it late.
+        """
+        received: list[tuple[int, Any]] = []
+
+        def numbered(msg: Any, info: dict[str, Any]) -> None:
+            received.append((info['publication_sequence_number'], msg))
+
+        # rclpy passes the message info to a two-argument callback; its annotation names only one.
+        self.node.create_subscription(msg_type, topic, numbered, qos)  # type: ignore[arg-type]
+        return received
