@@ -138,8 +138,9 @@ def test_a_humble_module_beside_the_kit_and_chapter_4_nodes_is_safe_listed_and_t
                          r'/olive/servo/humble/joint from it, one goal of \+0\.500 rad \(its position\) on '
                          '/olive/servo/humble/goal/position to it', lines), lines
         assert 'ok: servo pan (/olive_servo_pan_dcm_srv, ROS 2 Iron or newer): one JointState' in lines, lines
-        assert 'ok: camera eye (/olive_camera_eye_dcm_srv, ROS 2 Iron or newer): one CompressedImage' in lines
-        assert 'ok: Humble modules are safe beside this shell' in lines
+        assert ('ok: camera eye (/olive_camera_eye_dcm_srv, ROS 2 Iron or newer): one CompressedImage'
+                in lines), lines
+        assert 'ok: Humble modules are safe beside this shell' in lines, lines
         imu.wait_for('LED on', timeout=5)
 
         assert stop_twin(imu)[1] == 0, imu.output
