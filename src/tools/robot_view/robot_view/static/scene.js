@@ -52,6 +52,16 @@ export function startScene({ scene, camera, renderer, render, socket, view, show
   }
 
   let dragging = false;
+  let trailing = null;     // the timer of a place still to be sent
+  let placesInFlight = 0;  // places sent and not answered yet
+  // The ball stays where the mouse put it until the camera has answered its last place: a state
+  // that comes meanwhile may still hold an earlier place.
+  const placing = () => dragging || trailing !== null || placesInFlight > 0;
+  function showBall() {
+    if (ball.visible && !placing()) {
+      ball.position.copy(PIVOT).addScaledVector(direction(...view.scene.ball), BALL_DISTANCE);
+    }
+  }
   view.scene = null;
   // Called with each state of the "kit" channel: true when the scene changed what the model shows.
   function update(shown) {
@@ -59,9 +69,7 @@ export function startScene({ scene, camera, renderer, render, socket, view, show
     view.scene = shown || null;
     if (JSON.stringify(view.scene) === before) return false;
     ball.visible = Boolean(view.scene && view.scene.ball);
-    if (ball.visible && !dragging) {
-      ball.position.copy(PIVOT).addScaledVector(direction(...view.scene.ball), BALL_DISTANCE);
-    }
+    showBall();
     person.visible = Boolean(view.scene && view.scene.keypoints);
     if (person.visible) showPerson(view.scene.keypoints);
     return true;
@@ -77,7 +85,7 @@ export function startScene({ scene, camera, renderer, render, socket, view, show
     return raycaster.ray;
   }
   let lastPlace = -Infinity;
-  let trailing = null;
+  let place = null;  // where the pointer last put the ball, as the camera takes it
   function sendPlace() {
     const wait = lastPlace + PLACE_EVERY - performance.now();
     if (wait > 0) {
@@ -85,13 +93,18 @@ export function startScene({ scene, camera, renderer, render, socket, view, show
       return;
     }
     lastPlace = performance.now();
-    const d = ball.position.clone().sub(PIVOT).normalize();
-    const place = { azimuth: Math.atan2(-d.y, -d.x), elevation: Math.asin(Math.max(-1, Math.min(1, d.z))) };
     const sent = socket.command('place_ball', place, (error) => {
+      placesInFlight -= 1;
       view.ballAnswers.push(error);
-      if (error) showError(error);
+      if (!error) return;  // the camera's next state shows the ball where it was put
+      showError(error);
+      showBall();  // back where the camera has it, unless more places are on their way
+      render();
     });
-    if (sent) view.ballPlacesSent += 1;
+    if (sent) {
+      placesInFlight += 1;
+      view.ballPlacesSent += 1;
+    }
   }
   view.ballAnswers = [];
   view.ballPlacesSent = 0;
@@ -108,6 +121,8 @@ export function startScene({ scene, camera, renderer, render, socket, view, show
     const hit = pointerRay(event).intersectSphere(sphere, new THREE.Vector3());
     if (hit === null) return;
     ball.position.copy(hit);
+    const d = hit.clone().sub(PIVOT).normalize();
+    place = { azimuth: Math.atan2(-d.y, -d.x), elevation: Math.asin(Math.max(-1, Math.min(1, d.z))) };
     render();
     sendPlace();
   });
