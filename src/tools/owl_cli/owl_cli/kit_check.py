@@ -87,12 +87,23 @@ def kit_verdicts(reports: list[ModuleReport]) -> list[tuple[bool, str]]:
     return verdicts
 
 
-def check_kit(domain_id: int, seconds: float, expected: list[str]) -> list[ModuleReport]:
+def not_yet_seen(expected: dict[str, str], seen: dict[str, str]) -> list[str]:
+    """The expected nodes (name: distribution, as an earlier look found them) not seen as well yet.
+
+    A node's name can come before its endpoints (a Humble module's name comes through the discovery
+    bridge, its endpoints from DDS itself), and a node whose endpoints are not known yet has no
+    known distribution.
+    """
+    return [name for name, distribution in expected.items()
+            if name not in seen or (distribution != 'unknown' and seen[name] == 'unknown')]
+
+
+def check_kit(domain_id: int, seconds: float, expected: dict[str, str]) -> list[ModuleReport]:
     """Find the Olive modules in the domain and exchange one message each way with all of them at once.
 
-    Discovery takes seconds s, and up to ACK_TIMEOUT more while one of the expected nodes (which
-    `owl network` found a moment ago) is still missing; seconds also bounds the waits for the
-    modules' messages and for their readers.
+    Discovery takes seconds s, and up to ACK_TIMEOUT more while one of the expected nodes (name:
+    distribution, as `owl network` found them a moment ago) is not seen as well yet; seconds also
+    bounds the waits for the modules' messages and for their readers.
     """
     import rclpy
     from rclpy.context import Context
@@ -116,9 +127,12 @@ def check_kit(domain_id: int, seconds: float, expected: list[str]) -> list[Modul
             while not condition() and time.monotonic() < deadline:
                 executor.spin_once(timeout_sec=0.05)
 
+        def seen() -> dict[str, str]:
+            return {name: node_distribution(node, name, namespace)
+                    for name, namespace in node.get_node_names_and_namespaces() if name in expected}
+
         started = time.monotonic()
-        spin_until(lambda: time.monotonic() >= started + seconds
-                   and set(expected) <= {name for name, _ in node.get_node_names_and_namespaces()},
+        spin_until(lambda: time.monotonic() >= started + seconds and not not_yet_seen(expected, seen()),
                    started + seconds + ACK_TIMEOUT)
         reports = sorted((ModuleReport(name, *parsed, node_distribution(node, name, namespace))
                           for name, namespace in node.get_node_names_and_namespaces()

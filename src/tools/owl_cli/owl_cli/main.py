@@ -56,7 +56,7 @@ def network(args: argparse.Namespace) -> int:
         facts.olive_nodes_in_domain_0 = sorted(network_check.olive_nodes(0, args.discovery_time))
     verdicts = network_check.verdict(facts)
     if args.kit:
-        reports = kit_check.check_kit(domain_id, args.discovery_time, facts.olive_nodes)
+        reports = kit_check.check_kit(domain_id, args.discovery_time, distributions)
         verdicts += [network_check.Verdict(ok, text) for ok, text in kit_check.kit_verdicts(reports)]
     for line in verdicts:
         print(f'owl network: {line}')

@@ -1,6 +1,14 @@
 """owl network --kit's pure parts: module names, distributions, verdicts."""
 
-from owl_cli.kit_check import HUMBLE, NEWER, ModuleReport, distribution, kit_verdicts, parse_module
+from owl_cli.kit_check import (
+    HUMBLE,
+    NEWER,
+    ModuleReport,
+    distribution,
+    kit_verdicts,
+    not_yet_seen,
+    parse_module,
+)
 
 
 def test_module_nodes_are_recognised_by_the_firmware_naming():
@@ -16,6 +24,17 @@ def test_no_type_hash_means_humble():
     assert distribution([1, 1]) == NEWER
     assert distribution([0, 1]) == NEWER  # rmw's own endpoints aside, one hash is enough
     assert distribution([]) == 'unknown'
+
+
+def test_the_kit_check_waits_for_a_node_found_earlier_until_its_endpoints_are_known_too():
+    expected = {'olive_imu_humble_dcm_srv': HUMBLE, 'olive_servo_pan_dcm_srv': NEWER, 'olive_x': 'unknown'}
+    # Names without endpoints (a run's owl network --kit read the Humble twins as "unknown").
+    assert not_yet_seen(expected, {'olive_imu_humble_dcm_srv': 'unknown', 'olive_servo_pan_dcm_srv': NEWER}) \
+        == ['olive_imu_humble_dcm_srv', 'olive_x']
+    # A node the earlier look saw without endpoints needs only its name.
+    assert not_yet_seen(expected, {'olive_imu_humble_dcm_srv': HUMBLE, 'olive_servo_pan_dcm_srv': NEWER,
+                                   'olive_x': 'unknown'}) == []
+    assert not_yet_seen({}, {}) == []
 
 
 def test_a_module_passes_with_a_message_each_way_and_fails_naming_the_missing_way():
