@@ -609,7 +609,9 @@ def test_first_call_starts_a_daemon_that_leaves_when_alone(cli):
     talker_code = talker.stop()
     assert eventually(lambda: lines(ros2(cli, 'daemon', 'status')) == ['The daemon is not running'], 20), (
         f'the daemon still runs 20 s after the talker stopped (its exit code {talker_code}); '
-        f"the node list is {lines(ros2(cli, 'node', 'list'))}")
+        f"the node list is {lines(ros2(cli, 'node', 'list'))}, "
+        f"{lines(ros2(cli, 'node', 'list', '--no-daemon'))} without the daemon; the daemon's view of "
+        f"the talker: {lines(ros2(cli, 'node', 'info', '/talker'))}")
     explicit = ros2(cli, 'daemon', 'start')
     assert lines(explicit) == ['The daemon has been started']
     time.sleep(5)  # `ros2 daemon start` means: stay, even alone

@@ -1,3 +1,4 @@
+from ros2cli.daemon.server import keeps_company
 from ros2cli.node.settle import (
     MOST,
     MOST_COUNTED,
@@ -133,3 +134,12 @@ def test_the_view_counts_participants_by_their_endpoints_and_waits_for_node_name
     assert graph_view(both, participants=None)[1:] == (True, None)
     lone = Graph([["turtlesim", "/turtle2"]], [])
     assert graph_view(lone, None)[0][0] == ("/turtle2/turtlesim",)
+
+
+def test_only_a_node_with_endpoints_keeps_an_alone_exiting_daemon_company():
+    own = ['_ros2cli_daemon_7_ab', '/']
+    assert not keeps_company(Graph([own], [endpoint(1, '_ros2cli_daemon_7_ab')]))
+    ghost = Graph([own, ['talker', '/']], [endpoint(1, '_ros2cli_daemon_7_ab')])  # listed, no endpoint
+    assert not keeps_company(ghost)
+    assert keeps_company(Graph([own, ['talker', '/']], [endpoint(2, 'talker')]))
+    assert keeps_company(Graph([own], [endpoint(2, UNKNOWN_NODE)]))  # a node not yet named is someone

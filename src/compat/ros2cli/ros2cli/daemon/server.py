@@ -18,15 +18,31 @@ from rclpy.node import Node
 
 from ros2cli.daemon import RPC_PATH, daemon_port
 from ros2cli.node.direct import tear_down
+from ros2cli.node.graph import Graph
 from ros2cli.node.settle import graph_view, local_participants
 from ros2cli.service_call import ServiceCaller, serve_call
 
 IDLE_TIMEOUT = 2 * 60 * 60.0  # seconds without a request, as upstream
-# A daemon that a verb started on its own (not `ros2 daemon start`) also leaves once it has been
-# the only node in its domain this long: the nodes it served are gone (a test ended, the user
+# A daemon that a verb started on its own (not `ros2 daemon start`) also leaves once no other
+# node has had an endpoint in its domain for this long: the nodes it served are gone (a test ended, the user
 # stopped everything), and a forgotten daemon per domain would pile up on the machine.
 # ROS2CLI_DAEMON_ALONE_TIMEOUT (seconds) overrides it.
 ALONE_TIMEOUT = 60.0
+
+
+def keeps_company(graph: Graph) -> bool:
+    """Whether a node other than `ros2`'s own has a publisher or subscription in the graph.
+
+    Endpoints, not node names: a node can stay listed after its process is gone. rmw_dds_common
+    adds a participant back when one of its ros_discovery_info samples is handled after the
+    participant was removed (the ghost nodes of upstream ros2/ros2#514), but its endpoints leave
+    with it for good. Every rclpy and rclcpp node publishes /rosout and /parameter_events.
+    """
+    for topic, _ in graph.topic_names_and_types():
+        for info in (*graph.publishers_info(topic), *graph.subscriptions_info(topic)):
+            if not info['node_name'].startswith('_ros2cli'):
+                return True
+    return False
 
 
 class _RequestHandler(SimpleXMLRPCRequestHandler):
@@ -44,7 +60,8 @@ def serve(domain: int, listener: socket.socket, idle_timeout: float, alone_timeo
     """Answer XML-RPC calls on listener from a hidden node in the domain, until it is time to stop.
 
     That is on system.shutdown (`ros2 daemon stop`), after idle_timeout s without a request, or, when
-    alone_timeout is not None, once no node but `ros2`'s own has been in the domain for that long.
+    alone_timeout is not None, once no node but `ros2`'s own has kept it company (keeps_company)
+    for that long.
     """
     server = _Server(
         ('127.0.0.1', daemon_port(domain)), requestHandler=_RequestHandler, logRequests=False,
@@ -92,7 +109,7 @@ def serve(domain: int, listener: socket.socket, idle_timeout: float, alone_timeo
             if not server.timed_out:
                 last_request = now
             if alone_timeout is not None:
-                if any(not name.startswith('_ros2cli') for name in node.get_node_names()):
+                if keeps_company(graph):
                     last_company = now
                 elif now - last_company > alone_timeout:
                     break
@@ -113,7 +130,7 @@ def main() -> None:
     parser.add_argument('--fd', type=int, required=True, help='the bound, listening socket')
     parser.add_argument('--idle-timeout', type=float, default=IDLE_TIMEOUT)
     parser.add_argument('--exit-when-alone', action='store_true',
-                        help=f'also exit after {ALONE_TIMEOUT:.0f} s as the only node in the domain')
+                        help=f'also exit after {ALONE_TIMEOUT:.0f} s with no other node in the domain')
     args = parser.parse_args()
     os.environ['ROS_DOMAIN_ID'] = str(args.ros_domain_id)
     listener = socket.socket(fileno=args.fd)
