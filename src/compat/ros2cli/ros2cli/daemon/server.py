@@ -24,8 +24,8 @@ from ros2cli.service_call import ServiceCaller, serve_call
 
 IDLE_TIMEOUT = 2 * 60 * 60.0  # seconds without a request, as upstream
 # A daemon that a verb started on its own (not `ros2 daemon start`) also leaves once no other
-# node has had an endpoint in its domain for this long: the nodes it served are gone (a test ended, the user
-# stopped everything), and a forgotten daemon per domain would pile up on the machine.
+# node has had an endpoint in its domain for this long: the nodes it served are gone (a test
+# ended, the user stopped everything), and a forgotten daemon per domain would pile up.
 # ROS2CLI_DAEMON_ALONE_TIMEOUT (seconds) overrides it.
 ALONE_TIMEOUT = 60.0
 
