@@ -136,6 +136,64 @@ def test_missing_argument_is_a_usage_error(graph):
     assert 'Traceback' not in result.stderr
 
 
+# Runs an installed `ros2` (argv[1:]) as its console script does, with an at-exit handler and an
+# object that says when the interpreter is finalized (module globals are deleted then).
+EXIT_PROBE = """
+import atexit, runpy, sys
+class Finalized:
+    def __del__(self):
+        print('interpreter finalized', flush=True)
+finalized = Finalized()
+atexit.register(print, 'at-exit handlers ran')
+sys.argv = sys.argv[1:]
+runpy.run_path(sys.argv[0], run_name='__main__')
+"""
+
+
+def test_ros2_skips_static_clean_up_once_its_participant_is_gone(cli):
+    # Fast DDS's factory sleeps 100 ms in its static destructor; console_main leaves with os._exit
+    # instead, after the at-exit handlers (coverage's among them) and with stdout flushed.
+    executable = shutil.which('ros2', path=cli.env['PATH'])
+    assert executable is not None
+    result = subprocess.run([sys.executable, '-c', EXIT_PROBE, executable, '--use-python-default-buffering',
+                             'topic', 'list', '--no-daemon', '--spin-time', '0'],
+                            env=cli.env, capture_output=True, text=True, timeout=30, check=False)
+    assert result.returncode == 0, result
+    assert result.stdout.splitlines() == ['/parameter_events', '/rosout', 'at-exit handlers ran'], result
+    assert 'interpreter finalized' not in result.stdout
+    failed = subprocess.run([sys.executable, '-c', EXIT_PROBE, executable, 'node', 'info', '/nowhere',
+                             '--no-daemon', '--spin-time', '0'],
+                            env=cli.env, capture_output=True, text=True, timeout=30, check=False)
+    assert_one_line_error(failed, '/nowhere')
+    assert failed.stdout.splitlines() == ['at-exit handlers ran']
+
+
+# The decision, after rclpy has been initialized and with a thread still working, and after both end.
+EXIT_DECISION = """
+import threading, rclpy
+from ros2cli.cli import can_end_without_static_cleanup
+print('before init', can_end_without_static_cleanup())
+rclpy.init()
+print('initialized', can_end_without_static_cleanup())
+rclpy.shutdown()
+release = threading.Event()
+worker = threading.Thread(target=release.wait)
+worker.start()
+print('worker running', can_end_without_static_cleanup())
+release.set()
+worker.join()
+print('all done', can_end_without_static_cleanup())
+"""
+
+
+def test_ros2_takes_the_ordinary_exit_while_a_participant_or_a_thread_is_left(cli):
+    result = subprocess.run([sys.executable, '-c', EXIT_DECISION], env=cli.env, capture_output=True,
+                            text=True, timeout=30, check=False)
+    assert result.returncode == 0, result
+    assert result.stdout.splitlines() == ['before init True', 'initialized False', 'worker running False',
+                                          'all done True']
+
+
 def hung_ros2(sandbox, *args):
     """`ros2 args...` whose clean-up hangs as in a Fast DDS teardown deadlock (see with_hung_teardown)."""
     executable = shutil.which('ros2', path=sandbox.env['PATH'])

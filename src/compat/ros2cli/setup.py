@@ -22,7 +22,7 @@ setup(
     # add theirs the same way. Group names are upstream's.
     entry_points={
         'console_scripts': [
-            'ros2 = ros2cli.cli:main',
+            'ros2 = ros2cli.cli:console_main',
         ],
         'ros2cli.command': [
             'action = ros2cli.command.action:ActionCommand',

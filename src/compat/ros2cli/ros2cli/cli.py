@@ -7,19 +7,22 @@ the same way. Ctrl-C exits with 2 (the value of SIGINT), as upstream. Any other 
 bug or a problem of the environment: it is reported in one line, never as a traceback
 (ROS2CLI_TRACEBACK=1 shows it for debugging). A clean-up that hangs (a Fast DDS teardown
 deadlock) ends the process after 5 s with every thread's stack and exit code 1
-(owl_common.run.begin_cleanup).
+(owl_common.run.begin_cleanup). The `ros2` executable is console_main(), which also skips the C++
+clean-up at exit (see there).
 """
 
 import argparse
+import atexit
 import io
 import os
 import re
 import shlex
 import signal
 import sys
+import threading
 import warnings
 from collections.abc import Callable
-from typing import cast
+from typing import NoReturn, cast
 
 import ros2cli.command
 from ros2cli.command import add_subparsers_on_demand
@@ -128,5 +131,45 @@ def main(argv: list[str] | None = None) -> int | str:
     return result or 0
 
 
+def can_end_without_static_cleanup() -> bool:
+    """Whether the process can end with os._exit: no ROS participant left, no thread still working.
+
+    A participant is left while rclpy's default context is initialized and not shut down (a
+    command that failed before its clean-up); rclpy's shutdown destroys it, so the graph hears it
+    leave. A non-daemon thread other than the main one would be waited for by a normal exit.
+    """
+    rclpy = sys.modules.get('rclpy')
+    if rclpy is not None and rclpy.ok():
+        return False
+    main_thread = threading.main_thread()
+    return not any(thread is not main_thread and not thread.daemon and thread.is_alive()
+                   for thread in threading.enumerate())
+
+
+def console_main() -> NoReturn:
+    """The `ros2` executable: main(), then end the process without C++'s static clean-up.
+
+    Fast DDS's participant factory, a static object made with the process's first participant,
+    sleeps 100 ms in its destructor at exit: a sixth of a cold `ros2 node list`, paid after the
+    answer is printed. Once main() is done and can_end_without_static_cleanup() holds, the at-exit
+    handlers run (coverage, the venv's rclpy repair), stdout and stderr are flushed and the
+    process ends with os._exit and main()'s exit code; otherwise it exits the ordinary way.
+    """
+    code = main()
+    if isinstance(code, str):  # as sys.exit() treats a string
+        print(code, file=sys.stderr)
+        code = 1
+    if not can_end_without_static_cleanup():
+        sys.exit(code)
+    atexit._run_exitfuncs()
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            if stream is not None:
+                stream.flush()
+        except (OSError, ValueError):  # a reader that went away, a closed stream: nothing to save
+            pass
+    os._exit(int(code))
+
+
 if __name__ == '__main__':
-    sys.exit(main())
+    console_main()

@@ -84,9 +84,12 @@ class DirectNode:
         if spin_time is None:
             spin_time = getattr(args, 'spin_time', None)
         rclpy.init(args=[])
+        # Without the type description service nobody asks this hidden node for: its service type
+        # is what would load numpy (service_msgs' fixed array), half of the node's 0.1 s start.
         self.node = Node(
             node_name or f'_ros2cli_{os.getpid()}', start_parameter_services=False,
-            parameter_overrides=[Parameter('use_sim_time', value=use_sim_time)])
+            parameter_overrides=[Parameter('use_sim_time', value=use_sim_time),
+                                 Parameter('start_type_description_service', value=False)])
         self._graph: GraphQueries | None = None
         if spin_time is None:
             settle_discovery(self.node, self.graph)

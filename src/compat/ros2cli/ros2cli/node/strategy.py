@@ -26,9 +26,6 @@ class NodeStrategy:
     """`.graph` answers graph queries; `.direct` is a DirectNode for everything else (lazy)."""
 
     def __init__(self, args: argparse.Namespace, spin_time: float | None = None) -> None:
-        # Lazy: the client imports xmlrpc.client (http.client, ssl); the verbs import this module for -h.
-        from ros2cli.daemon import client
-
         self._args = args
         self._spin_time = spin_time
         self._direct: DirectNode | None = None
@@ -36,6 +33,10 @@ class NodeStrategy:
         ensure_discovery_bridge()
         graph: Graph | None = None
         if not getattr(args, 'no_daemon', False):
+            # Lazy, and only here: the client imports xmlrpc.client (http.client, ssl, about 30 ms),
+            # which neither `-h` (the verbs import this module) nor --no-daemon needs.
+            from ros2cli.daemon import client
+
             if client.is_daemon_running():
                 daemon = client.DaemonGraph()
                 graph = daemon
