@@ -605,3 +605,43 @@ def test_code_that_asks_for_upstreams_ctrl_c_keeps_it(tmp_path: Path, setup: str
                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     assert result.returncode == 0, result.stderr
     assert result.stdout.split('\n')[-2] == expected
+
+
+# A node starts; then the code generator is used the way a build uses it: first generate_py, then
+# the template helpers and a name it lacks.
+GENERATOR_USE = """
+import sys
+import rclpy
+from rclpy.node import Node
+rclpy.init()
+node = Node('starts_without_the_generator')
+generator = ('lark', 'em', 'rosidl_parser.parser')
+print('generator loaded after a node:', any(name in sys.modules for name in generator))
+node.destroy_node()
+rclpy.shutdown()
+from rosidl_generator_py import generate_py
+try:
+    generate_py('/nonexistent/arguments.json', [])
+except FileNotFoundError as error:
+    print('generate_py:', error.filename)
+print('generator loaded after generate_py:', 'rosidl_parser.parser' in sys.modules)
+import rosidl_generator_py.generate_py_impl as impl
+print('helper:', impl.constant_value_to_py.__name__)
+try:
+    impl.no_such_name
+except AttributeError as error:
+    print('missing:', error)
+"""
+
+
+def test_a_node_starts_without_the_code_generator_which_works_when_used(ros):
+    result = subprocess.run([sys.executable, '-c', GENERATOR_USE], env=ros.env, capture_output=True,
+                            text=True, timeout=60, check=False)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.splitlines() == [
+        'generator loaded after a node: False',
+        'generate_py: /nonexistent/arguments.json',
+        'generator loaded after generate_py: True',
+        'helper: constant_value_to_py',
+        "missing: module 'rosidl_generator_py.generate_py_impl' has no attribute 'no_such_name'",
+    ]

@@ -98,6 +98,13 @@ handler in the executor's list, and rclpy runs it at the next spin. A clean-up t
 timer first and then spins for its service responses (keyboard_servos: no goal may follow the
 torque-off) then ended with "RCLError: failed to call timer: timer is canceled" (seen once in 11
 suite runs). The take of a timer cancelled in between now finds no work, as for a destroyed one.
+
+Not rclpy's, but the same kind of wheel defect: every generated message module of Jazzy imports
+rosidl_generator_py for its import_type_support, and that package's __init__ also imports its code
+generator (generate_py_impl: lark, empy, rosidl_parser), which only a build uses: 35-45 ms of every
+node's start. The generator module is now made when imported but run at its first use: its
+generate_py, the one name the package's __init__ takes, forwards to the real function, and any
+other name loads the real module first.
 """
 
 from __future__ import annotations
@@ -350,8 +357,67 @@ def patch_init(rclpy: Any) -> None:
 
 def install() -> None:
     """Called by the .pth line at every start of the venv's Python; costs nothing until rclpy."""
-    if RclpyImportHook not in sys.meta_path:
-        sys.meta_path.insert(0, RclpyImportHook)
+    for hook in (RclpyImportHook, GeneratorOnFirstUse):
+        if hook not in sys.meta_path:
+            sys.meta_path.insert(0, hook)
+
+
+class GeneratorOnFirstUse:
+    """A sys.meta_path entry that gives rosidl_generator_py's code generator a loader that waits."""
+
+    module = 'rosidl_generator_py.generate_py_impl'
+
+    @classmethod
+    def find_spec(cls, fullname: str, path: Sequence[str] | None = None,
+                  target: ModuleType | None = None) -> ModuleSpec | None:
+        """The generator module's spec with a LoadOnFirstUse loader; None for any other module."""
+        if fullname != cls.module:
+            return None
+        sys.meta_path.remove(cls)
+        spec = find_spec_after(cls, fullname, target, path)
+        if spec is None or spec.loader is None:
+            return None
+        spec.loader = LoadOnFirstUse(spec.loader)  # type: ignore[assignment]  # duck-typed loader
+        return spec
+
+
+class LoadOnFirstUse:
+    """The module's own loader, run when generate_py is called or another name is asked for."""
+
+    def __init__(self, loader: Any) -> None:
+        self.loader = loader
+        self._lock = threading.Lock()
+
+    def create_module(self, spec: ModuleSpec) -> ModuleType | None:
+        """The module object as the wrapped loader makes it (None: Python's default one)."""
+        return self.loader.create_module(spec)
+
+    def exec_module(self, module: ModuleType) -> None:
+        """Give module a forwarding generate_py and a module __getattr__ that load the real code."""
+        def load() -> None:
+            with self._lock:
+                if module.__dict__.get('__getattr__') is not attribute:
+                    return  # loaded already
+                del module.__dict__['__getattr__']
+                self.loader.exec_module(module)
+
+        def generate_py(*args: Any, **kwargs: Any) -> Any:
+            load()
+            return module.generate_py(*args, **kwargs)
+
+        def attribute(name: str) -> Any:
+            if not (name.startswith('__') and name.endswith('__')):  # import asks for __path__
+                load()
+            try:
+                return module.__dict__[name]
+            except KeyError:
+                raise AttributeError(f'module {module.__name__!r} has no attribute {name!r}') from None
+
+        module.__dict__['generate_py'] = generate_py
+        module.__dict__['__getattr__'] = attribute
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self.loader, name)
 
 
 def patch_executors(executors: Any) -> None:
