@@ -645,3 +645,34 @@ def test_a_node_starts_without_the_code_generator_which_works_when_used(ros):
         'helper: constant_value_to_py',
         "missing: module 'rosidl_generator_py.generate_py_impl' has no attribute 'no_such_name'",
     ]
+
+
+# The generator's own imports fail (as without its dependencies): each use says so, none recurses.
+GENERATOR_MISSING = """
+import sys
+
+
+class NoParser:
+    @staticmethod
+    def find_spec(fullname, path=None, target=None):
+        if fullname == 'rosidl_parser.parser':
+            raise ImportError('no rosidl_parser.parser here')
+        return None
+
+
+sys.meta_path.insert(0, NoParser)
+from rosidl_generator_py import generate_py
+for attempt in range(2):
+    try:
+        generate_py('/nonexistent/arguments.json', [])
+    except ImportError as error:
+        print('use', attempt, 'ImportError:', error)
+"""
+
+
+def test_a_generator_that_cannot_load_says_so_at_every_use():
+    result = subprocess.run([sys.executable, '-c', GENERATOR_MISSING], capture_output=True, text=True,
+                            timeout=60, check=False)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.splitlines() == ['use 0 ImportError: no rosidl_parser.parser here',
+                                          'use 1 ImportError: no rosidl_parser.parser here']

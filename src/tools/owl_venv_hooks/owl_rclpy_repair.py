@@ -386,20 +386,31 @@ class LoadOnFirstUse:
 
     def __init__(self, loader: Any) -> None:
         self.loader = loader
-        self._lock = threading.Lock()
+        self._lock = threading.RLock()
 
     def create_module(self, spec: ModuleSpec) -> ModuleType | None:
         """The module object as the wrapped loader makes it (None: Python's default one)."""
         return self.loader.create_module(spec)
 
     def exec_module(self, module: ModuleType) -> None:
-        """Give module a forwarding generate_py and a module __getattr__ that load the real code."""
+        """Give module a forwarding generate_py and a module __getattr__ that load the real code.
+
+        A load that fails (the generator's own imports) raises at that use and is tried again at
+        the next one, as importing the module would.
+        """
+        loading = False
+
         def load() -> None:
+            nonlocal loading
             with self._lock:
-                if module.__dict__.get('__getattr__') is not attribute:
-                    return  # loaded already
+                if loading or module.__dict__.get('__getattr__') is not attribute:
+                    return  # loaded already, or asked for by its own code while it loads
+                loading = True
+                try:
+                    self.loader.exec_module(module)
+                finally:
+                    loading = False
                 del module.__dict__['__getattr__']
-                self.loader.exec_module(module)
 
         def generate_py(*args: Any, **kwargs: Any) -> Any:
             load()
