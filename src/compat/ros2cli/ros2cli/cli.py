@@ -86,7 +86,7 @@ def run_command(command_main: Callable[[argparse.Namespace], int | str | None],
             begin_cleanup()
 
 
-def main(argv: list[str] | None = None) -> int | str:
+def main(argv: list[str] | None = None) -> int:
     """Run `ros2` with argv (default: sys.argv[1:]) and return the process's exit code.
 
     A command's string result or RuntimeError is printed on stderr (exit code 1); under shell
@@ -156,9 +156,6 @@ def console_main() -> NoReturn:
     process ends with os._exit and main()'s exit code; otherwise it exits the ordinary way.
     """
     code = main()
-    if isinstance(code, str):  # as sys.exit() treats a string
-        print(code, file=sys.stderr)
-        code = 1
     if not can_end_without_static_cleanup():
         sys.exit(code)
     atexit._run_exitfuncs()
@@ -168,7 +165,7 @@ def console_main() -> NoReturn:
                 stream.flush()
         except (OSError, ValueError):  # a reader that went away, a closed stream: nothing to save
             pass
-    os._exit(int(code))
+    os._exit(code)
 
 
 if __name__ == '__main__':

@@ -19,7 +19,7 @@ from rclpy.node import Node
 from ros2cli.daemon import RPC_PATH, daemon_port
 from ros2cli.node.direct import tear_down
 from ros2cli.node.graph import Graph
-from ros2cli.node.settle import graph_view, local_participants
+from ros2cli.node.settle import graph_endpoints, graph_view, local_participants
 from ros2cli.service_call import ServiceCaller, serve_call
 
 IDLE_TIMEOUT = 2 * 60 * 60.0  # seconds without a request, as upstream
@@ -38,11 +38,7 @@ def keeps_company(graph: Graph) -> bool:
     participant was removed (the ghost nodes of upstream ros2/ros2#514), but its endpoints leave
     with it for good. Every rclpy and rclcpp node publishes /rosout and /parameter_events.
     """
-    for topic, _ in graph.topic_names_and_types():
-        for info in (*graph.publishers_info(topic), *graph.subscriptions_info(topic)):
-            if not info['node_name'].startswith('_ros2cli'):
-                return True
-    return False
+    return any(not info['node_name'].startswith('_ros2cli') for info in graph_endpoints(graph))
 
 
 class _RequestHandler(SimpleXMLRPCRequestHandler):

@@ -22,8 +22,8 @@ for QUIET s. A graph that never gets there is answered at MOST s.
 from __future__ import annotations
 
 import os
-from collections.abc import Hashable
-from typing import TYPE_CHECKING
+from collections.abc import Hashable, Iterator
+from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from ros2cli.node.graph import Graph
@@ -103,6 +103,13 @@ def local_participants() -> int | None:
         return None
 
 
+def graph_endpoints(graph: Graph) -> Iterator[dict[str, Any]]:
+    """Every publisher and subscription in the graph, as rclpy's endpoint info dicts."""
+    for topic, _ in graph.topic_names_and_types():
+        yield from graph.publishers_info(topic)
+        yield from graph.subscriptions_info(topic)
+
+
 def graph_view(graph: Graph, participants: int | None) -> tuple[Hashable, bool, bool | None]:
     """(graph, others_seen, complete) of a graph: what DiscoverySettling.settled() takes after elapsed.
 
@@ -117,8 +124,7 @@ def graph_view(graph: Graph, participants: int | None) -> tuple[Hashable, bool, 
     others = any(not node.rsplit('/', 1)[-1].startswith('_') for node in nodes)
     complete = None
     if participants is not None:
-        endpoints = [info for topic in topics
-                     for info in (*graph.publishers_info(topic), *graph.subscriptions_info(topic))]
+        endpoints = list(graph_endpoints(graph))
         seen = {tuple(info['endpoint_gid'][:12]) for info in endpoints}
         complete = len(seen) >= participants and all(info['node_name'] != UNKNOWN_NODE for info in endpoints)
     return (nodes, topics, services), others, complete
