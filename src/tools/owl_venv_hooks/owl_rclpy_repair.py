@@ -105,6 +105,10 @@ generator (generate_py_impl: lark, empy, rosidl_parser), which only a build uses
 node's start. The generator module is now made when imported but run at its first use: its
 generate_py, the one name the package's __init__ takes, forwards to the real function, and any
 other name loads the real module first.
+
+At the first import of rclpy, before its extension loads Fast DDS, this hook also loads the venv's
+repair of Fast DDS's enable order (owl_fastdds_enable_order.c, built by make setup): a new
+participant listens before it announces itself, so it hears every running participant's answer.
 """
 
 from __future__ import annotations
@@ -136,6 +140,7 @@ CONVERSION_ERROR = 'Unable to convert call argument'
 SHUTDOWN_GRACE = 0.5  # s for rclpy's signal thread to shut the context down after its handler ran
 REDELIVER = 0  # a byte on the wake-up fd that is no signal's number: see raise_ctrl_c
 REDELIVER_AFTER = 0.002  # s: longer than a finalizer runs
+FASTDDS_ENABLE_ORDER = 'libowl_fastdds_enable_order.so'  # in the venv's lib/, built by make setup
 SAME_PRESS = 0.3  # s: SIGINTs this close together are one Ctrl-C (the terminal's and a launcher's)
 
 
@@ -151,6 +156,8 @@ class RclpyImportHook:
         patch = patches().get(fullname)
         if patch is None or fullname in cls.patched:
             return None
+        if fullname == 'rclpy':
+            load_fastdds_enable_order()
         cls.patched.add(fullname)
         if cls.patched >= set(patches()):
             sys.meta_path.remove(cls)
@@ -337,6 +344,19 @@ def patch_signals(signals: Any) -> None:
     RclpyHandlerOptions.current = signals.get_current_signal_handlers_options
     options = signals.SignalHandlerOptions
     RclpyHandlerOptions.with_sigint = frozenset({options.ALL.value, options.SIGINT.value})
+
+
+def load_fastdds_enable_order() -> None:
+    """Loads the venv's repair of Fast DDS's enable order (owl_fastdds_enable_order.c), if built.
+
+    Called before rclpy's extension loads: that load binds Fast DDS's calls at once (RTLD_NOW), and
+    with RTLD_GLOBAL this library's RTPSParticipantImpl::enable() comes before Fast DDS's own.
+    _ctypes.dlopen, not ctypes: importing ctypes would cost every node 4-6 ms.
+    """
+    library = os.path.join(sys.prefix, 'lib', FASTDDS_ENABLE_ORDER)
+    if os.path.exists(library):
+        import _ctypes
+        _ctypes.dlopen(library, os.RTLD_NOW | os.RTLD_GLOBAL)
 
 
 def patch_init(rclpy: Any) -> None:

@@ -5,7 +5,9 @@ processes' DDS participants, then their endpoints, then their node names. Upstre
 0.5 s, which is often too short and always too long for a graph found in 0.1 s: each process
 answers a newcomer's first announcement, but a lost answer is only made good by its next periodic
 announcement (0.5 s apart, config/fastdds.xml) and lost endpoint data by Fast DDS's 1 s heartbeat,
-so one turtle of two could be missing half a second after the other was listed.
+so one turtle of two could be missing half a second after the other was listed. (The venv
+repairs why answers were lost, owl_fastdds_enable_order.c; the wait below still covers lost
+endpoint data and any other Fast DDS build.)
 
 With ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST (how Owl Kit Lab runs unless a network is chosen)
 every participant of the domain is a process of this machine, bound to a discovery port that
