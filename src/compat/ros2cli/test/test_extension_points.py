@@ -6,7 +6,7 @@ import pytest
 import ros2cli.command
 from ros2cli import entry_points
 from ros2cli.command import CommandExtension, _chosen_name, add_subparsers
-from ros2cli.entry_points import _parse, get_entry_points, get_first_line_doc
+from ros2cli.entry_points import EntryPoint, _parse, get_entry_points, get_first_line_doc
 from ros2cli.plugin_system import PluginException, satisfies_version
 from ros2cli.verb import VerbExtension
 
@@ -28,8 +28,26 @@ def test_the_installed_commands_and_verbs_are_entry_points():
     assert get_entry_points('no.such.group') == {}
 
 
+def test_the_entry_points_are_those_importlib_metadata_finds():
+    from importlib.metadata import distributions
+    expected: dict = {}
+    for distribution in distributions():
+        _parse(distribution.read_text('entry_points.txt') or '', expected)
+    assert {group: {name: point.value for name, point in points.items()}
+            for group, points in entry_points._all_entry_points().items()} == {
+        group: {name: point.value for name, point in points.items()} for group, points in expected.items()}
+
+
+def test_an_entry_point_loads_what_its_value_names():
+    method = EntryPoint('p', 'argparse:ArgumentParser.add_argument', 'g')
+    assert method.load() is argparse.ArgumentParser.add_argument
+    assert EntryPoint('p', 'argparse : ArgumentParser [extra]', 'g').load() is argparse.ArgumentParser
+    assert EntryPoint('p', 'argparse', 'g').load() is argparse
+    with pytest.raises(AttributeError):
+        EntryPoint('p', 'argparse:NoSuchThing', 'g').load()
+
+
 def test_a_broken_entry_point_is_one_warning_line(capsys, monkeypatch):
-    from importlib.metadata import EntryPoint
     monkeypatch.setattr(entry_points, '_BY_GROUP', {'g': {
         'bad': EntryPoint(name='bad', value='no_such_module_here:X', group='g'),
         'good': EntryPoint(name='good', value='argparse:ArgumentParser', group='g')}})
