@@ -635,6 +635,46 @@ def test_daemon_start_stop_status(cli):
     assert lines(ros2(cli, 'daemon', 'status')) == ['The daemon is not running']
 
 
+# Our client's JSON calls beside upstream's XML-RPC, good and bad; then a verb that needs the daemon.
+DAEMON_CALLS = r'''
+import json, socket, sys, xmlrpc.client
+port = int(sys.argv[1])
+
+def post(path, body):
+    with socket.create_connection(('127.0.0.1', port), timeout=10) as connection:
+        head = b'POST %s HTTP/1.0\r\nContent-Length: %d\r\n\r\n' % (path.encode(), len(body))
+        connection.sendall(head + body)
+        reply = b''
+        while chunk := connection.recv(65536):
+            reply += chunk
+    head, _, payload = reply.partition(b'\r\n\r\n')
+    return head.split()[1].decode(), payload.decode(errors='replace')
+
+for body in (b'{"method": "get_domain_id", "params": []}', b'not json', b'[1, 2]',
+             b'{"method": "get_domain_id", "params": {"a": 1}}', b'{"method": "no_such_call", "params": []}',
+             b'{"method": "get_domain_id", "params": [1, 2]}'):
+    status, payload = post('/ros2cli/json', body)
+    refused = 'error page' if 'expected a JSON object' in payload else payload
+    print(status, json.loads(payload) if status == '200' else refused)
+print('xml-rpc', xmlrpc.client.ServerProxy(f'http://127.0.0.1:{port}/ros2cli/').get_domain_id())
+'''
+
+
+def test_the_daemon_answers_json_and_xml_rpc_calls_and_refuses_bad_ones(cli):
+    from owl_common.processes import ROS2_DAEMON_BASE_PORT
+    assert lines(ros2(cli, 'daemon', 'start')) == ['The daemon has been started']
+    done = subprocess.run([sys.executable, '-c', DAEMON_CALLS, str(ROS2_DAEMON_BASE_PORT + cli.domain_id)],
+                          env=cli.env, capture_output=True, text=True, timeout=60, check=False)
+    assert done.returncode == 0, done.stderr
+    answers = lines(done)
+    assert answers[:4] == [f"200 {{'result': {cli.domain_id}}}", '400 error page', '400 error page',
+                           '400 error page'], answers
+    assert answers[4].startswith("200 {'fault': [1, 'Exception: method \"no_such_call\" is not"), answers
+    assert answers[5].startswith("200 {'fault': [1, 'TypeError: "), answers
+    assert answers[6] == f'xml-rpc {cli.domain_id}'
+    assert lines(ros2(cli, 'daemon', 'status')) == ['The daemon is running']  # still serving
+
+
 # What `ros2 daemon stop` does, with the domain's participants counted before and the moment it returns.
 STOP_AND_COUNT = '''
 from ros2cli.daemon.client import shutdown_daemon

@@ -35,7 +35,7 @@ def package_completer(prefix: str, **_kwargs: object) -> Iterable[str]:
 
 
 def _graph_names(query: str, parsed_args: argparse.Namespace | None) -> list[str]:
-    # Lazy: the client imports xmlrpc.client (http.client, ssl), and the verbs import this module.
+    # Lazy: the verbs import this module.
     from ros2cli.daemon.client import DaemonGraph, is_daemon_running
 
     if is_daemon_running(timeout=1.0) and not getattr(parsed_args, 'no_daemon', False):

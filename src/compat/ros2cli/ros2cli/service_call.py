@@ -68,7 +68,7 @@ class ServiceCaller:
         return future.result()
 
 
-# XML-RPC fault codes of the daemon's call_service
+# fault codes of the daemon's call_service
 FAULTS: dict[int, type[ServiceCallError]] = {1: ServiceUnavailable, 2: NoResponse, 3: ServiceCallError}
 
 
@@ -76,24 +76,24 @@ class DaemonServiceCaller:
     """The same calls, made by the daemon's node (already discovered by everyone)."""
 
     def __init__(self, timeout: float) -> None:
-        # Lazy: the client imports xmlrpc.client (http.client, ssl), and `ros2 param -h` imports this module.
+        # Lazy: `ros2 param -h` imports this module.
         from ros2cli.daemon.client import DaemonGraph
         self._daemon = DaemonGraph(timeout=timeout * 2 + 5.0)
 
     def call(self, service: str, srv_class: Any, request: Any, timeout: float) -> Any:
         """The same call, made by the daemon (see serve_call): the same response, or the same exceptions."""
-        # Lazy: xmlrpc.client and rosidl_runtime_py (yaml) import slowly; `ros2 param -h` imports this module.
-        import xmlrpc.client
-
+        # Lazy: rosidl_runtime_py (yaml) imports slowly; `ros2 param -h` imports this module.
         from rosidl_runtime_py.convert import dump_yaml, message_to_ordereddict
         from rosidl_runtime_py.set_message import parse_yaml, set_message_fields
         from rosidl_runtime_py.utilities import type_name_of
 
+        from ros2cli.daemon.client import DaemonFault
+
         try:
             text = self._daemon.call_service(service, type_name_of(srv_class),
                                              dump_yaml(message_to_ordereddict(request)), timeout)
-        except xmlrpc.client.Fault as fault:
-            raise FAULTS.get(fault.faultCode, ServiceCallError)(fault.faultString) from None
+        except DaemonFault as fault:
+            raise FAULTS.get(fault.code, ServiceCallError)(fault.message) from None
         response = srv_class.Response()
         set_message_fields(response, parse_yaml(text))
         return response
@@ -106,7 +106,7 @@ def serve_call(caller: ServiceCaller, service: str, type_name: str, request_yaml
     no 64-bit integers), and the client needs no rclpy import for it, which keeps warm calls fast.
     """
     # Lazy: xmlrpc.client and rosidl_runtime_py (yaml) import slowly; `ros2 param -h` imports this module.
-    import xmlrpc.client
+    import xmlrpc.client  # the daemon's fault, which it passes on over XML-RPC and JSON alike
 
     from rosidl_runtime_py.convert import dump_yaml, message_to_ordereddict
     from rosidl_runtime_py.set_message import FieldError, parse_yaml, set_message_fields

@@ -1,34 +1,57 @@
-"""Talk to the daemon of this ROS domain: is it running, start it, stop it, ask it."""
+"""Talk to the daemon of this ROS domain: is it running, start it, stop it, ask it.
 
+The calls go as JSON over one HTTP/1.0 request each (ros2cli.daemon.JSON_PATH), with no import
+of xmlrpc.client or http.client.
+"""
+
+import json
 import os
 import socket
 import subprocess
 import sys
 import time
-import xmlrpc.client
 from collections.abc import Callable
 from typing import Any
 
-from ros2cli.daemon import RPC_PATH, daemon_port, domain_id
+from ros2cli.daemon import JSON_PATH, daemon_port, domain_id
 
 READY_TIMEOUT = 10.0
 
 
-class _TimeoutTransport(xmlrpc.client.Transport):
-    def __init__(self, timeout: float) -> None:
-        super().__init__()
-        self._timeout = timeout
-
-    def make_connection(self, host: Any) -> Any:
-        connection = super().make_connection(host)
-        connection.timeout = self._timeout
-        return connection
+class DaemonError(Exception):
+    """The daemon gave no answer to the call: not ours, too old for JSON calls, or a broken reply."""
 
 
-def _proxy(timeout: float) -> xmlrpc.client.ServerProxy:
-    return xmlrpc.client.ServerProxy(
-        f'http://127.0.0.1:{daemon_port()}{RPC_PATH}', transport=_TimeoutTransport(timeout),
-        allow_none=True)
+class DaemonFault(DaemonError):
+    """The call reached the daemon and failed there: a code and a message, as an XML-RPC fault has."""
+
+    def __init__(self, code: int, message: str) -> None:
+        super().__init__(message)
+        self.code = code
+        self.message = message
+
+
+def call(method: str, params: list[Any], timeout: float) -> Any:
+    """The daemon's answer to method(*params); OSError when it cannot be reached within timeout s."""
+    body = json.dumps({'method': method, 'params': params}).encode()
+    request = (f'POST {JSON_PATH} HTTP/1.0\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n'
+               f'Content-Length: {len(body)}\r\n\r\n').encode() + body
+    reply = bytearray()
+    with socket.create_connection(('127.0.0.1', daemon_port()), timeout=timeout) as connection:
+        connection.sendall(request)
+        while chunk := connection.recv(65536):  # HTTP/1.0: the daemon closes after its answer
+            reply += chunk
+    head, _, payload = bytes(reply).partition(b'\r\n\r\n')
+    status = head.split(b'\r\n', 1)[0].split()
+    if len(status) < 2 or status[1] != b'200':
+        raise DaemonError(f'the daemon answered {head[:40]!r} to {method}')
+    try:
+        answer = json.loads(payload)
+        if 'fault' in answer:
+            raise DaemonFault(*answer['fault'])
+        return answer['result']
+    except (ValueError, KeyError, TypeError):
+        raise DaemonError(f'the daemon sent no answer to {method}') from None
 
 
 def _port_open() -> bool:
@@ -42,8 +65,8 @@ def is_daemon_running(timeout: float = 5.0) -> bool:
     if not _port_open():
         return False
     try:
-        return _proxy(timeout).get_domain_id() == domain_id()
-    except (OSError, xmlrpc.client.Error):
+        return call('get_domain_id', [], timeout) == domain_id()
+    except (OSError, DaemonError):
         return False
 
 
@@ -87,17 +110,19 @@ def wait_until(condition: Callable[[], object], timeout: float = READY_TIMEOUT) 
 def shutdown_daemon() -> bool:
     """Ask the daemon to exit; True once its port is free again (after its participant left the graph)."""
     try:
-        _proxy(READY_TIMEOUT).system.shutdown()
-    except (OSError, xmlrpc.client.Error):
+        call('system.shutdown', [], READY_TIMEOUT)
+    except (OSError, DaemonError):
         pass
     return wait_until(lambda: not _port_open())
 
 
 class DaemonGraph:
-    """The daemon's GraphQueries, called over XML-RPC: same methods, same plain answers."""
+    """The daemon's GraphQueries, called over JSON: same methods, same plain answers (lists for tuples)."""
 
     def __init__(self, timeout: float = 10.0) -> None:
-        self._proxy = _proxy(timeout)
+        self._timeout = timeout
 
-    def __getattr__(self, name: str) -> Any:
-        return getattr(self._proxy, name)
+    def __getattr__(self, name: str) -> Callable[..., Any]:
+        if name.startswith('__'):
+            raise AttributeError(name)
+        return lambda *params: call(name, list(params), self._timeout)

@@ -1,14 +1,16 @@
-"""The daemon process: a hidden node whose graph cache stays warm, served over XML-RPC.
+"""The daemon process: a hidden node whose graph cache stays warm, served over XML-RPC and JSON.
 
 Started by ros2cli.daemon.client.spawn_daemon() with the already bound listening socket.
 """
 
 import argparse
 import hashlib
+import json
 import os
 import socket
 import time
 import uuid
+import xmlrpc.client
 from typing import Any
 from xmlrpc.server import SimpleXMLRPCRequestHandler, SimpleXMLRPCServer
 
@@ -16,7 +18,7 @@ import rclpy
 from owl_common.graph import GraphQueries
 from rclpy.node import Node
 
-from ros2cli.daemon import RPC_PATH, daemon_port
+from ros2cli.daemon import JSON_PATH, RPC_PATH, daemon_port
 from ros2cli.node.direct import tear_down
 from ros2cli.node.graph import Graph
 from ros2cli.node.settle import graph_endpoints, graph_view, local_participants
@@ -42,7 +44,32 @@ def keeps_company(graph: Graph) -> bool:
 
 
 class _RequestHandler(SimpleXMLRPCRequestHandler):
-    rpc_paths = (RPC_PATH,)
+    rpc_paths = (RPC_PATH, JSON_PATH)
+
+    def do_POST(self) -> None:
+        """XML-RPC at RPC_PATH, as upstream's daemon; the same calls as JSON at JSON_PATH (our client's)."""
+        if self.path != JSON_PATH:
+            super().do_POST()
+            return
+        try:
+            request = json.loads(self.rfile.read(int(self.headers.get('content-length', 0))))
+            method, params = request['method'], request['params']
+            if not isinstance(method, str) or not isinstance(params, list):
+                raise TypeError
+        except (ValueError, KeyError, TypeError):
+            self.send_error(400, 'expected a JSON object {"method": name, "params": [...]}')
+            return
+        try:
+            body = json.dumps({'result': self.server._dispatch(method, params)})  # type: ignore[attr-defined]
+        except xmlrpc.client.Fault as fault:
+            body = json.dumps({'fault': [fault.faultCode, fault.faultString]})
+        except Exception as error:  # reported to the caller, as SimpleXMLRPCServer reports it: code 1
+            body = json.dumps({'fault': [1, f'{type(error).__name__}: {error}']})
+        self.send_response(200)
+        self.send_header('Content-Type', 'application/json')
+        self.send_header('Content-Length', str(len(body.encode())))
+        self.end_headers()
+        self.wfile.write(body.encode())
 
 
 class _Server(SimpleXMLRPCServer):
@@ -53,7 +80,7 @@ class _Server(SimpleXMLRPCServer):
 
 
 def serve(domain: int, listener: socket.socket, idle_timeout: float, alone_timeout: float | None) -> None:
-    """Answer XML-RPC calls on listener from a hidden node in the domain, until it is time to stop.
+    """Answer XML-RPC and JSON calls on listener from a hidden node in the domain, until it is time to stop.
 
     That is on system.shutdown (`ros2 daemon stop`), after idle_timeout s without a request, or, when
     alone_timeout is not None, once no node but `ros2`'s own has kept it company (keeps_company)

@@ -33,8 +33,7 @@ class NodeStrategy:
         ensure_discovery_bridge()
         graph: Graph | None = None
         if not getattr(args, 'no_daemon', False):
-            # Lazy, and only here: the client imports xmlrpc.client (http.client, ssl, about 30 ms),
-            # which neither `-h` (the verbs import this module) nor --no-daemon needs.
+            # Lazy, and only here: neither `-h` (the verbs import this module) nor --no-daemon needs it.
             from ros2cli.daemon import client
 
             if client.is_daemon_running():
@@ -86,7 +85,7 @@ def wait_until_settled(daemon: Any) -> None:
     after a participant is seen has arrived by then); one up for DAEMON_SETTLED s is not asked at
     all.
     """
-    import xmlrpc.client  # lazy: as in NodeStrategy (loaded by then, with the daemon client)
+    from ros2cli.daemon.client import DaemonFault  # lazy: as in NodeStrategy (loaded by then)
 
     uptime = daemon.get_uptime()
     if uptime >= DAEMON_SETTLED:
@@ -96,5 +95,5 @@ def wait_until_settled(daemon: Any) -> None:
     try:
         while not settling.settled(time.monotonic() - started, *daemon.discovery_view()):
             time.sleep(POLL)
-    except xmlrpc.client.Fault:
+    except DaemonFault:
         pass  # a daemon of an older install, started before an update: its graph as it is

@@ -17,7 +17,7 @@ class StartVerb(VerbExtension):
 
         An error message is returned when it does not answer within READY_TIMEOUT (10 s).
         """
-        # Lazy: the client imports xmlrpc.client (http.client, ssl), and `ros2 daemon -h` imports this module.
+        # Lazy: `ros2 daemon -h` imports this module.
         from ros2cli.daemon.client import is_daemon_running, spawn_daemon, wait_until
         if is_daemon_running() or not spawn_daemon():
             print('The daemon is already running')

@@ -10,7 +10,7 @@ class StatusVerb(VerbExtension):
 
     def main(self, *, args: argparse.Namespace) -> int:
         """Print whether this domain's daemon is running; the exit code is 0 either way."""
-        # Lazy: the client imports xmlrpc.client (http.client, ssl), and `ros2 daemon -h` imports this module.
+        # Lazy: `ros2 daemon -h` imports this module.
         from ros2cli.daemon.client import is_daemon_running
         print('The daemon is running' if is_daemon_running() else 'The daemon is not running')
         return 0

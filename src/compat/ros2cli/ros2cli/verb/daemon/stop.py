@@ -10,7 +10,7 @@ class StopVerb(VerbExtension):
 
     def main(self, *, args: argparse.Namespace) -> int | str:
         """Ask this domain's daemon to exit; an error message when its port is not free within 10 s."""
-        # Lazy: the client imports xmlrpc.client (http.client, ssl), and `ros2 daemon -h` imports this module.
+        # Lazy: `ros2 daemon -h` imports this module.
         from ros2cli.daemon.client import is_daemon_running, shutdown_daemon
         if not is_daemon_running():
             print('The daemon is not running')
