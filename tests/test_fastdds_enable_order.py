@@ -131,3 +131,24 @@ def test_another_fast_dds_build_keeps_its_own_enable(tmp_path):
     # The call reached the repair (it is loaded first) and was passed on unchanged.
     assert re.fullmatch(r'its own enable\(0x1234\)\norder \d\n', done.stdout), done.stdout
     assert int(done.stdout.split()[-1]) == UPSTREAM_ORDER
+
+
+BROKEN_LIBRARY_PROBE = '''
+import sys
+import owl_rclpy_repair
+sys.prefix = sys.argv[1]
+owl_rclpy_repair.load_fastdds_enable_order()
+print('went on')
+'''
+
+
+def test_a_library_that_cannot_load_is_one_line_and_rclpy_goes_on(tmp_path):
+    (tmp_path / 'lib').mkdir()
+    (tmp_path / 'lib' / LIBRARY.name).write_text('not a shared library\n')
+    done = subprocess.run([sys.executable, '-c', BROKEN_LIBRARY_PROBE, str(tmp_path)], capture_output=True,
+                          text=True, timeout=60, check=False)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout == 'went on\n'
+    [line] = done.stderr.splitlines()
+    assert line.startswith('owl: Fast DDS enable-order repair not loaded ('), line
+    assert line.endswith('run make setup'), line

@@ -356,7 +356,11 @@ def load_fastdds_enable_order() -> None:
     library = os.path.join(sys.prefix, 'lib', FASTDDS_ENABLE_ORDER)
     if os.path.exists(library):
         import _ctypes
-        _ctypes.dlopen(library, os.RTLD_NOW | os.RTLD_GLOBAL)
+        try:
+            _ctypes.dlopen(library, os.RTLD_NOW | os.RTLD_GLOBAL)
+        except OSError as error:  # rclpy still works, with upstream's order; say so once
+            print(f'owl: Fast DDS enable-order repair not loaded ({error}); run make setup',
+                  file=sys.stderr)
 
 
 def patch_init(rclpy: Any) -> None:
