@@ -640,10 +640,10 @@ DAEMON_CALLS = r'''
 import json, socket, sys, xmlrpc.client
 port = int(sys.argv[1])
 
-def post(path, body):
+def post(path, body, length=None):
     with socket.create_connection(('127.0.0.1', port), timeout=10) as connection:
-        head = b'POST %s HTTP/1.0\r\nContent-Length: %d\r\n\r\n' % (path.encode(), len(body))
-        connection.sendall(head + body)
+        length = len(body) if length is None else length
+        connection.sendall(b'POST %s HTTP/1.0\r\nContent-Length: %d\r\n\r\n' % (path.encode(), length) + body)
         reply = b''
         while chunk := connection.recv(65536):
             reply += chunk
@@ -656,6 +656,7 @@ for body in (b'{"method": "get_domain_id", "params": []}', b'not json', b'[1, 2]
     status, payload = post('/ros2cli/json', body)
     refused = 'error page' if 'expected a JSON object' in payload else payload
     print(status, json.loads(payload) if status == '200' else refused)
+print(post('/ros2cli/json', b'{"method": "get_domain_id", "params": []}', length=-5)[0])
 print('xml-rpc', xmlrpc.client.ServerProxy(f'http://127.0.0.1:{port}/ros2cli/').get_domain_id())
 '''
 
@@ -671,7 +672,8 @@ def test_the_daemon_answers_json_and_xml_rpc_calls_and_refuses_bad_ones(cli):
                            '400 error page'], answers
     assert answers[4].startswith("200 {'fault': [1, 'Exception: method \"no_such_call\" is not"), answers
     assert answers[5].startswith("200 {'fault': [1, 'TypeError: "), answers
-    assert answers[6] == f'xml-rpc {cli.domain_id}'
+    assert answers[6] == '400'  # a negative Content-Length, which would have the daemon wait
+    assert answers[7] == f'xml-rpc {cli.domain_id}'
     assert lines(ros2(cli, 'daemon', 'status')) == ['The daemon is running']  # still serving
 
 

@@ -52,7 +52,10 @@ class _RequestHandler(SimpleXMLRPCRequestHandler):
             super().do_POST()
             return
         try:
-            request = json.loads(self.rfile.read(int(self.headers.get('content-length', 0))))
+            length = int(self.headers.get('content-length', 0))
+            if length < 0:  # read(-1) would wait for the client to close
+                raise ValueError(length)
+            request = json.loads(self.rfile.read(length))
             method, params = request['method'], request['params']
             if not isinstance(method, str) or not isinstance(params, list):
                 raise TypeError
@@ -65,11 +68,12 @@ class _RequestHandler(SimpleXMLRPCRequestHandler):
             body = json.dumps({'fault': [fault.faultCode, fault.faultString]})
         except Exception as error:  # reported to the caller, as SimpleXMLRPCServer reports it: code 1
             body = json.dumps({'fault': [1, f'{type(error).__name__}: {error}']})
+        answer = body.encode()
         self.send_response(200)
         self.send_header('Content-Type', 'application/json')
-        self.send_header('Content-Length', str(len(body.encode())))
+        self.send_header('Content-Length', str(len(answer)))
         self.end_headers()
-        self.wfile.write(body.encode())
+        self.wfile.write(answer)
 
 
 class _Server(SimpleXMLRPCServer):
