@@ -635,7 +635,7 @@ def test_daemon_start_stop_status(cli):
     assert lines(ros2(cli, 'daemon', 'status')) == ['The daemon is not running']
 
 
-# Our client's JSON calls beside upstream's XML-RPC, good and bad; then a verb that needs the daemon.
+# Our client's JSON calls beside upstream's XML-RPC, good and bad ones.
 DAEMON_CALLS = r'''
 import json, socket, sys, xmlrpc.client
 port = int(sys.argv[1])
