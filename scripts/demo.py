@@ -3,8 +3,9 @@
 Starts the simulated Owl Kit (IMU, pan and tilt servos, camera), the course's projects on it
 (imu_control_robot points the head where the IMU points, display_camera shows the camera,
 imu_turtle drives turtlesim's turtle with the IMU) and robot_view (the kit live in a browser, with
-its plots and the camera), prints the robot view's address and a few readable lines of what
-happens, then stops everything with Ctrl-C's signal, as a user at a terminal would.
+its plots and the camera), prints the front door's address (one address for every page) and a few
+readable lines of what happens, then stops everything with Ctrl-C's signal, as a user at a terminal
+would.
 
 With --project tracking it is section 4.6's robot instead: a red ball goes round the robot and
 track_object keeps it in the middle of the camera's picture; each line says how far off it is.
@@ -39,9 +40,10 @@ CAMERA_TOPIC = '/olive/camera/eye/image/compressed'
 SERVOS = ('pan', 'tilt')
 STARTUP_TIMEOUT = 60.0  # s for every node to say it is working, on a loaded 2-core machine
 ROBOT_VIEW_PORT = 8091  # robot_view's own default; another free port when it is taken
-ROBOT_VIEW_LINE = r'robot_view: open (http://127\.0\.0\.1:\d+/) in a browser'
+# The page's address: under the front door (its root, then the page's mount), or its own.
+ROBOT_VIEW_LINE = r'robot_view: open (http://127\.0\.0\.1:\d+/)(robot-view/)? in a browser'
 WINDOWS_PORT = 8092  # owl windows' own default, likewise
-WINDOWS_LINE = r'owl windows: open (http://127\.0\.0\.1:\d+/) in a browser'
+WINDOWS_LINE = r'owl windows: open (http://127\.0\.0\.1:\d+/)(windows/)? in a browser'
 PROJECTS = ('imu', 'tracking')
 BALL_SPEED = 0.15  # rad/s of the ball going round the robot in the tracking project
 
@@ -207,9 +209,32 @@ def start_tracking_robot(sandbox: RosSandbox) -> dict[str, RosProcess]:
     return processes
 
 
-def page_address(process: RosProcess, line: str) -> str:
-    """A page's address (http://127.0.0.1:PORT/), from the line its server printed at start."""
-    return process.wait_for(line, 1.0)[0].group(1)
+def page_address(process: RosProcess, line: str) -> tuple[str, bool]:
+    """Where a page's server said to open it, and whether that is the front door's root.
+
+    (the front door's root, True) when the page joined the front door, else (its own address, False).
+    """
+    match = process.wait_for(line, 1.0)[0]
+    return match.group(1), match.group(2) is not None
+
+
+def print_pages(processes: dict[str, RosProcess]) -> None:
+    """Where to watch: the front door, one address for every page; each page's own without one."""
+    robot_view, front_door = page_address(processes['robot_view'], ROBOT_VIEW_LINE)
+    windows = 'owl_windows' in processes
+    if front_door:
+        turtle = (", windows (the TurtleSim window and display_camera's, when they have no display)"
+                  if windows else '')
+        print(f'== pages: open {robot_view} in a browser: the robot view (the kit in 3D, live plots, the '
+              f"camera; the IMU follows its script here){turtle}, each module's own page; `owl pages` lists "
+              'them', flush=True)
+        return
+    print(f'== robot view: open {robot_view} in a browser (the kit in 3D, live plots, the camera; the IMU '
+          'follows its script here)', flush=True)
+    if windows:
+        print(f"== turtlesim: open {page_address(processes['owl_windows'], WINDOWS_LINE)[0]} in a browser "
+              "(owl windows: the TurtleSim window and display_camera's window, when they have no display)",
+              flush=True)
 
 
 def display_camera_lines(process: RosProcess) -> list[str]:
@@ -224,7 +249,9 @@ def run_demo(seconds: float, report_every: float, project: str = 'imu') -> int:
     last lines on stderr.
     """
     # env.sh's network mode: private (LOCALHOST) unless the user opened it with OWL_NETWORK=open.
-    with RosSandbox(discovery_range=os.environ.get('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')) as sandbox:
+    # The user's pages folder: the demo's pages join the user's front door (it stays when the demo ends).
+    with RosSandbox(discovery_range=os.environ.get('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST'),
+                    private_pages=False) as sandbox:
         print(f'== Owl Kit Lab demo: the simulated Owl Kit and the course\'s chapter 4 projects, '
               f'ROS 2 domain {sandbox.domain_id}, {seconds:.0f} s', flush=True)
         if project == 'tracking':
@@ -248,13 +275,7 @@ def run_demo(seconds: float, report_every: float, project: str = 'imu') -> int:
             time.sleep(0.5)  # the no-display line follows the first frame's
             for line in display_camera_lines(processes['display_camera']):
                 print(f'   display_camera says: {line}', flush=True)
-            print(f"== robot view: open {page_address(processes['robot_view'], ROBOT_VIEW_LINE)} in a "
-                  'browser (the kit in 3D, live plots, the camera; the IMU follows its script here)',
-                  flush=True)
-            if 'owl_windows' in processes:
-                print(f"== turtlesim: open {page_address(processes['owl_windows'], WINDOWS_LINE)} in a "
-                      "browser (owl windows: the TurtleSim window and display_camera's window, when they "
-                      'have no display)', flush=True)
+            print_pages(processes)
             print('== running', flush=True)
             start = last = time.monotonic()
             frames_then = state.frames

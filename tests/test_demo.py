@@ -7,6 +7,7 @@ import sys
 from pathlib import Path
 
 import pytest
+from owl_web.pages import stop_front_door
 
 DEMO = Path(__file__).parents[1] / 'scripts' / 'demo.py'
 STATUS = re.compile(
@@ -14,16 +15,26 @@ STATUS = re.compile(
     r'tilt goal ([+-]\d\.\d\d) at ([+-]\d\.\d\d) rad \| camera +(\d+\.\d) fps \| turtle \(')
 
 
-def run_demo(*args: str, timeout: float = 150) -> subprocess.CompletedProcess:
-    """The demo as on a machine without a display (CI's case, whatever the developer's desktop has)."""
+def run_demo(*args: str, timeout: float = 150,
+             pages_dir: Path | None = None) -> subprocess.CompletedProcess:
+    """The demo as on a machine without a display (CI's case, whatever the developer's desktop has).
+
+    Its pages join a front door of pages_dir's, on any free port (the demo uses the user's own).
+    """
     env = {k: v for k, v in os.environ.items() if k not in ('DISPLAY', 'WAYLAND_DISPLAY')}
-    return subprocess.run([sys.executable, str(DEMO), *args], capture_output=True, text=True,
-                          timeout=timeout, env=env, check=False)
+    if pages_dir is not None:
+        env.update({'OWL_PAGES_DIR': str(pages_dir), 'OWL_FRONT_DOOR_PORT': '0', 'OWL_FRONT_DOOR': 'on'})
+    try:
+        return subprocess.run([sys.executable, str(DEMO), *args], capture_output=True, text=True,
+                              timeout=timeout, env=env, check=False)
+    finally:
+        if pages_dir is not None:
+            stop_front_door(pages_dir)
 
 
 @pytest.mark.whole_kit
-def test_demo_runs_the_robot_reports_it_and_stops_every_node_cleanly():
-    result = run_demo('--seconds', '10', '--report-every', '2.5')
+def test_demo_runs_the_robot_reports_it_and_stops_every_node_cleanly(tmp_path):
+    result = run_demo('--seconds', '10', '--report-every', '2.5', pages_dir=tmp_path / 'pages')
     assert result.returncode == 0, result.stdout + result.stderr
     statuses = [s for line in result.stdout.splitlines() if (s := STATUS.search(line))]
     assert len(statuses) >= 3, result.stdout
@@ -34,16 +45,14 @@ def test_demo_runs_the_robot_reports_it_and_stops_every_node_cleanly():
     assert fps > 10, statuses[-1].group(0)
     assert "display_camera says:" in result.stdout, result.stdout
     assert 'no display' in result.stdout, result.stdout
-    # the robot view's address, printed before the status lines (robot_view stops cleanly too)
-    address = re.search(r'^== robot view: open http://127\.0\.0\.1:(\d+)/ in a browser', result.stdout, re.M)
+    # one address for every page, the front door's, printed before the status lines: the robot view and
+    # the turtle's window (owl windows) are there (tests/test_front_door.py opens them)
+    address = re.search(r"^== pages: open http://127\.0\.0\.1:(\d+)/ in a browser: the robot view .*, "
+                        r"windows \(the TurtleSim window and display_camera's, .*\), each module's own page",
+                        result.stdout, re.M)
     assert address, result.stdout
-    assert 0 < int(address.group(1)) < 65536, result.stdout
+    assert len(re.findall(r'http://', result.stdout)) == 1, result.stdout
     assert result.stdout.index(address.group(0)) < result.stdout.index('== running')
-    # where to see the turtle without a display: owl windows' page (tests/test_owl_windows.py shows it)
-    windows = re.search(r'^== turtlesim: open http://127\.0\.0\.1:(\d+)/ in a browser \(owl windows: the '
-                        r'TurtleSim window', result.stdout, re.M)
-    assert windows, result.stdout
-    assert result.stdout.index(windows.group(0)) < result.stdout.index('== running')
     assert 'every node stopped cleanly' in result.stdout
     assert 'Traceback' not in result.stdout + result.stderr
 
@@ -54,8 +63,9 @@ TRACKING = re.compile(r'ball +([+-]\d+\.\d) % right, +([+-]\d+\.\d) % down of th
 # whole_kit: the head's lag grows with the pipeline's latency, camera to servo. Beside two other tests
 # on 2 cores a run's mean was 6.1 %, with a 1 s gap in the demo's reports.
 @pytest.mark.whole_kit
-def test_the_tracking_demo_keeps_the_ball_in_the_middle_and_says_how_far_off_it_is():
-    result = run_demo('--project', 'tracking', '--seconds', '6', '--report-every', '1')
+def test_the_tracking_demo_keeps_the_ball_in_the_middle_and_says_how_far_off_it_is(tmp_path):
+    result = run_demo('--project', 'tracking', '--seconds', '6', '--report-every', '1',
+                      pages_dir=tmp_path / 'pages')
     assert result.returncode == 0, result.stdout + result.stderr
     assert 'track_object: the head keeps the ball in the middle of the picture' in result.stdout
     offsets = [tuple(map(float, m.groups()))

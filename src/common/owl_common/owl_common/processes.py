@@ -15,6 +15,7 @@ import shutil
 import signal
 import socket
 import subprocess
+import tempfile
 import threading
 import time
 from collections.abc import Callable, Iterable, Sequence
@@ -231,12 +232,22 @@ class RosProcess:
 
 
 class RosSandbox:
-    """A set of processes sharing one private ROS domain; close() stops them all."""
+    """A set of processes sharing one private ROS domain; close() stops them all.
 
-    def __init__(self, echo: bool = False, discovery_range: str = 'LOCALHOST') -> None:
+    With private_pages (the default), the pages its processes serve are listed in a pages folder
+    of its own and start no front door (OWL_PAGES_DIR, OWL_FRONT_DOOR=off: owl_web.pages), so a
+    test's pages never join the user's front door nor another test's; the demo shares the user's.
+    """
+
+    def __init__(self, echo: bool = False, discovery_range: str = 'LOCALHOST',
+                 private_pages: bool = True) -> None:
         self._lease = DomainLease()
         self.domain_id = self._lease.domain_id
         self.env = isolated_env(self.domain_id, discovery_range=discovery_range)
+        self.pages_dir: str | None = None
+        if private_pages:
+            self.pages_dir = tempfile.mkdtemp(prefix='owl-pages-')
+            self.env.update({'OWL_PAGES_DIR': self.pages_dir, 'OWL_FRONT_DOOR': 'off'})
         self.echo = echo
         self.processes: list[RosProcess] = []
 
@@ -265,6 +276,9 @@ class RosSandbox:
             if process.running():
                 process.stop(timeout=3.0)
         stop_ros2_daemon(self.domain_id, self.env)
+        if self.pages_dir is not None:  # a front door a test started leaves with its folder
+            shutil.rmtree(self.pages_dir, ignore_errors=True)
+            self.pages_dir = None
         self._lease.release()
 
     def __enter__(self) -> RosSandbox:

@@ -72,6 +72,10 @@ class KitModule:
         """Where the module's web page answers while its address is the kit's."""
         return f'http://{page_host(self.address)}:{port}/'
 
+    def page(self) -> dict[str, str]:
+        """The module's page for the front door (module_page's name, mount and start)."""
+        return module_page(self.module_type, self.namespace, self.address)
+
     def topics(self) -> dict[str, str]:
         """Absolute topic name -> type of everything the module offers (position mode for servos)."""
         prefix = f'/olive/{self.module_type}/{self.namespace}/'
@@ -98,17 +102,35 @@ KIT_SUBNET = '10.42.0.0/24'
 STUDENT_ADDRESS = '10.42.0.1'
 
 
-# The tools' pages on 127.0.0.1 and their default ports (each takes --port to choose another).
-RQT_PORT = 8090
+# The tools' pages on 127.0.0.1 and their default ports (each takes --port to choose another). The
+# front door (owl_web's, port 8090) serves every page of the kit under one address besides.
+RQT_PORT = 8093
 ROBOT_VIEW_PORT = 8091
 WINDOWS_PORT = 8092
+KIT_LAUNCH = 'ros2 launch olive_sim owl_kit.launch.py'
+# mount under the front door -> (title, the command that starts the page)
+TOOL_PAGES = {
+    'robot-view': ('robot view', 'ros2 launch robot_view robot_view.launch.py'),
+    'rqt': ('rqt', 'rqt'),
+    'windows': ('windows', 'owl windows'),
+}
 
 
-def kit_pages(module_port: int = WEB_PORT, modules: tuple[KitModule, ...] = OWL_KIT) -> list[tuple[str, str]]:
-    """Every page of the kit and its tools at its default address, as (name, url): what pages link to."""
-    tools = [('robot view', ROBOT_VIEW_PORT), ('rqt', RQT_PORT), ('windows', WINDOWS_PORT)]
-    return ([(name, f'http://127.0.0.1:{port}/') for name, port in tools]
-            + [(f'{m.module_type} {m.namespace}', m.page_url(module_port)) for m in modules])
+def tool_page(mount: str) -> dict[str, str]:
+    """A tool's page for the front door: mount, title, start (owl_web.pages.Page's fields)."""
+    title, start = TOOL_PAGES[mount]
+    return {'mount': mount, 'title': title, 'start': start}
+
+
+def module_page(module_type: str, namespace: str, address: str) -> dict[str, str]:
+    """A module's page for the front door: at /<type>-<namespace>/, with the module's course address."""
+    return {'mount': f'{module_type}-{namespace}'.lower(), 'title': f'{module_type} {namespace}',
+            'start': KIT_LAUNCH, 'address': address}
+
+
+def page_catalogue(modules: tuple[KitModule, ...] = OWL_KIT) -> list[dict[str, str]]:
+    """Every page of the kit and its tools, in the front door's order: the tools', then each module's."""
+    return [tool_page(mount) for mount in TOOL_PAGES] + [module.page() for module in modules]
 
 
 def address_table(port: int | str = WEB_PORT, modules: tuple[KitModule, ...] = OWL_KIT) -> str:

@@ -169,8 +169,12 @@ class OliveModule(Node):
                 f'no web page: {page.url} cannot be served ({error.strerror or error}; another module '
                 f'with the address {settings.address}?)')
             return
+        except ValueError as error:  # the environment's OWL_TRUSTED_ORIGINS
+            self.get_logger().warning(f'no web page: {error}')
+            return
         self.page = page
-        self.get_logger().info(f'web page at {page.url} (module address {settings.address})')
+        door = f'; through the front door: {page.address}' if page.address != page.url else ''
+        self.get_logger().info(f'web page at {page.url} (module address {settings.address}){door}')
 
     def request_restart(self, delay: float, after: float) -> None:
         """Stop as at Ctrl-C in `after` s, then start again (run_module) after `delay` s."""

@@ -26,7 +26,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from olive_kit.description import kit_pages, page_host
+from olive_kit.description import module_page, page_catalogue, page_host
 from owl_common.periodic import PeriodicThread
 from owl_common.quaternion import to_euler
 from owl_web import codec
@@ -124,6 +124,11 @@ class ModulePage:
         """The page's address, http://127.B.C.D:<port>/ for the module address A.B.C.D."""
         return f'http://{page_host(self.settings.address)}:{self.port}/'
 
+    @property
+    def address(self) -> str:
+        """Where a student opens the page: under the front door when it runs, else url."""
+        return self.server.address if self.server is not None else self.url
+
     def start(self) -> None:
         """Serve the page at the module's address; OSError when that address and port are taken."""
         self.server = self._serve(page_host(self.settings.address))
@@ -143,7 +148,8 @@ class ModulePage:
         logger = self.module.get_logger()
         server = WebServer(self.module.get_name(), STATIC_DIR, self.port, host,
                            log=lambda line: logger.warning(f'web page: {line}'))
-        server.link_pages(kit_pages(self.port))
+        server.join_front_door(module_page(self.module.module_type, self.module.namespace_name,
+                                           self.settings.address), page_catalogue())
         server.route('GET', '/api/device', self._device)
         server.route('POST', '/api/network', self._network)
         server.route('POST', '/api/restart', lambda request: self._restart(request, 0.0))

@@ -9,11 +9,11 @@ import threading
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from olive_kit.description import WINDOWS_PORT, kit_pages
+from olive_kit.description import WINDOWS_PORT, page_catalogue, tool_page
 from owl_humble.graph_partition import profile_in_effect, profile_protects
 from owl_web.server import port_number
 
-from owl_cli import check, kit_check, network_check
+from owl_cli import check, kit_check, network_check, pages_command
 
 
 def positive_seconds(text: str) -> float:
@@ -81,17 +81,20 @@ def windows(args: argparse.Namespace) -> int:
         return 1
     try:
         server = WebServer('owl windows', STATIC_DIR, args.port)
-        server.link_pages(kit_pages())
+        server.join_front_door(tool_page('windows'), page_catalogue())
     except OSError as error:
         print(f'owl windows: cannot serve on 127.0.0.1:{args.port}: {error.strerror or error} '
               '(is another owl windows running? choose a port with --port N)', file=sys.stderr)
+        return 1
+    except ValueError as error:
+        print(f'owl windows: {error}', file=sys.stderr)
         return 1
     page = WindowsPage(server, folder)
     stopped = threading.Event()
     try:
         page.start()
         server.start()
-        print(f'owl windows: open {server.url} in a browser: the windows of programs without a display '
+        print(f'owl windows: open {server.address} in a browser: the windows of programs without a display '
               f'(from {folder}); Ctrl-C to quit', flush=True)
         stopped.wait()
     except KeyboardInterrupt:
@@ -134,6 +137,11 @@ def main(argv: list[str] | None = None) -> int:
         description=check.__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     check.add_arguments(check_exercise)
     check_exercise.set_defaults(run=check.check)
+    list_pages = commands.add_parser(
+        'pages', help='the front door (one address for every page) and every page, running or not',
+        description=pages_command.__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    pages_command.add_arguments(list_pages)
+    list_pages.set_defaults(run=pages_command.run)
     args = parser.parse_args(argv)
     try:
         return args.run(args)

@@ -6,7 +6,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from olive_kit.description import ROBOT_VIEW_PORT, kit_pages
+from olive_kit.description import ROBOT_VIEW_PORT, page_catalogue, tool_page
 from owl_common.run import spin_node
 from owl_web.server import WebServer, port_number
 from rclpy.utilities import remove_ros_args
@@ -36,10 +36,13 @@ def main(argv: list[str] | None = None) -> None:
     args = parse_arguments(remove_ros_args(argv)[1:])
     try:
         server = WebServer('robot_view', STATIC_DIR, args.port)
-        server.link_pages(kit_pages())
+        server.join_front_door(tool_page('robot-view'), page_catalogue())
     except OSError as error:
         print(f'robot_view: cannot serve on 127.0.0.1:{args.port}: {error.strerror or error} '
               '(is another robot_view running? choose a port with --port N)', file=sys.stderr)
+        sys.exit(1)
+    except ValueError as error:
+        print(f'robot_view: {error}', file=sys.stderr)
         sys.exit(1)
     missing = server.missing_libraries()
     if missing:
@@ -48,7 +51,7 @@ def main(argv: list[str] | None = None) -> None:
     def start() -> RobotViewNode:
         node = RobotViewNode(server)
         server.start()  # once the node's channels and commands are there
-        print(f'robot_view: open {server.url} in a browser (Ctrl-C to quit)', flush=True)
+        print(f'robot_view: open {server.address} in a browser (Ctrl-C to quit)', flush=True)
         return node
 
     try:

@@ -1,4 +1,4 @@
-"""`rqt`: start the rqt node and its page on http://127.0.0.1:<port>/."""
+"""`rqt`: start the rqt node and its page (http://127.0.0.1:8090/rqt/ through the front door)."""
 
 import argparse
 import os
@@ -7,7 +7,7 @@ import threading
 import webbrowser
 from pathlib import Path
 
-from olive_kit.description import RQT_PORT, kit_pages
+from olive_kit.description import RQT_PORT, page_catalogue, tool_page
 from owl_common.run import spin_node
 from owl_humble.launcher import ensure_discovery_bridge
 from owl_web.server import WebServer, port_number
@@ -58,19 +58,23 @@ def main(argv: list[str] | None = None) -> None:
     args = parse_arguments(remove_ros_args(argv)[1:])
     try:
         server = WebServer('rqt', STATIC_DIR, args.port)
-        server.link_pages(kit_pages())
+        server.join_front_door(tool_page('rqt'), page_catalogue())
     except OSError as error:
         print(f'rqt: cannot serve on 127.0.0.1:{args.port}: {error.strerror or error} '
               '(is another rqt running? choose a port with --port N)', file=sys.stderr)
         sys.exit(1)
+    except ValueError as error:
+        print(f'rqt: {error}', file=sys.stderr)
+        sys.exit(1)
     missing = server.missing_libraries()
     if missing:
         print(f'rqt: {missing}', file=sys.stderr)
-    url = server.url + (f'#{PLUGINS[args.standalone]}' if args.standalone else '')
+    tab = f'#{PLUGINS[args.standalone]}' if args.standalone else ''
 
     def start() -> RqtWebNode:
         ensure_discovery_bridge()  # the node graph names Humble modules' nodes too
-        node = RqtWebNode(server)
+        node = RqtWebNode(server)  # starts the server: its address under the front door is known then
+        url = server.address + tab
         print(f'rqt: open {url} in a browser (Ctrl-C to quit)', flush=True)
         if not args.no_browser:
             open_browser(url)

@@ -2,9 +2,10 @@
 
 It listens on a loopback address only and runs aiohttp in a thread of its own beside an rclpy node.
 
-    server = WebServer('rqt', STATIC_DIR, port=8090)        # binds now: a busy port is an OSError here
+    server = WebServer('rqt', STATIC_DIR, port=8093)        # binds now: a busy port is an OSError here
     server.route('GET', '/api/topics', list_topics)          # handler(Request) -> data or (status, data)
     server.channel('graph', open_graph, close_graph)         # pages subscribe over /ws
+    server.join_front_door(tool_page('rqt'), page_catalogue())  # also at http://127.0.0.1:8090/rqt/
     server.start()
     ...
     subscription.send({...})                                 # from any thread: pushed to that page
@@ -13,12 +14,16 @@ It listens on a loopback address only and runs aiohttp in a thread of its own be
 Paths: `/` is STATIC_DIR/index.html, `/static/<file>` a file of STATIC_DIR, `/owl/<file>` a file
 shared by every page (owl_web/static: socket.js, the browser's half of the codec), `/lib/<package>/
 <path>` a file of a package that web/package.json depends on (installed by `make setup` into
-web/node_modules; nothing comes from a CDN), `/api/...` the routes, `/ws` the WebSocket.
+web/node_modules; nothing comes from a CDN), `/api/...` the routes, `/ws` the WebSocket. A page
+refers to all of them relatively (`static/app.js`, `api/topics`, `ws`), so it works the same at
+its own address, under the front door (owl_web.front_door) and behind any proxy's path prefix.
 
 Handlers and channel callbacks run in a thread each (they may block on ROS: a service call can
 take seconds), never on the event loop. Whatever a client sends, the answer to a bad request is
 one line ({"error": ...} or an "error" message) and the server keeps serving.
 """
+
+from __future__ import annotations
 
 import argparse
 import asyncio
@@ -31,9 +36,8 @@ import socket
 import sys
 import threading
 from collections import deque
-from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 from urllib.parse import urlsplit
@@ -41,8 +45,9 @@ from urllib.parse import urlsplit
 from aiohttp import WSCloseCode, WSMsgType, web
 from owl_common.hints import did_you_mean
 
-from owl_web import codec
+from owl_web import codec, pages
 from owl_web.codec import ApiError
+from owl_web.pages import Page
 
 OWL_STATIC = Path(__file__).parent / 'static'
 CONTENT_TYPES = {
@@ -82,8 +87,51 @@ def is_loopback_name(hostname: str) -> bool:
         return False
 
 
-def foreign_request(host: str, origin: str | None) -> str | None:
-    """Why a request does not come from this machine's own pages, or None.
+DEFAULT_PORTS = {'http': 80, 'https': 443}
+
+
+@dataclass(frozen=True)
+class TrustedOrigins:
+    """The public origins of a proxy in front of our pages, whose Host and Origin they accept too.
+
+    A class server's proxy (JupyterHub with jupyter-server-proxy) passes the browser's Host and Origin
+    on unchanged: https://hub.example.edu is not a loopback address, so without this our pages would
+    refuse their own students. Only what the user configures is trusted, in OWL_TRUSTED_ORIGINS
+    (origins such as https://hub.example.edu, separated by spaces or commas); headers that a client
+    writes itself (X-Forwarded-Host, Forwarded, ...) are never read.
+    """
+
+    origins: frozenset[str] = frozenset()  # scheme://host[:port], the port only when not the default
+    hosts: frozenset[str] = frozenset()    # what a browser sends as Host for them
+
+    @classmethod
+    def parse(cls, text: str) -> TrustedOrigins:
+        """The origins in text; ValueError naming the first that is not an origin."""
+        origins, hosts = set(), set()
+        for item in text.replace(',', ' ').split():
+            parts = urlsplit(item.lower())
+            try:
+                port = parts.port
+            except ValueError:
+                port = -1
+            if parts.scheme not in DEFAULT_PORTS or not parts.hostname or parts.path not in ('', '/') \
+                    or parts.query or parts.fragment or parts.username or port == -1:
+                raise ValueError(f"OWL_TRUSTED_ORIGINS: '{item}' is not an origin such as "
+                                 'https://hub.example.edu or http://lab.local:8000')
+            default = port in (None, DEFAULT_PORTS[parts.scheme])
+            netloc = parts.hostname if default else f'{parts.hostname}:{port}'
+            origins.add(f'{parts.scheme}://{netloc}')
+            hosts.add(netloc)
+        return cls(frozenset(origins), frozenset(hosts))
+
+    @classmethod
+    def from_environment(cls, environ: Mapping[str, str] | None = None) -> TrustedOrigins:
+        """OWL_TRUSTED_ORIGINS of the environment (none when unset); ValueError when it is malformed."""
+        return cls.parse((os.environ if environ is None else environ).get('OWL_TRUSTED_ORIGINS', ''))
+
+
+def foreign_request(host: str, origin: str | None, trusted: TrustedOrigins = TrustedOrigins()) -> str | None:
+    """Why a request does not come from this machine's own pages (or a trusted proxy's), or None.
 
     Listening on 127.0.0.1 keeps other machines out, not other web sites open in the student's
     browser: the Host check stops DNS rebinding (a site's name re-pointed at 127.0.0.1), the Origin
@@ -91,9 +139,10 @@ def foreign_request(host: str, origin: str | None) -> str | None:
     Clients that are not browsers send no Origin.
     """
     hostname = urlsplit(f'//{host}').hostname or ''
-    if not is_loopback_name(hostname):
-        return f"refused: Host '{host}' is not a loopback address"
-    if origin is not None and not is_loopback_name(urlsplit(origin).hostname or ''):
+    if not is_loopback_name(hostname) and host.lower() not in trusted.hosts:
+        return f"refused: Host '{host}' is not a loopback address or a trusted origin's"
+    if origin is not None and not is_loopback_name(urlsplit(origin).hostname or '') \
+            and origin.lower() not in trusted.origins:
         return f'refused: a page of {origin} may not use this server'
     return None
 
@@ -128,13 +177,17 @@ def one_line_logger(name: str, log: Callable[[str], None]) -> logging.Logger:
 
 @dataclass
 class Request:
-    """What a route handler gets: the path's {name} parts, the query (last value of each key), the body."""
+    """What a route handler gets: the path's {name} parts, the query (last value of each key), the body.
+
+    headers are the request's as the server got them (through the front door: as it forwarded them).
+    """
 
     method: str
     path: str
     params: dict[str, str]
     query: dict[str, str]
     body: bytes
+    headers: Mapping[str, str] = field(default_factory=dict)
 
     def json(self) -> dict[str, Any]:
         """The body as a JSON object ({} when empty); a 400 ApiError saying what is wrong otherwise."""
@@ -156,8 +209,8 @@ class Channel:
     """A channel as channel() registered it: its name and its open and close callbacks."""
 
     name: str
-    open: Callable[['Subscription'], None]
-    close: Callable[['Subscription'], None] | None
+    open: Callable[[Subscription], None]
+    close: Callable[[Subscription], None] | None
 
 
 class Subscription:
@@ -167,7 +220,7 @@ class Subscription:
     must not hold up ROS callbacks); errors wait in order.
     """
 
-    def __init__(self, connection: 'Connection', subscription_id: int | str, channel: str,
+    def __init__(self, connection: Connection, subscription_id: int | str, channel: str,
                  params: dict[str, Any]) -> None:
         self.connection = connection
         self.id = subscription_id
@@ -281,11 +334,13 @@ class WebServer:
         """Binds at once (OSError for a busy port).
 
         name prefixes the lines the server prints; log (default: stderr) gets one line for each
-        internal error.
+        internal error. ValueError for a host that is not a loopback address, or a malformed
+        OWL_TRUSTED_ORIGINS.
         """
         address = ipaddress.ip_address(host)
         if address.version != 4 or not address.is_loopback:
             raise ValueError(f'{name} serves on loopback addresses only (127.x.y.z), not {host}')
+        self.trusted = TrustedOrigins.from_environment()
         self.name = name
         self.static_dir = static_dir
         self.log = log or (lambda line: print(f'{name}: {line}', file=sys.stderr, flush=True))
@@ -307,12 +362,23 @@ class WebServer:
         self._runner: web.AppRunner | None = None
         self._thread: threading.Thread | None = None
         self._stopping = threading.Lock()
+        self._page: Page | None = None  # as join_front_door() gave it
+        self._catalogue: list[Page] = []
+        self._registered: Page | None = None  # the entry in the pages folder while serving
+        self.front_door: str | None = None  # the front door's URL once joined and started
 
     @property
     def url(self) -> str:
         """The address the server answers at, e.g. http://127.0.0.1:8090/ (the bound port, if 0 was asked)."""
         host, port = self._socket.getsockname()[:2]
         return f'http://{host}:{port}/'
+
+    @property
+    def address(self) -> str:
+        """Where a student opens the page: under the front door when it runs, else the server's own url."""
+        if self.front_door and self._page is not None:
+            return f'{self.front_door}{self._page.mount}/'
+        return self.url
 
     def missing_libraries(self) -> str | None:
         """A line saying the pages' libraries are not installed, or None when they are."""
@@ -327,19 +393,42 @@ class WebServer:
 
     # ---- what the application adds before start() --------------------------------------------
 
-    def link_pages(self, pages: list[tuple[str, str]]) -> None:
-        """Serve GET /api/kit-pages: those of pages (name, url) that answer now, this one left out.
+    def join_front_door(self, page: Mapping[str, str], catalogue: Iterable[Mapping[str, str]]) -> None:
+        """List this page at the front door once it serves, under page's mount, and start the front door.
 
-        owl/links.js shows them as links on the page, so every page of the kit leads to the others.
+        page and each of catalogue are owl_web.pages.Page's fields (mount, title, start, address);
+        catalogue is every page the kit knows, so the front door can say how to start one that does
+        not run. Also serves GET /api/kit-pages: the other pages that run now (owl/links.js shows
+        them as links on the page). ValueError for a page that is not one.
         """
-        def answering(_: Request) -> list[dict[str, str]]:
-            others = [(name, url) for name, url in pages if url != self.url]
-            with ThreadPoolExecutor(max_workers=max(len(others), 1)) as pool:
-                up = list(pool.map(lambda page: port_answers(page[1]), others))
-            return [{'name': name, 'url': url}
-                    for (name, url), alive in zip(others, up, strict=True) if alive]
+        self._page = Page.from_json(dict(page))
+        self._catalogue = [Page.from_json(dict(entry)) for entry in catalogue]
+        self.route('GET', '/api/kit-pages', self._kit_pages)
 
-        self.route('GET', '/api/kit-pages', answering)
+    def _kit_pages(self, _: Request) -> dict[str, Any]:
+        own = self._page.mount if self._page is not None else None
+        running = [state.page for state in pages.page_states(pages.pages_dir())
+                   if state.running and state.page.mount != own]
+        return {'front_door': self.front_door or '',
+                'pages': [{'name': page.title, 'mount': page.mount, 'url': page.url} for page in running]}
+
+    def _join(self) -> None:
+        """Register the page in the pages folder and make sure a front door runs (start() calls it).
+
+        A page that cannot join says why in one line and serves at its own address anyway.
+        """
+        if self._page is None:
+            return
+        folder = pages.pages_dir()
+        entry = replace(self._page, url=self.url, pid=os.getpid())
+        try:
+            pages.register(entry, folder)
+            self._registered = entry
+            pages.write_catalogue(self._catalogue, folder)
+            if pages.front_door_wanted():
+                self.front_door = pages.ensure_front_door(folder)
+        except (pages.PagesError, ValueError, OSError) as error:
+            self.log(f'not at the front door: {codec.one_line(error)} (the page is at {self.url})')
 
     def route(self, method: str, path: str, handler: Callable[[Request], Any]) -> None:
         """handler(Request) returns JSON data, or (status, data); it raises ApiError to refuse."""
@@ -389,12 +478,16 @@ class WebServer:
         ready.wait()
         if failure:
             raise failure[0]
+        self._join()
 
     def stop(self) -> None:
         """Close every page's WebSocket (going away) and stop serving; a second call does nothing."""
         with self._stopping:
             loop, thread = self._loop, self._thread
             self._loop = self._thread = None
+            registered, self._registered = self._registered, None
+        if registered is not None:
+            pages.unregister(registered, pages.pages_dir())
         if loop is not None and thread is not None:
             try:
                 asyncio.run_coroutine_threadsafe(self._shutdown(), loop).result(STOP_TIMEOUT)
@@ -458,7 +551,8 @@ class WebServer:
 
     @web.middleware
     async def _own_pages_only(self, request: web.Request, handler: Callable[..., Any]) -> web.StreamResponse:
-        refusal = foreign_request(request.headers.get('Host', ''), request.headers.get('Origin'))
+        headers = request.headers
+        refusal = foreign_request(headers.get('Host', ''), headers.get('Origin'), self.trusted)
         if refusal is not None:
             return json_response(403, {'error': refusal})
         return await handler(request)
@@ -470,7 +564,8 @@ class WebServer:
             route, params = self._find_route(request.method, request.path)
             body = await self._read_body(request)
             api_request = Request(request.method, request.path, params,
-                                  {key: request.query.getall(key)[-1] for key in request.query}, body)
+                                  {key: request.query.getall(key)[-1] for key in request.query}, body,
+                                  dict(request.headers))
             result = await self._in_thread(route.handler, api_request)
             status, data = result if isinstance(result, tuple) else (200, result)
             return json_response(status, data)
@@ -620,16 +715,6 @@ class WebServer:
                 await self._in_thread(close, subscription)
             except Exception as error:  # the subscription is gone anyway; say why its clean-up failed
                 self.log(f'closing a {subscription.channel} subscription: {codec.one_line(error)}')
-
-
-def port_answers(url: str, timeout: float = 0.3) -> bool:
-    """Whether something accepts a TCP connection at the url's host and port."""
-    parts = urlsplit(url)
-    try:
-        with socket.create_connection((parts.hostname or '127.0.0.1', parts.port or 80), timeout=timeout):
-            return True
-    except OSError:
-        return False
 
 
 def _flat_file(folder: Path, name: str) -> Path | None:

@@ -363,7 +363,7 @@ def test_only_this_machines_pages_may_use_the_server(web):
     assert foreign_request('127.42.0.8:80', 'http://127.42.0.8') is None
     assert foreign_request('[::1]:8090', 'http://[::1]:8090') is None
     assert foreign_request('evil.example:8090', None) == \
-        "refused: Host 'evil.example:8090' is not a loopback address"
+        "refused: Host 'evil.example:8090' is not a loopback address or a trusted origin's"
     assert foreign_request('127.0.0.1:8090', 'https://evil.example') == \
         'refused: a page of https://evil.example may not use this server'
     assert foreign_request('127.0.0.1:8090', 'null') == 'refused: a page of null may not use this server'

@@ -3,8 +3,8 @@
 // GUI (modules with an IMU: Euler angles and a 3D view) and Log Monitor. Live data is pushed by
 // the module over the page's one WebSocket (owl_web's OwlSocket): channels "system", "orientation"
 // and "log", each subscribed only while its menu page is shown.
-import { showKitPages } from '/owl/links.js';
-import { OwlSocket } from '/owl/socket.js';
+import { showKitPages } from '../owl/links.js';
+import { OwlSocket } from '../owl/socket.js';
 
 const CHART_SECONDS = 120;
 const $ = (id) => document.getElementById(id);
@@ -29,7 +29,7 @@ async function api(method, path, body) {
 }
 
 async function loadDevice() {
-  const [ok, data] = await api('GET', '/api/device');
+  const [ok, data] = await api('GET', 'api/device');
   if (!ok) return;
   state.device = data;
   state.boot = data.boot;
@@ -192,7 +192,7 @@ $('network').addEventListener('submit', async (event) => {
   let ok;
   let data;
   try {
-    [ok, data] = await api('POST', '/api/network', body);
+    [ok, data] = await api('POST', 'api/network', body);
   } catch (error) {
     result('network-result', `the module did not answer: ${error.message}`, false);
     return;
@@ -201,12 +201,17 @@ $('network').addEventListener('submit', async (event) => {
     result('network-result', data.error, false);
     return;
   }
+  const before = new URL(state.device.url).host;
   state.device.network = data.network;
-  if (new URL(data.url).host !== location.host) {
-    result('network-result', `saved: the module now answers at ${data.url}`, true);
-    location.href = data.url + location.hash;  // the old address stops answering
-  } else {
+  state.device.url = data.url;
+  if (new URL(data.url).host === before) {
     result('network-result', 'saved', true);
+  } else if (location.host === before) {  // opened at the module's own address, which stops answering
+    result('network-result', `saved: the module now answers at ${data.url}`, true);
+    location.href = data.url + location.hash;
+  } else {  // through the front door (or a proxy), which follows the module to its new address
+    result('network-result', `saved: the module now answers at ${data.url}; this page follows it`, true);
+    loadDevice();
   }
 });
 
@@ -220,9 +225,9 @@ async function control(path, what) {
 }
 // Both stop the module's services for a while: each asks first, on the page (no browser dialog).
 const CONTROLS = {
-  restart: ['/api/restart', 'Restart Services', 'stops and starts this module\'s services: its topics and '
+  restart: ['api/restart', 'Restart Services', 'stops and starts this module\'s services: its topics and '
             + 'services are gone for a moment, and nodes using them may need to be restarted.'],
-  reboot: ['/api/reboot', 'Reboot Device', 'stops the whole module while it boots again (several seconds): '
+  reboot: ['api/reboot', 'Reboot Device', 'stops the whole module while it boots again (several seconds): '
            + 'its topics, services and this page are away meanwhile.'],
 };
 let confirming = null;  // the control waiting for its confirmation

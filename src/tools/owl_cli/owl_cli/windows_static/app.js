@@ -1,7 +1,7 @@
 // owl windows: the list of windows (channel 'windows'), one frame subscription per shown window
 // (channel 'window'), and the keys pressed on a focused window as 'key' commands.
-import { showKitPages } from '/owl/links.js';
-import { OwlSocket } from '/owl/socket.js';
+import { showKitPages } from '../owl/links.js';
+import { OwlSocket } from '../owl/socket.js';
 
 const list = document.getElementById('windows');
 const none = document.getElementById('none');

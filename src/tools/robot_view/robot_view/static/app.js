@@ -5,12 +5,12 @@
 // servos' controls (controls.js), on the same socket.
 // The model works in base_link's frame (metres, z up), from shared/specs/olive_hardware.md §7.
 import * as THREE from 'three';
-import { OrbitControls } from '/lib/three/examples/jsm/controls/OrbitControls.js';
-import { showKitPages } from '/owl/links.js';
-import { OwlSocket } from '/owl/socket.js';
-import { startControls } from '/static/controls.js';
-import { startPlots } from '/static/plots.js';
-import { startScene } from '/static/scene.js';
+import { OrbitControls } from '../lib/three/examples/jsm/controls/OrbitControls.js';
+import { showKitPages } from '../owl/links.js';
+import { OwlSocket } from '../owl/socket.js';
+import { startControls } from './controls.js';
+import { startPlots } from './plots.js';
+import { startScene } from './scene.js';
 
 const DRAG_RADIANS_PER_PIXEL = 0.01;
 const FPS_WINDOW = 2000;  // ms: the shown frame rate is the frames received in the last 2 s, / 2 s

@@ -7,7 +7,7 @@
 import uPlot from 'uplot';
 import {
   WINDOWS, WINDOW_SECONDS, alignedRanges, columnsCsv, emptyColumns, mergeBatch, plotData, stepMeasurements,
-} from '/static/plot_data.js';
+} from './plot_data.js';
 
 const SERVO_SERIES = (servo) => [
   { name: `${servo}_goal`, label: 'goal', stroke: '#6b7280', dash: [6, 4], scale: 'rad' },

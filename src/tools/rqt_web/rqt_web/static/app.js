@@ -1,8 +1,8 @@
 // The page of rqt_web: four plugins over the JSON API of the rqt node (see the package README);
 // the graph and image frames come pushed over the page's WebSocket (owl_web's OwlSocket), and the
 // graph is laid out here with elkjs (loaded by index.html as the global ELK).
-import { showKitPages } from '/owl/links.js';
-import { OwlSocket } from '/owl/socket.js';
+import { showKitPages } from '../owl/links.js';
+import { OwlSocket } from '../owl/socket.js';
 
 const $ = (id) => document.getElementById(id);
 const SVG = 'http://www.w3.org/2000/svg';
@@ -316,7 +316,7 @@ let topicTypes = {};
 const templates = {};
 
 async function template(type) {
-  if (!templates[type]) templates[type] = await api('GET', `/api/interface?type=${encodeURIComponent(type)}`);
+  if (!templates[type]) templates[type] = await api('GET', `api/interface?type=${encodeURIComponent(type)}`);
   return templates[type];
 }
 
@@ -335,7 +335,7 @@ async function listGraphNames(path, datalistId, errorId) {
 }
 
 async function refreshTopics() {
-  topicTypes = (await listGraphNames('/api/topics', 'pub-topics', 'pub-error')) ?? topicTypes;
+  topicTypes = (await listGraphNames('api/topics', 'pub-topics', 'pub-error')) ?? topicTypes;
 }
 
 let messageTypes = [];
@@ -349,7 +349,7 @@ $('pub-topic').addEventListener('change', async () => {
     return;
   }
   try {
-    if (!messageTypes.length) messageTypes = await api('GET', '/api/interfaces?kind=msg');
+    if (!messageTypes.length) messageTypes = await api('GET', 'api/interfaces?kind=msg');
     fillDatalist('pub-types', messageTypes);
   } catch (error) {
     showError('pub-error', error);
@@ -358,7 +358,7 @@ $('pub-topic').addEventListener('change', async () => {
 
 async function patchPublisher(entry, change, box) {
   try {
-    const updated = await api('PATCH', `/api/publishers/${entry.id}`, change);
+    const updated = await api('PATCH', `api/publishers/${entry.id}`, change);
     Object.assign(entry, updated);
     box.querySelector('.count').textContent = `${updated.published} published`;
     showError('pub-error');
@@ -386,7 +386,7 @@ async function renderPublisher(entry) {
   form.addEventListener('change', () => patchPublisher(entry, { fields: formValues(form) }, box));
   remove.addEventListener('click', async () => {
     try {
-      await api('DELETE', `/api/publishers/${entry.id}`);
+      await api('DELETE', `api/publishers/${entry.id}`);
       box.remove();
       showError('pub-error');
     } catch (error) {
@@ -400,7 +400,7 @@ $('pub-add').addEventListener('click', async () => {
   try {
     const body = { topic: $('pub-topic').value.trim(), rate: Number($('pub-rate').value) || $('pub-rate').value };
     if ($('pub-type').value.trim()) body.type = $('pub-type').value.trim();
-    const entry = await api('POST', '/api/publishers', body);
+    const entry = await api('POST', 'api/publishers', body);
     await renderPublisher(entry);
     showError('pub-error');
   } catch (error) {
@@ -412,7 +412,7 @@ async function loadPublishers() {
   await refreshTopics();
   if ($('publishers').childElementCount) return;
   try {
-    for (const entry of await api('GET', '/api/publishers')) await renderPublisher(entry);
+    for (const entry of await api('GET', 'api/publishers')) await renderPublisher(entry);
   } catch (error) {
     showError('pub-error', error);
   }
@@ -423,7 +423,7 @@ let countTimer = null;
 async function refreshCounts() {
   let entries;
   try {
-    entries = await api('GET', '/api/publishers');
+    entries = await api('GET', 'api/publishers');
   } catch (error) {
     return;  // the page's status says when the server is away
   }
@@ -449,7 +449,7 @@ let serviceTypes = {};
 let requestType = null;
 
 async function refreshServices() {
-  serviceTypes = (await listGraphNames('/api/services', 'srv-names', 'srv-error')) ?? serviceTypes;
+  serviceTypes = (await listGraphNames('api/services', 'srv-names', 'srv-error')) ?? serviceTypes;
 }
 
 async function chooseService() {
@@ -475,7 +475,7 @@ $('srv-call').addEventListener('click', async () => {
     const body = { service: $('srv-name').value.trim(), request: formValues($('srv-request')),
       timeout: Number($('srv-timeout').value) || $('srv-timeout').value };
     if (requestType) body.type = requestType;
-    const answer = await api('POST', '/api/call', body);
+    const answer = await api('POST', 'api/call', body);
     const responseTemplate = (await template(answer.type)).response;
     $('srv-response').append(fieldTable(responseTemplate, answer.response, true));
     showError('srv-error');
@@ -495,7 +495,7 @@ let shownTimes = [];
 
 async function refreshImageTopics() {
   try {
-    const topics = await api('GET', '/api/image_topics');
+    const topics = await api('GET', 'api/image_topics');
     const select = $('img-topic');
     const chosen = select.value;
     select.replaceChildren(element('option', { value: '' }, '(choose an image topic)'),

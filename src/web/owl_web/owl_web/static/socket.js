@@ -18,8 +18,13 @@ export function unpackFrame(buffer) {
 export class OwlSocket {
   // onStatus(connected, detail) hears about the connection, e.g. to show it on the page.
   // this.connected says whether the socket is open now.
-  constructor(onStatus = () => {}, path = '/ws') {
-    this.url = `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}${path}`;
+  // path is relative to the page, so the socket is found wherever the page is served: at its own
+  // address, under the front door, or behind a proxy's path prefix.
+  constructor(onStatus = () => {}, path = 'ws') {
+    const url = new URL(path, location.href);
+    url.protocol = location.protocol === 'https:' ? 'wss:' : 'ws:';
+    url.hash = '';
+    this.url = url.href;
     this.onStatus = onStatus;
     this.subscriptions = new Map();  // id -> {channel, params, onUpdate, onError}
     this.pendingCommands = new Map();  // command id -> onAnswer, until its done or error comes
