@@ -50,7 +50,8 @@ def test_page_node_graph_and_ctrl_c(ros):
     loaded = re.findall(r'(?:src|href)="([^"]*)"', page.decode())
     assert 'lib/elkjs/lib/elk.bundled.js' in loaded
     # relative, so the page works under the front door and behind any proxy's path prefix
-    assert all(not url.startswith('/') and ':' not in url or url.startswith('data:') for url in loaded), loaded
+    assert all(url.startswith('data:') or (not url.startswith('/') and ':' not in url) for url in loaded), \
+        loaded
     assert http('GET', rqt.base + 'static/../setup.py')[0] == 404
     assert http('GET', rqt.base + 'lib/elkjs/package.json')[0] == 404
     assert rqt.refused(404, 'GET', '/api/grph').startswith("no API path '/api/grph'; known: ")

@@ -29,10 +29,14 @@ if TYPE_CHECKING:
     from playwright.sync_api import ViewportSize
 
 CHROMIUM = Path('/usr/bin/chromium')
+# The public name of a class server in the tests (tests/prefix_proxy.py): Chromium finds it at 127.0.0.1,
+# so the pages see a Host and an Origin that are not this machine's, as behind a real one.
+PROXY_HOST = 'hub.owl.test'
 # Root needs --no-sandbox; the rest keeps Chromium from reaching out to the network or updating.
 CHROMIUM_ARGS = ['--no-sandbox', '--disable-gpu', '--disable-background-networking',
                  '--disable-component-update', '--no-first-run', '--disable-default-apps',
-                 '--disable-sync', '--metrics-recording-only']
+                 '--disable-sync', '--metrics-recording-only',
+                 f'--host-resolver-rules=MAP {PROXY_HOST} 127.0.0.1']
 VIEWPORT: ViewportSize = {'width': 1280, 'height': 800}
 SCREENSHOTS = Path(__file__).resolve().parents[1] / 'docs' / 'screenshots'
 # What Chromium logs while a page's server is away (a module restarting or rebooting, robot_view

@@ -131,7 +131,7 @@ class ModulePage:
 
     def start(self) -> None:
         """Serve the page at the module's address; OSError when that address and port are taken."""
-        self.server = self._serve(page_host(self.settings.address))
+        self.server = self._serve(self.settings.address)
 
     def stop(self) -> None:
         """Stop the live channels, the log listeners and the server."""
@@ -144,12 +144,13 @@ class ModulePage:
         if server is not None:
             server.stop()
 
-    def _serve(self, host: str) -> WebServer:
+    def _serve(self, address: str) -> WebServer:
+        """Serve the page for the module address A.B.C.D at 127.B.C.D, listed at the front door with it."""
         logger = self.module.get_logger()
-        server = WebServer(self.module.get_name(), STATIC_DIR, self.port, host,
+        server = WebServer(self.module.get_name(), STATIC_DIR, self.port, page_host(address),
                            log=lambda line: logger.warning(f'web page: {line}'))
-        server.join_front_door(module_page(self.module.module_type, self.module.namespace_name,
-                                           self.settings.address), page_catalogue())
+        server.join_front_door(module_page(self.module.module_type, self.module.namespace_name, address),
+                               page_catalogue())
         server.route('GET', '/api/device', self._device)
         server.route('POST', '/api/network', self._network)
         server.route('POST', '/api/restart', lambda request: self._restart(request, 0.0))
@@ -215,7 +216,7 @@ class ModulePage:
             old_server = self.server
             if new_host != old_host:
                 try:
-                    self.server = self._serve(new_host)
+                    self.server = self._serve(new.address)
                 except OSError as error:
                     if error.errno == errno.EADDRINUSE:
                         raise ApiError(409, f'Network IP {new.address} is in use: another module answers '

@@ -13,7 +13,7 @@ from olive_kit.description import WINDOWS_PORT, page_catalogue, tool_page
 from owl_humble.graph_partition import profile_in_effect, profile_protects
 from owl_web.server import port_number
 
-from owl_cli import check, kit_check, network_check, pages_command
+from owl_cli import check, kit_check, network_check, pages_command, wsl_check
 
 
 def positive_seconds(text: str) -> float:
@@ -25,6 +25,14 @@ def positive_seconds(text: str) -> float:
     if not 0 < value <= 60:
         raise argparse.ArgumentTypeError(f'{text} is not between 0 and 60 seconds')
     return value
+
+
+def read_text(path: str) -> str:
+    """A file's text, '' when it cannot be read."""
+    try:
+        return Path(path).read_text()
+    except OSError:
+        return ''
 
 
 def network(args: argparse.Namespace) -> int:
@@ -51,7 +59,9 @@ def network(args: argparse.Namespace) -> int:
         domain_id=domain_id, interfaces=interfaces, answering=answering,
         olive_nodes=sorted(distributions), distributions=distributions,
         graph_profile=str(profile) if profile else None,
-        graph_protected=profile is not None and profile_protects(profile))
+        graph_protected=profile is not None and profile_protects(profile),
+        wsl=wsl_check.wsl_facts(read_text('/proc/version'), os.environ, wsl_check.wslinfo_networking_mode(),
+                                [(i.name, i.address) for i in interfaces]))
     if not facts.olive_nodes and domain_id != 0 and any(answering.values()):
         facts.olive_nodes_in_domain_0 = sorted(network_check.olive_nodes(0, args.discovery_time))
     verdicts = network_check.verdict(facts)

@@ -19,6 +19,7 @@ from olive_kit.description import KIT_SUBNET, OWL_KIT
 from owl_humble.launcher import ensure_discovery_bridge
 
 from owl_cli.kit_check import node_distribution
+from owl_cli.wsl_check import HYPER_V_ALLOW, WslFacts, wsl_verdicts
 
 FACTORY_ADDRESS = '10.42.0.7'  # every module's address out of the box (section 4.3.2)
 # The addresses the course gives the modules, and what it calls them.
@@ -33,6 +34,7 @@ class Interface:
     name: str
     address: str
     prefix: int
+    multicast: bool = True  # the link's MULTICAST flag: DDS discovery needs it
 
     def __str__(self) -> str:
         return f'{self.name} {self.address}/{self.prefix}'
@@ -51,6 +53,7 @@ class NetworkFacts:
     distributions: dict[str, str] = field(default_factory=dict)  # node -> its ROS 2 distribution
     graph_profile: str | None = None  # the Fast DDS profile file in effect
     graph_protected: bool = True  # that profile keeps our graph messages from Humble modules
+    wsl: WslFacts = field(default_factory=lambda: WslFacts(0))  # Windows' WSL, when this is it
 
 
 @dataclass
@@ -80,6 +83,7 @@ def verdict(facts: NetworkFacts) -> list[Verdict]:
     else:
         verdicts.append(Verdict(True, f'network open (discovery range {facts.discovery_range}), '
                                       f'ROS domain {facts.domain_id}'))
+    verdicts += [Verdict(ok, text) for ok, text in wsl_verdicts(facts.wsl)]
     local = on_kit_subnet(facts.interfaces)
     if local:
         verdicts.append(Verdict(True, f"{', '.join(map(str, local))} is on the modules' subnet {KIT_SUBNET}"))
@@ -89,6 +93,10 @@ def verdict(facts: NetworkFacts) -> list[Verdict]:
                                        f'machine has: {others}); fix: connect a module by USB, or put its '
                                        'link in the network bridge of section 4.4.1 with an address such as '
                                        '10.42.0.1/24'))
+    for interface in local:
+        if not interface.multicast:
+            verdicts.append(Verdict(False, f'multicast is off on {interface.name}, and DDS discovery needs '
+                                           f'it; fix: sudo ip link set {interface.name} multicast on'))
     answering = [a for a, up in facts.answering.items() if up and a in MODULE_ADDRESSES]
     if facts.answering.get(FACTORY_ADDRESS):
         verdicts.append(Verdict(False, f'a module answers at {FACTORY_ADDRESS}, the factory address; fix: '
@@ -110,10 +118,13 @@ def verdict(facts: NetworkFacts) -> list[Verdict]:
         verdicts.append(Verdict(False, f'the modules\' nodes are in ROS domain 0, this shell is in domain '
                                        f'{facts.domain_id}; fix: export ROS_DOMAIN_ID=0'))
     elif answering and facts.discovery_range != 'LOCALHOST':
+        fix = (f'allow it in the Hyper-V firewall (PowerShell as administrator): {HYPER_V_ALLOW}'
+               if facts.wsl.networking == 'mirrored' else
+               f"allow it on {local[0].name if local else 'the'} link, e.g. sudo ufw allow in proto udp to "
+               'any port 7400:7700')
         verdicts.append(Verdict(False, f'modules answer on the network but ROS 2 discovers none of their '
                                        f'nodes in domain {facts.domain_id}: a firewall may block DDS '
-                                       f"({DDS_PORTS}); fix: allow it on {local[0].name if local else 'the'} "
-                                       f"link, e.g. sudo ufw allow in proto udp to any port 7400:7700"))
+                                       f'({DDS_PORTS}); fix: {fix}'))
     if facts.graph_protected:
         verdicts.append(Verdict(True, f'Humble modules are safe beside this shell: {facts.graph_profile} '
                                       'keeps our graph messages (ros_discovery_info) in a partition of their '
@@ -136,7 +147,8 @@ def interfaces() -> list[Interface]:
     found = []
     for link in json.loads(result.stdout or '[]'):
         for info in link.get('addr_info', []):
-            found.append(Interface(link['ifname'], info['local'], info['prefixlen']))
+            found.append(Interface(link['ifname'], info['local'], info['prefixlen'],
+                                   'MULTICAST' in link.get('flags', ['MULTICAST'])))
     return found
 
 

@@ -26,10 +26,11 @@ import sys
 from pathlib import Path
 from typing import Any
 
+import uvloop
 from aiohttp import web
 
 from owl_web import pages
-from owl_web.forward import BackendAway, Forwarder
+from owl_web.forward import BackendAway, FirstRequest, Forwarder, RequestHead, rewritten_head
 from owl_web.pages import PageState
 from owl_web.server import TrustedOrigins, foreign_request, json_response, one_line_logger
 
@@ -77,7 +78,10 @@ def render_index(states: list[PageState], root: str, problem: str = '') -> str:
     items = []
     for state in states:
         page = state.page
-        module = f' · module {html.escape(page.address)} in the course' if page.address else ''
+        module = ''
+        if page.address:
+            moved = f', now at {html.escape(page.address)}' if page.address != state.course_address else ''
+            module = f' · module {html.escape(state.course_address or page.address)} in the course{moved}'
         if state.running:
             items.append(
                 f'<li class="page running" data-mount="{page.mount}"><span class="state">running</span>'
@@ -138,6 +142,21 @@ class FrontDoor:
         if refusal is not None:
             return json_response(403, {'error': refusal})
         return await handler(request)
+
+    def websocket_target(self, head: RequestHead) -> tuple[str, bytes] | None:
+        """Where a WebSocket request on a connection of its own goes, and the head its page server gets.
+
+        None leaves the request to handle(): a refused one, one for a page that is not running.
+        """
+        headers = head.headers
+        if foreign_request(headers.get('Host', ''), headers.get('Origin'), self.trusted) is not None:
+            return None
+        path, question, query = head.target.partition('?')
+        mount, slash, rest = path[1:].partition('/') if path.startswith('/') else ('', '', '')
+        entry = pages.registered(self.folder).get(mount) if slash else None
+        if entry is None or not pages.process_alive(entry.pid):
+            return None
+        return entry.url, rewritten_head(head, entry.url, f'/{rest}{question}{query}')
 
     async def states(self) -> list[PageState]:
         """page_states of the folder, looked up in a thread (each running page's port is tried)."""
@@ -202,9 +221,13 @@ async def serve(listener: socket.socket, folder: Path, trusted: TrustedOrigins) 
     door = FrontDoor(folder, trusted, log)
     runner = web.AppRunner(door.app(), handle_signals=False, access_log=None, shutdown_timeout=0.5)
     await runner.setup()
-    await web.SockSite(runner, listener).start()
-    stop = asyncio.Event()
+    http = runner.server
+    assert http is not None
+    relays: set[asyncio.Transport] = set()  # the WebSockets passed through as bytes
     loop = asyncio.get_running_loop()
+    server = await loop.create_server(lambda: FirstRequest(http, door.websocket_target, relays),
+                                      sock=listener)
+    stop = asyncio.Event()
     for sig in (signal.SIGINT, signal.SIGTERM):
         loop.add_signal_handler(sig, stop.set)
     while not stop.is_set() and folder.is_dir():
@@ -212,6 +235,10 @@ async def serve(listener: socket.socket, folder: Path, trusted: TrustedOrigins) 
             await asyncio.wait_for(stop.wait(), FOLDER_CHECK)
         except asyncio.TimeoutError:
             pass
+        relays -= {relay for relay in relays if relay.is_closing()}
+    server.close()
+    for relay in relays:
+        relay.close()
     await runner.cleanup()
 
 
@@ -228,7 +255,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f'front door: {error}', file=sys.stderr)
         return 1
     try:
-        asyncio.run(serve(listener, args.pages_dir, trusted))
+        uvloop.run(serve(listener, args.pages_dir, trusted))
     finally:
         record = pages.read_json(args.pages_dir / pages.FRONT_DOOR_FILE)
         if isinstance(record, dict) and record.get('pid') == os.getpid():

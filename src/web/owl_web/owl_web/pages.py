@@ -86,10 +86,15 @@ class Page:
 
 @dataclass(frozen=True)
 class PageState:
-    """A page as the front door lists it: running now (its server answers) or not."""
+    """A page as the front door lists it: running now (its server answers) or not.
+
+    course_address is a module's address in the course (the catalogue's); page.address is where it
+    is now (a module moved by its Network Settings).
+    """
 
     page: Page
     running: bool
+    course_address: str = ''
 
     def as_json(self) -> dict[str, Any]:
         """The page for GET api/pages and `owl pages`."""
@@ -236,7 +241,7 @@ def page_states(folder: Path, answering: Callable[[str], bool] = port_answers,
         if entry is not None and not page.start and mount in known:
             page = Page(**{**asdict(entry), 'start': known[mount].start})
         running = entry is not None and process_alive(entry.pid) and answering(entry.url)
-        states.append(PageState(page, running))
+        states.append(PageState(page, running, known[mount].address if mount in known else page.address))
     return states
 
 
