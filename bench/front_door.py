@@ -44,8 +44,7 @@ WARM_UP = 3.0  # s of streaming before the CPU is counted
 
 def timed_requests(urls: list[str], count: int) -> dict[str, list[float]]:
     """Ms per GET of each url, on one kept-alive connection each, the urls in turns."""
-    connections = {url: http.client.HTTPConnection(urlsplit(url).hostname, urlsplit(url).port, timeout=10)
-                   for url in urls}
+    connections = {url: http.client.HTTPConnection(urlsplit(url).netloc, timeout=10) for url in urls}
     times: dict[str, list[float]] = {url: [] for url in urls}
     try:
         for _ in range(count):

@@ -1,9 +1,11 @@
+import atexit
 import faulthandler
 import gc
 import os
 import re
 import shutil
 import sys
+import tempfile
 import threading
 import time
 import traceback
@@ -17,11 +19,18 @@ import pytest
 
 # Set before any rclpy context exists in this process.
 os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
+# No page a test starts joins the user's own front door (owl_web.pages): a test that wants one sets
+# its own folder and port (RosSandbox gives each sandbox a folder of its own besides).
+os.environ['OWL_PAGES_DIR'] = tempfile.mkdtemp(prefix='owl-test-pages-')
+os.environ['OWL_FRONT_DOOR'] = 'off'
 
+import suite_report
 from gates import prerequisite_missing
 from owl_common.processes import LEASE_DIR, try_lock_file
 from ros_harness import RosHarness
 from web_harness import Browser, BrowserPage, chromium_missing
+
+atexit.register(shutil.rmtree, os.environ['OWL_PAGES_DIR'], True)
 
 
 @pytest.fixture
@@ -181,6 +190,8 @@ STACKS_AT_TIMEOUT: IO[str] | None = None
 
 def pytest_configure(config: pytest.Config) -> None:
     global IN_WORKER, STACKS_AT_TIMEOUT
+    if not config.pluginmanager.has_plugin('suite_report'):  # for every test of the run, src/'s too
+        config.pluginmanager.register(suite_report, 'suite_report')
     IN_WORKER = hasattr(config, 'workerinput')
     if not IN_WORKER:
         shutil.rmtree(RERUN_REPORTS, ignore_errors=True)  # this run's reports only

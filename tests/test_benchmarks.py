@@ -17,10 +17,11 @@ from web_harness import chromium_missing
 BENCH = Path(__file__).resolve().parents[1] / 'bench'
 BENCH_TIMEOUT = 110.0  # s: under the test's own 120 s, so a hang fails here with its stacks
 # drive the robot view's page as the browser tests do
-NEEDS_CHROMIUM = {'robot_view_latency.py', 'robot_view_smoothness.py'}
+NEEDS_CHROMIUM = {'front_door.py', 'robot_view_latency.py', 'robot_view_smoothness.py'}
 SHRUNK = {
     'bag_record.py': ['--seconds', '1'],
     'dds_discovery.py': ['--runs', '1', '--nodes', '2', '--periods', '--idle-seconds', '0.5'],
+    'front_door.py': ['--requests', '5', '--messages', '5', '--seconds', '1'],
     'launch_timings.py': ['--repeat', '1'],
     'olive_sim_cpu.py': ['--seconds', '0.5', '--warmup', '0.5', '--camera-seconds', '1'],
     'robot_view_latency.py': ['--samples', '1', '--pause', '0.3'],

@@ -9,6 +9,7 @@ on a normal ROS 2 install with `src/compat/` left out (the README's recipe).
 from __future__ import annotations
 
 import ast
+import re
 import sys
 import xml.etree.ElementTree as ET
 from collections.abc import Iterable
@@ -227,3 +228,21 @@ def test_no_module_imports_itself_back():
         list(TopologicalSorter(graph).static_order())
     except CycleError as cycle:
         pytest.fail(f'modules import each other in a cycle: {cycle.args[1]}')
+
+
+# A page's own address, the front door's /<mount>/, and a proxy's /user/NAME/proxy/PORT/ are all the
+# same page: it must name its files, API and WebSocket relative to itself. What an absolute reference
+# looks like in our pages' HTML, CSS and JavaScript (a root-relative path or this machine's address).
+ABSOLUTE_REFERENCE = re.compile(
+    r'''(?:href|src)=["']/|url\(\s*["']?/|from\s+["']/|import\(\s*["']/|fetch\(\s*[`"']/|["'`]/(?:api|ws|lib|owl|static)/'''
+    r'''|"(?:three|uplot|[\w-]+)"\s*:\s*"/|location\.(?:host|origin)\b(?!\s*===\s*before)|https?://127\.|localhost:\d''')
+
+
+def test_every_page_refers_to_its_files_api_and_websocket_relatively():
+    files = [path for path in SRC.rglob('*') if path.suffix in ('.html', '.js', '.css')
+             and any('static' in part for part in path.relative_to(SRC).parts)]
+    assert len(files) > 10
+    found = [f'{path.relative_to(SRC)}:{number}: {line.strip()}'
+             for path in files for number, line in enumerate(path.read_text().splitlines(), 1)
+             if ABSOLUTE_REFERENCE.search(line)]
+    assert found == []

@@ -1,0 +1,67 @@
+"""`make test`'s closing report: the 25 slowest tests and the time each group of tests took.
+
+A pytest plugin (pyproject.toml's addopts load it with -p, for the whole suite, src/'s unit tests
+too). Each test's time is its set-up, call and tear-down together; a group's is the sum of its tests'
+(with several workers the groups overlap in time, so the sum of the groups is more than the run's
+wall time, which is printed beside them).
+
+Groups: style (ruff, mypy, the layout), browser (a test with a Chromium page), system (tests/),
+unit (src/<group>/<package>/test/).
+"""
+
+from __future__ import annotations
+
+import time
+from collections import defaultdict
+from pathlib import Path
+
+import pytest
+
+TESTS = Path(__file__).resolve().parent
+STYLE_MODULES = {'test_code_style.py', 'test_layout.py'}
+SLOWEST = 25
+GROUPS = ('system', 'browser', 'unit', 'style')
+
+durations: dict[str, float] = defaultdict(float)
+groups: dict[str, str] = {}
+started = time.monotonic()
+
+
+def group_of(item: pytest.Item) -> str:
+    """Which group a test belongs to (see the module's docstring)."""
+    if item.path.name in STYLE_MODULES:
+        return 'style'
+    if not item.path.is_relative_to(TESTS):
+        return 'unit'
+    fixtures = getattr(item, 'fixturenames', ())
+    return 'browser' if 'page' in fixtures or 'browser' in fixtures else 'system'
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_runtest_setup(item: pytest.Item) -> None:
+    # user_properties travel with the reports from a pytest-xdist worker to the controller
+    item.user_properties.append(('group', group_of(item)))
+
+
+def pytest_runtest_logreport(report: pytest.TestReport) -> None:
+    durations[report.nodeid] += report.duration
+    group = dict(report.user_properties).get('group')
+    if isinstance(group, str):
+        groups[report.nodeid] = group
+
+
+def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:
+    if not durations or hasattr(terminalreporter.config, 'workerinput'):
+        return
+    write = terminalreporter.write_line
+    write(f'slowest {SLOWEST} tests (set-up, call and tear-down):')
+    for nodeid, seconds in sorted(durations.items(), key=lambda item: -item[1])[:SLOWEST]:
+        write(f'  {seconds:7.1f} s  {nodeid}')
+    totals = dict.fromkeys(GROUPS, 0.0)
+    counts = dict.fromkeys(GROUPS, 0)
+    for nodeid, seconds in durations.items():
+        group = groups.get(nodeid, 'unit')
+        totals[group] += seconds
+        counts[group] += 1
+    parts = ', '.join(f'{group} {totals[group]:.0f} s ({counts[group]} tests)' for group in GROUPS)
+    write(f'time per group, summed over tests: {parts}; the run took {time.monotonic() - started:.0f} s')
