@@ -4,7 +4,7 @@ SHELL := /bin/bash
 ENV := source ./env.sh &&
 BENCHMARKS := $(filter-out bench/measure.py,$(wildcard bench/*.py))
 
-.PHONY: setup demo test lint bench clean
+.PHONY: setup demo test test-fast lint bench clean
 
 setup:
 	@bash scripts/bootstrap.sh
@@ -19,6 +19,10 @@ TEST_WORKERS ?= 3
 test: setup
 	@bash scripts/test_prereqs.sh
 	@$(ENV) python -m pytest -n $(TEST_WORKERS)
+
+# The inner loop while working: the unit tests, the style checks and the layout, no process of ROS.
+test-fast: setup
+	@$(ENV) python -m pytest -n $(TEST_WORKERS) src tests/test_code_style.py tests/test_layout.py
 
 lint: setup
 	@$(ENV) ruff check . && python -m mypy && \

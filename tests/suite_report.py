@@ -6,7 +6,8 @@ too). Each test's time is its set-up, call and tear-down together; a group's is 
 wall time, which is printed beside them).
 
 Groups: style (ruff, mypy, the layout), browser (a test with a Chromium page), system (tests/),
-unit (src/<group>/<package>/test/).
+unit (src/<group>/<package>/test/). Every test's time, slowest first, is also written to
+log/test-durations.txt (one line a test: seconds, group, node id), for finding where the time goes.
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ from pathlib import Path
 import pytest
 
 TESTS = Path(__file__).resolve().parent
+DURATIONS_FILE = TESTS.parent / 'log' / 'test-durations.txt'
 STYLE_MODULES = {'test_code_style.py', 'test_layout.py'}
 SLOWEST = 25
 GROUPS = ('system', 'browser', 'unit', 'style')
@@ -54,8 +56,13 @@ def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:
     if not durations or hasattr(terminalreporter.config, 'workerinput'):
         return
     write = terminalreporter.write_line
-    write(f'slowest {SLOWEST} tests (set-up, call and tear-down):')
-    for nodeid, seconds in sorted(durations.items(), key=lambda item: -item[1])[:SLOWEST]:
+    slowest = sorted(durations.items(), key=lambda item: -item[1])
+    DURATIONS_FILE.parent.mkdir(parents=True, exist_ok=True)
+    DURATIONS_FILE.write_text(''.join(f'{seconds:8.2f} {groups.get(nodeid, "unit"):8} {nodeid}\n'
+                                      for nodeid, seconds in slowest))
+    write(f'slowest {SLOWEST} tests (set-up, call and tear-down; all of them: '
+          f'{DURATIONS_FILE.relative_to(TESTS.parent)}):')
+    for nodeid, seconds in slowest[:SLOWEST]:
         write(f'  {seconds:7.1f} s  {nodeid}')
     totals = dict.fromkeys(GROUPS, 0.0)
     counts = dict.fromkeys(GROUPS, 0)
