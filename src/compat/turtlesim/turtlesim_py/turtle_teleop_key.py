@@ -7,6 +7,7 @@ non-canonical no-echo mode (Ctrl-C still works) and restored on every way out.
 
 from __future__ import annotations
 
+import errno
 import os
 import select
 import sys
@@ -121,7 +122,14 @@ class RawTerminal:
         ready = self._poll.poll(READ_TIMEOUT_MS)
         if not ready:
             return None
-        data = os.read(self.fd, 1)
+        try:
+            data = os.read(self.fd, 1)
+        except OSError as error:
+            # A terminal that hangs up ends the read with EOF or, depending on when the read meets
+            # the hang-up, with EIO (the test suite saw both): either is the end, not a failure.
+            if error.errno == errno.EIO:
+                raise EOFError('the terminal hung up') from None
+            raise
         if not data:
             raise EOFError('the terminal hung up')
         return data[0]
