@@ -15,6 +15,7 @@ import time
 from concurrent.futures import ThreadPoolExecutor
 
 import pytest
+from owl_common.graph import GraphQueries
 from owl_common.run import TEARDOWN_LIMIT
 from ros_harness import RosHarness, with_hung_teardown
 
@@ -296,6 +297,20 @@ def test_duplicate_node_names_are_reported(cli):
     assert lines(info)[0] == '/talker'
     assert info.stderr == ('There are 2 nodes in the graph with the exact name "/talker". '
                            'You are seeing information about only one of them.\n')
+
+
+def test_a_node_that_left_the_graph_has_nothing_to_show(graph):
+    # A verb lists the nodes, then asks about each one: a node that ends in between (another `ros2`
+    # process's own node, under a busy suite) made `ros2 action info` fail with "RCLError: Failed to
+    # get action client names and type". Such a node now has nothing to show; one that is there
+    # still shows what it has.
+    queries = GraphQueries(graph.probe.node)
+    for query in (queries.publishers_by_node, queries.subscribers_by_node, queries.services_by_node,
+                  queries.clients_by_node, queries.action_servers_by_node, queries.action_clients_by_node):
+        assert query('left_already', '/') == [], query.__name__
+    graph.probe.wait_for_node('fibonacci_server')
+    assert eventually(lambda: queries.action_servers_by_node('fibonacci_server', '/'), 10) == [
+        ['/fibonacci', ['ros2cli_test_fixtures/action/Fibonacci']]]
 
 
 def test_node_info_unknown_node(graph):

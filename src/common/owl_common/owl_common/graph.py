@@ -8,6 +8,8 @@ it: plain data is what XML-RPC can carry, so both modes give exactly the same an
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from functools import partial
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:  # the name rules below are used where rclpy need not be imported
@@ -66,31 +68,50 @@ class GraphQueries:
         from rclpy.action import get_action_names_and_types
         return _plain(get_action_names_and_types(self._node))
 
+    def _of_node(self, query: Callable[..., list[tuple[str, list[str]]]], name: str,
+                 namespace: str) -> NamesAndTypes:
+        """query(name, namespace), sorted; [] for a node that left the graph since it was listed.
+
+        A verb lists the nodes, then asks about each: a node that ends in between (another `ros2`
+        process's own node, say) made rcl fail the question ("Failed to get action client names and
+        type: error not set", seen under a busy suite), and the verb fail with it. A node still in
+        the graph keeps its error.
+        """
+        from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
+        try:
+            return _plain(query(name, namespace))
+        except (_rclpy.NodeNameNonExistentError, _rclpy.RCLError):
+            if (name, namespace) in self._node.get_node_names_and_namespaces():
+                raise
+            return []
+
     def publishers_by_node(self, name: str, namespace: str) -> NamesAndTypes:
         """The topics the node `name` in `namespace` publishes, with their types, sorted."""
-        return _plain(self._node.get_publisher_names_and_types_by_node(name, namespace))
+        return self._of_node(self._node.get_publisher_names_and_types_by_node, name, namespace)
 
     def subscribers_by_node(self, name: str, namespace: str) -> NamesAndTypes:
         """The topics the node subscribes to, with their types, sorted."""
-        return _plain(self._node.get_subscriber_names_and_types_by_node(name, namespace))
+        return self._of_node(self._node.get_subscriber_names_and_types_by_node, name, namespace)
 
     def services_by_node(self, name: str, namespace: str) -> NamesAndTypes:
         """The services the node offers, with their types, sorted."""
-        return _plain(self._node.get_service_names_and_types_by_node(name, namespace))
+        return self._of_node(self._node.get_service_names_and_types_by_node, name, namespace)
 
     def clients_by_node(self, name: str, namespace: str) -> NamesAndTypes:
         """The services the node calls as a client, with their types, sorted."""
-        return _plain(self._node.get_client_names_and_types_by_node(name, namespace))
+        return self._of_node(self._node.get_client_names_and_types_by_node, name, namespace)
 
     def action_servers_by_node(self, name: str, namespace: str) -> NamesAndTypes:
         """The actions the node serves, with their types, sorted."""
         from rclpy.action import get_action_server_names_and_types_by_node
-        return _plain(get_action_server_names_and_types_by_node(self._node, name, namespace))
+        return self._of_node(partial(get_action_server_names_and_types_by_node, self._node), name,
+                             namespace)
 
     def action_clients_by_node(self, name: str, namespace: str) -> NamesAndTypes:
         """The actions the node is a client of, with their types, sorted."""
         from rclpy.action import get_action_client_names_and_types_by_node
-        return _plain(get_action_client_names_and_types_by_node(self._node, name, namespace))
+        return self._of_node(partial(get_action_client_names_and_types_by_node, self._node), name,
+                             namespace)
 
     def publishers_info(self, topic: str) -> list[dict[str, Any]]:
         """Each publisher on the topic as endpoint_to_dict gives it: node, type, gid and QoS."""
