@@ -12,17 +12,19 @@ setup:
 demo: setup
 	@$(ENV) python scripts/demo.py
 
-# The system tests mostly wait on processes, discovery and timers (the suite alone keeps under one
-# core busy): pytest-xdist runs them in this many workers; `make test TEST_WORKERS=0` runs them in one.
+# The system tests mostly wait on processes, discovery and timers: pytest-xdist runs them in this many
+# workers; `make test TEST_WORKERS=0` runs them in one. loadgroup: the tests of an xdist_group (those
+# that share one running world) run in one worker, so the world is started once.
 TEST_WORKERS ?= 3
+PYTEST := python -m pytest -n $(TEST_WORKERS) --dist loadgroup
 
 test: setup
 	@bash scripts/test_prereqs.sh
-	@$(ENV) python -m pytest -n $(TEST_WORKERS)
+	@$(ENV) $(PYTEST)
 
 # The inner loop while working: the unit tests, the style checks and the layout, no process of ROS.
 test-fast: setup
-	@$(ENV) python -m pytest -n $(TEST_WORKERS) src tests/test_code_style.py tests/test_layout.py
+	@$(ENV) $(PYTEST) src tests/test_code_style.py tests/test_layout.py
 
 lint: setup
 	@$(ENV) ruff check . && python -m mypy && \

@@ -30,7 +30,8 @@ from sensor_msgs.msg import JointState
 from test_robot_view import drag
 from web_harness import PROXY_HOST, BrowserPage
 
-pytestmark = pytest.mark.kit_and_3d_page  # the whole kit with the robot view's 3D page
+# The whole kit with the robot view's 3D page; one world for the module's tests, in one worker.
+pytestmark = [pytest.mark.kit_and_3d_page, pytest.mark.xdist_group('front_door_world')]
 MODULES = {'imu-x1684267976913': '10.42.0.20', 'servo-pan': '10.42.0.8', 'servo-tilt': '10.42.0.9',
            'camera-eye': '10.42.0.10'}
 PAGES = ['robot-view', 'rqt', 'windows', *MODULES]
