@@ -13,10 +13,9 @@ demo: setup
 	@$(ENV) python scripts/demo.py
 
 # The system tests mostly wait on processes, discovery and timers: pytest-xdist runs them in this many
-# workers; `make test TEST_WORKERS=0` runs them in one. loadgroup: the tests of an xdist_group (those
-# that share one running world) run in one worker, so the world is started once.
+# workers; `make test TEST_WORKERS=0` runs them in one.
 TEST_WORKERS ?= 3
-PYTEST := python -m pytest -n $(TEST_WORKERS) --dist loadgroup
+PYTEST := python -m pytest -n $(TEST_WORKERS)
 
 test: setup
 	@bash scripts/test_prereqs.sh

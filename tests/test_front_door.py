@@ -28,10 +28,9 @@ from prefix_proxy import PrefixProxy
 from ros_harness import RosHarness, wait_until
 from sensor_msgs.msg import JointState
 from test_robot_view import drag
-from web_harness import PROXY_HOST, BrowserPage
+from web_harness import PROXY_HOST, BrowserPage, free_port
 
-# The whole kit with the robot view's 3D page; one world for the module's tests, in one worker.
-pytestmark = [pytest.mark.kit_and_3d_page, pytest.mark.xdist_group('front_door_world')]
+pytestmark = pytest.mark.kit_and_3d_page  # the whole kit with the robot view's 3D page
 MODULES = {'imu-x1684267976913': '10.42.0.20', 'servo-pan': '10.42.0.8', 'servo-tilt': '10.42.0.9',
            'camera-eye': '10.42.0.10'}
 PAGES = ['robot-view', 'rqt', 'windows', *MODULES]
@@ -46,8 +45,10 @@ class World:
         self.windows = windows
         ros.env.update({'OWL_FRONT_DOOR': 'on', 'OWL_FRONT_DOOR_PORT': '0',
                         'OWL_TRUSTED_ORIGINS': f'http://{PROXY_HOST}:{proxy.port}'})
-        self.launch = ros.command(['ros2', 'launch', 'robot_view', 'robot_view.launch.py', 'port:=0'],
-                                  label='robot_view.launch')
+        # The module pages on a port of the world's own: another test's kit (or this world started
+        # again in another worker, as the module-scoped fixture may be) holds the default 8042.
+        self.launch = ros.command(['ros2', 'launch', 'robot_view', 'robot_view.launch.py', 'port:=0',
+                                   f'web_port:={free_port()}'], label='robot_view.launch')
         rqt = ros.command(['rqt', '--port', '0', '--no-browser'], label='rqt')
         self.turtlesim = ros.run('turtlesim', 'turtlesim_node',
                                  env={**NO_DISPLAY, 'OWL_WINDOWS_DIR': str(windows)})

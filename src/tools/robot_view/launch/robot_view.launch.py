@@ -8,13 +8,13 @@ from launch import LaunchDescription
 from launch.actions import DeclareLaunchArgument
 from launch.substitutions import LaunchConfiguration
 from launch_ros.actions import Node
-from olive_kit.description import OWL_KIT
+from olive_kit.description import OWL_KIT, WEB_PORT
 
 
 def generate_launch_description() -> LaunchDescription:
     modules = []
     for module in OWL_KIT:
-        parameters = dict(module.parameters)
+        parameters = {**module.parameters, 'web_port': LaunchConfiguration('web_port')}
         if module.module_type == 'imu':
             parameters['motion'] = 'command'  # the page's hand holds the IMU
         if module.module_type == 'camera':
@@ -24,6 +24,8 @@ def generate_launch_description() -> LaunchDescription:
                             parameters=[parameters] if parameters else []))
     return LaunchDescription([
         DeclareLaunchArgument('port', default_value='8091', description='robot_view HTTP port'),
+        DeclareLaunchArgument('web_port', default_value=str(WEB_PORT),
+                              description="TCP port of every module's own web page (0: no pages)"),
         DeclareLaunchArgument('scene', default_value='landmarks',
                               description="what the camera sees around the robot: landmarks, ball, person"),
         DeclareLaunchArgument('ball_speed', default_value='0.1',
