@@ -13,9 +13,11 @@ demo: setup
 	@$(ENV) python scripts/demo.py
 
 # The system tests mostly wait on processes, discovery and timers: pytest-xdist runs them in this many
-# workers; `make test TEST_WORKERS=0` runs them in one.
+# workers; `make test TEST_WORKERS=0` runs them in one. worksteal: each worker starts on a run of
+# whole test files (a module's shared fixtures start once) and an idle one takes half of the busiest
+# one's queue, so the suite does not end on one worker's long tail.
 TEST_WORKERS ?= 3
-PYTEST := python -m pytest -n $(TEST_WORKERS)
+PYTEST := python -m pytest -n $(TEST_WORKERS) --dist worksteal
 
 test: setup
 	@bash scripts/test_prereqs.sh

@@ -7,3 +7,22 @@
 find_package(rosidl_default_generators QUIET)
 list(FILTER AMENT_EXTENSIONS_rosidl_generate_idl_interfaces EXCLUDE REGEX
   "^rosidl_(generator|typesupport|typesupport_fastrtps|typesupport_introspection)_cpp:")
+
+# The generated C files of an interface package build as a few unity files (CMake's UNITY_BUILD)
+# rather than one compiler run each: example_interfaces took 34 s alone, now 21 s. The type
+# description files stay apart: each defines the same static names as the next.
+function(_owl_unity_interface_targets)
+  get_property(targets DIRECTORY PROPERTY BUILDSYSTEM_TARGETS)
+  foreach(target IN LISTS targets)
+    if(target MATCHES "__rosidl_|__python$")
+      set_property(TARGET ${target} PROPERTY UNITY_BUILD ON)
+      get_target_property(sources ${target} SOURCES)
+      foreach(source IN LISTS sources)
+        if(source MATCHES "__description\\.c$")
+          set_property(SOURCE ${source} PROPERTY SKIP_UNITY_BUILD_INCLUSION ON)
+        endif()
+      endforeach()
+    endif()
+  endforeach()
+endfunction()
+cmake_language(DEFER CALL _owl_unity_interface_targets)

@@ -120,14 +120,10 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
 # instead of running six robots on two cores, where tests miss deadlines no user would meet.
 SYSTEM_TEST_SLOTS = range((os.cpu_count() or 1) + 1)
 SLOT_DIR = Path(os.environ.get('OWL_TEST_SLOT_DIR', LEASE_DIR.parent / 'owl-kit-lab-test-slots'))
-# The whole simulated kit with robot_view's 3D page in Chromium (software WebGL, with the camera's
-# 30 frames/s) is the heaviest load a test makes: alone it keeps two cores busy, so anything beside
-# it slows both. Beside two other tests it ran 3x slower, past its timeout on a slower machine.
-# Such a test takes every slot: it runs alone.
-KIT_AND_3D_PAGE = 'kit_and_3d_page'
-# The whole simulated kit (four modules, the camera rendering 30 frames/s) with more beside it: such
-# a test took 45-55 s alone on a slower 2-core machine and passed 120 s beside two others. It holds
-# two slots, so at most one other test runs beside it.
+# The whole simulated kit (four modules, the camera rendering 30 frames/s), with more beside it (a
+# tracker, robot_view's 3D page in Chromium): alone such a test keeps about one core busy (the robot
+# view's controls: 62 s of CPU in 57 s). It holds two slots, so at most one other test runs beside it:
+# beside two others a 3D page test ran three times slower, past its timeout.
 WHOLE_KIT = 'whole_kit'
 # One test at a time takes its slots, so two tests taking several never wait for each other's.
 TAKING_SLOTS_DIR = SLOT_DIR / 'taking'
@@ -142,8 +138,6 @@ def wait_for_lock(directory: Path, ids: range) -> IO[str]:
 
 def slots_needed(item: pytest.Item) -> int:
     """How many of SYSTEM_TEST_SLOTS a system test holds while it runs: its share of the machine."""
-    if item.get_closest_marker(KIT_AND_3D_PAGE):
-        return len(SYSTEM_TEST_SLOTS)
     if item.get_closest_marker(WHOLE_KIT):
         return min(2, len(SYSTEM_TEST_SLOTS))
     return 1
@@ -154,8 +148,7 @@ def pytest_runtest_protocol(item: pytest.Item,
                             nextitem: pytest.Item | None) -> Generator[None, object, object]:
     """A system test runs (with its rerun, fixtures and timeout) only while it holds a slot.
 
-    A test marked kit_and_3d_page holds every slot, one marked whole_kit two. The waits are outside
-    its timeout.
+    A test marked whole_kit holds two. The waits are outside its timeout.
     """
     if not item.path.is_relative_to(SYSTEM_TESTS):
         return (yield)

@@ -41,7 +41,7 @@ def test_every_benchmark_has_a_shrunk_run():
 
 
 @pytest.mark.parametrize('script', [
-    pytest.param(script, marks=pytest.mark.kit_and_3d_page) if script in NEEDS_CHROMIUM else script
+    pytest.param(script, marks=pytest.mark.whole_kit) if script in NEEDS_CHROMIUM else script
     for script in sorted(SHRUNK)])
 def test_benchmark_runs(script):
     if script in NEEDS_CHROMIUM and (missing := chromium_missing()):

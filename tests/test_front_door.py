@@ -30,7 +30,7 @@ from sensor_msgs.msg import JointState
 from test_robot_view import drag
 from web_harness import PROXY_HOST, BrowserPage, free_port
 
-pytestmark = pytest.mark.kit_and_3d_page  # the whole kit with the robot view's 3D page
+pytestmark = pytest.mark.whole_kit  # the whole kit with the robot view's 3D page
 MODULES = {'imu-x1684267976913': '10.42.0.20', 'servo-pan': '10.42.0.8', 'servo-tilt': '10.42.0.9',
            'camera-eye': '10.42.0.10'}
 PAGES = ['robot-view', 'rqt', 'windows', *MODULES]

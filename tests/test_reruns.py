@@ -171,7 +171,7 @@ def test_suites_side_by_side_run_no_more_system_tests_at_once_than_the_machine_h
     assert at_once <= SLOTS, runs  # without slots, up to twice as many
 
 
-# Two tests marked kit_and_3d_page, two whole_kit and four unmarked; each appends its name and when it ran.
+# Two tests marked whole_kit and four unmarked; each appends its name and when it ran.
 MARKED_TESTS = '''
 import json
 import time
@@ -187,12 +187,6 @@ def run_for_3_s(name):
         ran.write(json.dumps([name, started, time.time()]) + '\\n')
 
 
-@pytest.mark.kit_and_3d_page
-@pytest.mark.parametrize('n', range(2))
-def test_marked(n):
-    run_for_3_s(f'marked {n}')
-
-
 @pytest.mark.whole_kit
 @pytest.mark.parametrize('n', range(2))
 def test_whole_kit(n):
@@ -205,35 +199,23 @@ def test_unmarked(n):
 '''
 
 
-def run_marked_tests(root: Path, *args: str) -> dict[str, tuple[float, float]]:
-    """MARKED_TESTS run in 4 workers (args select some); when each test started and ended, by name."""
-    lay_out(root, MARKED_TESTS)
-    session = start_session(root, root / 'slots', '-n', '4', *args, 'tests')
+def test_marked_tests_hold_their_share_of_the_slots_and_tests_that_fit_run_side_by_side(tmp_path):
+    """whole_kit holds two of the CPUs + 1 slots, the rest one each; tests that fit in the free slots meet.
+
+    In 4 workers: an unmarked test runs beside another, and (with more than two slots) a whole_kit test
+    beside an unmarked one.
+    """
+    lay_out(tmp_path, MARKED_TESTS)
+    session = start_session(tmp_path, tmp_path / 'slots', '-n', '4', 'tests')
     stdout, _ = session.communicate(timeout=120)
     assert session.returncode == 0, stdout
-    return {name: (start, end) for name, start, end in
-            (json.loads(line) for line in (root / 'ran.jsonl').read_text().splitlines())}
-
-
-def test_marked_tests_hold_their_share_of_the_slots(tmp_path):
-    """kit_and_3d_page runs alone; whole_kit holds two of the CPUs + 1 slots; the rest one each."""
-    runs = run_marked_tests(tmp_path)
-    assert len(runs) == 8, runs
-    share = {'marked': SLOTS, 'whole_kit': min(2, SLOTS), 'unmarked': 1}
+    runs = {name: (start, end) for name, start, end in
+            (json.loads(line) for line in (tmp_path / 'ran.jsonl').read_text().splitlines())}
+    assert len(runs) == 6, runs
+    share = {'whole_kit': min(2, SLOTS), 'unmarked': 1}
     for name, (start, _) in runs.items():
         running = [other for other, (begun, ended) in runs.items() if begun <= start < ended]
         assert sum(share[other.split()[0]] for other in running) <= SLOTS, (name, running, runs)
-
-
-def test_tests_that_fit_in_the_free_slots_run_side_by_side(tmp_path):
-    """Without a kit_and_3d_page test: an unmarked test runs beside another, and a whole_kit test too.
-
-    Separate from the test above because there, the order in which the workers queue for slots decides
-    whether two tests ever meet: one that waits for every slot makes each test behind it wait as well.
-    Here each waits for at most two, so with 4 workers some tests always meet.
-    """
-    runs = run_marked_tests(tmp_path, '-m', 'not kit_and_3d_page')
-    assert len(runs) == 6, runs
 
     def met(kind: str, others: tuple[str, ...]) -> bool:
         return any(a[0] < b[1] and b[0] < a[1] for (name, a), (other, b) in permutations(runs.items(), 2)

@@ -48,7 +48,7 @@ def drag(page: Any, dx: float, dy: float = 0.0, steps: int = 10) -> None:
     page.mouse.up()
 
 
-@pytest.mark.kit_and_3d_page
+@pytest.mark.whole_kit
 def test_the_model_follows_the_kit_and_the_mouse_turns_the_head(ros, page):
     base = start_kit_and_view(ros)
     imu = ros.probe.collect(Imu, IMU_TOPIC)
@@ -238,7 +238,7 @@ def drag_ball(page: Any, azimuth: float, elevation: float) -> dict[str, float]:
     return target
 
 
-@pytest.mark.kit_and_3d_page
+@pytest.mark.whole_kit
 def test_the_ball_is_shown_and_dragged_and_a_place_out_of_its_world_is_refused_in_one_line(ros, page):
     base = start_scene_and_view(ros, 'scene:=ball', 'ball_speed:=0.0')
     page.goto(base)
@@ -287,7 +287,7 @@ def test_the_ball_is_shown_and_dragged_and_a_place_out_of_its_world_is_refused_i
     page.screenshot_to('robot_view_ball')
 
 
-@pytest.mark.kit_and_3d_page
+@pytest.mark.whole_kit
 def test_the_person_is_shown_with_the_gesture_of_the_camera(ros, page):
     base = start_scene_and_view(ros, 'scene:=person', 'gesture:=both_hands_up')
     page.goto(base)
@@ -347,7 +347,7 @@ def no_sideways_scroll(page: Any) -> bool:
     return page.evaluate('document.documentElement.scrollWidth <= window.innerWidth')
 
 
-@pytest.mark.kit_and_3d_page
+@pytest.mark.whole_kit
 def test_the_view_fills_the_window_turns_and_zooms_and_works_on_a_phone_with_touch(ros, page):
     base = start_kit_and_view(ros)
     held = ros.probe.collect(Quaternion, TRUE_ORIENTATION)

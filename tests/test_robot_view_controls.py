@@ -24,7 +24,7 @@ from web_harness import PageSocket, SocketClosed
 
 PAN_NODE = '/olive_servo_pan_dcm_srv'
 TILT_NODE = '/olive_servo_tilt_dcm_srv'
-pytestmark = pytest.mark.kit_and_3d_page  # every test here opens the page on the kit
+pytestmark = pytest.mark.whole_kit  # every test here opens the page on the kit
 STEP = 1.57  # the appendix 5.3 script's goal
 SETTLE = 3.0  # s between two goals, as in the appendix script
 
