@@ -149,8 +149,6 @@ class OliveModule(Node):
 
     def start_page(self) -> None:
         """Serve the module's page at its address (one warning line if that cannot be done)."""
-        from olive_sim.module_page import ModulePage  # aiohttp is imported only for a page
-
         port = self.get_parameter('web_port').value
         network = self.handover.get('network')
         try:
@@ -161,6 +159,8 @@ class OliveModule(Node):
             raise ValueError(f'parameter address: {error}') from None
         if port == 0:
             return
+        from olive_sim.module_page import ModulePage  # aiohttp (0.2 s of CPU) only for a page
+
         page = ModulePage(self, settings, port)
         try:
             page.start()

@@ -11,7 +11,7 @@ from pathlib import Path
 
 from olive_kit.description import WINDOWS_PORT, page_catalogue, tool_page
 from owl_humble.graph_partition import profile_in_effect, profile_protects
-from owl_web.server import port_number
+from owl_web.origins import port_number
 
 from owl_cli import check, kit_check, network_check, pages_command, wsl_check
 

@@ -11,7 +11,7 @@ import argparse
 
 from olive_kit.description import page_catalogue
 from owl_web import pages
-from owl_web.server import TrustedOrigins
+from owl_web.origins import TrustedOrigins
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:

@@ -10,7 +10,8 @@ from pathlib import Path
 from olive_kit.description import RQT_PORT, page_catalogue, tool_page
 from owl_common.run import spin_node
 from owl_humble.launcher import ensure_discovery_bridge
-from owl_web.server import WebServer, port_number
+from owl_web.origins import port_number
+from owl_web.server import WebServer
 from rclpy.utilities import remove_ros_args
 
 from rqt_web.node import RqtWebNode

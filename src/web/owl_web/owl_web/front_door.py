@@ -31,8 +31,9 @@ from aiohttp import web
 
 from owl_web import pages
 from owl_web.forward import BackendAway, FirstRequest, Forwarder, RequestHead, rewritten_head
+from owl_web.origins import TrustedOrigins, foreign_request
 from owl_web.pages import PageState
-from owl_web.server import TrustedOrigins, foreign_request, json_response, one_line_logger
+from owl_web.server import json_response, one_line_logger
 
 FOLDER_CHECK = 2.0  # s between looks whether the pages folder still exists
 MOUNT_SHOWN = 80  # characters of an unknown page's name that a 404 repeats

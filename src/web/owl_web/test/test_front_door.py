@@ -20,7 +20,8 @@ from urllib.parse import urlsplit
 import aiohttp
 import pytest
 from owl_web import codec, pages
-from owl_web.server import TrustedOrigins, WebServer, foreign_request
+from owl_web.origins import TrustedOrigins, foreign_request
+from owl_web.server import WebServer
 
 PAGE = {'mount': 'test-page', 'title': 'test page', 'start': 'python test_page.py'}
 CATALOGUE = [PAGE, {'mount': 'other', 'title': 'other page', 'start': 'owl other'}]

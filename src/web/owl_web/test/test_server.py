@@ -12,7 +12,8 @@ import aiohttp
 import pytest
 from owl_web import codec
 from owl_web.codec import ApiError
-from owl_web.server import WebServer, foreign_request
+from owl_web.origins import foreign_request
+from owl_web.server import WebServer
 
 
 @pytest.fixture
