@@ -13,7 +13,9 @@ import time
 from pathlib import Path
 
 import pytest
+from gates import prerequisite_missing
 from netns import TestLan
+from olive_sim.network_hosts import setup_problem
 from owl_common.processes import RosProcess
 from ros_harness import wait_until
 
@@ -156,18 +158,27 @@ def test_owl_network_on_a_good_set_up_and_three_broken_ones(classroom):
     assert "no network interface on the modules' subnet 10.42.0.0/24" in lines[1], lines
 
 
+# Runs "$@" in a mount namespace of its own whose /run/netns starts empty, then lists that folder: a
+# network namespace the command made would be listed, and none that another test makes meanwhile
+# (comparing the machine's `ip netns list` before and after failed whenever one did).
+WITH_PRIVATE_NETNS_FOLDER = 'mkdir -p /run/netns && mount -t tmpfs owl-test /run/netns && "$@"; ' \
+                            'code=$?; echo namespaces:; ls -A /run/netns; exit $code'
+
+
 @pytest.mark.parametrize(('args', 'message'), [
     (['--student-address', '192.168.1.5'], '192.168.1.5 is not a host address of the subnet 10.42.0.0/24'),
     (['--student-address', '10.42.0.8'], '10.42.0.8 is already taken on 10.42.0.0/24'),
     (['--student-address', 'tenfortytwo'], "'tenfortytwo' is not an IPv4 address"),
 ])
 def test_kit_hosts_refuses_a_wrong_address_in_one_line_and_makes_nothing(args, message):
-    namespaces_before = subprocess.run(['ip', 'netns', 'list'], capture_output=True, text=True).stdout
-    result = subprocess.run(['ros2', 'run', 'olive_sim', 'kit_hosts', *args], capture_output=True, text=True,
-                            timeout=60)
+    if problem := setup_problem():
+        prerequisite_missing(f'{problem}, so this network test is skipped')
+    result = subprocess.run(['unshare', '--mount', '--propagation', 'private', 'sh', '-c',
+                             WITH_PRIVATE_NETNS_FOLDER, 'sh', 'ros2', 'run', 'olive_sim', 'kit_hosts', *args],
+                            capture_output=True, text=True, timeout=60)
     assert result.returncode == 2
     assert result.stderr.strip() == f'kit_hosts: error: --student-address: {message}'
-    assert subprocess.run(['ip', 'netns', 'list'], capture_output=True, text=True).stdout == namespaces_before
+    assert result.stdout.endswith('namespaces:\n'), result.stdout  # none made
 
 
 @pytest.mark.parametrize(('args', 'message'), [
