@@ -111,9 +111,14 @@ class RosHarness(RosSandbox):
             self._probe = Probe(self.domain_id)
         return self._probe
 
-    def close(self) -> None:
+    def close_probe(self) -> None:
+        """Close the probe node; the next use makes a new one (with none of this one's subscriptions)."""
         if self._probe is not None:
             self._probe.close()
+            self._probe = None
+
+    def close(self) -> None:
+        self.close_probe()
         super().close()
 
 

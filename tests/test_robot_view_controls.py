@@ -3,6 +3,10 @@
 A Kp change shows in the plotted step response, the goal buttons move the servo, the torque switch
 switches, Pause freezes the plots, and bad input gets one line and reaches no servo.
 docs/screenshots/robot_view_plots.png is made here.
+
+The tests share one robot_view.launch.py (the kit and robot_view: starting it cost each test about
+8 s of CPU). Each test gets a probe node of its own and a fresh page, and leaves the kit as it
+started: the servos' gains back to the kit's, their torque off, the IMU level.
 """
 
 from __future__ import annotations
@@ -11,14 +15,17 @@ import math
 import re
 import statistics
 import time
+from collections.abc import Iterator
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, TypedDict
 
 import pytest
 from diagnostic_msgs.msg import DiagnosticStatus
-from ros_harness import wait_until
+from ros_harness import RosHarness, wait_until
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float32
+from std_srvs.srv import Trigger
 from test_robot_view import drag, start_kit_and_view
 from web_harness import PageSocket, SocketClosed
 
@@ -33,13 +40,52 @@ def servo_row(servo: str) -> str:
     return f'#servo-controls tr[data-servo={servo}]'
 
 
-def open_page(ros: Any, page: Any) -> str:
-    base = start_kit_and_view(ros)
-    page.goto(base)
+SERVO_NODES = {'pan': PAN_NODE, 'tilt': TILT_NODE}
+GAINS = ('kp', 'ki', 'kd')
+
+
+@dataclass
+class KitAndView:
+    """The module's running robot_view.launch.py: its processes, the page's address, the kit's gains."""
+
+    ros: RosHarness
+    url: str
+    gains: dict[str, list[float]]  # servo -> kp, ki, kd as the kit started
+
+
+@pytest.fixture(scope='module')
+def kit_and_view() -> Iterator[KitAndView]:
+    harness = RosHarness()
+    try:
+        url = start_kit_and_view(harness)
+        gains = {servo: harness.probe.get_parameters(node, *GAINS) for servo, node in SERVO_NODES.items()}
+        harness.close_probe()
+        yield KitAndView(harness, url, gains)
+    finally:
+        harness.close()
+
+
+@pytest.fixture
+def ros(kit_and_view: KitAndView) -> Iterator[RosHarness]:
+    """The module's kit and robot view, with a probe of this test's own; afterwards as the kit started."""
+    yield kit_and_view.ros
+    probe = kit_and_view.ros.probe
+    for servo, node in SERVO_NODES.items():
+        assert all(result.successful for result in probe.set_parameters(
+            node, **dict(zip(GAINS, kit_and_view.gains[servo], strict=True))))
+        probe.call(Trigger, f'/olive/servo/{servo}/setTorqueDisable', Trigger.Request())
+    with PageSocket(kit_and_view.url) as page_socket:
+        page_socket.send({'type': 'command', 'id': 'level', 'name': 'level'})
+        assert page_socket.receive() == {'type': 'done', 'id': 'level'}
+    kit_and_view.ros.close_probe()
+
+
+def open_page(kit_and_view: KitAndView, page: Any) -> str:
+    page.goto(kit_and_view.url)
     page.wait_for_function('() => window.robotView.servos && window.robotView.servos.pan.kp !== null '
                            '&& window.robotView.servos.tilt.kp !== null', timeout=30_000)
     page.wait_for_function('() => window.robotView.plots.batches > 2', timeout=20_000)
-    return base
+    return kit_and_view.url
 
 
 def answers(page: Any) -> list[dict[str, Any]]:
@@ -97,10 +143,10 @@ def step_response(plotted: ServoPlot, goal: float) -> dict[str, float]:
             'remaining': abs(goal - statistics.fmean(tail)), 'seconds': after[-1][0]}
 
 
-def test_a_kp_change_shows_in_the_plotted_step_response(ros, page):
+def test_a_kp_change_shows_in_the_plotted_step_response(ros, kit_and_view, page):
     diagnostics = ros.probe.collect(DiagnosticStatus, '/olive/servo/pan/joint/diagnostics')
     pan_joints = ros.probe.collect(JointState, '/olive/servo/pan/joint')
-    open_page(ros, page)
+    open_page(kit_and_view, page)
     # The servo's factory gains are in the inputs (read from the node, not from the page's code).
     assert page.input_value(f'{servo_row("pan")} input.kp') == '5'
     assert page.input_value(f'{servo_row("pan")} input.ki') == '10'
@@ -188,11 +234,11 @@ def test_a_kp_change_shows_in_the_plotted_step_response(ros, page):
     assert any(line.split(',')[1] == '1.57' for line in lines[1:])  # the step is in it
 
 
-def test_goal_buttons_torque_switch_and_pause(ros, page):
+def test_goal_buttons_torque_switch_and_pause(ros, kit_and_view, page):
     diagnostics = ros.probe.collect(DiagnosticStatus, '/olive/servo/tilt/joint/diagnostics')
     tilt_joints = ros.probe.collect(JointState, '/olive/servo/tilt/joint')
     tilt_goals = ros.probe.collect(Float32, '/olive/servo/tilt/goal/position')
-    open_page(ros, page)
+    open_page(kit_and_view, page)
     opened = time.monotonic()
     row = servo_row('tilt')
     # The tilt servo's top is 0.9 rad: its second button is 0.9, not pi/2.
@@ -240,8 +286,8 @@ def status_line(page: Any) -> str:
     return page.inner_text('#command-status')
 
 
-def test_each_command_says_what_the_kit_did_with_it(ros, page):
-    open_page(ros, page)
+def test_each_command_says_what_the_kit_did_with_it(ros, kit_and_view, page):
+    open_page(kit_and_view, page)
     row = servo_row('pan')
     # robot_view.launch.py starts no imu_control_robot: the hint says what would steer the head.
     hint = 'Nothing steers the servos from the IMU yet: run ros2 run olive_servo imu_control_robot'
@@ -282,11 +328,11 @@ def test_each_command_says_what_the_kit_did_with_it(ros, page):
     assert float(page.input_value(f'{row} input.ki')) == page.evaluate('window.robotView.servos.pan.ki')
 
 
-def test_bad_control_input_gets_one_line_and_reaches_no_servo(ros, page):
+def test_bad_control_input_gets_one_line_and_reaches_no_servo(ros, kit_and_view, page):
     pan_goals = ros.probe.collect(Float32, '/olive/servo/pan/goal/position')
     tilt_goals = ros.probe.collect(Float32, '/olive/servo/tilt/goal/position')
     diagnostics = ros.probe.collect(DiagnosticStatus, '/olive/servo/pan/joint/diagnostics')
-    base = open_page(ros, page)
+    base = open_page(kit_and_view, page)
     factory = ros.probe.get_parameters(PAN_NODE, 'kp', 'ki', 'kd')
 
     # In the page: an out-of-range Kp and an empty Kd are refused with the server's line.
@@ -359,8 +405,8 @@ def test_bad_control_input_gets_one_line_and_reaches_no_servo(ros, page):
     assert math.isclose(float(page.input_value(f'{servo_row("pan")} input.kp')), 2.5)
 
 
-def test_gains_set_elsewhere_show_on_the_page(ros, page):
-    open_page(ros, page)
+def test_gains_set_elsewhere_show_on_the_page(ros, kit_and_view, page):
+    open_page(kit_and_view, page)
     # `ros2 param set /olive_servo_pan_dcm_srv kp 7.5`, as section 4.4 does it
     assert all(result.successful for result in ros.probe.set_parameters(PAN_NODE, kp=7.5, kd=1.0))
     wait_until(lambda: page.evaluate('[window.robotView.servos.pan.kp, window.robotView.servos.pan.kd]')
