@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import sys
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -120,6 +121,23 @@ class RosHarness(RosSandbox):
     def close(self) -> None:
         self.close_probe()
         super().close()
+
+    @contextmanager
+    def turn(self) -> Iterator[RosHarness]:
+        """One test's turn in a world that a module's tests share (a kit started once).
+
+        Afterwards the processes the test started are stopped, and its probe (with every subscription
+        it made) is closed; the next test gets a new one.
+        """
+        started = len(self.processes)
+        try:
+            yield self
+        finally:
+            for process in reversed(self.processes[started:]):
+                if process.running():
+                    process.stop(timeout=3.0)
+            del self.processes[started:]
+            self.close_probe()
 
 
 # -- helpers for module tests (olive_sim) --------------------------------------------------------

@@ -14,10 +14,11 @@ the torque service after Ctrl-C keeps ROS up with SignalHandlerOptions.NO.
 import os
 import signal
 import textwrap
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-from ros_harness import wait_for_messages, wait_until
+from ros_harness import RosHarness, wait_for_messages, wait_until
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float32
 from student_workspace import shell
@@ -310,10 +311,28 @@ def student(ros, workspace: Path, command: str, label: str, env: dict | None = N
                        cwd=str(workspace))
 
 
-def start_kit(ros):
-    kit = ros.command(['ros2', 'launch', 'olive_sim', 'owl_kit.launch.py'], label='kit')
-    ros.probe.wait_for_node('olive_camera_eye_dcm_srv', timeout=40)
-    return kit
+@pytest.fixture(scope='module')
+def running_kit() -> Iterator[RosHarness]:
+    """`ros2 launch olive_sim owl_kit.launch.py`, once for the module's projects on the kit."""
+    harness = RosHarness()
+    try:
+        harness.command(['ros2', 'launch', 'olive_sim', 'owl_kit.launch.py'], label='kit')
+        harness.probe.wait_for_node('olive_camera_eye_dcm_srv', timeout=40)
+        harness.close_probe()
+        yield harness
+    finally:
+        harness.close()
+
+
+@pytest.fixture
+def kit(running_kit: RosHarness) -> Iterator[RosHarness]:
+    """The module's running kit, as a student's terminal sees it; what a test starts is stopped after it.
+
+    Each project below starts on the kit as the one before left it (a servo where it was, its torque
+    as the last node left it), as in a student's session.
+    """
+    with running_kit.turn() as harness:
+        yield harness
 
 
 def positions(ros, servo: str) -> list:
@@ -354,28 +373,25 @@ def test_imu_turtle_and_its_launch_file_drive_the_turtle(ros, workspace):
 
 
 @pytest.mark.whole_kit
-def test_control_servo_moves_the_pan_servo_in_a_sine(ros, workspace):
-    start_kit(ros)
-    joints = positions(ros, 'pan')
-    node = student(ros, workspace, 'ros2 run olive_servo control_servo', 'student control_servo')
+def test_control_servo_moves_the_pan_servo_in_a_sine(kit, workspace):
+    joints = positions(kit, 'pan')
+    node = student(kit, workspace, 'ros2 run olive_servo control_servo', 'student control_servo')
     wait_until(lambda: moved(joints, 0.5), 40, 'the pan servo to swing')
     stop(node)
 
 
 @pytest.mark.whole_kit
-def test_imu_control_robot_turns_both_servos(ros, workspace):
-    start_kit(ros)
-    pan, tilt = positions(ros, 'pan'), positions(ros, 'tilt')
-    node = student(ros, workspace, 'ros2 run olive_servo imu_control_robot', 'student imu_control_robot')
+def test_imu_control_robot_turns_both_servos(kit, workspace):
+    pan, tilt = positions(kit, 'pan'), positions(kit, 'tilt')
+    node = student(kit, workspace, 'ros2 run olive_servo imu_control_robot', 'student imu_control_robot')
     wait_until(lambda: moved(pan, 0.3) and moved(tilt, 0.3), 40, 'both servos to follow the IMU')
     stop(node)
 
 
 @pytest.mark.whole_kit
-def test_keyboard_servos_without_a_display_says_so_in_one_line_and_keeps_running(ros, workspace):
-    start_kit(ros)
-    goals = ros.probe.collect(Float32, '/olive/servo/pan/goal/position')
-    node = student(ros, workspace, 'ros2 run olive_servo keyboard_servos', 'student keyboard_servos',
+def test_keyboard_servos_without_a_display_says_so_in_one_line_and_keeps_running(kit, workspace):
+    goals = kit.probe.collect(Float32, '/olive/servo/pan/goal/position')
+    node = student(kit, workspace, 'ros2 run olive_servo keyboard_servos', 'student keyboard_servos',
                    env=HEADLESS)
     wait_for_messages(goals, 100, timeout=40, what='pan goals')
     notices = [line for line in node.lines if 'no display' in line]
@@ -385,10 +401,9 @@ def test_keyboard_servos_without_a_display_says_so_in_one_line_and_keeps_running
 
 
 @pytest.mark.whole_kit
-def test_keyboard_servos_with_a_display_turns_the_pan_servo_on_the_left_arrow(ros, workspace, x_display):
-    start_kit(ros)
-    goals = ros.probe.collect(Float32, '/olive/servo/pan/goal/position')
-    node = student(ros, workspace, 'ros2 run olive_servo keyboard_servos', 'student keyboard_servos',
+def test_keyboard_servos_with_a_display_turns_the_pan_servo_on_the_left_arrow(kit, workspace, x_display):
+    goals = kit.probe.collect(Float32, '/olive/servo/pan/goal/position')
+    node = student(kit, workspace, 'ros2 run olive_servo keyboard_servos', 'student keyboard_servos',
                    env=x_display.env())
     window = x_display.wait_for_window(name='keyboard servos', timeout=40)
     wait_for_messages(goals, 10, timeout=40, what='pan goals')
@@ -399,9 +414,8 @@ def test_keyboard_servos_with_a_display_turns_the_pan_servo_on_the_left_arrow(ro
 
 
 @pytest.mark.whole_kit
-def test_display_camera_without_a_display_says_so_in_one_line_and_keeps_showing_frames(ros, workspace):
-    start_kit(ros)
-    node = student(ros, workspace, 'ros2 run olive_camera display_camera', 'student display_camera',
+def test_display_camera_without_a_display_says_so_in_one_line_and_keeps_showing_frames(kit, workspace):
+    node = student(kit, workspace, 'ros2 run olive_camera display_camera', 'student display_camera',
                    env=HEADLESS)
     node.wait_for(r'60 frames shown', timeout=40)
     assert len([line for line in node.lines if 'no display' in line]) == 1, node.output
@@ -409,9 +423,8 @@ def test_display_camera_without_a_display_says_so_in_one_line_and_keeps_showing_
 
 
 @pytest.mark.whole_kit
-def test_display_camera_with_a_display_opens_its_window(ros, workspace, x_display):
-    start_kit(ros)
-    node = student(ros, workspace, 'ros2 run olive_camera display_camera', 'student display_camera',
+def test_display_camera_with_a_display_opens_its_window(kit, workspace, x_display):
+    node = student(kit, workspace, 'ros2 run olive_camera display_camera', 'student display_camera',
                    env=x_display.env())
     x_display.wait_for_window(name='^Olive Camera$', timeout=40)
     node.wait_for(r'30 frames shown', timeout=40)
@@ -420,10 +433,9 @@ def test_display_camera_with_a_display_opens_its_window(ros, workspace, x_displa
 
 
 @pytest.mark.whole_kit
-def test_the_camera_launch_file_runs_the_robot_and_the_camera(ros, workspace):
-    start_kit(ros)
-    pan = positions(ros, 'pan')
-    launch = student(ros, workspace, 'ros2 launch olive_camera robot_camera.launch.py', 'student launch',
+def test_the_camera_launch_file_runs_the_robot_and_the_camera(kit, workspace):
+    pan = positions(kit, 'pan')
+    launch = student(kit, workspace, 'ros2 launch olive_camera robot_camera.launch.py', 'student launch',
                      env=HEADLESS)
     launch.wait_for(r'30 frames shown', timeout=60)
     wait_until(lambda: moved(pan, 0.3), 40, 'the pan servo to follow the IMU')

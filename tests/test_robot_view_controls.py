@@ -68,16 +68,15 @@ def kit_and_view() -> Iterator[KitAndView]:
 @pytest.fixture
 def ros(kit_and_view: KitAndView) -> Iterator[RosHarness]:
     """The module's kit and robot view, with a probe of this test's own; afterwards as the kit started."""
-    yield kit_and_view.ros
-    probe = kit_and_view.ros.probe
-    for servo, node in SERVO_NODES.items():
-        assert all(result.successful for result in probe.set_parameters(
-            node, **dict(zip(GAINS, kit_and_view.gains[servo], strict=True))))
-        probe.call(Trigger, f'/olive/servo/{servo}/setTorqueDisable', Trigger.Request())
-    with PageSocket(kit_and_view.url) as page_socket:
-        page_socket.send({'type': 'command', 'id': 'level', 'name': 'level'})
-        assert page_socket.receive() == {'type': 'done', 'id': 'level'}
-    kit_and_view.ros.close_probe()
+    with kit_and_view.ros.turn() as harness:
+        yield harness
+        for servo, node in SERVO_NODES.items():
+            assert all(result.successful for result in harness.probe.set_parameters(
+                node, **dict(zip(GAINS, kit_and_view.gains[servo], strict=True))))
+            harness.probe.call(Trigger, f'/olive/servo/{servo}/setTorqueDisable', Trigger.Request())
+        with PageSocket(kit_and_view.url) as page_socket:
+            page_socket.send({'type': 'command', 'id': 'level', 'name': 'level'})
+            assert page_socket.receive() == {'type': 'done', 'id': 'level'}
 
 
 def open_page(kit_and_view: KitAndView, page: Any) -> str:
