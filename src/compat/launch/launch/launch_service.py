@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import asyncio
 import logging
+import os
+import select
 import signal
 import threading
 import traceback
@@ -21,6 +23,8 @@ from launch.launch_description import LaunchDescription
 from launch.launch_description_entity import LaunchDescriptionEntity
 from launch.utilities.signal_management import AsyncSafeSignalManager
 from launch.utilities.visit_all_entities_and_collect_futures_impl import visit_entities_into
+
+KILLED_EXIT_TIMEOUT = 5.0  # s a SIGKILLed process gets to end before launch exits anyway
 
 
 async def _shutdown_queued() -> None:
@@ -225,6 +229,19 @@ class LaunchService:
         context._completion_futures = [future for entity, future in still_pending if entity is None]
 
     def _kill_leftover_processes(self) -> None:
-        """Launch was cancelled: SIGKILL what is still running rather than leave orphans."""
-        for action in self.__context._process_actions:
-            action.kill_if_running()
+        """Launch was cancelled: SIGKILL what is still running rather than leave orphans.
+
+        It returns once each has died: a SIGKILL takes effect when the process next runs, which on a
+        busy machine came after launch had exited (the process then ran on, orphaned, for a moment).
+        """
+        killed = [pid for action in self.__context._process_actions
+                  if (pid := action.kill_if_running()) is not None]
+        for pid in killed:
+            try:
+                handle = os.pidfd_open(pid)  # readable once the process has ended; not reaped here
+            except ProcessLookupError:
+                continue
+            try:
+                select.select([handle], [], [], KILLED_EXIT_TIMEOUT)
+            finally:
+                os.close(handle)
