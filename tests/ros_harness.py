@@ -126,9 +126,11 @@ class RosHarness(RosSandbox):
     def turn(self) -> Iterator[RosHarness]:
         """One test's turn in a world that a module's tests share (a kit started once).
 
+        The test gets a probe of its own (the one that saw the world start is closed first).
         Afterwards the processes the test started are stopped, and its probe (with every subscription
-        it made) is closed; the next test gets a new one.
+        it made) is closed.
         """
+        self.close_probe()
         started = len(self.processes)
         try:
             yield self

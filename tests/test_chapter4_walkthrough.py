@@ -318,7 +318,6 @@ def running_kit() -> Iterator[RosHarness]:
     try:
         harness.command(['ros2', 'launch', 'olive_sim', 'owl_kit.launch.py'], label='kit')
         harness.probe.wait_for_node('olive_camera_eye_dcm_srv', timeout=40)
-        harness.close_probe()
         yield harness
     finally:
         harness.close()

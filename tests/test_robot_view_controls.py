@@ -59,7 +59,6 @@ def kit_and_view() -> Iterator[KitAndView]:
     try:
         url = start_kit_and_view(harness)
         gains = {servo: harness.probe.get_parameters(node, *GAINS) for servo, node in SERVO_NODES.items()}
-        harness.close_probe()
         yield KitAndView(harness, url, gains)
     finally:
         harness.close()
