@@ -67,6 +67,10 @@ export ROS_VERSION=2
 export ROS_PYTHON_VERSION=3
 # Log lines reach terminals and pipes as they happen, not when a buffer fills.
 export RCUTILS_LOGGING_BUFFERED_STREAM="${RCUTILS_LOGGING_BUFFERED_STREAM:-1}"
+# One thread for numpy's OpenBLAS: every ROS message module imports numpy, and OpenBLAS otherwise
+# starts a thread per CPU that spins at start-up: 0.1 s of the 0.29 s CPU a Python node takes to start
+# (2 CPUs; more on a class server's many), for matrices far too small to share out. Yours wins if set.
+export OPENBLAS_NUM_THREADS="${OPENBLAS_NUM_THREADS:-1}"
 unset -f _owl_prepend
 
 # Tab completion of ros2's commands, packages, executables, nodes, topics and types.

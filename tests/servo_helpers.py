@@ -20,9 +20,14 @@ CLAMP_WARNING = 'clamped'
 
 
 def start_servo(ros: RosHarness, name: str) -> Any:
-    """olive_sim's servo_sim with the kit's parameters of the pan or tilt servo."""
+    """olive_sim's servo_sim with the kit's parameters of the pan or tilt servo, without its web page.
+
+    The tests that use it drive the servo over ROS; the page (tests/test_olive_module_pages.py) costs
+    a quarter of the servo's start-up CPU.
+    """
     args = [arg for key, value in SERVO_PARAMETERS[name].items() for arg in ('-p', f'{key}:={value}')]
-    return ros.run('olive_sim', 'servo_sim', '--ros-args', *args, label=f'servo_sim {name}')
+    return ros.run('olive_sim', 'servo_sim', '--ros-args', *args, '-p', 'web_port:=0',
+                   label=f'servo_sim {name}')
 
 
 COLLECT_DEPTH = 1000

@@ -7,14 +7,13 @@ its defaults unnoticed.
 
 from __future__ import annotations
 
-import os
 import re
-import shutil
 import subprocess
 import sys
 from pathlib import Path
 
 from owl_common.processes import RosSandbox
+from test_env_sh import after_env_sh
 
 ROOT = Path(__file__).resolve().parents[1]
 PROFILE = ROOT / 'config' / 'fastdds.xml'
@@ -28,12 +27,7 @@ XML_ERROR = re.compile(r'\[XML\w* Error\].*')
 
 def variables_env_sh_sets() -> list[str]:
     """The profile variables that a fresh `source env.sh` points at config/fastdds.xml."""
-    env = {name: value for name, value in os.environ.items() if name not in VARIABLES}
-    script = 'source ./env.sh >/dev/null && ' + ' && '.join(f'echo "{v}=${{{v}:-}}"' for v in VARIABLES)
-    done = subprocess.run([shutil.which('bash') or 'bash', '-c', script], cwd=ROOT, env=env,
-                          capture_output=True, text=True, timeout=60, check=True)
-    pairs = (line.split('=', 1) for line in done.stdout.splitlines())
-    return [name for name, value in pairs if value == str(PROFILE)]
+    return [name for name, value in after_env_sh(VARIABLES, unset=VARIABLES).items() if value == str(PROFILE)]
 
 
 def xml_errors(variables: list[str], profile: Path) -> list[str]:

@@ -15,7 +15,7 @@ from rclpy.serialization import deserialize_message, serialize_message
 from sensor_msgs.msg import CameraInfo, CompressedImage, JointState
 from std_msgs.msg import Header, String
 
-from olive_sim.camera_render import NO_RED_LANDMARKS, CameraRenderer, build_panorama
+from olive_sim.camera_render import LANDMARKS, NO_RED_LANDMARKS, CameraRenderer
 from olive_sim.imu_output import ImuOutput, reliability
 from olive_sim.module_node import OliveModule, describe, run_module
 from olive_sim.scene_draw import SceneView
@@ -76,7 +76,7 @@ class CameraModule(OliveModule):
         self.recognised = NO_GESTURE  # what the gesture app says: its last recognised gesture
         self.renderer = CameraRenderer(
             value('width').value, value('height').value, math.radians(value('horizontal_fov').value),
-            panorama=None if self.scene == 'landmarks' else build_panorama(NO_RED_LANDMARKS))
+            landmarks=LANDMARKS if self.scene == 'landmarks' else NO_RED_LANDMARKS)
         self.frame_id = value('frame_id').value
         self.pan = 0.0
         self.tilt = 0.0

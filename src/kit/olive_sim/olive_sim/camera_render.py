@@ -8,12 +8,17 @@ azimuth, so the renderer keeps a per-pixel lookup for the current tilt and shift
 
 from __future__ import annotations
 
+import hashlib
 import io
 import math
+import os
 import re
+import tempfile
 from collections.abc import Mapping, Sequence
+from pathlib import Path
 
 import numpy as np
+import PIL
 from PIL import Image, ImageDraw, ImageFont
 
 from olive_sim.scene_draw import Placed, SceneView, draw_ball, draw_person, draw_skeleton
@@ -94,6 +99,60 @@ def build_panorama(landmarks: Sequence[tuple[float, tuple[int, int, int], str]] 
             draw.text(((left + right) / 2 + offset, top - 40), label, fill=(20, 20, 20),
                       font=font, anchor='mm')
     return np.asarray(panorama)
+
+
+def packed_panorama(panorama: np.ndarray) -> np.ndarray:
+    """An RGB panorama as the renderer reads it: RGBX pixels as flat uint32, two copies side by side.
+
+    With two copies a column shifted by pan never needs a modulo.
+    """
+    packed = np.zeros((PANORAMA_HEIGHT, 2 * PANORAMA_WIDTH, 4), dtype=np.uint8)
+    packed[:, :PANORAMA_WIDTH, :3] = panorama
+    packed[:, PANORAMA_WIDTH:, :3] = panorama
+    return packed.view(np.uint32).reshape(-1)
+
+
+def cache_folder() -> Path:
+    """Where the simulated kit keeps what it computes once per machine: $XDG_CACHE_HOME/owl-kit-lab."""
+    return Path(os.environ.get('XDG_CACHE_HOME') or Path.home() / '.cache') / 'owl-kit-lab'
+
+
+# s: a cached panorama no camera has used for this long goes when another one is written (a file
+# per version of this module: a developer's edits would otherwise pile up 52 MB each).
+UNUSED_PANORAMA_KEPT = 7 * 24 * 3600.0
+
+
+def scene_pixels(landmarks: Sequence[tuple[float, tuple[int, int, int], str]] = LANDMARKS,
+                 folder: Path | None = None) -> np.ndarray:
+    """packed_panorama(build_panorama(landmarks)), read from a file that every camera shares.
+
+    Building it took 0.3 s of CPU at each camera's start and 70 MB of memory per camera; the file,
+    mapped read-only, is built once (its name changes with this module, the landmarks and Pillow's
+    font) and its pages are shared. Where the file cannot be read or written it is built in memory.
+    """
+    folder = folder or cache_folder()
+    key = hashlib.sha256(Path(__file__).read_bytes() + repr((landmarks, PIL.__version__)).encode())
+    path = folder / f'panorama-{key.hexdigest()[:16]}.npy'
+    size = PANORAMA_HEIGHT * 2 * PANORAMA_WIDTH
+    try:
+        pixels = np.load(path, mmap_mode='r')
+        if pixels.dtype == np.uint32 and pixels.shape == (size,):
+            os.utime(path)  # in use: see UNUSED_PANORAMA_KEPT
+            return pixels
+    except (OSError, ValueError):
+        pass
+    pixels = packed_panorama(build_panorama(landmarks))
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        with tempfile.NamedTemporaryFile(dir=folder, suffix='.npy', delete=False) as written:
+            np.save(written, pixels)
+        os.replace(written.name, path)  # whole or not at all, whichever camera writes it first
+        for old in folder.glob('panorama-*.npy'):
+            if old.stat().st_mtime < path.stat().st_mtime - UNUSED_PANORAMA_KEPT:
+                old.unlink(missing_ok=True)
+    except OSError:
+        pass
+    return pixels
 
 
 class CaptionWriter:
@@ -212,8 +271,9 @@ class CameraRenderer:
     """
 
     def __init__(self, width: int = 640, height: int = 480, horizontal_fov: float = math.radians(48.7),
-                 panorama: np.ndarray | None = None) -> None:
-        """panorama: the scene behind everything (default: build_panorama())."""
+                 panorama: np.ndarray | None = None,
+                 landmarks: Sequence[tuple[float, tuple[int, int, int], str]] = LANDMARKS) -> None:
+        """panorama: the scene behind everything (default: the scene with these landmarks)."""
         if width < 16 or height < 16:
             raise ValueError(f'image size {width}x{height} is too small (at least 16x16)')
         if not 0.05 < horizontal_fov < math.radians(170):
@@ -223,12 +283,7 @@ class CameraRenderer:
         self.fx = self.fy = focal_length(width, horizontal_fov)
         self.cx, self.cy = (width - 1) / 2, (height - 1) / 2
         self.pinhole = Pinhole(self.fx, self.fy, self.cx, self.cy)
-        pano = build_panorama() if panorama is None else panorama
-        # Two copies side by side: a column shifted by pan never needs a modulo.
-        packed = np.zeros((PANORAMA_HEIGHT, 2 * PANORAMA_WIDTH, 4), dtype=np.uint8)
-        packed[:, :PANORAMA_WIDTH, :3] = pano
-        packed[:, PANORAMA_WIDTH:, :3] = pano
-        self._pixels = packed.view(np.uint32).reshape(-1)
+        self._pixels = scene_pixels(landmarks) if panorama is None else packed_panorama(panorama)
         self._frame = np.empty((height, width), dtype=np.uint32)
         self._index = np.empty((height, width), dtype=np.intp)
         self._tilt: float | None = None

@@ -2,21 +2,28 @@
 
 import io
 import math
+import os
+import time
 
 import numpy as np
 import pytest
 from olive_sim.camera_render import (
     LANDMARKS,
+    NO_RED_LANDMARKS,
     PANORAMA_HEIGHT,
     PANORAMA_WIDTH,
+    UNUSED_PANORAMA_KEPT,
     CameraRenderer,
     CaptionWriter,
     SplicedJpeg,
     _font,
+    build_panorama,
     encode_jpeg,
     find_colour,
     focal_length,
     join_jpeg,
+    packed_panorama,
+    scene_pixels,
     split_jpeg,
 )
 from PIL import Image
@@ -172,3 +179,39 @@ def test_spliced_jpeg_replaces_only_the_top_rows():
     decoded = np.asarray(Image.open(io.BytesIO(encode_jpeg(frame, 80))))
     assert decoded[5, 5, 0] > 200
     assert decoded[60, 5, 0] < 50
+
+
+def test_the_scene_is_built_once_into_a_shared_file_and_a_broken_file_is_built_again(tmp_path):
+    built = scene_pixels(NO_RED_LANDMARKS, tmp_path)
+    [saved] = tmp_path.glob('panorama-*.npy')
+    assert np.array_equal(built, packed_panorama(build_panorama(NO_RED_LANDMARKS)))
+    mapped = scene_pixels(NO_RED_LANDMARKS, tmp_path)
+    assert isinstance(mapped, np.memmap)
+    assert not mapped.flags.writeable
+    assert np.array_equal(mapped, built)
+    assert len(list(tmp_path.glob('panorama-*.npy'))) == 1
+    scene_pixels(LANDMARKS, tmp_path)  # other landmarks, another file
+    assert len(list(tmp_path.glob('panorama-*.npy'))) == 2
+    saved.write_bytes(saved.read_bytes()[:1000])  # cut short, as by a full disk
+    assert np.array_equal(scene_pixels(NO_RED_LANDMARKS, tmp_path), built)
+    assert np.array_equal(np.load(saved), built)
+
+
+def test_a_cached_scene_unused_for_a_week_goes_when_another_is_written(tmp_path):
+    unused, used = tmp_path / 'panorama-0000000000000000.npy', tmp_path / 'panorama-1111111111111111.npy'
+    unused.write_bytes(b'an old version')
+    used.write_bytes(b'a version in use elsewhere')
+    week_ago = time.time() - UNUSED_PANORAMA_KEPT - 60
+    os.utime(unused, (week_ago, week_ago))
+    scene_pixels(LANDMARKS, tmp_path)
+    assert not unused.exists()
+    assert used.exists()
+    assert len(list(tmp_path.glob('panorama-*.npy'))) == 2
+
+
+def test_without_a_writable_cache_the_scene_is_built_in_memory(tmp_path):
+    blocked = tmp_path / 'not_a_folder'
+    blocked.write_text('')
+    pixels = scene_pixels(LANDMARKS, blocked)
+    assert pixels.shape == (PANORAMA_HEIGHT * 2 * PANORAMA_WIDTH,)
+    assert not isinstance(pixels, np.memmap)
