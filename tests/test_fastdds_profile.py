@@ -12,8 +12,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+from env_sh import after_env_sh
 from owl_common.processes import RosSandbox
-from test_env_sh import after_env_sh
 
 ROOT = Path(__file__).resolve().parents[1]
 PROFILE = ROOT / 'config' / 'fastdds.xml'

@@ -147,8 +147,9 @@ def scene_pixels(landmarks: Sequence[tuple[float, tuple[int, int, int], str]] = 
         with tempfile.NamedTemporaryFile(dir=folder, suffix='.npy', delete=False) as written:
             np.save(written, pixels)
         os.replace(written.name, path)  # whole or not at all, whichever camera writes it first
+        unused_since = path.stat().st_mtime - UNUSED_PANORAMA_KEPT
         for old in folder.glob('panorama-*.npy'):
-            if old.stat().st_mtime < path.stat().st_mtime - UNUSED_PANORAMA_KEPT:
+            if old.stat().st_mtime < unused_since:
                 old.unlink(missing_ok=True)
     except OSError:
         pass
