@@ -25,14 +25,13 @@ import signal
 import subprocess
 import time
 from dataclasses import dataclass
-from pathlib import Path
 
+import course_lines
 import pytest
 from owl_common.processes import RosProcess
 from ros_harness import RosHarness, wait_until
 from servo_helpers import start_servo
 
-LISTINGS = Path(__file__).parent / 'course_listings'
 RUNS = 20
 RUNS_AT_ONCE = 4
 LATEST_CTRL_C = 1.5  # s after the node appeared
@@ -83,7 +82,7 @@ def run_once(ros: RosHarness, listing: Listing, round_number: int,
     whatever the graph still remembers of the last round.
     """
     names = [f'{listing.node}_{round_number}_{index}' for index in range(len(delays))]
-    started = [ros.command(['python', str(LISTINGS / listing.script), *listing.args,
+    started = [ros.command(['python', str(course_lines.LISTINGS / listing.script), *listing.args,
                             '--ros-args', '-r', f'__node:={name}'],
                            label=f'{listing.script} #{index}', env={'PYTHONFAULTHANDLER': '1'})
                for index, name in enumerate(names)]
@@ -117,7 +116,7 @@ def run_once(ros: RosHarness, listing: Listing, round_number: int,
 def test_ctrl_c_at_any_moment_ends_a_listing_cleanly(ros: RosHarness, listing: Listing):
     servo = start_servo(ros, listing.servo) if listing.servo else None
     for other in listing.beside:
-        ros.command(['python', str(LISTINGS / other)], label=other)
+        ros.command(['python', str(course_lines.LISTINGS / other)], label=other)
     rng = random.Random()
     failures = []
     for round_number in range(RUNS // RUNS_AT_ONCE):
@@ -137,14 +136,15 @@ def test_ctrl_c_at_any_moment_ends_a_listing_cleanly(ros: RosHarness, listing: L
 
 
 def test_the_listings_are_the_courses_own_lines():
-    """Each line of a listing is a line of the course.
+    """Each line of a listing is a line of the course (tests/course_lines.py).
 
-    The course is beside the repository while it is written; a clean clone alone has only the listings.
+    A clean clone has the digests of the course's lines that the listings use; where the course
+    is beside the clone, those digests are also checked against the course itself.
     """
-    course_dir = Path(__file__).resolve().parents[2] / 'shared' / 'course'
-    if not course_dir.is_dir():
-        pytest.skip('the course text is not beside this clone')
-    course = {line.strip() for path in course_dir.glob('*.txt') for line in path.read_text().splitlines()}
-    for listing in sorted(LISTINGS.glob('s*.py')):
-        foreign = [line for line in listing.read_text().splitlines() if line.strip() not in course]
-        assert not foreign, f'{listing.name}: not in the course: {foreign}'
+    stored = course_lines.stored_digests()
+    for name, lines in course_lines.listing_lines().items():
+        foreign = [line for line in lines if course_lines.digest(line) not in stored]
+        assert not foreign, f'{name}: not in the course: {foreign}'
+    if course_lines.COURSE.is_dir():
+        assert sorted(stored) == course_lines.digests_from_course(course_lines.COURSE), (
+            f'{course_lines.DIGESTS} is not what the course gives: python tests/course_lines.py')
