@@ -117,6 +117,51 @@ def test_the_view_follows_pan_and_tilt(ros):
                'the camera IMU to show the head turned by pi')
 
 
+# A camera in a process of its own whose renderer counts its frames: one second with nobody
+# subscribed, then a subscriber of its own (intra-process, over the same DDS participant).
+COUNTED_CAMERA = """
+import time
+import rclpy
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.qos import qos_profile_sensor_data
+from sensor_msgs.msg import CompressedImage
+from olive_sim.camera_node import CameraModule
+
+rclpy.init(args=['--ros-args', '-p', 'web_port:=0'])
+camera = CameraModule('eye')
+rendered = []
+jpeg = camera.renderer.jpeg
+camera.renderer.jpeg = lambda *args: rendered.append(1) or jpeg(*args)
+executor = SingleThreadedExecutor()
+executor.add_node(camera)
+end = time.monotonic() + 1.0
+while time.monotonic() < end:
+    executor.spin_once(timeout_sec=0.05)
+print(f'unwatched: {camera.frames} frames, {len(rendered)} rendered', flush=True)
+received = []
+camera.create_subscription(CompressedImage, camera.topic('image/compressed'), received.append,
+                           qos_profile_sensor_data)
+end = time.monotonic() + 20.0
+while len(received) < 3 and time.monotonic() < end:
+    executor.spin_once(timeout_sec=0.05)
+print(f'watched: {len(rendered)} rendered, {len(received)} received', flush=True)
+executor.shutdown()
+camera.destroy_node()
+rclpy.shutdown()
+"""
+
+
+def test_a_frame_nobody_subscribes_to_is_not_rendered(ros):
+    camera = ros.command(['python', '-c', COUNTED_CAMERA], label='counted camera')
+    assert camera.wait(40) == 0, camera.output
+    unwatched = camera.wait_for(r'unwatched: (\d+) frames, (\d+) rendered', timeout=1)[0]
+    assert int(unwatched.group(1)) >= 10  # the frame thread ran, at 30 frames/s
+    assert int(unwatched.group(2)) == 0
+    watched = camera.wait_for(r'watched: (\d+) rendered, (\d+) received', timeout=1)[0]
+    assert int(watched.group(2)) >= 3
+    assert int(watched.group(1)) >= 3
+
+
 def test_bad_input_is_refused_or_warned(ros):
     camera = ros.run('olive_sim', 'camera_sim', '--ros-args', '-p', 'fps:=5.0',
                      '-p', 'image_reliability:=reliable')

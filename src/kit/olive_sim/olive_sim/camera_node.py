@@ -220,11 +220,26 @@ class CameraModule(OliveModule):
         info.header.stamp.sec, info.header.stamp.nanosec = STAMP_MARKER
         return info
 
+    def nobody_watches(self) -> bool:
+        """No subscription matches the images nor the gesture app's topics: a frame would reach nobody."""
+        publishers = [self.image_publisher]
+        if self.scene == 'person':
+            publishers += [self.tpu_publisher, self.gesture_publisher]
+        return all(publisher.get_subscription_count() == 0 for publisher in publishers)
+
     def publish_frame(self) -> None:
-        """Render, encode and publish one frame and its camera info (the frame thread calls it at fps)."""
-        self._poll_joints()
+        """Render, encode and publish one frame and its camera info (the frame thread calls it at fps).
+
+        A frame nobody subscribes to is counted but not rendered: rendering and encoding are most of
+        the camera's CPU (11.7 % of a core of the idle kit's 27.5 %), and a class server runs a kit
+        per student. Its camera info still goes out.
+        """
         self.frames += 1
         now = self.now_ns()
+        if self.nobody_watches():
+            self.info_publisher.publish(self.camera_info.fill(now, ()))
+            return
+        self._poll_joints()
         seconds = now / 1e9
         clock = time.strftime('%H:%M:%S', time.gmtime(seconds))
         caption = f'#{self.frames}  {clock}.{int(seconds % 1 * 1000):03d}'
