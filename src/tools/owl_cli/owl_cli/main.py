@@ -13,7 +13,8 @@ from olive_kit.description import WINDOWS_PORT, page_catalogue, tool_page
 from owl_humble.graph_partition import profile_in_effect, profile_protects
 from owl_web.origins import port_number
 
-from owl_cli import check, kit_check, network_check, pages_command, wsl_check
+from owl_cli import check, classroom, kit_check, network_check, pages_command, wsl_check
+from owl_cli.classroom import serve
 
 
 def positive_seconds(text: str) -> float:
@@ -152,6 +153,14 @@ def main(argv: list[str] | None = None) -> int:
         description=pages_command.__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     pages_command.add_arguments(list_pages)
     list_pages.set_defaults(run=pages_command.run)
+    teach = commands.add_parser('class', help='a class server on JupyterHub: every student in a browser',
+                                description=classroom.__doc__)
+    class_commands = teach.add_subparsers(dest='class_command', metavar='COMMAND', required=True)
+    serve_class = class_commands.add_parser(
+        'serve', help='start the class server for the students of a class list (as root)',
+        description=serve.__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    serve.add_arguments(serve_class)
+    serve_class.set_defaults(run=serve.run)
     args = parser.parse_args(argv)
     try:
         return args.run(args)

@@ -1,0 +1,1 @@
+"""`owl class`: a class server on JupyterHub, one Unix account per student (docs/classroom.md)."""

@@ -1,0 +1,76 @@
+"""The class's Unix accounts: one per student and one for the teacher, each with a private home.
+
+JupyterHub logs them in through PAM and starts each one's server as that account, so a student's
+files and processes are the operating system's to keep apart. An account of ours is in the group
+STUDENTS or TEACHERS; any other existing account of the same name is refused, never changed.
+Running the class list again sets the passwords it gives and keeps every home as it is.
+"""
+
+from __future__ import annotations
+
+import grp
+import os
+import pwd
+import subprocess
+
+STUDENTS = 'owl-students'
+TEACHERS = 'owl-teachers'
+
+
+class AccountError(RuntimeError):
+    """An account that cannot be made or used, in one line."""
+
+
+def member_of(name: str, group: str) -> bool:
+    """Whether the existing account name is in group (as its own group or as an extra one)."""
+    try:
+        info = grp.getgrnam(group)
+        account = pwd.getpwnam(name)
+    except KeyError:
+        return False
+    return name in info.gr_mem or account.pw_gid == info.gr_gid
+
+
+def exists(name: str) -> bool:
+    """Whether an account of that name exists on this machine."""
+    try:
+        pwd.getpwnam(name)
+    except KeyError:
+        return False
+    return True
+
+
+def conflict(name: str, group: str) -> str | None:
+    """Why name cannot be this class's account of group, or None when it is ours or free."""
+    if not exists(name) or member_of(name, group):
+        return None
+    return f"an account named '{name}' already exists on this machine and is not one of the class's"
+
+
+def run(argv: list[str], stdin: str | None = None) -> None:
+    """Run an account tool (useradd, chpasswd, ...); AccountError with its last line when it fails."""
+    done = subprocess.run(argv, input=stdin, capture_output=True, text=True, check=False)
+    if done.returncode != 0:
+        detail = (done.stderr or done.stdout).strip().splitlines()
+        raise AccountError(f"{argv[0]} failed: {detail[-1] if detail else f'exit code {done.returncode}'}")
+
+
+def ensure_group(group: str) -> None:
+    """Make the system group unless it exists."""
+    try:
+        grp.getgrnam(group)
+    except KeyError:
+        run(['groupadd', '--system', group])
+
+
+def ensure_account(name: str, password: str, group: str) -> bool:
+    """Make name's account in group with a home only it can read, or keep it; set its password.
+
+    True when the account was made now.
+    """
+    made = not exists(name)
+    if made:
+        run(['useradd', '--create-home', '--shell', '/bin/bash', '--groups', group, name])
+    os.chmod(pwd.getpwnam(name).pw_dir, 0o700)  # Debian's useradd makes homes readable by all
+    run(['chpasswd'], stdin=f'{name}:{password}\n')
+    return made

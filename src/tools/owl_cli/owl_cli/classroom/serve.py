@@ -1,0 +1,132 @@
+"""owl class serve: start the class server (JupyterHub) for the students of a class list.
+
+Run as root on the teacher's Linux machine. Each student of FILE (`name password` per line) and
+the teacher get a Unix account with a private home, made now or kept from an earlier start (with
+the password FILE gives; the teacher's from OWL_CLASS_TEACHER_PASSWORD or a prompt). The hub
+serves HTTPS on the port printed, with the teacher's certificate (--cert/--key) or a self-signed
+one whose fingerprint is printed for the students to compare. Ctrl-C stops the hub and every
+student's server; their homes stay.
+"""
+
+from __future__ import annotations
+
+import argparse
+import getpass
+import os
+import signal
+import socket
+import subprocess
+import sys
+from pathlib import Path
+
+from owl_cli.classroom import accounts, hub
+from owl_cli.classroom.students import StudentsError, name_problem, parse_students
+
+DEFAULT_PORT = 8443
+PASSWORD_VARIABLE = 'OWL_CLASS_TEACHER_PASSWORD'
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """The options of `owl class serve`."""
+    parser.add_argument('--students', required=True, metavar='FILE',
+                        help='the class list: one student per line, "name password"')
+    parser.add_argument('--teacher', required=True, metavar='NAME',
+                        help=f'the teacher\'s account (password from ${PASSWORD_VARIABLE}, else asked)')
+    parser.add_argument('--port', type=int, default=DEFAULT_PORT,
+                        help=f'the HTTPS port on every interface (default {DEFAULT_PORT})')
+    parser.add_argument('--cert', type=Path, help='the certificate (PEM) the hub shows; with --key')
+    parser.add_argument('--key', type=Path, help="the certificate's private key (PEM)")
+    parser.add_argument('--state', type=Path, default=hub.STATE,
+                        help=f'where the hub keeps its venv, database and certificate (default {hub.STATE})')
+
+
+class ServeError(RuntimeError):
+    """Why the class server cannot start, in one line."""
+
+
+def free_local_port() -> int:
+    """A port on 127.0.0.1 free now (for the hub's and the proxy's own APIs)."""
+    with socket.socket() as probe:
+        probe.bind(('127.0.0.1', 0))
+        return int(probe.getsockname()[1])
+
+
+def closed_parent(folder: Path) -> Path | None:
+    """The first existing folder above folder that other accounts cannot pass through, if any."""
+    for parent in reversed(folder.absolute().parents):
+        if parent.is_dir() and not parent.stat().st_mode & 0o001:
+            return parent
+    return None
+
+
+def teacher_password() -> str:
+    """The teacher's password from the environment, else asked in the terminal."""
+    password = os.environ.get(PASSWORD_VARIABLE)
+    if password is None:
+        if not sys.stdin.isatty():
+            raise ServeError(f"set {PASSWORD_VARIABLE} or run it in a terminal to be asked the teacher's "
+                             'password')
+        password = getpass.getpass("The teacher's password: ")
+    if not password or any(character.isspace() for character in password):
+        raise ServeError("the teacher's password must be non-empty, without spaces")
+    return password
+
+
+def prepare(args: argparse.Namespace) -> hub.HubSettings:
+    """Check everything, then make the accounts and the hub's files: the hub's settings."""
+    if os.geteuid() != 0:
+        raise ServeError('run it as root (sudo): it makes a Unix account for each student')
+    if not 0 < args.port < 65536:
+        raise ServeError(f'--port must be 1-65535, got {args.port}')
+    try:
+        text = Path(args.students).read_text()
+    except (OSError, UnicodeDecodeError) as error:
+        raise ServeError(f'cannot read the class list {args.students}: {error}') from None
+    students = parse_students(text, args.students)
+    problem = name_problem(args.teacher)
+    if problem:
+        raise ServeError(f'--teacher: {problem}')
+    if args.teacher in {s.name for s in students}:
+        raise ServeError(f"--teacher: '{args.teacher}' is also in the class list")
+    conflicts = [c for c in [accounts.conflict(s.name, accounts.STUDENTS) for s in students]
+                 + [accounts.conflict(args.teacher, accounts.TEACHERS)] if c]
+    if conflicts:
+        raise ServeError(conflicts[0])
+    closed = closed_parent(args.state)
+    if closed is not None:
+        raise ServeError(f'--state {args.state}: every student runs the hub\'s venv inside, but {closed} is '
+                         'closed to other accounts (it needs o+x)')
+    password = teacher_password()
+    args.state.mkdir(mode=0o700, parents=True, exist_ok=True)
+    os.chmod(args.state, 0o711)  # students' servers run the venv inside; the rest stays root's
+    certificate = hub.ensure_certificate(args.state, args.cert, args.key, socket.gethostname())
+    venv = hub.ensure_venv(args.state)
+    proxy_command = hub.ensure_proxy(args.state)
+    for group in (accounts.STUDENTS, accounts.TEACHERS):
+        accounts.ensure_group(group)
+    made = [s.name for s in students if accounts.ensure_account(s.name, s.password, accounts.STUDENTS)]
+    accounts.ensure_account(args.teacher, password, accounts.TEACHERS)
+    print(f'owl class: {len(students)} students ({len(made)} new accounts), teacher {args.teacher}',
+          flush=True)
+    return hub.HubSettings(args.state, args.port, free_local_port(), free_local_port(), certificate,
+                           [s.name for s in students], args.teacher, venv, proxy_command)
+
+
+def run(args: argparse.Namespace) -> int:
+    """`owl class serve`: exit code 2 with one line when it cannot start, else the hub's at Ctrl-C."""
+    try:
+        settings = prepare(args)
+    except (ServeError, StudentsError, accounts.AccountError, hub.HubError) as error:
+        print(f'owl class: {error}', file=sys.stderr)
+        return 2
+    config = hub.write_config(settings)
+    server = subprocess.Popen([str(settings.venv / 'bin' / 'jupyterhub'), '-f', str(config)],
+                              cwd=settings.state, start_new_session=True)
+    print(f'owl class: the class server is at https://{socket.gethostname()}:{settings.port}/ '
+          f'(certificate SHA-256 {settings.certificate.fingerprint}); Ctrl-C to stop it', flush=True)
+    try:
+        return server.wait()
+    except KeyboardInterrupt:
+        server.send_signal(signal.SIGINT)  # the hub stops every student's server and its proxy
+        server.wait()
+        return 0
