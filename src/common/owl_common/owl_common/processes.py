@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import ctypes
 import fcntl
+import itertools
 import os
 import re
 import shutil
@@ -50,11 +51,18 @@ def try_lock_file(directory: Path, ids: Sequence[int], start: int = 0) -> tuple[
     return None
 
 
+# Where this process's next lease starts looking: one domain further each time. A domain just given
+# back may still hold what its last user left for seconds (a discovery bridge lingers 10 s, a killed
+# process's participant until its DDS lease runs out); a test run's worker that took the first free
+# domain from a fixed start used the same one for every test, so a test could meet the last one's.
+LEASE_STARTS = itertools.count(os.getpid())
+
+
 class DomainLease:
     """Exclusive use of one ROS_DOMAIN_ID on this machine until release()."""
 
     def __init__(self) -> None:
-        leased = try_lock_file(LEASE_DIR, DOMAIN_IDS, os.getpid() % len(DOMAIN_IDS))
+        leased = try_lock_file(LEASE_DIR, DOMAIN_IDS, next(LEASE_STARTS) % len(DOMAIN_IDS))
         if leased is None:
             raise RuntimeError(f'all ROS domains {DOMAIN_IDS.start}..{DOMAIN_IDS.stop - 1} are in use')
         self.domain_id, handle = leased
