@@ -195,7 +195,8 @@ def test_owl_network_refuses_bad_arguments_in_one_line(args, message):
 @pytest.mark.parametrize(('args', 'message'), [
     (['network', '--what'], 'owl: error: unrecognized arguments: --what'),
     (['netwerk'], "owl: error: argument COMMAND: invalid choice: 'netwerk' "
-                  "(choose from 'network', 'windows', 'check', 'pages')"),
+                  "(choose from 'network', 'windows', 'check', 'pages', 'class')"),
+    (['class', 'serv'], "owl class: error: argument COMMAND: invalid choice: 'serv' (choose from 'serve')"),
 ])
 def test_owl_refuses_unknown_words_in_one_line(args, message):
     result = subprocess.run(['owl', *args], capture_output=True, text=True, timeout=60)
