@@ -16,6 +16,7 @@ import pwd
 import re
 import secrets
 import shutil
+import socket
 import ssl
 import subprocess
 import tempfile
@@ -236,6 +237,25 @@ def test_a_bad_class_list_is_one_line_and_creates_nothing(tmp_path, lines, messa
                 pwd.getpwnam(name)
     finally:
         remove_accounts(set(names.values()))
+
+
+def test_a_busy_port_is_one_line(tmp_path):
+    if os.geteuid() != 0:
+        prerequisite_missing('owl class serve makes Unix accounts: the test runs as root')
+    class_list = tmp_path / 'class.txt'
+    class_list.write_text(f'{new_name()} pw-a\n')
+    with socket.socket() as busy:
+        busy.bind(('', 0))
+        busy.listen()
+        port = busy.getsockname()[1]
+        done = subprocess.run(['owl', 'class', 'serve', '--students', str(class_list), '--teacher',
+                               new_name(), '--port', str(port), '--state', str(tmp_path / 'state')],
+                              capture_output=True,
+                              text=True, timeout=60, check=False,
+                              env={**os.environ, 'OWL_CLASS_TEACHER_PASSWORD': TEACHER_PASSWORD})
+    assert done.returncode == 2
+    assert done.stderr.strip().splitlines() == [f'owl class: --port {port}: Address already in use']
+    assert not (tmp_path / 'state').exists()
 
 
 def test_a_missing_class_list_is_one_line(tmp_path):

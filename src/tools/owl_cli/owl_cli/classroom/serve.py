@@ -78,6 +78,12 @@ def prepare(args: argparse.Namespace) -> hub.HubSettings:
         raise ServeError('run it as root (sudo): it makes a Unix account for each student')
     if not 0 < args.port < 65536:
         raise ServeError(f'--port must be 1-65535, got {args.port}')
+    with socket.socket() as probe:  # the hub would fail later, amid its own log lines
+        probe.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)  # as the proxy binds: past TIME_WAIT
+        try:
+            probe.bind(('', args.port))
+        except OSError as error:
+            raise ServeError(f'--port {args.port}: {error.strerror or error}') from None
     try:
         text = Path(args.students).read_text()
     except (OSError, UnicodeDecodeError) as error:
@@ -116,7 +122,7 @@ def run(args: argparse.Namespace) -> int:
     """`owl class serve`: exit code 2 with one line when it cannot start, else the hub's at Ctrl-C."""
     try:
         settings = prepare(args)
-    except (ServeError, StudentsError, accounts.AccountError, hub.HubError) as error:
+    except (ServeError, StudentsError, accounts.AccountError, hub.HubError, OSError) as error:
         print(f'owl class: {error}', file=sys.stderr)
         return 2
     config = hub.write_config(settings)
