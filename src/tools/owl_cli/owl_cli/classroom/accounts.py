@@ -11,14 +11,11 @@ from __future__ import annotations
 import grp
 import os
 import pwd
-import subprocess
+
+from owl_cli.classroom import run_step
 
 STUDENTS = 'owl-students'
 TEACHERS = 'owl-teachers'
-
-
-class AccountError(RuntimeError):
-    """An account that cannot be made or used, in one line."""
 
 
 def member_of(name: str, group: str) -> bool:
@@ -47,20 +44,12 @@ def conflict(name: str, group: str) -> str | None:
     return f"an account named '{name}' already exists on this machine and is not one of the class's"
 
 
-def run(argv: list[str], stdin: str | None = None) -> None:
-    """Run an account tool (useradd, chpasswd, ...); AccountError with its last line when it fails."""
-    done = subprocess.run(argv, input=stdin, capture_output=True, text=True, check=False)
-    if done.returncode != 0:
-        detail = (done.stderr or done.stdout).strip().splitlines()
-        raise AccountError(f"{argv[0]} failed: {detail[-1] if detail else f'exit code {done.returncode}'}")
-
-
 def ensure_group(group: str) -> None:
     """Make the system group unless it exists."""
     try:
         grp.getgrnam(group)
     except KeyError:
-        run(['groupadd', '--system', group])
+        run_step(['groupadd', '--system', group], 'groupadd')
 
 
 def ensure_account(name: str, password: str, group: str) -> bool:
@@ -70,7 +59,7 @@ def ensure_account(name: str, password: str, group: str) -> bool:
     """
     made = not exists(name)
     if made:
-        run(['useradd', '--create-home', '--shell', '/bin/bash', '--groups', group, name])
+        run_step(['useradd', '--create-home', '--shell', '/bin/bash', '--groups', group, name], 'useradd')
     os.chmod(pwd.getpwnam(name).pw_dir, 0o700)  # Debian's useradd makes homes readable by all
-    run(['chpasswd'], stdin=f'{name}:{password}\n')
+    run_step(['chpasswd'], 'chpasswd', stdin=f'{name}:{password}\n')
     return made

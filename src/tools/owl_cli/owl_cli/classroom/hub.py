@@ -19,29 +19,19 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
+from owl_cli.classroom import ClassError, run_step
+
 STATE = Path('/var/lib/owl-kit-lab/class')
 SYSTEM_PYTHON = '/usr/bin/python3'
 CERTIFICATE_DAYS = 825  # the longest validity browsers accept for a certificate they are told to trust
-
-
-class HubError(RuntimeError):
-    """Something the hub needs that cannot be made, in one line."""
 
 
 def project_root() -> Path:
     """This checkout (env.sh sets OWL_ROOT)."""
     root = os.environ.get('OWL_ROOT')
     if not root:
-        raise HubError("OWL_ROOT is not set: run 'source env.sh' in the Owl Kit Lab folder first")
+        raise ClassError("OWL_ROOT is not set: run 'source env.sh' in the Owl Kit Lab folder first")
     return Path(root)
-
-
-def run_logged(argv: list[str], what: str, cwd: Path | None = None) -> None:
-    """Run a setup step quietly; HubError naming what failed, with its last line."""
-    done = subprocess.run(argv, capture_output=True, text=True, cwd=cwd, check=False)
-    if done.returncode != 0:
-        lines = (done.stderr or done.stdout).strip().splitlines()
-        raise HubError(f"{what} failed: {lines[-1] if lines else f'exit code {done.returncode}'}")
 
 
 def stamp_matches(folder: Path, inputs: list[Path]) -> bool:
@@ -65,13 +55,13 @@ def ensure_venv(state: Path) -> Path:
     if stamp_matches(venv, [requirements]):
         return venv
     if not Path(SYSTEM_PYTHON).is_file():
-        raise HubError(f'{SYSTEM_PYTHON} is missing: the hub and every student need a Python all accounts '
+        raise ClassError(f'{SYSTEM_PYTHON} is missing: the hub and every student need a Python all accounts '
                        "can run ('apt install python3')")
     print('owl class: installing JupyterHub into its own venv (once) ...', flush=True)
     uv = Path(sys.prefix) / 'bin' / 'uv'
-    run_logged([str(uv), 'venv', '--quiet', '--allow-existing', '--python', SYSTEM_PYTHON, str(venv)],
+    run_step([str(uv), 'venv', '--quiet', '--allow-existing', '--python', SYSTEM_PYTHON, str(venv)],
                'making the hub venv')
-    run_logged([str(uv), 'pip', 'install', '--quiet', '--python', str(venv / 'bin' / 'python'),
+    run_step([str(uv), 'pip', 'install', '--quiet', '--python', str(venv / 'bin' / 'python'),
                 '-r', str(requirements)], 'installing the hub (uv pip install)')
     os.chmod(venv, 0o755)  # every student's server runs jupyterhub-singleuser from here
     (venv / '.owl-inputs.sha256').write_text(inputs_digest([requirements]))
@@ -91,7 +81,7 @@ def ensure_proxy(state: Path) -> list[str]:
         for path in inputs:
             shutil.copyfile(path, folder / path.name)
         npm = Path(sys.prefix) / 'bin' / 'npm'
-        run_logged([str(npm), 'ci', '--ignore-scripts', '--no-audit', '--no-fund',
+        run_step([str(npm), 'ci', '--ignore-scripts', '--no-audit', '--no-fund',
                     '--prefix', str(folder)], 'installing configurable-http-proxy (npm ci)')
         (folder / '.owl-inputs.sha256').write_text(inputs_digest(inputs))
     # node itself, not the wheel's Python launcher: a stopped launcher could leave the proxy on the port.
@@ -114,7 +104,7 @@ def fingerprint_of(cert: Path) -> str:
     try:
         der = ssl.PEM_cert_to_DER_cert(cert.read_text())
     except (OSError, ValueError) as error:
-        raise HubError(f'cannot read the certificate {cert}: {error}') from None
+        raise ClassError(f'cannot read the certificate {cert}: {error}') from None
     digest = hashlib.sha256(der).hexdigest().upper()
     return ':'.join(digest[i:i + 2] for i in range(0, len(digest), 2))
 
@@ -122,15 +112,15 @@ def fingerprint_of(cert: Path) -> str:
 def ensure_certificate(state: Path, cert: Path | None, key: Path | None, hostname: str) -> Certificate:
     """The teacher's certificate and key, or a self-signed one made at the first start and kept."""
     if (cert is None) != (key is None):
-        raise HubError('give both --cert and --key, or neither (a self-signed certificate is made)')
+        raise ClassError('give both --cert and --key, or neither (a self-signed certificate is made)')
     if cert is not None and key is not None:
         for path in (cert, key):
             if not path.is_file():
-                raise HubError(f'no such file: {path}')
+                raise ClassError(f'no such file: {path}')
         return Certificate(cert, key, fingerprint_of(cert))
     cert, key = state / 'hub.crt', state / 'hub.key'
     if not (cert.is_file() and key.is_file()):
-        run_logged(['openssl', 'req', '-x509', '-newkey', 'ec', '-pkeyopt', 'ec_paramgen_curve:P-256',
+        run_step(['openssl', 'req', '-x509', '-newkey', 'ec', '-pkeyopt', 'ec_paramgen_curve:P-256',
                     '-nodes', '-days', str(CERTIFICATE_DAYS), '-subj', f'/CN={hostname}',
                     '-addext', f'subjectAltName=DNS:{hostname},DNS:localhost,IP:127.0.0.1',
                     '-keyout', str(key), '-out', str(cert)], 'making a self-signed certificate (openssl)')

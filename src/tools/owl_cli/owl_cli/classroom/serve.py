@@ -19,7 +19,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from owl_cli.classroom import accounts, hub
+from owl_cli.classroom import ClassError, accounts, hub
 from owl_cli.classroom.students import StudentsError, name_problem, parse_students
 
 DEFAULT_PORT = 8443
@@ -38,10 +38,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--key', type=Path, help="the certificate's private key (PEM)")
     parser.add_argument('--state', type=Path, default=hub.STATE,
                         help=f'where the hub keeps its venv, database and certificate (default {hub.STATE})')
-
-
-class ServeError(RuntimeError):
-    """Why the class server cannot start, in one line."""
 
 
 def free_local_port() -> int:
@@ -64,43 +60,43 @@ def teacher_password() -> str:
     password = os.environ.get(PASSWORD_VARIABLE)
     if password is None:
         if not sys.stdin.isatty():
-            raise ServeError(f"set {PASSWORD_VARIABLE} or run it in a terminal to be asked the teacher's "
+            raise ClassError(f"set {PASSWORD_VARIABLE} or run it in a terminal to be asked the teacher's "
                              'password')
         password = getpass.getpass("The teacher's password: ")
     if not password or any(character.isspace() for character in password):
-        raise ServeError("the teacher's password must be non-empty, without spaces")
+        raise ClassError("the teacher's password must be non-empty, without spaces")
     return password
 
 
 def prepare(args: argparse.Namespace) -> hub.HubSettings:
     """Check everything, then make the accounts and the hub's files: the hub's settings."""
     if os.geteuid() != 0:
-        raise ServeError('run it as root (sudo): it makes a Unix account for each student')
+        raise ClassError('run it as root (sudo): it makes a Unix account for each student')
     if not 0 < args.port < 65536:
-        raise ServeError(f'--port must be 1-65535, got {args.port}')
+        raise ClassError(f'--port must be 1-65535, got {args.port}')
     with socket.socket() as probe:  # the hub would fail later, amid its own log lines
         probe.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)  # as the proxy binds: past TIME_WAIT
         try:
             probe.bind(('', args.port))
         except OSError as error:
-            raise ServeError(f'--port {args.port}: {error.strerror or error}') from None
+            raise ClassError(f'--port {args.port}: {error.strerror or error}') from None
     try:
         text = Path(args.students).read_text()
     except (OSError, UnicodeDecodeError) as error:
-        raise ServeError(f'cannot read the class list {args.students}: {error}') from None
+        raise ClassError(f'cannot read the class list {args.students}: {error}') from None
     students = parse_students(text, args.students)
     problem = name_problem(args.teacher)
     if problem:
-        raise ServeError(f'--teacher: {problem}')
+        raise ClassError(f'--teacher: {problem}')
     if args.teacher in {s.name for s in students}:
-        raise ServeError(f"--teacher: '{args.teacher}' is also in the class list")
+        raise ClassError(f"--teacher: '{args.teacher}' is also in the class list")
     conflicts = [c for c in [accounts.conflict(s.name, accounts.STUDENTS) for s in students]
                  + [accounts.conflict(args.teacher, accounts.TEACHERS)] if c]
     if conflicts:
-        raise ServeError(conflicts[0])
+        raise ClassError(conflicts[0])
     closed = closed_parent(args.state)
     if closed is not None:
-        raise ServeError(f'--state {args.state}: every student runs the hub\'s venv inside, but {closed} is '
+        raise ClassError(f'--state {args.state}: every student runs the hub\'s venv inside, but {closed} is '
                          'closed to other accounts (it needs o+x)')
     password = teacher_password()
     args.state.mkdir(mode=0o700, parents=True, exist_ok=True)
@@ -122,7 +118,7 @@ def run(args: argparse.Namespace) -> int:
     """`owl class serve`: exit code 2 with one line when it cannot start, else the hub's at Ctrl-C."""
     try:
         settings = prepare(args)
-    except (ServeError, StudentsError, accounts.AccountError, hub.HubError, OSError) as error:
+    except (ClassError, StudentsError, OSError) as error:
         print(f'owl class: {error}', file=sys.stderr)
         return 2
     config = hub.write_config(settings)
