@@ -16,6 +16,7 @@ import pwd
 import re
 import secrets
 import shutil
+import signal
 import socket
 import ssl
 import subprocess
@@ -148,10 +149,12 @@ def hub(tmp_path_factory) -> Iterator[Hub]:
         started.start()
         yield started
     finally:
-        if started.process is not None:
-            started.process.stop(timeout=20)
-        remove_accounts(started.made)
-        shutil.rmtree(folder, ignore_errors=True)
+        try:
+            if started.process is not None:
+                assert started.stop() == 0  # Ctrl-C ends the class server cleanly
+        finally:
+            remove_accounts(started.made)
+            shutil.rmtree(folder, ignore_errors=True)
 
 
 def server_processes_of(name: str) -> list[str]:
@@ -197,8 +200,11 @@ def test_a_restart_with_a_longer_list_adds_a_student_and_keeps_everyones_files(h
     first = next(iter(hub.students))
     work = Path(pwd.getpwnam(first).pw_dir) / 'work.py'
     work.write_text('print("kept")\n')
-    assert hub.stop() == 0
-    assert server_processes_of(first) == []  # Ctrl-C stopped the students' servers too
+    assert hub.process is not None
+    hub.process.send_signal(signal.SIGTERM)  # as `kill` would: the hub stops with it, as at Ctrl-C
+    assert hub.process.wait(30) == 0
+    assert server_processes_of(first) == []  # the students' servers stopped too
+    assert not Path(hub.folder / 'state' / 'jupyterhub.pid').exists()  # and the hub itself
     newcomer = new_name()
     hub.students[newcomer] = 'pw-newcomer'
     hub.start()

@@ -114,6 +114,11 @@ def prepare(args: argparse.Namespace) -> hub.HubSettings:
                            [s.name for s in students], args.teacher, venv, proxy_command)
 
 
+def interrupt(signum: int, frame: object) -> None:
+    """A signal handler that stops the class server as Ctrl-C does (the hub runs in its own session)."""
+    raise KeyboardInterrupt
+
+
 def run(args: argparse.Namespace) -> int:
     """`owl class serve`: exit code 2 with one line when it cannot start, else the hub's at Ctrl-C."""
     try:
@@ -122,6 +127,8 @@ def run(args: argparse.Namespace) -> int:
         print(f'owl class: {error}', file=sys.stderr)
         return 2
     config = hub.write_config(settings)
+    for stop_signal in (signal.SIGTERM, signal.SIGHUP):  # kill, or the terminal closed: as Ctrl-C
+        signal.signal(stop_signal, interrupt)
     server = subprocess.Popen([str(settings.venv / 'bin' / 'jupyterhub'), '-f', str(config)],
                               cwd=settings.state, start_new_session=True)
     print(f'owl class: the class server is at https://{socket.gethostname()}:{settings.port}/ '
