@@ -35,9 +35,9 @@ def project_root() -> Path:
 
 
 def stamp_matches(folder: Path, inputs: list[Path]) -> bool:
-    """Whether folder was made from inputs as they are now (its .owl-inputs.sha256); else writes nothing."""
-    return (folder / '.owl-inputs.sha256').is_file() and \
-        (folder / '.owl-inputs.sha256').read_text() == inputs_digest(inputs)
+    """Whether folder was made from inputs as they are now (its .owl-inputs.sha256 says so)."""
+    stamp = folder / '.owl-inputs.sha256'
+    return stamp.is_file() and stamp.read_text() == inputs_digest(inputs)
 
 
 def inputs_digest(inputs: list[Path]) -> str:
@@ -56,13 +56,13 @@ def ensure_venv(state: Path) -> Path:
         return venv
     if not Path(SYSTEM_PYTHON).is_file():
         raise ClassError(f'{SYSTEM_PYTHON} is missing: the hub and every student need a Python all accounts '
-                       "can run ('apt install python3')")
+                         "can run ('apt install python3')")
     print('owl class: installing JupyterHub into its own venv (once) ...', flush=True)
     uv = Path(sys.prefix) / 'bin' / 'uv'
     run_step([str(uv), 'venv', '--quiet', '--allow-existing', '--python', SYSTEM_PYTHON, str(venv)],
-               'making the hub venv')
+             'making the hub venv')
     run_step([str(uv), 'pip', 'install', '--quiet', '--python', str(venv / 'bin' / 'python'),
-                '-r', str(requirements)], 'installing the hub (uv pip install)')
+              '-r', str(requirements)], 'installing the hub (uv pip install)')
     os.chmod(venv, 0o755)  # every student's server runs jupyterhub-singleuser from here
     (venv / '.owl-inputs.sha256').write_text(inputs_digest([requirements]))
     return venv
@@ -81,8 +81,8 @@ def ensure_proxy(state: Path) -> list[str]:
         for path in inputs:
             shutil.copyfile(path, folder / path.name)
         npm = Path(sys.prefix) / 'bin' / 'npm'
-        run_step([str(npm), 'ci', '--ignore-scripts', '--no-audit', '--no-fund',
-                    '--prefix', str(folder)], 'installing configurable-http-proxy (npm ci)')
+        run_step([str(npm), 'ci', '--ignore-scripts', '--no-audit', '--no-fund', '--prefix', str(folder)],
+                 'installing configurable-http-proxy (npm ci)')
         (folder / '.owl-inputs.sha256').write_text(inputs_digest(inputs))
     # node itself, not the wheel's Python launcher: a stopped launcher could leave the proxy on the port.
     found = subprocess.run([str(node), '-p', 'process.execPath'], capture_output=True, text=True, check=False)
@@ -121,9 +121,9 @@ def ensure_certificate(state: Path, cert: Path | None, key: Path | None, hostnam
     cert, key = state / 'hub.crt', state / 'hub.key'
     if not (cert.is_file() and key.is_file()):
         run_step(['openssl', 'req', '-x509', '-newkey', 'ec', '-pkeyopt', 'ec_paramgen_curve:P-256',
-                    '-nodes', '-days', str(CERTIFICATE_DAYS), '-subj', f'/CN={hostname}',
-                    '-addext', f'subjectAltName=DNS:{hostname},DNS:localhost,IP:127.0.0.1',
-                    '-keyout', str(key), '-out', str(cert)], 'making a self-signed certificate (openssl)')
+                  '-nodes', '-days', str(CERTIFICATE_DAYS), '-subj', f'/CN={hostname}',
+                  '-addext', f'subjectAltName=DNS:{hostname},DNS:localhost,IP:127.0.0.1',
+                  '-keyout', str(key), '-out', str(cert)], 'making a self-signed certificate (openssl)')
         os.chmod(key, 0o600)
     return Certificate(cert, key, fingerprint_of(cert))
 
