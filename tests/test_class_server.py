@@ -33,6 +33,10 @@ from ros_harness import wait_until
 from web_harness import free_port
 
 START_TIMEOUT = 240.0  # s: the first start installs JupyterHub into its own venv
+# The hub's tests start it (installing it first on a new machine) and a JupyterLab per student: about
+# a core's worth, for tens of seconds alone and minutes on a loaded machine. They take the share of
+# the machine the whole kit does, and time enough that a slow start is a failure, not a dead worker.
+HUB_TEST_TIMEOUT = 360.0  # s
 TEACHER_PASSWORD = 'teacher-secret-1'
 
 
@@ -163,6 +167,8 @@ def server_processes_of(name: str) -> list[str]:
     return [line for line in listing.stdout.splitlines() if 'jupyterhub-singleuser' in line]
 
 
+@pytest.mark.whole_kit
+@pytest.mark.timeout(HUB_TEST_TIMEOUT)
 def test_students_log_in_to_servers_of_their_own_and_reach_nothing_else(hub):
     first, second = hub.students
     visitor = Browser(hub.port)
@@ -196,6 +202,8 @@ def test_students_log_in_to_servers_of_their_own_and_reach_nothing_else(hub):
     assert 'Permission denied' in peek.stderr
 
 
+@pytest.mark.whole_kit
+@pytest.mark.timeout(HUB_TEST_TIMEOUT)
 def test_a_restart_with_a_longer_list_adds_a_student_and_keeps_everyones_files(hub):
     first = next(iter(hub.students))
     work = Path(pwd.getpwnam(first).pw_dir) / 'work.py'
