@@ -9,8 +9,10 @@ keeps the others' files. Every account made here is removed at the end.
 
 from __future__ import annotations
 
+import asyncio
 import hashlib
 import http.client
+import json
 import os
 import pwd
 import re
@@ -21,22 +23,24 @@ import socket
 import ssl
 import subprocess
 import tempfile
+import time
 import urllib.parse
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import aiohttp
 import pytest
 from gates import prerequisite_missing
 from owl_common.processes import RosProcess
 from ros_harness import wait_until
 from web_harness import free_port
 
-START_TIMEOUT = 240.0  # s: the first start installs JupyterHub into its own venv
+START_TIMEOUT = 300.0  # s: the first start installs JupyterHub and builds the students' lab
 # The hub's tests start it (installing it first on a new machine) and a JupyterLab per student: about
 # a core's worth, for tens of seconds alone and minutes on a loaded machine. They take the share of
 # the machine the whole kit does, and time enough that a slow start is a failure, not a dead worker.
-HUB_TEST_TIMEOUT = 360.0  # s
+HUB_TEST_TIMEOUT = 540.0  # s
 TEACHER_PASSWORD = 'teacher-secret-1'
 
 
@@ -93,11 +97,12 @@ class Browser:
         self.cookies: dict[str, str] = {}
         self.peer_certificate = b''
 
-    def request(self, method: str, path: str, form: dict[str, str] | None = None) -> tuple[int, str, str]:
+    def request(self, method: str, path: str, form: dict[str, str] | None = None,
+                headers: dict[str, str] | None = None) -> tuple[int, str, str]:
         """(status, Location, body) of one request."""
         connection = http.client.HTTPSConnection('127.0.0.1', self.port, timeout=30,
                                                  context=ssl._create_unverified_context())
-        headers = {'Cookie': '; '.join(f'{k}={v}' for k, v in self.cookies.items())}
+        headers = {**(headers or {}), 'Cookie': '; '.join(f'{k}={v}' for k, v in self.cookies.items())}
         body = None
         if form is not None:
             body = urllib.parse.urlencode(form)
@@ -135,6 +140,56 @@ class Browser:
                                                    '_xsrf': xsrf.group(1) if xsrf else ''})
 
 
+class Terminal:
+    """A JupyterLab terminal of a logged-in student, driven over its WebSocket as the lab page does."""
+
+    def __init__(self, browser: Browser, name: str) -> None:
+        self.browser, self.name = browser, name
+        self.output = ''
+        self.session: aiohttp.ClientSession | None = None
+        self.socket: aiohttp.ClientWebSocketResponse[bool] | None = None
+
+    async def __aenter__(self) -> Terminal:
+        status, _, body = self.browser.request('POST', f'/user/{self.name}/api/terminals',
+                                               headers={'X-XSRFToken': self.browser.cookies.get('_xsrf', '')})
+        assert status == 200, body
+        cookie = '; '.join(f'{k}={v}' for k, v in self.browser.cookies.items())
+        self.session = aiohttp.ClientSession(headers={'Cookie': cookie})
+        self.socket = await self.session.ws_connect(
+            f'wss://127.0.0.1:{self.browser.port}/user/{self.name}/terminals/websocket/{json.loads(body)["name"]}',
+            ssl=False)
+        return self
+
+    async def __aexit__(self, *exc: object) -> None:
+        assert self.session is not None
+        await self.session.close()
+
+    async def run(self, command: str, timeout: float = 60) -> str:
+        """Type command, and what it printed until it ended (an end marker the shell expands)."""
+        assert self.socket is not None
+        marker = secrets.token_hex(4)
+        start = len(self.output)
+        # The marker's line comes after the command's (a command ending in & is one too); the shell
+        # expands it, so the typed line itself never matches.
+        await self.socket.send_str(json.dumps(['stdin', f'{command}\recho END-$((0x{marker}))\r']))
+        ended = f'END-{int(marker, 16)}'
+        try:
+            await asyncio.wait_for(self.read_until(ended, start), timeout)
+        except asyncio.TimeoutError:
+            raise AssertionError(f'{command!r} did not end in {timeout} s:\n{self.output}') from None
+        return self.output[start:self.output.index(ended, start)]
+
+    async def read_until(self, text: str, start: int) -> None:
+        assert self.socket is not None
+        while text not in self.output[start:]:
+            message = await self.socket.receive()
+            if message.type is not aiohttp.WSMsgType.TEXT:
+                raise AssertionError(f'the terminal closed ({message!r}); it showed:\n{self.output}')
+            kind, *data = json.loads(message.data)
+            if kind == 'stdout':
+                self.output += data[0]
+
+
 def remove_accounts(names: set[str]) -> None:
     for name in names:
         subprocess.run(['userdel', '--remove', name], capture_output=True, check=False)
@@ -167,6 +222,21 @@ def server_processes_of(name: str) -> list[str]:
     return [line for line in listing.stdout.splitlines() if 'jupyterhub-singleuser' in line]
 
 
+def logged_in(hub: Hub, names: list[str]) -> dict[str, Browser]:
+    """Each of names logged in with their server running, as their browser is once the lab shows."""
+    students = {name: Browser(hub.port) for name in names}
+    for name, student in students.items():
+        status, location, _ = student.log_in(name, hub.students[name])
+        assert (status, location) in {(302, '/hub/spawn'), (302, f'/user/{name}/')}  # to start, or running
+        assert student.get('/hub/spawn')[0] == 302
+    for name, student in students.items():
+        # The lab page logs the browser in to the server (OAuth through the hub); then its API answers
+        # (api/status needs that login, while a server's bare api/ answers anyone with its version).
+        wait_until(lambda: student.follow(f'/user/{name}/lab') == 200  # noqa: B023
+                   and student.get(f'/user/{name}/api/status')[0] == 200, 90, f"{name}'s server")  # noqa: B023
+    return students
+
+
 @pytest.mark.whole_kit
 @pytest.mark.timeout(HUB_TEST_TIMEOUT)
 def test_students_log_in_to_servers_of_their_own_and_reach_nothing_else(hub):
@@ -177,16 +247,8 @@ def test_students_log_in_to_servers_of_their_own_and_reach_nothing_else(hub):
     expected = hashlib.sha256(visitor.peer_certificate).hexdigest().upper()
     assert hub.fingerprint.replace(':', '') == expected  # the students compare what the teacher printed
 
-    students = {name: Browser(hub.port) for name in (first, second)}
-    for name, student in students.items():
-        status, location, _ = student.log_in(name, hub.students[name])
-        assert (status, location) == (302, '/hub/spawn')
-        assert student.get('/hub/spawn')[0] == 302
-    for name, student in students.items():
-        # The lab page logs the browser in to the server (OAuth through the hub); then its API answers
-        # (api/status needs that login, while a server's bare api/ answers anyone with its version).
-        wait_until(lambda: student.follow(f'/user/{name}/lab') == 200  # noqa: B023
-                   and student.get(f'/user/{name}/api/status')[0] == 200, 90, f"{name}'s server")  # noqa: B023
+    students = logged_in(hub, [first, second])
+    for name in students:
         assert server_processes_of(name)  # started as the student's own account
     student = students[first]
     assert student.get('/hub/api/users')[0] == 403  # the admin API
@@ -204,6 +266,32 @@ def test_students_log_in_to_servers_of_their_own_and_reach_nothing_else(hub):
 
 @pytest.mark.whole_kit
 @pytest.mark.timeout(HUB_TEST_TIMEOUT)
+def test_each_student_has_a_terminal_of_the_lab_a_ros_world_and_a_front_door_of_their_own(hub):
+    first, second = hub.students
+    students = logged_in(hub, [first, second])
+
+    async def in_terminals() -> None:
+        async with Terminal(students[first], first) as mine, Terminal(students[second], second) as theirs:
+            domains = [re.findall(r'domain (\d+)', await terminal.run('echo "domain $ROS_DOMAIN_ID"'))
+                       for terminal in (mine, theirs)]
+            assert len(domains[0]) == len(domains[1]) == 1, (mine.output, theirs.output)
+            assert domains[0] != domains[1]
+            await mine.run('ros2 run turtlesim turtlesim_node > turtlesim.log 2>&1 &')
+            deadline = time.monotonic() + 60
+            while '/turtlesim' not in await mine.run('ros2 node list'):
+                assert time.monotonic() < deadline, mine.output  # each listing waits for discovery
+            assert '/turtlesim' not in await theirs.run('ros2 node list')  # another student's world
+            assert 'Owl Kit Lab: network private' in mine.output  # the terminal sourced the lab's env.sh
+
+    asyncio.run(in_terminals())
+    # The launcher's tile: the student's front door, through the hub's proxy; nobody else's.
+    wait_until(lambda: 'Owl Kit Lab: every page' in students[first].get(f'/user/{first}/owl-kit-lab/')[2],
+               60, f"{first}'s front door")
+    assert students[second].follow(f'/user/{first}/owl-kit-lab/') == 403
+
+
+@pytest.mark.whole_kit
+@pytest.mark.timeout(HUB_TEST_TIMEOUT)
 def test_a_restart_with_a_longer_list_adds_a_student_and_keeps_everyones_files(hub):
     first = next(iter(hub.students))
     work = Path(pwd.getpwnam(first).pw_dir) / 'work.py'
@@ -211,7 +299,9 @@ def test_a_restart_with_a_longer_list_adds_a_student_and_keeps_everyones_files(h
     assert hub.process is not None
     hub.process.send_signal(signal.SIGTERM)  # as `kill` would: the hub stops with it, as at Ctrl-C
     assert hub.process.wait(30) == 0
-    assert server_processes_of(first) == []  # the students' servers stopped too
+    for name in hub.students:  # their servers stopped too, and whatever they started (a turtle, a front door)
+        assert subprocess.run(['pgrep', '--uid', name], capture_output=True, text=True,
+                              check=False).stdout == ''
     assert not Path(hub.folder / 'state' / 'jupyterhub.pid').exists()  # and the hub itself
     newcomer = new_name()
     hub.students[newcomer] = 'pw-newcomer'

@@ -31,6 +31,18 @@ DOMAIN_IDS = range(1, 102)
 LEASE_DIR = Path(os.environ.get('OWL_DOMAIN_LEASE_DIR', '/tmp/owl-kit-lab-domains'))
 
 
+def shared_folder(directory: Path) -> None:
+    """Make directory a folder every account may add to, as /tmp is (mode 1777), if it is ours.
+
+    The domain leases are machine-wide: on a class server each student's `owl check` leases from
+    the same folder, and the class server holds every student's own domain there.
+    """
+    directory.mkdir(parents=True, exist_ok=True)
+    made = directory.stat()
+    if made.st_uid == os.geteuid() and made.st_mode & 0o7777 != 0o1777:
+        directory.chmod(0o1777)  # also one made before leases were shared
+
+
 def try_lock_file(directory: Path, ids: Sequence[int], start: int = 0) -> tuple[int, IO[str]] | None:
     """The first free one of ids, with its lock file's handle; None when every one is held.
 
@@ -38,10 +50,11 @@ def try_lock_file(directory: Path, ids: Sequence[int], start: int = 0) -> tuple[
     in directory, and it stays locked until the returned handle is closed (or the process ends). How
     concurrent runs on one machine share domains and test slots.
     """
-    directory.mkdir(parents=True, exist_ok=True)
+    shared_folder(directory)
     for offset in range(len(ids)):
         chosen = ids[(start + offset) % len(ids)]
-        handle = open(directory / f'{chosen}.lock', 'w')
+        # Read-only: a lock file another account made (a class server's, a classmate's) locks as well.
+        handle = os.fdopen(os.open(directory / f'{chosen}.lock', os.O_RDONLY | os.O_CREAT, 0o644))
         try:
             fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:

@@ -1,10 +1,15 @@
 """owl class serve's class list and hub configuration, without a hub (tests/test_class_server.py runs one)."""
 
+import subprocess
 from pathlib import Path
+from types import SimpleNamespace
 
 import pytest
-from owl_cli.classroom.hub import Certificate, HubSettings, config_text
+from owl_cli.classroom import ClassError
+from owl_cli.classroom.hub import Certificate, HubSettings, config_text, server_config_text, terminal_rc_text
+from owl_cli.classroom.lab import bootstrap_environment, checkout_files, copy_files
 from owl_cli.classroom.students import Student, StudentsError, parse_students
+from owl_cli.classroom.worlds import assign_domains, read_domains, record_domains
 
 
 def test_a_class_list_gives_its_students_in_order_skipping_blank_and_comment_lines():
@@ -30,23 +35,31 @@ def test_a_wrong_line_is_named_in_one_line(text, message):
     assert '\n' not in str(raised.value)
 
 
+class Section(dict):
+    """A traitlets Config as a configuration file sees it: sections made on first use."""
+
+    def __getattr__(self, name):
+        return self.setdefault(name, Section())
+
+    def __setattr__(self, name, value):
+        self[name] = value
+
+
+def read_config(text: str) -> Section:
+    """What a Jupyter configuration file sets."""
+    config = Section()
+    exec(text, {'get_config': lambda: config})
+    return config
+
+
 def test_the_hub_configuration_lets_the_class_log_in_with_the_teacher_as_admin(tmp_path):
     settings = HubSettings(
         state=tmp_path, port=8443, hub_port=40001, proxy_api_port=40002,
         certificate=Certificate(tmp_path / 'hub.crt', tmp_path / 'hub.key', 'AB:CD'),
         students=['grace', 'ada1'], teacher='turing', venv=Path('/srv/venv'),
-        proxy_command=['/usr/bin/node', '/srv/chp'])
-    config: dict = {}
-
-    class Section(dict):
-        def __getattr__(self, name):
-            return self.setdefault(name, Section())
-
-        def __setattr__(self, name, value):
-            self[name] = value
-
-    exec(config_text(settings), {'get_config': lambda: config.setdefault('c', Section())})
-    c = config['c']
+        proxy_command=['/usr/bin/node', '/srv/chp'], lab=Path('/srv/lab'),
+        domains={'grace': 1, 'ada1': 2, 'turing': 3}, origins=['https://hub.example.edu:8443'])
+    c = read_config(config_text(settings))
     assert c['JupyterHub']['bind_url'] == 'https://:8443'
     assert c['JupyterHub']['authenticator_class'] == 'pam'
     assert c['Authenticator']['allowed_users'] == ['ada1', 'grace']
@@ -54,3 +67,93 @@ def test_the_hub_configuration_lets_the_class_log_in_with_the_teacher_as_admin(t
     assert c['JupyterHub']['ssl_cert'] == str(tmp_path / 'hub.crt')
     assert c['Spawner']['cmd'] == ['/srv/venv/bin/jupyterhub-singleuser']
     assert c['ConfigurableHTTPProxy']['api_url'] == 'http://127.0.0.1:40002'
+    environment = c['Spawner']['environment']
+    student = SimpleNamespace(user=SimpleNamespace(name='ada1'))
+    assert environment['ROS_DOMAIN_ID'](student) == '2'  # each account's own ROS world
+    assert environment['OWL_FRONT_DOOR_PORT'](student) == '7002'
+    assert environment['ROS_AUTOMATIC_DISCOVERY_RANGE'] == 'LOCALHOST'
+    assert environment['OWL_TRUSTED_ORIGINS'] == 'https://hub.example.edu:8443'
+    assert environment['JUPYTER_CONFIG_PATH'] == str(tmp_path / 'jupyter')
+    assert 'PYTHONPATH' not in c['Spawner']['env_keep']
+    assert 'PATH' not in c['Spawner']['env_keep']
+
+
+def test_a_students_server_opens_terminals_in_the_lab_and_a_tile_for_their_front_door(monkeypatch):
+    monkeypatch.setenv('OWL_FRONT_DOOR_PORT', '7002')
+    c = read_config(server_config_text(Path('/srv/lab'), Path('/srv/jupyter/terminal.bashrc')))
+    assert c['ServerApp']['terminado_settings']['shell_command'] == [
+        '/bin/bash', '--rcfile', '/srv/jupyter/terminal.bashrc', '-i']
+    front_door = c['ServerProxy']['servers']['owl-kit-lab']
+    assert front_door['port'] == 7002
+    assert front_door['command'] == ['/bin/bash', '-c', '. /srv/lab/env.sh >/dev/null && exec owl pages']
+    assert front_door['launcher_entry']['title'] == 'Owl Kit Lab pages'
+    assert terminal_rc_text(Path('/srv/lab')).splitlines()[1:] == ['[ -f ~/.bashrc ] && . ~/.bashrc',
+                                                                   '. /srv/lab/env.sh']
+
+
+def test_each_account_keeps_its_domain_and_a_newcomer_takes_the_lowest_free_one():
+    known = {'ada1': 1, 'grace': 2, 'left': 3}
+    assert assign_domains(known, ['grace', 'new1', 'ada1', 'new2'], taken=[4]) == {
+        'grace': 2, 'ada1': 1, 'new1': 5, 'new2': 6}  # 3 stays the one who left's, 4 is another's
+
+
+def test_a_class_larger_than_the_domains_is_one_line():
+    with pytest.raises(ClassError) as raised:
+        assign_domains({}, [f's{i}' for i in range(102)])
+    assert str(raised.value) == ('no ROS domain left for s101: a class server holds at most 101 accounts '
+                                 '(domains 1-101)')
+
+
+def test_the_domains_record_is_kept_and_a_broken_one_is_one_line(tmp_path):
+    assert read_domains(tmp_path) == {}
+    record_domains(tmp_path, {'ada1': 1}, {'grace': 2})
+    assert read_domains(tmp_path) == {'ada1': 1, 'grace': 2}
+    for broken in ('{"ada1": 500}', '[1, 2]', '{not json'):
+        (tmp_path / 'ros-domains.json').write_text(broken)
+        with pytest.raises(ClassError) as raised:
+            read_domains(tmp_path)
+        assert 'ros-domains.json' in str(raised.value)
+        assert '\n' not in str(raised.value)
+
+
+def git(folder: Path, *args: str) -> None:
+    subprocess.run(['git', '-C', str(folder), *args], check=True, capture_output=True)
+
+
+def test_the_lab_copies_what_git_tracks_or_would_and_drops_what_the_checkout_lost(tmp_path):
+    checkout, lab = tmp_path / 'checkout', tmp_path / 'lab'
+    (checkout / 'src').mkdir(parents=True)
+    lab.mkdir()
+    git(checkout, 'init', '-q')
+    (checkout / '.gitignore').write_text('/.venv/\n')
+    (checkout / 'src' / 'node.py').write_text('tracked')
+    (checkout / 'gone.py').write_text('tracked, then deleted')
+    git(checkout, 'add', '.')
+    (checkout / 'new.py').write_text('not yet added')
+    (checkout / '.venv').mkdir()
+    (checkout / '.venv' / 'python').write_text('ignored')
+    copy_files(checkout, lab, checkout_files(checkout))
+    assert (lab / 'gone.py').is_file()
+    (checkout / 'gone.py').unlink()
+    names = checkout_files(checkout)
+    assert names == ['.gitignore', 'new.py', 'src/node.py']
+    copy_files(checkout, lab, names)
+    assert not (lab / 'gone.py').exists()
+    assert (lab / 'src' / 'node.py').read_text() == 'tracked'
+    assert not (lab / '.venv').exists()
+
+
+def test_a_checkout_that_is_not_a_git_one_is_one_line(tmp_path):
+    with pytest.raises(ClassError) as raised:
+        checkout_files(tmp_path)
+    assert str(raised.value).startswith(f'{tmp_path} is not a git checkout')
+
+
+def test_the_labs_bootstrap_runs_without_what_env_sh_added_and_with_the_rest():
+    shell = {'PATH': '/root/owl/.venv/bin:/usr/bin', 'VIRTUAL_ENV': '/root/owl/.venv',
+             'OWL_ROOT': '/root/owl', 'PYTHONPATH': '/root/owl/install/lib',
+             'AMENT_PREFIX_PATH': '/root/owl/.venv', 'ROS_DOMAIN_ID': '3',
+             'SSL_CERT_FILE': '/etc/ssl/certs/ca.crt', 'https_proxy': 'http://proxy:3128', 'HOME': '/root'}
+    assert bootstrap_environment(shell, '/usr/bin/python3') == {
+        'PATH': '/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin', 'PYTHON': '/usr/bin/python3',
+        'SSL_CERT_FILE': '/etc/ssl/certs/ca.crt', 'https_proxy': 'http://proxy:3128', 'HOME': '/root'}

@@ -3,15 +3,17 @@
 from __future__ import annotations
 
 import subprocess
+from collections.abc import Mapping
 
 
 class ClassError(RuntimeError):
     """Why the class server cannot start, in one line."""
 
 
-def run_step(argv: list[str], what: str, stdin: str | None = None) -> None:
+def run_step(argv: list[str], what: str, stdin: str | None = None,
+             environment: Mapping[str, str] | None = None) -> None:
     """Run one setup step quietly; ClassError naming what failed, with its output's last line."""
-    done = subprocess.run(argv, input=stdin, capture_output=True, text=True, check=False)
+    done = subprocess.run(argv, input=stdin, capture_output=True, text=True, check=False, env=environment)
     if done.returncode != 0:
         lines = (done.stderr or done.stdout).strip().splitlines()
         raise ClassError(f"{what} failed: {lines[-1] if lines else f'exit code {done.returncode}'}")

@@ -11,6 +11,8 @@ from __future__ import annotations
 import grp
 import os
 import pwd
+import subprocess
+import time
 
 from owl_cli.classroom import run_step
 
@@ -63,3 +65,17 @@ def ensure_account(name: str, password: str, group: str) -> bool:
     os.chmod(pwd.getpwnam(name).pw_dir, 0o700)  # Debian's useradd makes homes readable by all
     run_step(['chpasswd'], 'chpasswd', stdin=f'{name}:{password}\n')
     return made
+
+
+def stop_processes(names: list[str], grace: float = 5.0) -> None:
+    """End every process of these accounts: SIGTERM, and SIGKILL to what is left after grace seconds."""
+    users = ','.join(name for name in names if exists(name))
+    if not users:
+        return
+    subprocess.run(['pkill', '--signal', 'TERM', '--uid', users], check=False)
+    deadline = time.monotonic() + grace
+    while subprocess.run(['pgrep', '--uid', users], capture_output=True, check=False).returncode == 0:
+        if time.monotonic() > deadline:
+            subprocess.run(['pkill', '--signal', 'KILL', '--uid', users], check=False)
+            return
+        time.sleep(0.1)

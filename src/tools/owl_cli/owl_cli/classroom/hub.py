@@ -19,7 +19,8 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
-from owl_cli.classroom import ClassError, run_step
+from owl_cli.classroom import ClassError, run_step, worlds
+from owl_cli.classroom.lab import SYSTEM_PATH
 
 STATE = Path('/var/lib/owl-kit-lab/class')
 SYSTEM_PYTHON = '/usr/bin/python3'
@@ -141,6 +142,9 @@ class HubSettings:
     teacher: str
     venv: Path
     proxy_command: list[str]
+    lab: Path  # the students' copy of this checkout (owl_cli.classroom.lab)
+    domains: dict[str, int]  # each account's ROS domain (owl_cli.classroom.worlds)
+    origins: list[str]  # what browsers show as the hub's origin: the pages behind its proxy trust them
 
 
 def config_text(settings: HubSettings) -> str:
@@ -160,17 +164,69 @@ def config_text(settings: HubSettings) -> str:
         'Authenticator.allow_existing_users': False,  # the class list says who may log in
         'Spawner.cmd': [str(settings.venv / 'bin' / 'jupyterhub-singleuser')],
         'Spawner.default_url': '/lab',
+        # Nothing of the teacher's shell (the checkout's venv, PYTHONPATH) reaches a student's server.
+        'Spawner.env_keep': ['LANG', 'LC_ALL'],
         'ConfigurableHTTPProxy.command': settings.proxy_command,
         'ConfigurableHTTPProxy.api_url': f'http://127.0.0.1:{settings.proxy_api_port}',
     }
     lines = ['# Written by owl class serve at each start; edits here are lost.', 'c = get_config()  # noqa']
     for name, value in values.items():
         lines.append(f'c.{name} = {value!r}')
+    fixed = {'PATH': SYSTEM_PATH, 'JUPYTER_CONFIG_PATH': str(settings.state / 'jupyter'),
+             'ROS_AUTOMATIC_DISCOVERY_RANGE': 'LOCALHOST', 'OWL_TRUSTED_ORIGINS': ' '.join(settings.origins)}
+    lines += [
+        '# Each account\'s own ROS domain and front door port (owl_cli.classroom.worlds).',
+        f'domains = {settings.domains!r}',
+        'c.Spawner.environment = {',
+        *(f'    {name!r}: {value!r},' for name, value in fixed.items()),
+        "    'ROS_DOMAIN_ID': lambda spawner: str(domains[spawner.user.name]),",
+        f"    'OWL_FRONT_DOOR_PORT': lambda spawner: str({worlds.FRONT_DOOR_PORT_BASE} + "
+        'domains[spawner.user.name]),',
+        '}',
+    ]
     return '\n'.join(lines) + '\n'
 
 
+def server_config_text(lab: Path, terminal_rc: Path) -> str:
+    """jupyter_server_config.py of every account's server: terminals in the lab, the front door's tile."""
+    in_lab = f'. {lab}/env.sh >/dev/null && exec owl pages'
+    shell = ['/bin/bash', '--rcfile', str(terminal_rc), '-i']
+    front_door = {
+        'command': ['/bin/bash', '-c', in_lab],  # starts the account's front door, which outlives it
+        'timeout': 60,
+        'new_browser_tab': True,
+        'launcher_entry': {'title': 'Owl Kit Lab pages'},
+    }
+    return '\n'.join([
+        '# Written by owl class serve at each start; edits here are lost.',
+        'import os',
+        'c = get_config()  # noqa',
+        '# A terminal is a shell of the lab, as `source env.sh` gives in a checkout.',
+        f"c.ServerApp.terminado_settings = {{'shell_command': {shell!r}}}",
+        '# The front door (every page of the account) through the server\'s proxy, at its own port.',
+        f'front_door = {front_door!r}',
+        "front_door['port'] = int(os.environ['OWL_FRONT_DOOR_PORT'])",
+        "c.ServerProxy.servers = {'owl-kit-lab': front_door}",
+    ]) + '\n'
+
+
+def terminal_rc_text(lab: Path) -> str:
+    """The start-up file of a student's terminal: their own ~/.bashrc, then the lab's env.sh."""
+    return ('# Written by owl class serve: a terminal of the class\'s Owl Kit Lab.\n'
+            '[ -f ~/.bashrc ] && . ~/.bashrc\n'
+            f'. {lab}/env.sh\n')
+
+
 def write_config(settings: HubSettings) -> Path:
-    """Write jupyterhub_config.py into the state folder; its path."""
+    """Write the hub's configuration and the servers' into the state folder; jupyterhub_config.py's path."""
+    servers = settings.state / 'jupyter'
+    servers.mkdir(mode=0o755, exist_ok=True)
+    os.chmod(servers, 0o755)  # every account's server reads it
+    terminal_rc = servers / 'terminal.bashrc'
+    terminal_rc.write_text(terminal_rc_text(settings.lab))
+    (servers / 'jupyter_server_config.py').write_text(server_config_text(settings.lab, terminal_rc))
+    for written in servers.iterdir():
+        os.chmod(written, 0o644)
     path = settings.state / 'jupyterhub_config.py'
     path.write_text(config_text(settings))
     return path

@@ -4,8 +4,10 @@ Run as root on the teacher's Linux machine. Each student of FILE (`name password
 the teacher get a Unix account with a private home, made now or kept from an earlier start (with
 the password FILE gives; the teacher's from OWL_CLASS_TEACHER_PASSWORD or a prompt). The hub
 serves HTTPS on the port printed, with the teacher's certificate (--cert/--key) or a self-signed
-one whose fingerprint is printed for the students to compare. Ctrl-C stops the hub and every
-student's server; their homes stay.
+one whose fingerprint is printed for the students to compare. Each account's server runs the
+students' lab (a copy of this checkout every account can run) in a ROS domain of its own, with a
+terminal of the lab and a launcher tile for its front door. Ctrl-C stops the hub, every student's
+server and whatever they still run; their homes stay.
 """
 
 from __future__ import annotations
@@ -19,7 +21,8 @@ import subprocess
 import sys
 from pathlib import Path
 
-from owl_cli.classroom import ClassError, accounts, hub
+from owl_cli.classroom import ClassError, accounts, hub, worlds
+from owl_cli.classroom.lab import ensure_lab
 from owl_cli.classroom.students import StudentsError, name_problem, parse_students
 
 DEFAULT_PORT = 8443
@@ -104,6 +107,11 @@ def prepare(args: argparse.Namespace) -> hub.HubSettings:
     certificate = hub.ensure_certificate(args.state, args.cert, args.key, socket.gethostname())
     venv = hub.ensure_venv(args.state)
     proxy_command = hub.ensure_proxy(args.state)
+    lab = ensure_lab(args.state, hub.project_root(), hub.SYSTEM_PYTHON)
+    known = worlds.read_domains(args.state)
+    names = [s.name for s in students] + [args.teacher]
+    domains = worlds.record_domains(args.state, known,
+                                    worlds.assign_domains(known, names, worlds.held_domains()))
     for group in (accounts.STUDENTS, accounts.TEACHERS):
         accounts.ensure_group(group)
     made = [s.name for s in students if accounts.ensure_account(s.name, s.password, accounts.STUDENTS)]
@@ -111,7 +119,23 @@ def prepare(args: argparse.Namespace) -> hub.HubSettings:
     print(f'owl class: {len(students)} students ({len(made)} new accounts), teacher {args.teacher}',
           flush=True)
     return hub.HubSettings(args.state, args.port, free_local_port(), free_local_port(), certificate,
-                           [s.name for s in students], args.teacher, venv, proxy_command)
+                           [s.name for s in students], args.teacher, venv, proxy_command, lab,
+                           {name: domains[name] for name in names}, hub_origins(args.port))
+
+
+def hub_origins(port: int) -> list[str]:
+    """The origins a browser may show for the hub: this machine's names and addresses at port.
+
+    Names the machine does not know of itself (a DNS alias) come from OWL_TRUSTED_ORIGINS.
+    """
+    hosts = {socket.gethostname(), socket.getfqdn(), 'localhost', '127.0.0.1'}
+    try:
+        listed = subprocess.run(['hostname', '-I'], capture_output=True, text=True, check=False).stdout
+    except FileNotFoundError:
+        listed = ''
+    hosts |= {f'[{address}]' if ':' in address else address for address in listed.split()}
+    extra = os.environ.get('OWL_TRUSTED_ORIGINS', '').replace(',', ' ').split()
+    return sorted({f'https://{host}:{port}' for host in hosts} | set(extra))
 
 
 def interrupt(signum: int, frame: object) -> None:
@@ -127,6 +151,12 @@ def run(args: argparse.Namespace) -> int:
         print(f'owl class: {error}', file=sys.stderr)
         return 2
     config = hub.write_config(settings)
+    # Held while the hub runs, so no `owl check` or test run on this machine leases a student's domain.
+    held, shared = worlds.hold_domains(settings.domains.values())
+    for domain in shared:
+        owner = next(name for name, number in settings.domains.items() if number == domain)
+        print(f'owl class: ROS domain {domain} ({owner}\'s) is in use by another program on this machine: '
+              'its nodes and theirs may meet', flush=True)
     for stop_signal in (signal.SIGTERM, signal.SIGHUP):  # kill, or the terminal closed: as Ctrl-C
         signal.signal(stop_signal, interrupt)
     server = subprocess.Popen([str(settings.venv / 'bin' / 'jupyterhub'), '-f', str(config)],
@@ -134,8 +164,14 @@ def run(args: argparse.Namespace) -> int:
     print(f'owl class: the class server is at https://{socket.gethostname()}:{settings.port}/ '
           f'(certificate SHA-256 {settings.certificate.fingerprint}); Ctrl-C to stop it', flush=True)
     try:
-        return server.wait()
+        code = server.wait()
     except KeyboardInterrupt:
         server.send_signal(signal.SIGINT)  # the hub stops every student's server and its proxy
         server.wait()
-        return 0
+        code = 0
+    finally:
+        # What students started that outlives their servers: front doors, ROS daemons, robots.
+        accounts.stop_processes(list(settings.domains))
+        for handle in held:
+            handle.close()
+    return code
