@@ -124,14 +124,18 @@ class Browser:
     def get(self, path: str) -> tuple[int, str, str]:
         return self.request('GET', path)
 
-    def follow(self, path: str, redirects: int = 5) -> int:
-        """The status at the end of path's redirects (within this hub)."""
+    def open(self, path: str, redirects: int = 6) -> tuple[int, str]:
+        """The status and page at the end of path's redirects (within this hub), as a browser shows it."""
         for _ in range(redirects):
-            status, location, _ = self.get(path)
+            status, location, body = self.get(path)
             if status not in (301, 302, 303, 307) or not location.startswith('/'):
-                return status
+                break
             path = location
-        return status
+        return status, body
+
+    def follow(self, path: str) -> int:
+        """The status at the end of path's redirects."""
+        return self.open(path)[0]
 
     def log_in(self, name: str, password: str) -> tuple[int, str, str]:
         _, _, page = self.get('/hub/login')
@@ -288,6 +292,40 @@ def test_each_student_has_a_terminal_of_the_lab_a_ros_world_and_a_front_door_of_
     wait_until(lambda: 'Owl Kit Lab: every page' in students[first].get(f'/user/{first}/owl-kit-lab/')[2],
                60, f"{first}'s front door")
     assert students[second].follow(f'/user/{first}/owl-kit-lab/') == 403
+
+
+def row_of(table: str, name: str) -> str:
+    found = re.search(rf'<tr data-student="{name}">(.*?)</tr>', table)
+    assert found, table
+    return found.group(1)
+
+
+@pytest.mark.whole_kit
+@pytest.mark.timeout(HUB_TEST_TIMEOUT)
+def test_the_teachers_page_shows_a_students_owl_check_and_no_student_opens_it(hub):
+    first, second = hub.students
+    students = logged_in(hub, [first, second])
+    teacher = Browser(hub.port)
+    assert teacher.log_in(hub.teacher, TEACHER_PASSWORD)[0] == 302
+    status, page = teacher.open('/services/owl-teacher/')
+    assert status == 200, page
+    assert 'not-run" data-exercise="imu_turtle"' in row_of(page, first)
+
+    async def a_students_check() -> str:
+        # As section 4.3 has it: the package in their own workspace, built there, then checked.
+        async with Terminal(students[first], first) as terminal:
+            return await terminal.run('mkdir -p ~/ros2_ws/src && cp -r "$OWL_ROOT/src/course/olive_imu" '
+                                      '~/ros2_ws/src/ && cd ~/ros2_ws && owl check imu_turtle', timeout=240)
+
+    checked = asyncio.run(a_students_check())
+    assert 'imu_turtle: passed' in checked, checked
+    table = teacher.get('/services/owl-teacher/api/table')[2]  # what the page's refresh fetches
+    assert 'class="passed" data-exercise="imu_turtle"' in row_of(table, first)
+    assert 'class="not-run" data-exercise="imu_turtle"' in row_of(table, second)
+    assert '<td class="last">just now</td>' in row_of(table, first)
+    for student in students.values():
+        assert student.follow('/services/owl-teacher/') == 403  # the hub refuses them the service
+        assert student.follow('/services/owl-teacher/api/table') == 403
 
 
 @pytest.mark.whole_kit

@@ -33,6 +33,8 @@ from owl_cli.check_report import (
     ExerciseResult,
     criterion_line,
     exit_code,
+    record_latest,
+    results_file,
     summary_table,
     to_json,
 )
@@ -219,6 +221,12 @@ def check(args: argparse.Namespace) -> int:
                 'passed' if result.passed else f'FAILED ({result.failed_count} of {len(result.criteria)})'
             )
             print(f'{exercise.id}: {verdict} in {result.seconds:.1f} s', flush=True)
+    record = results_file(os.environ)
+    try:
+        record_latest(record, results, {e.id: e.section for e in exercises}, str(workspace))
+    except OSError as error:
+        print(f'owl check: the results could not be kept in {record}: {error.strerror or error}',
+              file=sys.stderr)
     if args.json:
         print(to_json(results, str(workspace)))
     elif len(results) > 1:

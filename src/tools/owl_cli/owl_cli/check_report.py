@@ -2,8 +2,13 @@
 
 from __future__ import annotations
 
+import fcntl
 import json
+import os
+import time
+from collections.abc import Mapping
 from dataclasses import asdict, dataclass, field
+from pathlib import Path
 
 # How the check's ROS process (check_ros.py) hands each decided criterion to `owl check`: one line.
 RESULT_PREFIX = 'owl-check-criterion '
@@ -116,3 +121,41 @@ def exit_code(results: list[ExerciseResult]) -> int:
     if any(r.error for r in results):
         return 2
     return 0 if all(r.passed for r in results) else 1
+
+
+def results_file(environ: Mapping[str, str]) -> Path:
+    """Where owl check keeps each exercise's latest result (the class server's teacher page reads it).
+
+    $XDG_STATE_HOME/owl-kit-lab/check-results.json, else ~/.local/state/owl-kit-lab/check-results.json.
+    """
+    state = environ.get('XDG_STATE_HOME') or str(Path(environ.get('HOME', '/')) / '.local' / 'state')
+    return Path(state) / 'owl-kit-lab' / 'check-results.json'
+
+
+def read_latest(path: Path) -> dict[str, dict[str, object]]:
+    """Each exercise's latest recorded result; none when the file is missing or not such a record."""
+    try:
+        record = json.loads(path.read_text())
+    except (OSError, ValueError):
+        return {}
+    exercises = record.get('exercises') if isinstance(record, dict) else None
+    if not isinstance(exercises, dict):
+        return {}
+    return {name: value for name, value in exercises.items() if isinstance(value, dict)}
+
+
+def record_latest(path: Path, results: list[ExerciseResult], sections: Mapping[str, str], workspace: str,
+                  now: float | None = None) -> None:
+    """Keep these results as their exercises' latest in path, beside the others' (OSError if it cannot)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with open(path.with_name(f'.{path.name}.lock'), 'w') as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)  # two checks at once: each keeps the other's exercises
+        latest = read_latest(path)
+        at = time.time() if now is None else now
+        for r in results:
+            latest[r.exercise] = {'passed': r.passed, 'failed': r.failed_count, 'criteria': len(r.criteria),
+                                  'error': r.error, 'section': sections.get(r.exercise, ''), 'at': at,
+                                  'workspace': workspace}
+        written = path.with_name(f'.{path.name}.{os.getpid()}')
+        written.write_text(json.dumps({'exercises': latest}, indent=1, sort_keys=True) + '\n')
+        written.replace(path)  # whole or not at all: a reader never sees half a file

@@ -3,12 +3,22 @@
 import json
 import os
 import time
+from pathlib import Path
 
 import pytest
 from owl_cli import check_catalogue as catalogue
 from owl_cli import check_criteria as judge
 from owl_cli import check_workspace as ws
-from owl_cli.check_report import Criterion, ExerciseResult, exit_code, summary_table, to_json
+from owl_cli.check_report import (
+    Criterion,
+    ExerciseResult,
+    exit_code,
+    read_latest,
+    record_latest,
+    results_file,
+    summary_table,
+    to_json,
+)
 from owl_cli.main import main
 
 # -- catalogue -------------------------------------------------------------------------------------
@@ -378,3 +388,29 @@ def test_exit_codes_json_and_the_summary_table():
     assert table[2].split() == ['imu_turtle', 'passed', '1/1', '9.5s']
     assert table[3].split() == ['temp_server', 'FAILED', '1/2', '2.0s']
     assert table[-1] == '1 of 2 exercises passed in 11.5 s'
+
+
+def test_the_latest_result_of_each_exercise_is_kept_beside_the_others(tmp_path):
+    path = results_file({'XDG_STATE_HOME': str(tmp_path)})
+    assert path == tmp_path / 'owl-kit-lab' / 'check-results.json'
+    home = results_file({'HOME': '/home/ada1'})
+    assert home == Path('/home/ada1/.local/state/owl-kit-lab/check-results.json')
+    failed = ExerciseResult('imu_turtle', [Criterion('moves', False)])
+    record_latest(path, [failed, ExerciseResult('keyboard', [Criterion('reads keys', True)])],
+                  {'imu_turtle': '4.3', 'keyboard': '3.4'}, '/ws', now=100.0)
+    record_latest(path, [ExerciseResult('imu_turtle', [Criterion('moves', True)])], {'imu_turtle': '4.3'},
+                  '/ws', now=200.0)
+    latest = read_latest(path)
+    assert latest['imu_turtle'] == {'passed': True, 'failed': 0, 'criteria': 1, 'error': '', 'section': '4.3',
+                                    'at': 200.0, 'workspace': '/ws'}
+    assert latest['keyboard']['passed'] is True
+    assert latest['keyboard']['at'] == 100.0
+
+
+@pytest.mark.parametrize('text', ['{broken', '[1, 2]', '{"exercises": 3}', ''])
+def test_a_broken_results_file_reads_as_none_and_is_written_anew(tmp_path, text):
+    path = tmp_path / 'check-results.json'
+    path.write_text(text)
+    assert read_latest(path) == {}
+    record_latest(path, [ExerciseResult('keyboard', [Criterion('reads keys', True)])], {}, '/ws', now=1.0)
+    assert list(read_latest(path)) == ['keyboard']

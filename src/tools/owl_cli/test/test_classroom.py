@@ -1,5 +1,6 @@
 """owl class serve's class list and hub configuration, without a hub (tests/test_class_server.py runs one)."""
 
+import re
 import subprocess
 from pathlib import Path
 from types import SimpleNamespace
@@ -9,6 +10,8 @@ from owl_cli.classroom import ClassError
 from owl_cli.classroom.hub import Certificate, HubSettings, config_text, server_config_text, terminal_rc_text
 from owl_cli.classroom.lab import bootstrap_environment, checkout_files, copy_files
 from owl_cli.classroom.students import Student, StudentsError, parse_students
+from owl_cli.classroom.teacher_page import Roll, age, page_html, sections_of, table_html
+from owl_cli.classroom.teacher_page import main as teacher_page_main
 from owl_cli.classroom.worlds import assign_domains, read_domains, record_domains
 
 
@@ -58,7 +61,8 @@ def test_the_hub_configuration_lets_the_class_log_in_with_the_teacher_as_admin(t
         certificate=Certificate(tmp_path / 'hub.crt', tmp_path / 'hub.key', 'AB:CD'),
         students=['grace', 'ada1'], teacher='turing', venv=Path('/srv/venv'),
         proxy_command=['/usr/bin/node', '/srv/chp'], lab=Path('/srv/lab'),
-        domains={'grace': 1, 'ada1': 2, 'turing': 3}, origins=['https://hub.example.edu:8443'])
+        domains={'grace': 1, 'ada1': 2, 'turing': 3}, origins=['https://hub.example.edu:8443'],
+        teacher_page_port=40003)
     c = read_config(config_text(settings))
     assert c['JupyterHub']['bind_url'] == 'https://:8443'
     assert c['JupyterHub']['authenticator_class'] == 'pam'
@@ -76,6 +80,13 @@ def test_the_hub_configuration_lets_the_class_log_in_with_the_teacher_as_admin(t
     assert environment['JUPYTER_CONFIG_PATH'] == str(tmp_path / 'jupyter')
     assert 'PYTHONPATH' not in c['Spawner']['env_keep']
     assert 'PATH' not in c['Spawner']['env_keep']
+    [page] = c['JupyterHub']['services']
+    assert page['url'] == 'http://127.0.0.1:40003'
+    assert page['command'][1:] == ['-m', 'owl_cli.classroom.teacher_page', str(tmp_path)]
+    assert page['environment'] == {'PYTHONPATH': '/srv/lab/src/tools/owl_cli'}  # the lab's copy of owl_cli
+    [role] = c['JupyterHub']['load_roles']  # the page may list the users; who may open it is the hub's rule
+    assert role['services'] == [page['name']]
+    assert role['scopes'] == ['list:users', 'read:users:activity']
 
 
 def test_a_students_server_opens_terminals_in_the_lab_and_a_tile_for_their_front_door(monkeypatch):
@@ -157,3 +168,40 @@ def test_the_labs_bootstrap_runs_without_what_env_sh_added_and_with_the_rest():
     assert bootstrap_environment(shell, '/usr/bin/python3') == {
         'PATH': '/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin', 'PYTHON': '/usr/bin/python3',
         'SSL_CERT_FILE': '/etc/ssl/certs/ca.crt', 'https_proxy': 'http://proxy:3128', 'HOME': '/root'}
+
+
+def test_the_teachers_page_shows_each_students_latest_results_by_section_and_when_they_last_worked():
+    roll = Roll(['ada1', 'grace', 'alan'], sections_of([('keyboard', '3.4'), ('imu_turtle', '4.3'),
+                                                         ('imu_plot', '4.3')]))
+    assert roll.sections == [('3.4', ['keyboard']), ('4.3', ['imu_turtle', 'imu_plot'])]
+    results = {'ada1': {'imu_turtle': {'passed': True, 'at': 1000.0},
+                        'imu_plot': {'passed': False, 'at': 900.0}},
+               'grace': {'keyboard': {'passed': False, 'at': 400.0}}}
+    table = table_html(roll, results, {'grace': 1100.0}, now=1200.0)
+    rows = dict(re.findall(r'<tr data-student="(\w+)">(.*?)</tr>', table))
+    assert list(rows) == ['ada1', 'grace', 'alan']  # the class list's order
+    assert re.findall(r'<th scope="col">([^<]+)</th>', table) == ['student', 'last worked', '3.4', '4.3']
+    assert 'class="passed" data-exercise="imu_turtle"' in rows['ada1']
+    assert 'class="failed" data-exercise="imu_plot"' in rows['ada1']
+    assert 'class="not-run" data-exercise="keyboard"' in rows['ada1']
+    assert '<td class="last">3 min ago</td>' in rows['ada1']  # the latest check
+    assert '<td class="last">1 min ago</td>' in rows['grace']  # the hub saw grace after her check
+    assert '<td class="last">never</td>' in rows['alan']
+    assert 'href="../../user/grace/lab"' in rows['grace']  # the admin opens her JupyterLab
+    assert table in page_html(table)
+
+
+def test_the_class_roll_round_trips_and_the_page_refuses_a_broken_one_in_one_line(tmp_path, capsys):
+    roll = Roll(['ada1'], [('4.3', ['imu_turtle'])])
+    assert Roll.from_json(roll.to_json()) == roll
+    (tmp_path / 'class-roll.json').write_text('{"students": 3}')
+    assert teacher_page_main([str(tmp_path)]) == 2
+    [line] = capsys.readouterr().err.splitlines()
+    assert line.startswith(f"teacher page: cannot read the class roll {tmp_path / 'class-roll.json'}: ")
+    assert teacher_page_main([]) == 2
+
+
+@pytest.mark.parametrize(('seconds', 'text'), [(5, 'just now'), (125, '2 min ago'), (7300, '2 h ago'),
+                                               (3 * 86400 + 5, '3 days ago')])
+def test_ages_read_as_a_teacher_says_them(seconds, text):
+    assert age(seconds) == text

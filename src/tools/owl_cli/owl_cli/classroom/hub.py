@@ -19,7 +19,7 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
-from owl_cli.classroom import ClassError, run_step, worlds
+from owl_cli.classroom import ClassError, run_step, teacher_page, worlds
 from owl_cli.classroom.lab import SYSTEM_PATH
 
 STATE = Path('/var/lib/owl-kit-lab/class')
@@ -145,6 +145,7 @@ class HubSettings:
     lab: Path  # the students' copy of this checkout (owl_cli.classroom.lab)
     domains: dict[str, int]  # each account's ROS domain (owl_cli.classroom.worlds)
     origins: list[str]  # what browsers show as the hub's origin: the pages behind its proxy trust them
+    teacher_page_port: int  # the teacher's page (owl_cli.classroom.teacher_page), on 127.0.0.1
 
 
 def config_text(settings: HubSettings) -> str:
@@ -169,6 +170,18 @@ def config_text(settings: HubSettings) -> str:
         'ConfigurableHTTPProxy.command': settings.proxy_command,
         'ConfigurableHTTPProxy.api_url': f'http://127.0.0.1:{settings.proxy_api_port}',
     }
+    # The teacher's page: a service the admin role may open and the default user role may not.
+    values['JupyterHub.services'] = [{
+        'name': teacher_page.SERVICE_NAME,
+        'url': f'http://127.0.0.1:{settings.teacher_page_port}',
+        'command': [str(settings.venv / 'bin' / 'python'), '-m', 'owl_cli.classroom.teacher_page',
+                    str(settings.state)],
+        'environment': {'PYTHONPATH': str(settings.lab / 'src' / 'tools' / 'owl_cli')},
+        'oauth_no_confirm': True,
+        'display': True,
+    }]
+    values['JupyterHub.load_roles'] = [{'name': 'owl-teacher-page', 'services': [teacher_page.SERVICE_NAME],
+                                        'scopes': ['list:users', 'read:users:activity']}]
     lines = ['# Written by owl class serve at each start; edits here are lost.', 'c = get_config()  # noqa']
     for name, value in values.items():
         lines.append(f'c.{name} = {value!r}')

@@ -21,11 +21,13 @@ import subprocess
 import sys
 from pathlib import Path
 
-from owl_cli.classroom import ClassError, accounts, hub, worlds
+from owl_cli import check_catalogue as catalogue
+from owl_cli.classroom import ClassError, accounts, hub, teacher_page, worlds
 from owl_cli.classroom.lab import ensure_lab
 from owl_cli.classroom.students import StudentsError, name_problem, parse_students
 
 DEFAULT_PORT = 8443
+HUB_STOP_TIMEOUT = 30.0  # s for the hub to stop its servers and itself after Ctrl-C
 PASSWORD_VARIABLE = 'OWL_CLASS_TEACHER_PASSWORD'
 
 
@@ -112,6 +114,9 @@ def prepare(args: argparse.Namespace) -> hub.HubSettings:
     names = [s.name for s in students] + [args.teacher]
     domains = worlds.record_domains(args.state, known,
                                     worlds.assign_domains(known, names, worlds.held_domains()))
+    roll = teacher_page.Roll([s.name for s in students],
+                             teacher_page.sections_of([(e.id, e.section) for e in catalogue.CHECKABLE]))
+    (args.state / teacher_page.ROLL).write_text(roll.to_json())
     for group in (accounts.STUDENTS, accounts.TEACHERS):
         accounts.ensure_group(group)
     made = [s.name for s in students if accounts.ensure_account(s.name, s.password, accounts.STUDENTS)]
@@ -120,7 +125,7 @@ def prepare(args: argparse.Namespace) -> hub.HubSettings:
           flush=True)
     return hub.HubSettings(args.state, args.port, free_local_port(), free_local_port(), certificate,
                            [s.name for s in students], args.teacher, venv, proxy_command, lab,
-                           {name: domains[name] for name in names}, hub_origins(args.port))
+                           {name: domains[name] for name in names}, hub_origins(args.port), free_local_port())
 
 
 def hub_origins(port: int) -> list[str]:
@@ -167,7 +172,11 @@ def run(args: argparse.Namespace) -> int:
         code = server.wait()
     except KeyboardInterrupt:
         server.send_signal(signal.SIGINT)  # the hub stops every student's server and its proxy
-        server.wait()
+        try:
+            server.wait(HUB_STOP_TIMEOUT)
+        except (subprocess.TimeoutExpired, KeyboardInterrupt):  # a hub that hangs, or Ctrl-C again
+            os.killpg(server.pid, signal.SIGKILL)  # its session: the hub, its proxy, the teacher's page
+            server.wait()
         code = 0
     finally:
         # What students started that outlives their servers: front doors, ROS daemons, robots.
