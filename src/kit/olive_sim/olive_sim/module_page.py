@@ -121,7 +121,9 @@ class ModulePage:
 
     @property
     def url(self) -> str:
-        """The page's address, http://127.B.C.D:<port>/ for the module address A.B.C.D."""
+        """The page's address, http://127.B.C.D:<port>/ for the module address A.B.C.D (the port it got)."""
+        if self.server is not None:
+            return self.server.url
         return f'http://{page_host(self.settings.address)}:{self.port}/'
 
     @property

@@ -76,6 +76,7 @@ def test_the_hub_configuration_lets_the_class_log_in_with_the_teacher_as_admin(t
     assert environment['ROS_DOMAIN_ID'](student) == '2'  # each account's own ROS world
     assert environment['OWL_FRONT_DOOR_PORT'](student) == '7002'
     assert environment['ROS_AUTOMATIC_DISCOVERY_RANGE'] == 'LOCALHOST'
+    assert environment['OWL_PAGE_PORT_FALLBACK'] == '1'  # each student's robot view, not only the first's
     assert environment['OWL_TRUSTED_ORIGINS'] == 'https://hub.example.edu:8443'
     assert environment['JUPYTER_CONFIG_PATH'] == str(tmp_path / 'jupyter')
     assert 'PYTHONPATH' not in c['Spawner']['env_keep']

@@ -26,6 +26,7 @@ one line ({"error": ...} or an "error" message) and the server keeps serving.
 from __future__ import annotations
 
 import asyncio
+import errno
 import ipaddress
 import json
 import logging
@@ -248,12 +249,18 @@ class Connection:
             return
 
 
+# On a machine the accounts of a class share, each student's robot view, rqt and module pages ask for
+# the same ports: with this set to 1 (the class server does), a page whose port is taken serves on a
+# free one instead of failing; each student reaches their own pages through their front door.
+PORT_FALLBACK_VARIABLE = 'OWL_PAGE_PORT_FALLBACK'
+
+
 class WebServer:
     """Static files, libraries, JSON routes and the WebSocket of one page (or a few) on host:port."""
 
     def __init__(self, name: str, static_dir: Path, port: int = 0, host: str = '127.0.0.1',
                  log: Callable[[str], None] | None = None) -> None:
-        """Binds at once (OSError for a busy port).
+        """Binds at once (OSError for a busy port, unless OWL_PAGE_PORT_FALLBACK=1 gives a free one).
 
         name prefixes the lines the server prints; log (default: stderr) gets one line for each
         internal error. ValueError for a host that is not a loopback address, or a malformed
@@ -275,7 +282,13 @@ class WebServer:
         self._socket = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
         try:
             self._socket.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
-            self._socket.bind((host, port))
+            try:
+                self._socket.bind((host, port))
+            except OSError as error:
+                fallback = os.environ.get(PORT_FALLBACK_VARIABLE) == '1'
+                if error.errno != errno.EADDRINUSE or port == 0 or not fallback:
+                    raise
+                self._socket.bind((host, 0))
             self._socket.listen(64)
         except OSError:
             self._socket.close()

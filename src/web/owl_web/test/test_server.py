@@ -138,7 +138,7 @@ def test_missing_libraries_are_named(tmp_path, monkeypatch):
         server.stop()
 
 
-def test_loopback_only_and_busy_ports(tmp_path):
+def test_loopback_only_and_busy_ports(tmp_path, monkeypatch):
     for host in ('0.0.0.0', '192.168.1.5', '10.42.0.8'):
         with pytest.raises(ValueError, match=rf'loopback addresses only \(127.x.y.z\), not {host}$'):
             WebServer('test', tmp_path, host=host)
@@ -147,6 +147,12 @@ def test_loopback_only_and_busy_ports(tmp_path):
         taken.listen()
         with pytest.raises(OSError, match='Address already in use'):
             WebServer('test', tmp_path, port=taken.getsockname()[1])
+        monkeypatch.setenv('OWL_PAGE_PORT_FALLBACK', '1')  # a class server: another student's page has it
+        given_way = WebServer('test', tmp_path, port=taken.getsockname()[1])
+        try:
+            assert given_way.url != f'http://127.0.0.1:{taken.getsockname()[1]}/'
+        finally:
+            given_way.stop()
     module = WebServer('test', tmp_path, host='127.42.0.8')  # a module's own address, no set-up
     try:
         assert module.url.startswith('http://127.42.0.8:')

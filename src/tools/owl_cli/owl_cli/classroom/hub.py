@@ -186,7 +186,8 @@ def config_text(settings: HubSettings) -> str:
     for name, value in values.items():
         lines.append(f'c.{name} = {value!r}')
     fixed = {'PATH': SYSTEM_PATH, 'JUPYTER_CONFIG_PATH': str(settings.state / 'jupyter'),
-             'ROS_AUTOMATIC_DISCOVERY_RANGE': 'LOCALHOST', 'OWL_TRUSTED_ORIGINS': ' '.join(settings.origins)}
+             'ROS_AUTOMATIC_DISCOVERY_RANGE': 'LOCALHOST', 'OWL_TRUSTED_ORIGINS': ' '.join(settings.origins),
+             'OWL_PAGE_PORT_FALLBACK': '1'}  # classmates' pages hold the default ports: take a free one
     lines += [
         '# Each account\'s own ROS domain and front door port (owl_cli.classroom.worlds).',
         f'domains = {settings.domains!r}',

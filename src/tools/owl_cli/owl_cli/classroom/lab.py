@@ -2,7 +2,8 @@
 
 The teacher's checkout may sit where other accounts cannot enter, and its venv's Python often
 does (pyenv or uv under /root). So the class server copies the checkout's files (those git tracks
-or would track: nothing it ignores, so no venv or build) into STATE/lab and runs the project's own
+or would track: nothing it ignores, so no venv or build) into the lab folder (STATE/lab unless
+--lab says where; classes may share one) and runs the project's own
 bootstrap there on the system's python3 (the same minor version carries the same wheels). Students
 read and run it; only root writes it. Every student's terminal and front door start from its
 env.sh, as `source env.sh` does in a checkout. It is made again when a file of the checkout
@@ -11,6 +12,7 @@ changed (one digest over the names and contents).
 
 from __future__ import annotations
 
+import fcntl
 import hashlib
 import os
 import shutil
@@ -74,21 +76,25 @@ def bootstrap_environment(environ: dict[str, str], python: str) -> dict[str, str
     return {**kept, 'PATH': SYSTEM_PATH, 'PYTHON': python}
 
 
-def ensure_lab(state: Path, root: Path, python: str) -> Path:
-    """STATE/lab, copied from the checkout at root and bootstrapped on python when either changed."""
-    lab = state / 'lab'
+def ensure_lab(lab: Path, root: Path, python: str) -> Path:
+    """lab, copied from the checkout at root and bootstrapped on python when either changed.
+
+    Several class servers may share one lab: one builds it while the others wait.
+    """
     names = checkout_files(root)
     digest = files_digest(root, names) + f' {python}\n'
     stamp = lab / STAMP
-    if stamp.is_file() and stamp.read_text() == digest:
-        return lab
-    print("owl class: building the students' lab (this checkout, bootstrapped on "
-          f'{python}; a few minutes the first time) ...', flush=True)
-    lab.mkdir(mode=0o755, exist_ok=True)
-    stamp.unlink(missing_ok=True)  # a lab half made is made again at the next start
-    copy_files(root, lab, names)
-    run_step(['bash', str(lab / 'scripts' / 'bootstrap.sh')], "building the lab (its copy's make setup)",
-             environment=bootstrap_environment(dict(os.environ), python))
-    run_step(['chmod', '-R', 'a+rX,go-w', str(lab)], "opening the lab to the class's accounts")
-    stamp.write_text(digest)
+    lab.mkdir(mode=0o755, parents=True, exist_ok=True)
+    with open(lab / '.owl-lab.lock', 'w') as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if stamp.is_file() and stamp.read_text() == digest:
+            return lab
+        print("owl class: building the students' lab (this checkout, bootstrapped on "
+              f'{python}; a few minutes the first time) ...', flush=True)
+        stamp.unlink(missing_ok=True)  # a lab half made is made again at the next start
+        copy_files(root, lab, names)
+        run_step(['bash', str(lab / 'scripts' / 'bootstrap.sh')], "building the lab (its copy's make setup)",
+                 environment=bootstrap_environment(dict(os.environ), python))
+        run_step(['chmod', '-R', 'a+rX,go-w', str(lab)], "opening the lab to the class's accounts")
+        stamp.write_text(digest)
     return lab

@@ -43,6 +43,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--key', type=Path, help="the certificate's private key (PEM)")
     parser.add_argument('--state', type=Path, default=hub.STATE,
                         help=f'where the hub keeps its venv, database and certificate (default {hub.STATE})')
+    parser.add_argument('--lab', type=Path,
+                        help="where the students' copy of this checkout is built (default STATE/lab; "
+                             'classes may share one)')
 
 
 def free_local_port() -> int:
@@ -99,17 +102,19 @@ def prepare(args: argparse.Namespace) -> hub.HubSettings:
                  + [accounts.conflict(args.teacher, accounts.TEACHERS)] if c]
     if conflicts:
         raise ClassError(conflicts[0])
-    closed = closed_parent(args.state)
-    if closed is not None:
-        raise ClassError(f'--state {args.state}: every student runs the hub\'s venv inside, but {closed} is '
-                         'closed to other accounts (it needs o+x)')
+    lab_folder = args.lab or args.state / 'lab'
+    for option, folder in (('--state', args.state), ('--lab', lab_folder)):
+        closed = closed_parent(folder)
+        if closed is not None:
+            raise ClassError(f'{option} {folder}: every student runs what is inside, but {closed} is '
+                             'closed to other accounts (it needs o+x)')
     password = teacher_password()
     args.state.mkdir(mode=0o700, parents=True, exist_ok=True)
     os.chmod(args.state, 0o711)  # students' servers run the venv inside; the rest stays root's
     certificate = hub.ensure_certificate(args.state, args.cert, args.key, socket.gethostname())
     venv = hub.ensure_venv(args.state)
     proxy_command = hub.ensure_proxy(args.state)
-    lab = ensure_lab(args.state, hub.project_root(), hub.SYSTEM_PYTHON)
+    lab = ensure_lab(lab_folder, hub.project_root(), hub.SYSTEM_PYTHON)
     known = worlds.read_domains(args.state)
     names = [s.name for s in students] + [args.teacher]
     domains = worlds.record_domains(args.state, known,
