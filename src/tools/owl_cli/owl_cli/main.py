@@ -14,7 +14,7 @@ from owl_humble.graph_partition import profile_in_effect, profile_protects
 from owl_web.origins import port_number
 
 from owl_cli import check, classroom, kit_check, network_check, pages_command, wsl_check
-from owl_cli.classroom import serve
+from owl_cli.classroom import image, serve
 
 
 def positive_seconds(text: str) -> float:
@@ -161,6 +161,11 @@ def main(argv: list[str] | None = None) -> int:
         description=serve.__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     serve.add_arguments(serve_class)
     serve_class.set_defaults(run=serve.run)
+    class_image = class_commands.add_parser(
+        'image', help="make this checkout a class's single-user image for Kubernetes (while building it)",
+        description=image.__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    image.add_arguments(class_image)
+    class_image.set_defaults(run=image.run)
     args = parser.parse_args(argv)
     try:
         return args.run(args)

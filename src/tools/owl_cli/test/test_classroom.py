@@ -91,6 +91,9 @@ def test_the_hub_configuration_lets_the_class_log_in_with_the_teacher_as_admin(t
 
 
 def test_a_students_server_opens_terminals_in_the_lab_and_a_tile_for_their_front_door(monkeypatch):
+    monkeypatch.delenv('OWL_FRONT_DOOR_PORT', raising=False)
+    assert read_config(server_config_text(Path('/srv/lab'), Path('/rc')))['ServerProxy']['servers'][
+        'owl-kit-lab']['port'] == 8090  # a pod of its own (Kubernetes): the front door's own port
     monkeypatch.setenv('OWL_FRONT_DOOR_PORT', '7002')
     c = read_config(server_config_text(Path('/srv/lab'), Path('/srv/jupyter/terminal.bashrc')))
     assert c['ServerApp']['terminado_settings']['shell_command'] == [

@@ -19,6 +19,8 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
+from owl_web.pages import FRONT_DOOR_PORT
+
 from owl_cli.classroom import ClassError, run_step, teacher_page, worlds
 from owl_cli.classroom.lab import SYSTEM_PATH
 
@@ -49,10 +51,9 @@ def inputs_digest(inputs: list[Path]) -> str:
     return digest.hexdigest()
 
 
-def ensure_venv(state: Path) -> Path:
-    """The hub's venv, made or brought to the pins when they changed; its folder."""
+def ensure_venv(venv: Path) -> Path:
+    """The hub's (and every server's) venv, made or brought to the pins when they changed; its folder."""
     requirements = project_root() / 'config' / 'classroom' / 'requirements.txt'
-    venv = state / 'venv'
     if stamp_matches(venv, [requirements]):
         return venv
     if not Path(SYSTEM_PYTHON).is_file():
@@ -212,14 +213,14 @@ def server_config_text(lab: Path, terminal_rc: Path) -> str:
         'launcher_entry': {'title': 'Owl Kit Lab pages'},
     }
     return '\n'.join([
-        '# Written by owl class serve at each start; edits here are lost.',
+        '# Written by owl class; edits here are lost.',
         'import os',
         'c = get_config()  # noqa',
         '# A terminal is a shell of the lab, as `source env.sh` gives in a checkout.',
         f"c.ServerApp.terminado_settings = {{'shell_command': {shell!r}}}",
         '# The front door (every page of the account) through the server\'s proxy, at its own port.',
         f'front_door = {front_door!r}',
-        "front_door['port'] = int(os.environ['OWL_FRONT_DOOR_PORT'])",
+        f"front_door['port'] = int(os.environ.get('OWL_FRONT_DOOR_PORT', '{FRONT_DOOR_PORT}'))",
         "c.ServerProxy.servers = {'owl-kit-lab': front_door}",
     ]) + '\n'
 
@@ -231,16 +232,20 @@ def terminal_rc_text(lab: Path) -> str:
             f'. {lab}/env.sh\n')
 
 
+def write_server_config(folder: Path, lab: Path) -> None:
+    """Write the servers' configuration folder (JUPYTER_CONFIG_PATH): lab terminals, the front door's tile."""
+    folder.mkdir(mode=0o755, parents=True, exist_ok=True)
+    os.chmod(folder, 0o755)  # every account's server reads it
+    terminal_rc = folder / 'owl-terminal.bashrc'
+    terminal_rc.write_text(terminal_rc_text(lab))
+    (folder / 'jupyter_server_config.py').write_text(server_config_text(lab, terminal_rc))
+    for written in (terminal_rc, folder / 'jupyter_server_config.py'):
+        os.chmod(written, 0o644)
+
+
 def write_config(settings: HubSettings) -> Path:
     """Write the hub's configuration and the servers' into the state folder; jupyterhub_config.py's path."""
-    servers = settings.state / 'jupyter'
-    servers.mkdir(mode=0o755, exist_ok=True)
-    os.chmod(servers, 0o755)  # every account's server reads it
-    terminal_rc = servers / 'terminal.bashrc'
-    terminal_rc.write_text(terminal_rc_text(settings.lab))
-    (servers / 'jupyter_server_config.py').write_text(server_config_text(settings.lab, terminal_rc))
-    for written in servers.iterdir():
-        os.chmod(written, 0o644)
+    write_server_config(settings.state / 'jupyter', settings.lab)
     path = settings.state / 'jupyterhub_config.py'
     path.write_text(config_text(settings))
     return path

@@ -112,7 +112,7 @@ def prepare(args: argparse.Namespace) -> hub.HubSettings:
     args.state.mkdir(mode=0o700, parents=True, exist_ok=True)
     os.chmod(args.state, 0o711)  # students' servers run the venv inside; the rest stays root's
     certificate = hub.ensure_certificate(args.state, args.cert, args.key, socket.gethostname())
-    venv = hub.ensure_venv(args.state)
+    venv = hub.ensure_venv(args.state / 'venv')
     proxy_command = hub.ensure_proxy(args.state)
     lab = ensure_lab(lab_folder, hub.project_root(), hub.SYSTEM_PYTHON)
     known = worlds.read_domains(args.state)
