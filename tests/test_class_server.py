@@ -1,14 +1,17 @@
 """`owl class serve` with a real JupyterHub, real PAM logins and real Unix accounts (as root).
 
-One hub serves the module: the students log in over HTTPS (the self-signed certificate's fingerprint
-checked against the one printed), a wrong password and an unknown name are refused, a student cannot
-reach the admin API, the admin page or another student's server, each student's server runs as
-their own account, homes are private, and a restart with a longer class list adds a student and
-keeps the others' files. Every account made here is removed at the end.
+One hub of three students serves the module: they log in over HTTPS (the self-signed certificate's
+fingerprint checked against the one printed), a wrong password and an unknown name are refused, a
+student cannot reach the admin API, the admin page, the teacher's page or another student's server,
+each student's server runs as their own account, homes are private; each has a terminal of the lab
+and a ROS world of their own, starts the kit and opens its pages in Chromium through the hub; the
+teacher's page shows their `owl check` results; a restart with a longer class list adds a student
+and keeps the others' files. Every account made here is removed at the end (tests/class_harness.py).
 """
 
 from __future__ import annotations
 
+import asyncio
 import hashlib
 import json
 import os
@@ -47,7 +50,7 @@ HUB_TEST_TIMEOUT = 540.0  # s
 def hub() -> Iterator[Hub]:
     if os.geteuid() != 0:
         prerequisite_missing('owl class serve makes Unix accounts: the test runs as root')
-    started = Hub.open(students=2)
+    started = Hub.open(students=3)
     try:
         yield started
     finally:
@@ -63,7 +66,7 @@ def server_processes_of(name: str) -> list[str]:
 @pytest.mark.whole_kit
 @pytest.mark.timeout(HUB_TEST_TIMEOUT)
 def test_students_log_in_to_servers_of_their_own_and_reach_nothing_else(hub):
-    first, second = hub.students
+    first, second, _ = hub.students
     visitor = Visitor(hub.port)
     assert visitor.log_in(first, 'not-the-password')[0] == 403
     assert visitor.log_in('nosuchstudent', 'x')[0] == 403
@@ -90,7 +93,7 @@ def test_students_log_in_to_servers_of_their_own_and_reach_nothing_else(hub):
 @pytest.mark.whole_kit
 @pytest.mark.timeout(HUB_TEST_TIMEOUT)
 def test_each_student_has_a_terminal_of_the_lab_a_ros_world_and_a_front_door_of_their_own(hub):
-    first, second = hub.students
+    first, second, _ = hub.students
     students = logged_in(hub, [first, second])
 
     async def in_terminals() -> None:
@@ -121,27 +124,37 @@ def row_of(table: str, name: str) -> str:
 
 @pytest.mark.whole_kit
 @pytest.mark.timeout(HUB_TEST_TIMEOUT)
-def test_the_teachers_page_shows_a_students_owl_check_and_no_student_opens_it(hub):
-    first, second = hub.students
-    students = logged_in(hub, [first, second])
+def test_the_teachers_page_shows_each_students_owl_check_and_no_student_opens_it(hub):
+    passing, failing, idle = hub.students
+    students = logged_in(hub, [passing, failing, idle])
     teacher = Visitor(hub.port)
     assert teacher.log_in(hub.teacher, TEACHER_PASSWORD)[0] == 302
     status, page = teacher.open('/services/owl-teacher/')
     assert status == 200, page
-    assert 'not-run" data-exercise="imu_turtle"' in row_of(page, first)
+    assert 'not-run" data-exercise="imu_turtle"' in row_of(page, passing)
 
-    async def a_students_check() -> str:
-        # As section 4.3 has it: the package in their own workspace, built there, then checked.
-        async with Terminal(students[first], first) as terminal:
-            return await terminal.run('mkdir -p ~/ros2_ws/src && cp -r "$OWL_ROOT/src/course/olive_imu" '
-                                      '~/ros2_ws/src/ && cd ~/ros2_ws && owl check imu_turtle', timeout=240)
+    async def checks() -> list[str]:
+        # As section 4.3 has it: the package in their own workspace, built there, then checked; one
+        # student's with the course's solution, one's with the IMU's axes swapped.
+        packages = {passing: 'src/course/olive_imu',
+                    failing: 'tests/owl_check_variants/imu_swapped/olive_imu'}
 
-    checked = in_a_thread(a_students_check())
-    assert 'imu_turtle: passed' in checked, checked
+        async def check(name: str) -> str:
+            async with Terminal(students[name], name) as terminal:
+                command = (f'mkdir -p ~/ros2_ws/src && cp -r "$OWL_ROOT/{packages[name]}" ~/ros2_ws/src/ '
+                           '&& cd ~/ros2_ws && owl check imu_turtle')
+                return await terminal.run(command, timeout=240)
+
+        return list(await asyncio.gather(check(passing), check(failing)))
+
+    passed, failed = in_a_thread(checks())
+    assert 'imu_turtle: passed' in passed, passed
+    assert 'imu_turtle: FAILED' in failed, failed
     table = teacher.get('/services/owl-teacher/api/table')[2]  # what the page's refresh fetches
-    assert 'class="passed" data-exercise="imu_turtle"' in row_of(table, first)
-    assert 'class="not-run" data-exercise="imu_turtle"' in row_of(table, second)
-    assert '<td class="last">just now</td>' in row_of(table, first)
+    assert 'class="passed" data-exercise="imu_turtle"' in row_of(table, passing)
+    assert 'class="failed" data-exercise="imu_turtle"' in row_of(table, failing)
+    assert 'class="not-run" data-exercise="imu_turtle"' in row_of(table, idle)
+    assert '<td class="last">just now</td>' in row_of(table, passing)
     for student in students.values():
         assert student.follow('/services/owl-teacher/') == 403  # the hub refuses them the service
         assert student.follow('/services/owl-teacher/api/table') == 403
