@@ -196,7 +196,8 @@ def test_owl_network_refuses_bad_arguments_in_one_line(args, message):
     (['network', '--what'], 'owl: error: unrecognized arguments: --what'),
     (['netwerk'], "owl: error: argument COMMAND: invalid choice: 'netwerk' "
                   "(choose from 'network', 'windows', 'check', 'pages', 'class')"),
-    (['class', 'serv'], "owl class: error: argument COMMAND: invalid choice: 'serv' (choose from 'serve', 'image')"),
+    (['class', 'serv'], "owl class: error: argument COMMAND: invalid choice: 'serv' "
+                        "(choose from 'serve', 'image')"),
 ])
 def test_owl_refuses_unknown_words_in_one_line(args, message):
     result = subprocess.run(['owl', *args], capture_output=True, text=True, timeout=60)
