@@ -22,6 +22,7 @@ import socket
 import subprocess
 import time
 from collections.abc import Iterator
+from contextlib import AsyncExitStack
 from pathlib import Path
 
 import pytest
@@ -93,21 +94,30 @@ def test_students_log_in_to_servers_of_their_own_and_reach_nothing_else(hub):
 @pytest.mark.whole_kit
 @pytest.mark.timeout(HUB_TEST_TIMEOUT)
 def test_each_student_has_a_terminal_of_the_lab_a_ros_world_and_a_front_door_of_their_own(hub):
-    first, second, _ = hub.students
-    students = logged_in(hub, [first, second])
+    names = list(hub.students)
+    first, second, _ = names
+    students = logged_in(hub, names)
+
+    def turtles(listing: str) -> int:
+        plain = re.sub(r'\x1b\[[0-9;?]*[A-Za-z]', '', listing)  # the terminal's own escapes (bracketed paste)
+        return sum(line.strip() == '/turtlesim' for line in plain.splitlines())
 
     async def in_terminals() -> None:
-        async with Terminal(students[first], first) as mine, Terminal(students[second], second) as theirs:
+        async with AsyncExitStack() as stack:
+            terminals = [await stack.enter_async_context(Terminal(students[name], name)) for name in names]
             domains = [re.findall(r'domain (\d+)', await terminal.run('echo "domain $ROS_DOMAIN_ID"'))
-                       for terminal in (mine, theirs)]
-            assert len(domains[0]) == len(domains[1]) == 1, (mine.output, theirs.output)
-            assert domains[0] != domains[1]
-            await mine.run('ros2 run turtlesim turtlesim_node > turtlesim.log 2>&1 &')
+                       for terminal in terminals]
+            assert sorted(len(found) for found in domains) == [1, 1, 1], domains
+            assert len({found[0] for found in domains}) == len(names)
+            for terminal in terminals:  # as the course has it, section 3: every student's own turtle
+                await terminal.run('ros2 run turtlesim turtlesim_node > turtlesim.log 2>&1 &')
             deadline = time.monotonic() + 60
-            while '/turtlesim' not in await mine.run('ros2 node list'):
-                assert time.monotonic() < deadline, mine.output  # each listing waits for discovery
-            assert '/turtlesim' not in await theirs.run('ros2 node list')  # another student's world
-            assert 'Owl Kit Lab: network private' in mine.output  # the terminal sourced the lab's env.sh
+            for terminal in terminals:
+                while not turtles(await terminal.run('ros2 node list')):
+                    assert time.monotonic() < deadline, terminal.output  # each listing waits for discovery
+            for terminal in terminals:  # all three run now: in one world each would list three
+                assert turtles(await terminal.run('ros2 node list')) == 1, terminal.output
+            assert all('Owl Kit Lab: network private' in t.output for t in terminals)  # the lab's env.sh
 
     in_a_thread(in_terminals())
     # The launcher's tile: the student's front door, through the hub's proxy; nobody else's.
@@ -210,8 +220,9 @@ def test_students_in_chromium_start_their_kits_and_open_their_own_pages_through_
 @pytest.mark.timeout(HUB_TEST_TIMEOUT)
 def test_a_restart_with_a_longer_list_adds_a_student_and_keeps_everyones_files(hub):
     first = next(iter(hub.students))
-    work = Path(pwd.getpwnam(first).pw_dir) / 'work.py'
-    work.write_text('print("kept")\n')
+    works = {name: Path(pwd.getpwnam(name).pw_dir) / 'work.py' for name in hub.students}
+    for name, work in works.items():  # each one's home: their workspace and everything else of theirs
+        work.write_text(f'print("{name} kept")\n')
     assert hub.process is not None
     hub.process.send_signal(signal.SIGTERM)  # as `kill` would: the hub stops with it, as at Ctrl-C
     assert hub.process.wait(30) == 0
@@ -222,7 +233,8 @@ def test_a_restart_with_a_longer_list_adds_a_student_and_keeps_everyones_files(h
     newcomer = new_name()
     hub.students[newcomer] = 'pw-newcomer'
     hub.start()
-    assert work.read_text() == 'print("kept")\n'
+    for name, work in works.items():
+        assert work.read_text() == f'print("{name} kept")\n'
     assert Visitor(hub.port).log_in(newcomer, 'pw-newcomer')[:2] == (302, '/hub/spawn')
     assert Visitor(hub.port).log_in(first, hub.students[first])[:2] == (302, '/hub/spawn')
     assert Visitor(hub.port).log_in(hub.teacher, TEACHER_PASSWORD)[:2] == (302, '/hub/spawn')
@@ -257,6 +269,32 @@ def test_a_bad_class_list_is_one_line_and_creates_nothing(tmp_path, lines, messa
                 pwd.getpwnam(name)
     finally:
         remove_accounts(set(names.values()))
+
+
+@pytest.mark.parametrize(('certificate', 'message'), [
+    (['--cert', '{folder}/hub.crt'], 'give both --cert and --key, or neither'),
+    (['--cert', '{folder}/missing.crt', '--key', '{folder}/missing.key'],
+     '--cert {folder}/missing.crt: no such file'),
+    (['--cert', '{folder}/not-pem.crt', '--key', '{folder}/not-pem.crt'], 'cannot read the certificate'),
+])
+def test_a_wrong_certificate_is_one_line_and_creates_nothing(tmp_path, certificate, message):
+    if os.geteuid() != 0:
+        prerequisite_missing('owl class serve makes Unix accounts: the test runs as root')
+    (tmp_path / 'not-pem.crt').write_text('not a certificate\n')
+    student = new_name()
+    class_list = tmp_path / 'class.txt'
+    class_list.write_text(f'{student} pw-a\n')
+    done = subprocess.run(['owl', 'class', 'serve', '--students', str(class_list), '--teacher', new_name(),
+                           '--port', str(free_port()), '--state', str(tmp_path / 'state'),
+                           *(arg.format(folder=tmp_path) for arg in certificate)],
+                          capture_output=True, text=True, timeout=60, check=False,
+                          env={**os.environ, 'OWL_CLASS_TEACHER_PASSWORD': TEACHER_PASSWORD})
+    assert done.returncode == 2
+    [line] = done.stderr.strip().splitlines()
+    assert line.startswith(f"owl class: {message.format(folder=tmp_path)}"), line
+    assert not (tmp_path / 'state').exists()
+    with pytest.raises(KeyError):
+        pwd.getpwnam(student)
 
 
 def test_a_busy_port_is_one_line(tmp_path):

@@ -111,15 +111,23 @@ def fingerprint_of(cert: Path) -> str:
     return ':'.join(digest[i:i + 2] for i in range(0, len(digest), 2))
 
 
-def ensure_certificate(state: Path, cert: Path | None, key: Path | None, hostname: str) -> Certificate:
-    """The teacher's certificate and key, or a self-signed one made at the first start and kept."""
+def teachers_certificate(cert: Path | None, key: Path | None) -> Certificate | None:
+    """The certificate the teacher gave (--cert and --key), None for none; ClassError when it cannot serve."""
     if (cert is None) != (key is None):
         raise ClassError('give both --cert and --key, or neither (a self-signed certificate is made)')
-    if cert is not None and key is not None:
-        for path in (cert, key):
-            if not path.is_file():
-                raise ClassError(f'no such file: {path}')
-        return Certificate(cert, key, fingerprint_of(cert))
+    if cert is None or key is None:
+        return None
+    for option, path in (('--cert', cert), ('--key', key)):
+        if not path.is_file():
+            raise ClassError(f'{option} {path}: no such file')
+    return Certificate(cert, key, fingerprint_of(cert))
+
+
+def ensure_certificate(state: Path, cert: Path | None, key: Path | None, hostname: str) -> Certificate:
+    """The teacher's certificate and key, or a self-signed one made at the first start and kept."""
+    given = teachers_certificate(cert, key)
+    if given is not None:
+        return given
     cert, key = state / 'hub.crt', state / 'hub.key'
     if not (cert.is_file() and key.is_file()):
         run_step(['openssl', 'req', '-x509', '-newkey', 'ec', '-pkeyopt', 'ec_paramgen_curve:P-256',

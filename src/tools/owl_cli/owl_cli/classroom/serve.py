@@ -88,6 +88,7 @@ def prepare(args: argparse.Namespace) -> hub.HubSettings:
             probe.bind(('', args.port))
         except OSError as error:
             raise ClassError(f'--port {args.port}: {error.strerror or error}') from None
+    hub.teachers_certificate(args.cert, args.key)  # a wrong one is said before anything is made
     try:
         text = Path(args.students).read_text()
     except (OSError, UnicodeDecodeError) as error:
