@@ -39,6 +39,7 @@ from class_harness import Hub, Terminal, Visitor, in_a_thread, logged_in  # noqa
 CAMERA_FPS, IMU_HZ, ENOUGH = 30.0, 100.0, 0.9
 SERVER_CORES, SERVER_GB = 16, 64
 LAUNCH = 'ros2 launch robot_view robot_view.launch.py'
+LOGIN_TIMEOUT = 90.0  # s: a student whose server does not answer by then is one too many
 
 
 # Counts the camera's frames and the IMU's messages over N seconds, run in a student's own terminal:
@@ -158,7 +159,7 @@ def main() -> int:
         for name in hub.students:
             began = time.monotonic()
             try:
-                student = logged_in(hub, [name])[name]
+                student = logged_in(hub, [name], timeout=LOGIN_TIMEOUT)[name]
             except AssertionError as error:  # the machine is too busy to start one more JupyterLab
                 print(f'student {len(running) + 1}: cannot log in ({error})')
                 break

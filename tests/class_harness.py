@@ -224,8 +224,12 @@ def remove_accounts(names: set[str]) -> None:
         subprocess.run(['userdel', '--remove', name], capture_output=True, check=False)
 
 
-def logged_in(hub: Hub, names: list[str]) -> dict[str, Visitor]:
-    """Each of names logged in with their server running, as their browser is once the lab shows."""
+def logged_in(hub: Hub, names: list[str], timeout: float = 180.0) -> dict[str, Visitor]:
+    """Each of names logged in with their server running, as their browser is once the lab shows.
+
+    timeout: seconds for each server to answer (JupyterLab starts in about 10 s alone, several at
+    once on a loaded 2-core machine take minutes).
+    """
     students = {name: Visitor(hub.port) for name in names}
     for name, student in students.items():
         status, location, _ = student.log_in(name, hub.students[name])
@@ -235,7 +239,8 @@ def logged_in(hub: Hub, names: list[str]) -> dict[str, Visitor]:
         # The lab page logs the browser in to the server (OAuth through the hub); then its API answers
         # (api/status needs that login, while a server's bare api/ answers anyone with its version).
         wait_until(lambda: student.follow(f'/user/{name}/lab') == 200  # noqa: B023
-                   and student.get(f'/user/{name}/api/status')[0] == 200, 90, f"{name}'s server")  # noqa: B023
+                   and student.get(f'/user/{name}/api/status')[0] == 200, timeout,  # noqa: B023
+                   f"{name}'s server")
     return students
 
 
