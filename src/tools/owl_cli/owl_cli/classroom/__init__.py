@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import subprocess
 from collections.abc import Mapping
+from pathlib import Path
 
 
 class ClassError(RuntimeError):
@@ -17,3 +18,11 @@ def run_step(argv: list[str], what: str, stdin: str | None = None,
     if done.returncode != 0:
         lines = (done.stderr or done.stdout).strip().splitlines()
         raise ClassError(f"{what} failed: {lines[-1] if lines else f'exit code {done.returncode}'}")
+
+
+def closed_parent(folder: Path) -> Path | None:
+    """The first existing folder above folder that other accounts cannot pass through, if any."""
+    for parent in reversed(folder.absolute().parents):
+        if parent.is_dir() and not parent.stat().st_mode & 0o001:
+            return parent
+    return None

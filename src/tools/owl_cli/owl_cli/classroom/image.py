@@ -14,8 +14,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from owl_cli.classroom import ClassError, hub, run_step
-from owl_cli.classroom.serve import closed_parent
+from owl_cli.classroom import ClassError, closed_parent, hub, run_step
 
 CONFIG_DIR = Path('/etc/jupyter')
 SERVER_VENV = Path('/opt/owl-kit-lab-server')

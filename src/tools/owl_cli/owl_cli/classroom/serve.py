@@ -22,7 +22,7 @@ import sys
 from pathlib import Path
 
 from owl_cli import check_catalogue as catalogue
-from owl_cli.classroom import ClassError, accounts, hub, teacher_page, worlds
+from owl_cli.classroom import ClassError, accounts, closed_parent, hub, teacher_page, worlds
 from owl_cli.classroom.lab import ensure_lab
 from owl_cli.classroom.students import StudentsError, name_problem, parse_students
 
@@ -53,14 +53,6 @@ def free_local_port() -> int:
     with socket.socket() as probe:
         probe.bind(('127.0.0.1', 0))
         return int(probe.getsockname()[1])
-
-
-def closed_parent(folder: Path) -> Path | None:
-    """The first existing folder above folder that other accounts cannot pass through, if any."""
-    for parent in reversed(folder.absolute().parents):
-        if parent.is_dir() and not parent.stat().st_mode & 0o001:
-            return parent
-    return None
 
 
 def teacher_password() -> str:
