@@ -157,7 +157,7 @@ class RawPipe(asyncio.Protocol):
 
 
 # The WebSocket's page server and the head it gets, or None for aiohttp to answer the request.
-WebSocketTarget = Callable[[RequestHead], 'tuple[str, bytes] | None']
+WebSocketTarget = Callable[[RequestHead, asyncio.Transport], 'tuple[str, bytes] | None']
 
 
 class FirstRequest(asyncio.Protocol):
@@ -188,11 +188,11 @@ class FirstRequest(asyncio.Protocol):
                 self.hand_over()
             return
         head = RequestHead.parse(self.buffer[:end])
-        found = self.target(head) if head is not None and head.opens_websocket else None
+        assert self.transport is not None
+        found = self.target(head, self.transport) if head is not None and head.opens_websocket else None
         if found is None:
             self.hand_over()
             return
-        assert self.transport is not None
         self.transport.pause_reading()
         self.passing = asyncio.ensure_future(self.pass_through(*found, self.buffer[end + 4:]))
 

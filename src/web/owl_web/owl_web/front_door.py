@@ -8,7 +8,8 @@
 WSL2 forwards only 127.0.0.1's ports to the Windows browser, and a class server's proxy serves one
 port of each student's under a prefix (/user/NAME/proxy/8090/): one port, relative links, and the
 pages' servers found through the pages folder (owl_web.pages) make every page reachable both ways.
-The Host and Origin checks of every page (owl_web.server.foreign_request) apply here first.
+The checks of every page (owl_web.origins.foreign_request; owl_web.owner_only on a class server)
+apply here first.
 
 A page server that joins the front door starts it when none runs (owl_web.pages.ensure_front_door).
 It runs until stopped (`owl pages --stop`, or its pages folder removed), like ros2's daemon.
@@ -23,6 +24,7 @@ import os
 import signal
 import socket
 import sys
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
@@ -32,6 +34,7 @@ from aiohttp import web
 from owl_web import pages
 from owl_web.forward import BackendAway, FirstRequest, Forwarder, RequestHead, rewritten_head
 from owl_web.origins import TrustedOrigins, foreign_request
+from owl_web.owner_only import OwnerOnly
 from owl_web.pages import PageState
 from owl_web.server import json_response, one_line_logger
 
@@ -122,9 +125,11 @@ def root_of(raw_path: str) -> str:
 class FrontDoor:
     """The front door's requests: the index, api/pages, and everything under a page's mount."""
 
-    def __init__(self, folder: Path, trusted: TrustedOrigins, log: Any) -> None:
+    def __init__(self, folder: Path, trusted: TrustedOrigins, log: Any,
+                 owner_only: OwnerOnly | None = None) -> None:
         self.folder = folder
         self.trusted = trusted
+        self.owner_only = owner_only or OwnerOnly(on=False)
         self.log = log
         self.forwarder = Forwarder()
 
@@ -136,21 +141,24 @@ class FrontDoor:
         app.on_cleanup.append(lambda _: self.forwarder.close())
         return app
 
+    def refusal(self, headers: Mapping[str, str], transport: Any) -> str | None:
+        """Why a request may not pass: another account's connection, a foreign Host or Origin."""
+        return (self.owner_only.refusal(transport)
+                or foreign_request(headers.get('Host', ''), headers.get('Origin'), self.trusted))
+
     @web.middleware
     async def _own_pages_only(self, request: web.Request, handler: Any) -> web.StreamResponse:
-        headers = request.headers
-        refusal = foreign_request(headers.get('Host', ''), headers.get('Origin'), self.trusted)
+        refusal = self.refusal(request.headers, request.transport)
         if refusal is not None:
             return json_response(403, {'error': refusal})
         return await handler(request)
 
-    def websocket_target(self, head: RequestHead) -> tuple[str, bytes] | None:
+    def websocket_target(self, head: RequestHead, transport: Any) -> tuple[str, bytes] | None:
         """Where a WebSocket request on a connection of its own goes, and the head its page server gets.
 
         None leaves the request to handle(): a refused one, one for a page that is not running.
         """
-        headers = head.headers
-        if foreign_request(headers.get('Host', ''), headers.get('Origin'), self.trusted) is not None:
+        if self.refusal(head.headers, transport) is not None:
             return None
         path, question, query = head.target.partition('?')
         mount, slash, rest = path[1:].partition('/') if path.startswith('/') else ('', '', '')
@@ -219,7 +227,7 @@ async def serve(listener: socket.socket, folder: Path, trusted: TrustedOrigins) 
     def log(line: str) -> None:
         print(f'front door: {line}', file=sys.stderr, flush=True)
 
-    door = FrontDoor(folder, trusted, log)
+    door = FrontDoor(folder, trusted, log, OwnerOnly.from_environment())
     runner = web.AppRunner(door.app(), handle_signals=False, access_log=None, shutdown_timeout=0.5)
     await runner.setup()
     http = runner.server

@@ -47,6 +47,7 @@ from owl_common.hints import did_you_mean
 from owl_web import codec, pages
 from owl_web.codec import ApiError
 from owl_web.origins import TrustedOrigins, foreign_request
+from owl_web.owner_only import OwnerOnly
 from owl_web.pages import Page
 
 OWL_STATIC = Path(__file__).parent / 'static'
@@ -270,6 +271,7 @@ class WebServer:
         if address.version != 4 or not address.is_loopback:
             raise ValueError(f'{name} serves on loopback addresses only (127.x.y.z), not {host}')
         self.trusted = TrustedOrigins.from_environment()
+        self.owner_only = OwnerOnly.from_environment()
         self.name = name
         self.static_dir = static_dir
         self.log = log or (lambda line: print(f'{name}: {line}', file=sys.stderr, flush=True))
@@ -487,7 +489,8 @@ class WebServer:
     @web.middleware
     async def _own_pages_only(self, request: web.Request, handler: Callable[..., Any]) -> web.StreamResponse:
         headers = request.headers
-        refusal = foreign_request(headers.get('Host', ''), headers.get('Origin'), self.trusted)
+        refusal = (self.owner_only.refusal(request.transport)
+                   or foreign_request(headers.get('Host', ''), headers.get('Origin'), self.trusted))
         if refusal is not None:
             return json_response(403, {'error': refusal})
         return await handler(request)

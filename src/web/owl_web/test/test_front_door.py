@@ -12,6 +12,7 @@ import os
 import re
 import signal
 import socket
+import subprocess
 import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
@@ -252,6 +253,16 @@ def test_a_page_killed_without_a_word_is_greyed(joined):
     assert request(joined.door, path='/test-page/')[0] == 503
 
 
+async def open_socket(door, origin=None):
+    """'open' when the test page's WebSocket opens through the front door, else the refusal's status."""
+    async with aiohttp.ClientSession() as session:
+        try:
+            async with session.ws_connect(f'{door}test-page/ws', origin=origin):
+                return 'open'
+        except aiohttp.WSServerHandshakeError as error:
+            return error.status
+
+
 def test_foreign_hosts_origins_and_forged_proxy_headers_are_refused_and_change_nothing(joined):
     attempts = [
         {'Host': 'rebound.example'},
@@ -267,15 +278,8 @@ def test_foreign_hosts_origins_and_forged_proxy_headers_are_refused_and_change_n
             assert json.loads(body)['error'].startswith('refused: '), body
     assert joined.seen == []  # nothing reached the page's server
 
-    async def open_socket(origin):
-        async with aiohttp.ClientSession() as session:
-            try:
-                async with session.ws_connect(f'{joined.door}test-page/ws', origin=origin):
-                    return 'open'
-            except aiohttp.WSServerHandshakeError as error:
-                return error.status
-    assert run(open_socket('https://evil.example')) == 403
-    assert run(open_socket(joined.door.rstrip('/'))) == 'open'
+    assert run(open_socket(joined.door, 'https://evil.example')) == 403
+    assert run(open_socket(joined.door, joined.door.rstrip('/'))) == 'open'
 
 
 def test_a_trusted_proxy_is_configured_explicitly(tmp_path, monkeypatch):
@@ -364,3 +368,51 @@ def test_a_page_that_cannot_join_says_why_and_serves_at_its_own_address(tmp_path
         server.stop()
     with pytest.raises(ValueError, match="'Test Page' cannot be a page's path"):
         server.join_front_door({**PAGE, 'mount': 'Test Page'}, CATALOGUE)
+
+
+AS_NOBODY = ['setpriv', '--reuid=nobody', '--regid=nogroup', '--clear-groups', '/usr/bin/python3', '-c']
+# What another account's process sees of a page: each request's status and first line, raw HTTP.
+PEEK = '''
+import json, socket, sys
+from urllib.parse import urlsplit
+for url, path, upgrade in json.loads(sys.argv[1]):
+    parts = urlsplit(url)
+    with socket.create_connection((parts.hostname, parts.port), timeout=10) as connection:
+        extra = ('Upgrade: websocket\\r\\nConnection: Upgrade\\r\\nSec-WebSocket-Version: 13\\r\\n'
+                 'Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\\r\\n') if upgrade else ''
+        connection.sendall(f'GET {path} HTTP/1.1\\r\\nHost: {parts.netloc}\\r\\n{extra}\\r\\n'.encode())
+        answer = b''
+        while b'\\r\\n\\r\\n' not in answer:  # an opened WebSocket would stay open: read what is due
+            answer += connection.recv(65536)
+        head, _, body = answer.partition(b'\\r\\n\\r\\n')
+        length = [int(line.split(b':')[1]) for line in head.split(b'\\r\\n')
+                  if line.lower().startswith(b'content-length:')]
+        while len(body) < (length or [0])[0]:
+            body += connection.recv(65536)
+    text = body.decode()
+    print(head.split()[1].decode(), json.loads(text).get('error', '') if text.startswith('{') else text[:40])
+'''
+
+
+def test_owner_only_pages_serve_their_own_account_and_refuse_another(tmp_path, monkeypatch):
+    if os.geteuid() != 0:
+        pytest.skip('acting as another account needs root (CI runs as root)')
+    monkeypatch.setenv('OWL_PAGES_OWNER_ONLY', '1')  # as a class server sets it for each student
+    page = JoinedPage(tmp_path, monkeypatch)
+    try:
+        assert request(page.door, 'POST', '/test-page/api/echo', b'{}')[0] == 201  # this account's own
+        assert request(page.server.url, 'POST', '/api/echo', b'{}')[0] == 201
+        assert run(open_socket(page.door)) == 'open'
+        tries = [(page.door, '/', False), (page.door, '/test-page/api/echo', False),
+                 (page.door, '/test-page/ws', True), (page.server.url, '/', False),
+                 (page.server.url, '/ws', True)]
+        peek = subprocess.run([*AS_NOBODY, PEEK, json.dumps(tries)], capture_output=True, text=True,
+                              check=False, timeout=30)
+        answers = peek.stdout.splitlines()
+        assert len(answers) == len(tries), peek.stderr
+        for answer in answers:
+            assert answer.startswith(f'403 refused: these pages are for account uid {os.getuid()} only '
+                                     '(OWL_PAGES_OWNER_ONLY=1) and account uid '), answer
+        assert len(page.seen) == 2  # this account's two requests; nothing of the other's
+    finally:
+        page.close()
