@@ -9,6 +9,7 @@ from __future__ import annotations
 import asyncio
 import hashlib
 import http.client
+import http.cookiejar
 import json
 import os
 import re
@@ -18,6 +19,7 @@ import ssl
 import subprocess
 import tempfile
 import urllib.parse
+import urllib.request
 from collections.abc import Coroutine
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
@@ -25,6 +27,7 @@ from pathlib import Path
 from typing import Any, TypeVar
 
 import aiohttp
+from owl_cli.classroom.worlds import front_door_port, read_domains
 from owl_common.processes import RosProcess
 from ros_harness import wait_until
 from web_harness import free_port
@@ -72,6 +75,10 @@ class Hub:
         self.fingerprint = line.group(1)
         wait_until(lambda: answers(self.port), 30, 'the hub answering')
 
+    def front_door(self, name: str) -> str:
+        """The student's front door on this machine (their account's own port, owl_cli.classroom.worlds)."""
+        return f'http://127.0.0.1:{front_door_port(read_domains(self.folder / "state")[name])}/'
+
     def stop(self) -> int:
         assert self.process is not None
         return self.process.stop(timeout=20)
@@ -113,7 +120,9 @@ class Visitor:
 
     def __init__(self, port: int) -> None:
         self.port = port
-        self.cookies: dict[str, str] = {}
+        # A browser's cookie rules (paths, expiry): a refused look at a classmate's server sets an _xsrf
+        # cookie for that server's path, which must not replace the one of the student's own.
+        self.cookies = http.cookiejar.CookieJar()
         self.peer_certificate = b''
 
     def request(self, method: str, path: str, form: dict[str, str] | None = None,
@@ -121,7 +130,9 @@ class Visitor:
         """(status, Location, body) of one request."""
         connection = http.client.HTTPSConnection('127.0.0.1', self.port, timeout=30,
                                                  context=ssl._create_unverified_context())
-        headers = {**(headers or {}), 'Cookie': '; '.join(f'{k}={v}' for k, v in self.cookies.items())}
+        asked = urllib.request.Request(self.url(path), method=method)
+        self.cookies.add_cookie_header(asked)
+        headers = {**(headers or {}), **dict(asked.header_items())}
         body = None
         if form is not None:
             body = urllib.parse.urlencode(form)
@@ -134,11 +145,22 @@ class Visitor:
             text = response.read().decode(errors='replace')
         finally:
             connection.close()
-        for name, value in response.getheaders():
-            if name.lower() == 'set-cookie':
-                key, _, rest = value.partition('=')
-                self.cookies[key] = rest.split(';')[0]
+        self.cookies.extract_cookies(response, asked)
         return response.status, response.getheader('Location') or '', text
+
+    def url(self, path: str) -> str:
+        return f'https://127.0.0.1:{self.port}{path}'
+
+    def cookie_header(self, path: str) -> str:
+        """The Cookie header a browser sends with a request for path."""
+        asked = urllib.request.Request(self.url(path))
+        self.cookies.add_cookie_header(asked)
+        return asked.get_header('Cookie', '')
+
+    def cookie(self, name: str, path: str) -> str:
+        """The value of the cookie called name that a request for path carries ('' when none does)."""
+        pairs = (pair.partition('=') for pair in self.cookie_header(path).split('; '))
+        return next((value for key, _, value in pairs if key == name), '')
 
     def get(self, path: str) -> tuple[int, str, str]:
         return self.request('GET', path)
@@ -173,11 +195,11 @@ class Terminal:
         self.socket: aiohttp.ClientWebSocketResponse[bool] | None = None
 
     async def __aenter__(self) -> Terminal:
-        status, _, body = self.browser.request('POST', f'/user/{self.name}/api/terminals',
-                                               headers={'X-XSRFToken': self.browser.cookies.get('_xsrf', '')})
+        api = f'/user/{self.name}/api/terminals'
+        xsrf = self.browser.cookie('_xsrf', api)
+        status, _, body = self.browser.request('POST', api, headers={'X-XSRFToken': xsrf})
         assert status == 200, body
-        cookie = '; '.join(f'{k}={v}' for k, v in self.browser.cookies.items())
-        self.session = aiohttp.ClientSession(headers={'Cookie': cookie})
+        self.session = aiohttp.ClientSession(headers={'Cookie': self.browser.cookie_header(api)})
         self.socket = await self.session.ws_connect(
             f'wss://127.0.0.1:{self.browser.port}/user/{self.name}/terminals/websocket/{json.loads(body)["name"]}',
             ssl=False)

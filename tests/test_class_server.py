@@ -15,15 +15,20 @@ import asyncio
 import hashlib
 import json
 import os
+import pty
 import pwd
 import re
+import select
 import signal
 import socket
 import subprocess
+import tempfile
 import time
 from collections.abc import Iterator
 from contextlib import AsyncExitStack
 from pathlib import Path
+from typing import Any
+from urllib.parse import urlsplit
 
 import pytest
 from class_harness import (
@@ -38,8 +43,7 @@ from class_harness import (
 )
 from gates import prerequisite_missing
 from ros_harness import wait_until
-from test_front_door import check_module_pages, open_from_index
-from web_harness import VIEWPORT, BrowserPage, free_port
+from web_harness import VIEWPORT, BrowserPage, check_module_pages, free_port, open_from_index
 
 # The hub's tests start it (installing it first on a new machine) and a JupyterLab per student: about
 # a core's worth, for tens of seconds alone and minutes on a loaded machine. They take the share of
@@ -124,6 +128,22 @@ def test_each_student_has_a_terminal_of_the_lab_a_ros_world_and_a_front_door_of_
     wait_until(lambda: 'Owl Kit Lab: every page' in students[first].get(f'/user/{first}/owl-kit-lab/')[2],
                60, f"{first}'s front door")
     assert students[second].follow(f'/user/{first}/owl-kit-lab/') == 403
+    # Nor through 127.0.0.1, which every account of the machine shares.
+    assert 'refused: these pages are for account uid' in in_a_thread(
+        peek(students[second], second, hub.front_door(first)))
+
+
+async def peek(student: Visitor, name: str, url: str) -> str:
+    """What a student's terminal gets from url: a classmate's page is on this machine's 127.0.0.1 too."""
+    async with Terminal(student, name) as terminal:
+        parts = urlsplit(url)
+        answer = await terminal.run(
+            'python3 -c "import http.client; '
+            f"c = http.client.HTTPConnection('{parts.hostname}', {parts.port}); "
+            f"c.request('GET', '{parts.path or '/'}'); a = c.getresponse(); print('answer', a.status, "
+            'a.read().decode())"')
+        assert 'answer 403 ' in answer, answer
+        return answer
 
 
 def row_of(table: str, name: str) -> str:
@@ -134,7 +154,7 @@ def row_of(table: str, name: str) -> str:
 
 @pytest.mark.whole_kit
 @pytest.mark.timeout(HUB_TEST_TIMEOUT)
-def test_the_teachers_page_shows_each_students_owl_check_and_no_student_opens_it(hub):
+def test_the_teachers_page_shows_each_students_owl_check_and_no_student_opens_it(hub, browser):
     passing, failing, idle = hub.students
     students = logged_in(hub, [passing, failing, idle])
     teacher = Visitor(hub.port)
@@ -142,6 +162,9 @@ def test_the_teachers_page_shows_each_students_owl_check_and_no_student_opens_it
     status, page = teacher.open('/services/owl-teacher/')
     assert status == 200, page
     assert 'not-run" data-exercise="imu_turtle"' in row_of(page, passing)
+    for student in students.values():
+        assert student.follow('/services/owl-teacher/') == 403  # the hub refuses them the service
+        assert student.follow('/services/owl-teacher/api/table') == 403
 
     async def checks() -> list[str]:
         # As section 4.3 has it: the package in their own workspace, built there, then checked; one
@@ -157,17 +180,42 @@ def test_the_teachers_page_shows_each_students_owl_check_and_no_student_opens_it
 
         return list(await asyncio.gather(check(passing), check(failing)))
 
-    passed, failed = in_a_thread(checks())
-    assert 'imu_turtle: passed' in passed, passed
-    assert 'imu_turtle: FAILED' in failed, failed
-    table = teacher.get('/services/owl-teacher/api/table')[2]  # what the page's refresh fetches
-    assert 'class="passed" data-exercise="imu_turtle"' in row_of(table, passing)
-    assert 'class="failed" data-exercise="imu_turtle"' in row_of(table, failing)
-    assert 'class="not-run" data-exercise="imu_turtle"' in row_of(table, idle)
-    assert '<td class="last">just now</td>' in row_of(table, passing)
-    for student in students.values():
-        assert student.follow('/services/owl-teacher/') == 403  # the hub refuses them the service
-        assert student.follow('/services/owl-teacher/api/table') == 403
+    view = BrowserPage(browser.chromium.new_page(viewport=VIEWPORT, ignore_https_errors=True))
+    try:  # the teacher keeps the page open while the students check their work
+        log_in_with_chromium(view, hub, hub.teacher, TEACHER_PASSWORD, '/services/owl-teacher/')
+        view.wait_for_selector(f'tr[data-student="{passing}"] span.not-run[data-exercise="imu_turtle"]')
+        passed, failed = in_a_thread(checks())
+        assert 'imu_turtle: passed' in passed, passed
+        assert 'imu_turtle: FAILED' in failed, failed
+        table = teacher.get('/services/owl-teacher/api/table')[2]  # what the page's refresh fetches
+        assert 'class="passed" data-exercise="imu_turtle"' in row_of(table, passing)
+        assert 'class="failed" data-exercise="imu_turtle"' in row_of(table, failing)
+        assert 'class="not-run" data-exercise="imu_turtle"' in row_of(table, idle)
+        assert '<td class="last">just now</td>' in row_of(table, passing)
+        view.wait_for_selector(f'tr[data-student="{passing}"] span.passed[data-exercise="imu_turtle"]',
+                               timeout=15_000)  # the open page shows the results by itself
+        view.wait_for_selector(f'tr[data-student="{failing}"] span.failed[data-exercise="imu_turtle"]',
+                               timeout=15_000)
+        assert view.is_hidden('#stale')
+        assert view.inner_text(f'tr[data-student="{passing}"] td.sum').startswith('1 of ')
+        view.locator(f'tr[data-student="{failing}"] span.failed').scroll_into_view_if_needed()
+        view.screenshot_to('class_teacher_page')  # the names stay in view beside section 4.3
+        view.context.clear_cookies()  # signed out: the page says so and keeps what it showed
+        view.wait_for_selector('#stale:text("signed out: reload the page")', timeout=15_000)
+        assert view.locator(f'tr[data-student="{passing}"] span.passed').count() == 1
+        assert all('403' in error for error in view.console_errors), view.console_errors
+    finally:
+        view.context.close()
+
+
+def log_in_with_chromium(page: Any, hub: Hub, name: str, password: str, then: str) -> None:
+    """The hub's login form filled in and sent in Chromium, waiting for the page at then (a path)."""
+    hub_url = f'https://127.0.0.1:{hub.port}'
+    page.goto(f'{hub_url}/hub/login?next={then}')
+    page.fill('input[name=username]', name)
+    page.fill('input[name=password]', password)
+    page.click('[type=submit]')
+    page.wait_for_url(f'{hub_url}{then}**', timeout=90_000)
 
 
 @pytest.mark.whole_kit
@@ -182,15 +230,11 @@ def test_students_in_chromium_start_their_kits_and_open_their_own_pages_through_
                 await terminal.run('ros2 launch robot_view robot_view.launch.py > robot_view.log 2>&1 &')
 
     in_a_thread(start_the_kits())
-    robot_views = set()
+    robot_views = {}
     for name, password in hub.students.items():
         lab = browser.chromium.new_page(viewport=VIEWPORT, ignore_https_errors=True)  # self-signed
         try:
-            lab.goto(f'{hub_url}/hub/login')
-            lab.fill('input[name=username]', name)
-            lab.fill('input[name=password]', password)
-            lab.click('[type=submit]')
-            lab.wait_for_url(f'{hub_url}/user/{name}/lab**', timeout=90_000)
+            log_in_with_chromium(lab, hub, name, password, f'/user/{name}/lab')
             tile = lab.locator('.jp-LauncherCard', has_text='Owl Kit Lab pages')
             tile.wait_for(timeout=60_000)  # the launcher's tile for the front door
             with lab.expect_popup() as opened:
@@ -199,7 +243,7 @@ def test_students_in_chromium_start_their_kits_and_open_their_own_pages_through_
             base = f'{hub_url}/user/{name}/owl-kit-lab/'
             pages.wait_for_url(base, timeout=30_000)
             pages.wait_for_selector('li.running[data-mount="robot-view"]', timeout=90_000)  # the kit started
-            robot_views.add(pages.evaluate(
+            robot_views[name] = (pages.evaluate(
                 'fetch("api/pages").then((answer) => answer.json())'
                 '.then((all) => all.find((page) => page.mount === "robot-view").url)'))
             open_from_index(pages, base, 'robot-view')
@@ -213,7 +257,10 @@ def test_students_in_chromium_start_their_kits_and_open_their_own_pages_through_
             assert pages.console_errors == []
         finally:
             lab.context.close()
-    assert len(robot_views) == len(hub.students)  # two robot views, on two ports
+    assert len(set(robot_views.values())) == len(hub.students)  # three robot views, on three ports
+    first, second, _ = hub.students  # a classmate's robot view at its own port refuses too
+    assert 'refused: these pages are for account uid' in in_a_thread(
+        peek(students[second], second, robot_views[first]))
 
 
 @pytest.mark.whole_kit
@@ -325,3 +372,57 @@ def test_a_missing_class_list_is_one_line(tmp_path):
     assert line.startswith('owl class: ')
     assert 'Traceback' not in done.stderr
 
+
+
+def read_until(terminal: int, text: str, timeout: float = 30) -> str:
+    """What the terminal (a pty's master) shows until text, or until the program ends."""
+    seen, deadline = '', time.monotonic() + timeout
+    while text not in seen:
+        assert time.monotonic() < deadline, seen
+        ready, _, _ = select.select([terminal], [], [], 1)
+        if ready:
+            try:
+                chunk = os.read(terminal, 4096)
+            except OSError:  # the program ended: its side of the pty is closed
+                break
+            if not chunk:
+                break
+            seen += chunk.decode(errors='replace')
+    return seen
+
+
+def test_the_teachers_password_is_asked_in_a_terminal_and_a_bad_one_is_one_line(tmp_path):
+    if os.geteuid() != 0:
+        prerequisite_missing('owl class serve makes Unix accounts: the test runs as root')
+    class_list = tmp_path / 'class.txt'
+    student, teacher = new_name(), new_name()
+    class_list.write_text(f'{student} pw-a\n')
+    folder = Path(tempfile.mkdtemp(prefix='owl-class-test-'))  # one every account may pass through
+    folder.chmod(0o711)
+    argv = ['owl', 'class', 'serve', '--students', str(class_list), '--teacher', teacher,
+            '--port', str(free_port()), '--state', str(folder / 'state')]
+    env = {name: value for name, value in os.environ.items() if name != 'OWL_CLASS_TEACHER_PASSWORD'}
+    unasked = subprocess.run(argv, capture_output=True, text=True, timeout=60, check=False, env=env,
+                             stdin=subprocess.DEVNULL)
+    assert unasked.returncode == 2
+    assert unasked.stderr.strip().splitlines() == [
+        'owl class: set OWL_CLASS_TEACHER_PASSWORD or run it in a terminal to be asked the teacher\'s '
+        'password']
+    pid, terminal = pty.fork()
+    if pid == 0:  # the child: the teacher's terminal runs the command
+        os.execvpe(argv[0], argv, env)
+    try:
+        assert "The teacher's password: " in read_until(terminal, "The teacher's password: ")
+        os.write(terminal, b'two words\n')
+        shown = read_until(terminal, 'without spaces')
+        assert "owl class: the teacher's password must be non-empty, without spaces" in shown, shown
+        assert 'two words' not in shown  # not echoed
+    finally:
+        _, status = os.waitpid(pid, 0)
+        os.close(terminal)
+    assert os.waitstatus_to_exitcode(status) == 2
+    assert list(folder.iterdir()) == []
+    folder.rmdir()
+    for name in (student, teacher):
+        with pytest.raises(KeyError):
+            pwd.getpwnam(name)

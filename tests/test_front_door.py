@@ -28,7 +28,7 @@ from prefix_proxy import PrefixProxy
 from ros_harness import RosHarness, wait_until
 from sensor_msgs.msg import JointState
 from test_robot_view import drag
-from web_harness import PROXY_HOST, BrowserPage, free_port
+from web_harness import PROXY_HOST, BrowserPage, check_module_pages, free_port, open_from_index
 
 pytestmark = pytest.mark.whole_kit  # the whole kit with the robot view's 3D page
 MODULES = {'imu-x1684267976913': '10.42.0.20', 'servo-pan': '10.42.0.8', 'servo-tilt': '10.42.0.9',
@@ -113,14 +113,6 @@ def only_origin(page: BrowserPage, base: str) -> list[str]:
     return aborted
 
 
-def open_from_index(page: BrowserPage, base: str, mount: str) -> None:
-    """Go to the index at base and click the link of the page at mount."""
-    page.goto(base)
-    page.wait_for_selector(f'li.running[data-mount="{mount}"] a', timeout=20_000)
-    page.click(f'li.running[data-mount="{mount}"] a')
-    page.wait_for_url(f'{base}{mount}/**', timeout=10_000)
-
-
 def check_index(page: BrowserPage, base: str, screenshot: str) -> None:
     page.goto(base)
     page.wait_for_function(f'() => document.querySelectorAll("li.running").length === {len(PAGES)}',
@@ -130,20 +122,6 @@ def check_index(page: BrowserPage, base: str, screenshot: str) -> None:
     for mount, address in MODULES.items():
         assert f'module {address} in the course' in page.inner_text(f'li[data-mount="{mount}"]')
     page.screenshot_to(screenshot)
-
-
-def check_module_pages(page: BrowserPage, base: str) -> None:
-    """A module's System Status, live; the IMU's Debug GUI, live."""
-    open_from_index(page, base, 'servo-pan')
-    page.wait_for_function('() => window.modulePage.device !== null && window.modulePage.samples.length >= 2',
-                           timeout=20_000)
-    assert page.evaluate('window.modulePage.device.network.address') == '10.42.0.8'
-    assert page.inner_text('#connection') == 'connected'
-    open_from_index(page, base, 'imu-x1684267976913')
-    page.click('#menu-debug')
-    page.wait_for_function('() => window.modulePage.viewReady && window.modulePage.orientation',
-                           timeout=20_000)
-    assert page.text_content('#roll').endswith('°')
 
 
 def check_robot_view(page: BrowserPage, base: str, joints: list[JointState]) -> None:

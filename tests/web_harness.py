@@ -249,6 +249,28 @@ class PageSocket:
             self._thread.join(5)
 
 
+def open_from_index(page: BrowserPage, base: str, mount: str) -> None:
+    """Go to the index at base and click the link of the page at mount."""
+    page.goto(base)
+    page.wait_for_selector(f'li.running[data-mount="{mount}"] a', timeout=20_000)
+    page.click(f'li.running[data-mount="{mount}"] a')
+    page.wait_for_url(f'{base}{mount}/**', timeout=10_000)
+
+
+def check_module_pages(page: BrowserPage, base: str) -> None:
+    """A module's System Status, live; the IMU's Debug GUI, live."""
+    open_from_index(page, base, 'servo-pan')
+    page.wait_for_function('() => window.modulePage.device !== null && window.modulePage.samples.length >= 2',
+                           timeout=20_000)
+    assert page.evaluate('window.modulePage.device.network.address') == '10.42.0.8'
+    assert page.inner_text('#connection') == 'connected'
+    open_from_index(page, base, 'imu-x1684267976913')
+    page.click('#menu-debug')
+    page.wait_for_function('() => window.modulePage.viewReady && window.modulePage.orientation',
+                           timeout=20_000)
+    assert page.text_content('#roll').endswith('°')
+
+
 def free_port() -> int:
     with socket.socket() as probe:
         probe.bind(('127.0.0.1', 0))

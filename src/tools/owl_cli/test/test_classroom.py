@@ -77,6 +77,7 @@ def test_the_hub_configuration_lets_the_class_log_in_with_the_teacher_as_admin(t
     assert environment['OWL_FRONT_DOOR_PORT'](student) == '7002'
     assert environment['ROS_AUTOMATIC_DISCOVERY_RANGE'] == 'LOCALHOST'
     assert environment['OWL_PAGE_PORT_FALLBACK'] == '1'  # each student's robot view, not only the first's
+    assert environment['OWL_PAGES_OWNER_ONLY'] == '1'  # and nobody else's
     assert environment['OWL_TRUSTED_ORIGINS'] == 'https://hub.example.edu:8443'
     assert environment['JUPYTER_CONFIG_PATH'] == str(tmp_path / 'jupyter')
     assert 'PYTHONPATH' not in c['Spawner']['env_keep']
@@ -184,7 +185,10 @@ def test_the_teachers_page_shows_each_students_latest_results_by_section_and_whe
     table = table_html(roll, results, {'grace': 1100.0}, now=1200.0)
     rows = dict(re.findall(r'<tr data-student="(\w+)">(.*?)</tr>', table))
     assert list(rows) == ['ada1', 'grace', 'alan']  # the class list's order
-    assert re.findall(r'<th scope="col">([^<]+)</th>', table) == ['student', 'last worked', '3.4', '4.3']
+    heads = re.findall(r'<th scope="col">([^<]+)</th>', table)
+    assert heads == ['student', 'last worked', 'exercises', '3.4', '4.3']
+    assert '<td class="sum">1 of 3 passed, 1 failed</td>' in rows['ada1']  # before the sections
+    assert '<td class="sum">0 of 3 passed</td>' in rows['alan']
     assert 'class="passed" data-exercise="imu_turtle"' in rows['ada1']
     assert 'class="failed" data-exercise="imu_plot"' in rows['ada1']
     assert 'class="not-run" data-exercise="keyboard"' in rows['ada1']
@@ -192,7 +196,9 @@ def test_the_teachers_page_shows_each_students_latest_results_by_section_and_whe
     assert '<td class="last">1 min ago</td>' in rows['grace']  # the hub saw grace after her check
     assert '<td class="last">never</td>' in rows['alan']
     assert 'href="../../user/grace/lab"' in rows['grace']  # the admin opens her JupyterLab
-    assert table in page_html(table)
+    page = page_html(table, 'token"<')
+    assert table in page
+    assert '<meta name="xsrf-token" content="token&quot;&lt;">' in page  # the refreshes send it
 
 
 def test_the_class_roll_round_trips_and_the_page_refuses_a_broken_one_in_one_line(tmp_path, capsys):

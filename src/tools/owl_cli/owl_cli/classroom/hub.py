@@ -21,7 +21,15 @@ from pathlib import Path
 
 from owl_web.pages import FRONT_DOOR_PORT
 
-from owl_cli.classroom import ClassError, run_step, teacher_page, worlds
+from owl_cli.classroom import (
+    ClassError,
+    files_digest,
+    run_step,
+    stamp_matches,
+    teacher_page,
+    worlds,
+    write_stamp,
+)
 from owl_cli.classroom.lab import SYSTEM_PATH
 
 STATE = Path('/var/lib/owl-kit-lab/class')
@@ -37,24 +45,11 @@ def project_root() -> Path:
     return Path(root)
 
 
-def stamp_matches(folder: Path, inputs: list[Path]) -> bool:
-    """Whether folder was made from inputs as they are now (its .owl-inputs.sha256 says so)."""
-    stamp = folder / '.owl-inputs.sha256'
-    return stamp.is_file() and stamp.read_text() == inputs_digest(inputs)
-
-
-def inputs_digest(inputs: list[Path]) -> str:
-    """One SHA-256 over the files' contents, in order."""
-    digest = hashlib.sha256()
-    for path in inputs:
-        digest.update(path.read_bytes())
-    return digest.hexdigest()
-
-
 def ensure_venv(venv: Path) -> Path:
     """The hub's (and every server's) venv, made or brought to the pins when they changed; its folder."""
-    requirements = project_root() / 'config' / 'classroom' / 'requirements.txt'
-    if stamp_matches(venv, [requirements]):
+    pinned = project_root() / 'config' / 'classroom'
+    digest = files_digest(pinned, ['requirements.txt'])
+    if stamp_matches(venv, digest):
         return venv
     if not Path(SYSTEM_PYTHON).is_file():
         raise ClassError(f'{SYSTEM_PYTHON} is missing: the hub and every student need a Python all accounts '
@@ -64,28 +59,29 @@ def ensure_venv(venv: Path) -> Path:
     run_step([str(uv), 'venv', '--quiet', '--allow-existing', '--python', SYSTEM_PYTHON, str(venv)],
              'making the hub venv')
     run_step([str(uv), 'pip', 'install', '--quiet', '--python', str(venv / 'bin' / 'python'),
-              '-r', str(requirements)], 'installing the hub (uv pip install)')
+              '-r', str(pinned / 'requirements.txt')], 'installing the hub (uv pip install)')
     os.chmod(venv, 0o755)  # every student's server runs jupyterhub-singleuser from here
-    (venv / '.owl-inputs.sha256').write_text(inputs_digest([requirements]))
+    write_stamp(venv, digest)
     return venv
 
 
 def ensure_proxy(state: Path) -> list[str]:
     """The command that runs configurable-http-proxy, installed with npm ci when its lock changed."""
     pinned = project_root() / 'config' / 'classroom'
-    inputs = [pinned / 'package.json', pinned / 'package-lock.json']
+    inputs = ['package.json', 'package-lock.json']
+    digest = files_digest(pinned, inputs)
     folder = state / 'proxy'
     script = folder / 'node_modules' / 'configurable-http-proxy' / 'bin' / 'configurable-http-proxy'
     node = Path(sys.prefix) / 'bin' / 'node'
-    if not stamp_matches(folder, inputs):
+    if not stamp_matches(folder, digest):
         print('owl class: installing configurable-http-proxy (once) ...', flush=True)
         folder.mkdir(parents=True, exist_ok=True)
-        for path in inputs:
-            shutil.copyfile(path, folder / path.name)
+        for name in inputs:
+            shutil.copyfile(pinned / name, folder / name)
         npm = Path(sys.prefix) / 'bin' / 'npm'
         run_step([str(npm), 'ci', '--ignore-scripts', '--no-audit', '--no-fund', '--prefix', str(folder)],
                  'installing configurable-http-proxy (npm ci)')
-        (folder / '.owl-inputs.sha256').write_text(inputs_digest(inputs))
+        write_stamp(folder, digest)
     # node itself, not the wheel's Python launcher: a stopped launcher could leave the proxy on the port.
     found = subprocess.run([str(node), '-p', 'process.execPath'], capture_output=True, text=True, check=False)
     real_node = Path(found.stdout.strip() or node)
@@ -196,7 +192,8 @@ def config_text(settings: HubSettings) -> str:
         lines.append(f'c.{name} = {value!r}')
     fixed = {'PATH': SYSTEM_PATH, 'JUPYTER_CONFIG_PATH': str(settings.state / 'jupyter'),
              'ROS_AUTOMATIC_DISCOVERY_RANGE': 'LOCALHOST', 'OWL_TRUSTED_ORIGINS': ' '.join(settings.origins),
-             'OWL_PAGE_PORT_FALLBACK': '1'}  # classmates' pages hold the default ports: take a free one
+             'OWL_PAGE_PORT_FALLBACK': '1',  # classmates' pages hold the default ports: take a free one
+             'OWL_PAGES_OWNER_ONLY': '1'}  # and may not be reached by a classmate (owl_web.owner_only)
     lines += [
         '# Each account\'s own ROS domain and front door port (owl_cli.classroom.worlds).',
         f'domains = {settings.domains!r}',

@@ -13,13 +13,12 @@ changed (one digest over the names and contents).
 from __future__ import annotations
 
 import fcntl
-import hashlib
 import os
 import shutil
 import subprocess
 from pathlib import Path
 
-from owl_cli.classroom import ClassError, run_step
+from owl_cli.classroom import ClassError, files_digest, run_step, stamp_matches, write_stamp
 
 # What `source env.sh` (and the workspace's setup it sources) adds to a shell: the lab's bootstrap
 # runs without it, or the teacher's checkout would leak into the lab. The rest (a proxy, a
@@ -29,7 +28,6 @@ ENV_SH_NAMES = {'VIRTUAL_ENV', 'VIRTUAL_ENV_PROMPT', 'PYTHONPATH', 'CMAKE_PREFIX
                 'PKG_CONFIG_PATH', 'OPENBLAS_NUM_THREADS', 'PS1'}
 SYSTEM_PATH = '/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin'
 MANIFEST = '.owl-lab-files'
-STAMP = '.owl-inputs.sha256'
 
 
 def checkout_files(root: Path) -> list[str]:
@@ -44,16 +42,6 @@ def checkout_files(root: Path) -> list[str]:
                          "('git clone' Owl Kit Lab)")
     names = {name for name in listed.stdout.decode().split('\0') if name}
     return sorted(name for name in names if (root / name).is_file())  # tracked but deleted: not copied
-
-
-def files_digest(root: Path, names: list[str]) -> str:
-    """One SHA-256 over the files' names and contents."""
-    digest = hashlib.sha256()
-    for name in names:
-        digest.update(name.encode() + b'\0')
-        digest.update((root / name).read_bytes())
-        digest.update(b'\0')
-    return digest.hexdigest()
 
 
 def copy_files(root: Path, lab: Path, names: list[str]) -> None:
@@ -83,18 +71,17 @@ def ensure_lab(lab: Path, root: Path, python: str) -> Path:
     """
     names = checkout_files(root)
     digest = files_digest(root, names) + f' {python}\n'
-    stamp = lab / STAMP
     lab.mkdir(mode=0o755, parents=True, exist_ok=True)
     with open(lab / '.owl-lab.lock', 'w') as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
-        if stamp.is_file() and stamp.read_text() == digest:
+        if stamp_matches(lab, digest):
             return lab
         print("owl class: building the students' lab (this checkout, bootstrapped on "
               f'{python}; a few minutes the first time) ...', flush=True)
-        stamp.unlink(missing_ok=True)  # a lab half made is made again at the next start
+        write_stamp(lab, None)  # a lab half made is made again at the next start
         copy_files(root, lab, names)
         run_step(['bash', str(lab / 'scripts' / 'bootstrap.sh')], "building the lab (its copy's make setup)",
                  environment=bootstrap_environment(dict(os.environ), python))
         run_step(['chmod', '-R', 'a+rX,go-w', str(lab)], "opening the lab to the class's accounts")
-        stamp.write_text(digest)
+        write_stamp(lab, digest)
     return lab

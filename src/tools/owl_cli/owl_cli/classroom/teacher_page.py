@@ -95,26 +95,33 @@ def table_html(roll: Roll, results: dict[str, dict[str, dict[str, Any]]], activi
             times.append(activity[name])
         last = age(now - max(times)) if times else 'never'
         cells = []
+        counts = {'passed': 0, 'failed': 0}
         for _, exercises in roll.sections:
             marks = []
             for exercise in exercises:
                 record = mine.get(exercise)
                 state = ('not-run' if record is None
                          else 'passed' if record.get('passed') is True else 'failed')
+                counts[state] = counts.get(state, 0) + 1
                 label = {'not-run': 'not run', 'passed': 'passed', 'failed': 'FAILED'}[state]
                 marks.append(f'<span class="{state}" data-exercise="{html.escape(exercise)}" '
                              f'title="{html.escape(exercise)}: {label}">{html.escape(exercise)}</span>')
             cells.append(f'<td>{" ".join(marks)}</td>')
+        total = sum(len(exercises) for _, exercises in roll.sections)
+        # The sum first: a course has more sections than a screen is wide.
+        failed = f", {counts['failed']} failed" if counts['failed'] else ''
+        summary = f"{counts['passed']} of {total} passed{failed}"
         link = f'<a href="../../user/{html.escape(name)}/lab" target="_blank">{html.escape(name)}</a>'
         rows.append(f'<tr data-student="{html.escape(name)}"><th scope="row">{link}</th>'
-                    f'<td class="last">{last}</td>{"".join(cells)}</tr>')
+                    f'<td class="last">{last}</td><td class="sum">{summary}</td>{"".join(cells)}</tr>')
     return (f'<table id="progress"><thead><tr><th scope="col">student</th><th scope="col">last worked</th>'
-            f'{head}</tr></thead><tbody>{"".join(rows)}</tbody></table>')
+            f'<th scope="col">exercises</th>{head}</tr></thead><tbody>{"".join(rows)}</tbody></table>')
 
 
 PAGE = """<!doctype html>
 <html lang="en"><head><meta charset="utf-8">
 <meta name="viewport" content="width=device-width, initial-scale=1">
+<meta name="xsrf-token" content="{xsrf}">
 <title>Owl Kit Lab: the class</title>
 <style>
 body {{ font-family: system-ui, sans-serif; margin: 1rem; }}
@@ -123,24 +130,41 @@ th, td {{ border: 1px solid #ccc; padding: .3rem .5rem; text-align: left; }}
 span {{ display: inline-block; margin: .1rem; padding: 0 .3rem; border-radius: .2rem; font-size: .85rem; }}
 .passed {{ background: #c8f0c8; }} .failed {{ background: #f6c6c6; }} .not-run {{ color: #888; }}
 .wrap {{ overflow-x: auto; }}
+/* the names stay in view while the sections scroll */
+th[scope=row], thead th:first-child {{ position: sticky; left: 0; background: #fff; }}
+#stale {{ background: #fff3d6; padding: .4rem .6rem; }}
 </style></head><body>
 <h1>The class</h1>
+<p id="stale" hidden></p>
 <p>Each student's latest <code>owl check</code> results by course section (green passed, red failed,
 grey not run yet), refreshed every {refresh} s. A name opens that student's JupyterLab (as the hub's
 admin).</p>
 <div class="wrap" id="table">{table}</div>
 <script>
+// The hub takes its login cookie on a page's own requests only with the page's XSRF token.
+const token = document.querySelector('meta[name=xsrf-token]').content;
+const stale = document.getElementById('stale');
 setInterval(async () => {{
-  const answer = await fetch('api/table', {{ cache: 'no-store' }});
-  if (answer.ok) document.getElementById('table').innerHTML = await answer.text();
+  let why = '';
+  try {{
+    const answer = await fetch('api/table', {{ cache: 'no-store', headers: {{ 'X-XSRFToken': token }} }});
+    if (answer.ok) document.getElementById('table').innerHTML = await answer.text();
+    else if (answer.status === 403) why = 'signed out: reload the page to sign in again';
+    else why = `the hub answered ${{answer.status}}`;
+  }} catch (error) {{
+    why = 'the hub does not answer';
+  }}
+  stale.hidden = !why;
+  stale.textContent = why ? `Not refreshed (${{why}}); the table shows an earlier state.` : '';
 }}, {refresh_ms});
 </script></body></html>
 """
 
 
-def page_html(table: str) -> str:
-    """The whole page around the table."""
-    return PAGE.format(table=table, refresh=REFRESH_SECONDS, refresh_ms=REFRESH_SECONDS * 1000)
+def page_html(table: str, xsrf: str) -> str:
+    """The whole page around the table; xsrf is the token its refreshes send (the hub's rule)."""
+    return PAGE.format(table=table, xsrf=html.escape(xsrf), refresh=REFRESH_SECONDS,
+                       refresh_ms=REFRESH_SECONDS * 1000)
 
 
 def class_results(roll: Roll) -> dict[str, dict[str, dict[str, Any]]]:
@@ -201,12 +225,15 @@ def serve(roll_path: Path) -> None:
         @web.authenticated
         async def get(self) -> None:
             self.set_header('Cache-Control', 'no-store')
-            self.finish(page_html(await current_table()))
+            self.finish(page_html(await current_table(), self.xsrf_token.decode()))
 
     class Table(HubOAuthenticated, web.RequestHandler):
-        @web.authenticated
         async def get(self) -> None:
             self.set_header('Cache-Control', 'no-store')
+            if self.current_user is None:  # a refresh is not sent to the login form: the page says so
+                self.set_status(403)
+                self.finish('not signed in')
+                return
             self.finish(await current_table())
 
     prefix = os.environ['JUPYTERHUB_SERVICE_PREFIX']

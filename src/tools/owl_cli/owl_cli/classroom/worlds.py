@@ -78,13 +78,9 @@ def front_door_port(domain: int) -> int:
 
 def held_domains() -> list[int]:
     """The domains some process on this machine holds now (a test run's, an `owl check`'s)."""
-    held = []
-    for domain in DOMAIN_IDS:
-        lock = processes.try_lock_file(processes.LEASE_DIR, [domain])
-        if lock is None:
-            held.append(domain)
-        else:
-            lock[1].close()
+    handles, held = hold_domains(DOMAIN_IDS)
+    for handle in handles:
+        handle.close()
     return held
 
 
