@@ -29,7 +29,8 @@ test-fast: setup
 
 lint: setup
 	@$(ENV) ruff check . && python -m mypy && \
-	  python -m mypy --allow-untyped-defs --allow-incomplete-defs --follow-untyped-imports tests scripts bench docs
+	  python -m mypy --allow-untyped-defs --allow-incomplete-defs --follow-untyped-imports \
+	    --cache-dir build/mypy_cache_outside_src tests scripts bench docs
 
 bench: setup  # every benchmark in turn; each prints its numbers and ratio to its baseline
 	@$(ENV) for script in $(BENCHMARKS); do echo "== $$script"; python "$$script"; done

@@ -16,9 +16,12 @@ def test_ruff_finds_nothing():
 
 
 # The second mypy run: tests, scripts, benchmarks and docs' scripts have their bodies checked, but a
-# test need not annotate its fixtures; our packages are read from the installed workspace.
+# test need not annotate its fixtures; our packages are read from the installed workspace. It keeps a
+# cache of its own: the two runs differ in options and in where our packages come from (src or the
+# workspace's links), and go side by side in two workers; in one cache each run would redo or take
+# the other's entries.
 MYPY_OUTSIDE_SRC = ('--allow-untyped-defs', '--allow-incomplete-defs', '--follow-untyped-imports',
-                    'tests', 'scripts', 'bench', 'docs')
+                    '--cache-dir', 'build/mypy_cache_outside_src', 'tests', 'scripts', 'bench', 'docs')
 
 
 @pytest.mark.parametrize('arguments', [(), MYPY_OUTSIDE_SRC], ids=['src', 'tests-scripts-bench-docs'])
