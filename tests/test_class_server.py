@@ -59,7 +59,10 @@ def hub() -> Iterator[Hub]:
     try:
         yield started
     finally:
+        process = started.process
         assert started.close() == 0  # Ctrl-C ends the class server cleanly
+        assert process is not None
+        assert 'Traceback' not in process.output  # nor of the hub's services (the teacher's page)
 
 
 def server_processes_of(name: str) -> list[str]:

@@ -188,7 +188,10 @@ def main(argv: list[str] | None = None) -> int:
     except (OSError, ValueError, KeyError, TypeError) as error:
         print(f'teacher page: cannot read the class roll {roll_path}: {error}', file=sys.stderr)
         return 2
-    serve(roll_path)
+    try:
+        serve(roll_path)
+    except KeyboardInterrupt:  # the teacher's Ctrl-C reaches the hub's whole process group: a clean stop
+        pass
     return 0
 
 
