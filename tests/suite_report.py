@@ -7,7 +7,8 @@ wall time, which is printed beside them).
 
 Groups: style (ruff, mypy, the layout), browser (a test with a Chromium page), system (tests/),
 unit (src/<group>/<package>/test/). Every test's time, slowest first, is also written to
-log/test-durations.txt (one line a test: seconds, group, node id), for finding where the time goes.
+log/test-durations.txt (one line a test: seconds, group, when it started and ended in seconds from
+the first test's start, node id), for finding where the time goes: which tests run at the end, alone.
 """
 
 from __future__ import annotations
@@ -26,6 +27,7 @@ GROUPS = ('system', 'browser', 'unit', 'style')
 
 durations: dict[str, float] = defaultdict(float)
 groups: dict[str, str] = {}
+spans: dict[str, tuple[float, float]] = {}  # node id -> (first phase's start, last phase's end), epoch s
 started = time.monotonic()
 
 
@@ -47,6 +49,8 @@ def pytest_runtest_setup(item: pytest.Item) -> None:
 
 def pytest_runtest_logreport(report: pytest.TestReport) -> None:
     durations[report.nodeid] += report.duration
+    first, last = spans.get(report.nodeid, (report.start, report.stop))
+    spans[report.nodeid] = (min(first, report.start), max(last, report.stop))
     group = dict(report.user_properties).get('group')
     if isinstance(group, str):
         groups[report.nodeid] = group
@@ -58,7 +62,16 @@ def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:
     write = terminalreporter.write_line
     slowest = sorted(durations.items(), key=lambda item: -item[1])
     DURATIONS_FILE.parent.mkdir(parents=True, exist_ok=True)
-    DURATIONS_FILE.write_text(''.join(f'{seconds:8.2f} {groups.get(nodeid, "unit"):8} {nodeid}\n'
+    origin = min(start for start, _ in spans.values()) if spans else 0.0
+
+    def group_name(nodeid: str) -> str:
+        return groups.get(nodeid, 'unit')
+
+    def span(nodeid: str) -> str:  # its start and end, from the first test's start
+        start, stop = spans.get(nodeid, (origin, origin))
+        return f'{start - origin:7.1f} {stop - origin:7.1f}'
+
+    DURATIONS_FILE.write_text(''.join(f'{seconds:8.2f} {group_name(nodeid):8} {span(nodeid)} {nodeid}\n'
                                       for nodeid, seconds in slowest))
     write(f'slowest {SLOWEST} tests (set-up, call and tear-down; all of them: '
           f'{DURATIONS_FILE.relative_to(TESTS.parent)}):')
