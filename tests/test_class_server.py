@@ -183,6 +183,13 @@ def test_the_teachers_page_shows_each_students_owl_check_and_no_student_opens_it
 
         return list(await asyncio.gather(check(passing), check(failing)))
 
+    async def refusals() -> str:  # what the page says to results it must not keep
+        script = hub.folder / 'send_bad_results.py'  # the hub's folder: every account may read it
+        script.write_text(SEND_BAD_RESULTS)
+        script.chmod(0o644)
+        async with Terminal(students[idle], idle) as terminal:
+            return await terminal.run(f'python3 {script}')
+
     view = BrowserPage(browser.chromium.new_page(viewport=VIEWPORT, ignore_https_errors=True))
     try:  # the teacher keeps the page open while the students check their work
         log_in_with_chromium(view, hub, hub.teacher, TEACHER_PASSWORD, '/services/owl-teacher/')
@@ -190,6 +197,11 @@ def test_the_teachers_page_shows_each_students_owl_check_and_no_student_opens_it
         passed, failed = in_a_thread(checks())
         assert 'imu_turtle: passed' in passed, passed
         assert 'imu_turtle: FAILED' in failed, failed
+        assert "the teacher's page did not take" not in passed + failed
+        refused = in_a_thread(refusals())
+        no_token = "answer 403 send the results with your server's token"
+        assert refused.count(no_token) == 2, refused  # none, and a forged one
+        assert 'answer 400 results must be JSON' in refused, refused
         table = teacher.get('/services/owl-teacher/api/table')[2]  # what the page's refresh fetches
         assert 'class="passed" data-exercise="imu_turtle"' in row_of(table, passing)
         assert 'class="failed" data-exercise="imu_turtle"' in row_of(table, failing)
@@ -209,6 +221,20 @@ def test_the_teachers_page_shows_each_students_owl_check_and_no_student_opens_it
         assert all('403' in error for error in view.console_errors), view.console_errors
     finally:
         view.context.close()
+
+
+# Sent from a student's terminal: results without a token, with a forged one, and not JSON.
+SEND_BAD_RESULTS = '''
+import json, os, urllib.error, urllib.request
+for token, body in [('', b'{}'), ('forged-token', b'{}'), (os.environ['JUPYTERHUB_API_TOKEN'], b'not json')]:
+    headers = {'Authorization': f'token {token}'} if token else {}
+    request = urllib.request.Request(os.environ['OWL_CLASS_RESULTS_URL'], data=body, headers=headers)
+    try:
+        urllib.request.urlopen(request, timeout=10)
+        print('answer 200')
+    except urllib.error.HTTPError as error:
+        print('answer', error.code, json.loads(error.read())['error'])
+'''
 
 
 def log_in_with_chromium(page: Any, hub: Hub, name: str, password: str, then: str) -> None:

@@ -35,6 +35,7 @@ from owl_cli.check_report import (
     exit_code,
     record_latest,
     results_file,
+    share_latest,
     summary_table,
     to_json,
 )
@@ -227,6 +228,9 @@ def check(args: argparse.Namespace) -> int:
     except OSError as error:
         print(f'owl check: the results could not be kept in {record}: {error.strerror or error}',
               file=sys.stderr)
+    problem = share_latest(record, os.environ)  # on a class server: to the teacher's page
+    if problem:
+        print(f'owl check: {problem}', file=sys.stderr)
     if args.json:
         print(to_json(results, str(workspace)))
     elif len(results) > 1:

@@ -6,6 +6,8 @@ import fcntl
 import json
 import os
 import time
+import urllib.error
+import urllib.request
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -159,3 +161,33 @@ def record_latest(path: Path, results: list[ExerciseResult], sections: Mapping[s
         written = path.with_name(f'.{path.name}.{os.getpid()}')
         written.write_text(json.dumps({'exercises': latest}, indent=1, sort_keys=True) + '\n')
         written.replace(path)  # whole or not at all: a reader never sees half a file
+
+
+CLASS_RESULTS_VARIABLE = 'OWL_CLASS_RESULTS_URL'  # set by the class server (owl_cli.classroom.hub)
+SHARE_TIMEOUT = 5.0  # s for the teacher's page to take the results
+
+
+def share_latest(path: Path, environ: Mapping[str, str]) -> str | None:
+    """Send the latest results in path to the class's teacher page, when this is a class server's terminal.
+
+    The class server's terminals have OWL_CLASS_RESULTS_URL and the student's server token
+    (JUPYTERHUB_API_TOKEN, which tells the page who sends them). None when they were taken or there
+    is no class; else one line saying why the page did not take them.
+    """
+    url, token = environ.get(CLASS_RESULTS_VARIABLE), environ.get('JUPYTERHUB_API_TOKEN')
+    if not url or not token:
+        return None
+    body = json.dumps({'exercises': read_latest(path)}).encode()
+    try:
+        request = urllib.request.Request(url, data=body, method='POST', headers={
+            'Authorization': f'token {token}', 'Content-Type': 'application/json'})
+        with urllib.request.urlopen(request, timeout=SHARE_TIMEOUT):
+            return None
+    except urllib.error.HTTPError as error:
+        try:
+            reason = json.loads(error.read()).get('error') or error.reason
+        except (ValueError, AttributeError):
+            reason = error.reason
+        return f"the teacher's page did not take these results ({error.code}: {reason})"
+    except (OSError, ValueError) as error:  # no answer, a malformed URL
+        return f"the teacher's page did not take these results ({getattr(error, 'reason', error)})"

@@ -1,9 +1,12 @@
 """owl check's logic without ROS: catalogue, workspace and build decision, judgements, report."""
 
+import http.server
 import json
 import os
+import threading
 import time
 from pathlib import Path
+from typing import ClassVar
 
 import pytest
 from owl_cli import check_catalogue as catalogue
@@ -16,6 +19,7 @@ from owl_cli.check_report import (
     read_latest,
     record_latest,
     results_file,
+    share_latest,
     summary_table,
     to_json,
 )
@@ -414,3 +418,47 @@ def test_a_broken_results_file_reads_as_none_and_is_written_anew(tmp_path, text)
     assert read_latest(path) == {}
     record_latest(path, [ExerciseResult('keyboard', [Criterion('reads keys', True)])], {}, '/ws', now=1.0)
     assert list(read_latest(path)) == ['keyboard']
+
+
+class TeacherPage(http.server.BaseHTTPRequestHandler):
+    """A stand-in for the class's teacher page: keeps what it is sent, answers as told."""
+
+    received: ClassVar[list[tuple[str, bytes]]] = []
+    answer = (200, b'{"kept": []}')
+
+    def do_POST(self):
+        body = self.rfile.read(int(self.headers['Content-Length']))
+        TeacherPage.received.append((self.headers['Authorization'], body))
+        self.send_response(self.answer[0])
+        self.send_header('Content-Type', 'application/json')
+        self.end_headers()
+        self.wfile.write(self.answer[1])
+
+    def log_message(self, *args):
+        pass
+
+
+def test_on_a_class_server_the_latest_results_go_to_the_teachers_page_and_a_refusal_is_one_line(tmp_path):
+    path = tmp_path / 'check-results.json'
+    record_latest(path, [ExerciseResult('imu_turtle', [Criterion('moves', True)])], {'imu_turtle': '4.3'},
+                  '/ws', now=5.0)
+    assert share_latest(path, {}) is None  # no class server: nothing sent, nothing said
+    server = http.server.ThreadingHTTPServer(('127.0.0.1', 0), TeacherPage)
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    url = f'http://127.0.0.1:{server.server_address[1]}/services/owl-teacher/api/results'
+    environ = {'OWL_CLASS_RESULTS_URL': url, 'JUPYTERHUB_API_TOKEN': 'secret-token'}
+    try:
+        assert share_latest(path, environ) is None
+        token, body = TeacherPage.received[-1]
+        assert token == 'token secret-token'
+        assert json.loads(body)['exercises']['imu_turtle']['passed'] is True
+        TeacherPage.answer = (403, b'{"error": "teacher1 is not a student of this class: nothing kept"}')
+        assert share_latest(path, environ) == ("the teacher's page did not take these results (403: teacher1 "
+                                               'is not a student of this class: nothing kept)')
+    finally:
+        server.shutdown()
+        server.server_close()
+    gone = share_latest(path, environ)  # the page is not running
+    assert gone is not None
+    assert gone.startswith("the teacher's page did not take these results (")
+    assert share_latest(path, {**environ, 'OWL_CLASS_RESULTS_URL': 'not a url'}) is not None

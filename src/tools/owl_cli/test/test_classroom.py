@@ -1,5 +1,6 @@
 """owl class serve's class list and hub configuration, without a hub (tests/test_class_server.py runs one)."""
 
+import json
 import re
 import subprocess
 from pathlib import Path
@@ -10,7 +11,16 @@ from owl_cli.classroom import ClassError
 from owl_cli.classroom.hub import Certificate, HubSettings, config_text, server_config_text, terminal_rc_text
 from owl_cli.classroom.lab import bootstrap_environment, checkout_files, copy_files
 from owl_cli.classroom.students import Student, StudentsError, parse_students
-from owl_cli.classroom.teacher_page import Roll, age, page_html, sections_of, table_html
+from owl_cli.classroom.teacher_page import (
+    Roll,
+    age,
+    class_results,
+    page_html,
+    parse_results,
+    sections_of,
+    store_results,
+    table_html,
+)
 from owl_cli.classroom.teacher_page import main as teacher_page_main
 from owl_cli.classroom.worlds import assign_domains, read_domains, record_domains
 
@@ -215,3 +225,22 @@ def test_the_class_roll_round_trips_and_the_page_refuses_a_broken_one_in_one_lin
                                                (3 * 86400 + 5, '3 days ago')])
 def test_ages_read_as_a_teacher_says_them(seconds, text):
     assert age(seconds) == text
+
+
+def test_the_teachers_page_keeps_what_a_students_owl_check_sends_and_refuses_what_is_not_results(tmp_path):
+    sent = {'exercises': {'imu_turtle': {'passed': True, 'failed': 0, 'criteria': 3, 'section': '4.3',
+                                         'at': 5.0, 'workspace': '/home/ada1/ros2_ws', 'error': ''},
+                          'not_an_exercise': {'passed': True}}}
+    kept = parse_results(json.dumps(sent).encode(), ['imu_turtle', 'keyboard'])
+    assert kept == {'imu_turtle': {'passed': True, 'failed': 0, 'criteria': 3, 'section': '4.3', 'at': 5.0}}
+    store = tmp_path / 'check-results'
+    store_results(store, 'ada1', kept)
+    roll = Roll(['ada1', 'grace'], [('4.3', ['imu_turtle'])])
+    assert class_results(roll, store) == {'ada1': kept, 'grace': {}}
+    for body, reason in [(b'not json', 'results must be JSON'), (b'[1]', 'results must be {"exercises"'),
+                         (b'{"exercises": {"imu_turtle": {"passed": "yes"}}}',
+                          'imu_turtle: a result needs "passed": true or false'),
+                         (b' ' * (300 * 1024), 'results over 256 KiB')]:
+        with pytest.raises(ValueError, match=re.escape(reason)):
+            parse_results(body, ['imu_turtle'])
+    assert class_results(roll, store)['ada1'] == kept  # a refused message changes nothing

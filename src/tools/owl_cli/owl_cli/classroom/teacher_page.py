@@ -2,11 +2,16 @@
 
 A JupyterHub service (`/services/owl-teacher/`), started by the hub with the hub's venv and this
 package's folder on PYTHONPATH (this module and what it imports need only the standard library,
-plus JupyterHub's own service library and tornado, which the hub's venv has). It runs as root, as
-the hub does: each student's results sit in their private home (`owl check` keeps them, see
-owl_cli.check_report.results_file). Who may open it is JupyterHub's to say: a service is open to
-the accounts whose roles give access to it, which the admin role does and the default user role
-does not, so the teacher (the hub's admin) gets the page and a student the hub's 403.
+plus JupyterHub's own service library and tornado, which the hub's venv has). Who may open it is
+JupyterHub's to say: a service is open to the accounts whose roles give access to it, which the
+admin role does and the default user role does not, so the teacher (the hub's admin) gets the page
+and a student the hub's 403.
+
+The results come to it: a student's `owl check`, run in their JupyterLab terminal, sends its latest
+results to OWL_CLASS_RESULTS_URL (api/results here) with the token of the student's server
+(JUPYTERHUB_API_TOKEN), the hub says whose token it is, and the page keeps them in RESULTS of the
+state folder. Nothing is read from a student's home, so the page works the same where homes are
+pods' volumes (Kubernetes) as on one machine.
 
 The page shows the class roll that `owl class serve` writes (ROLL in the state folder: the
 students in the class list's order, and the course's sections with their checkable exercises),
@@ -17,18 +22,22 @@ from __future__ import annotations
 
 import html
 import json
-import pwd
+import os
 import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from owl_cli.check_report import read_latest, results_file
+from owl_cli.check_report import read_latest
 
 ROLL = 'class-roll.json'
+RESULTS = 'check-results'  # in the state folder: one file per student, as the page received it
 SERVICE_NAME = 'owl-teacher'
 REFRESH_SECONDS = 3
+MAX_RESULTS_BODY = 256 * 1024  # bytes: a whole course's results are a few KiB
+RESULT_FIELDS: dict[str, type | tuple[type, ...]] = {  # what the page keeps of each result
+    'passed': bool, 'failed': int, 'criteria': int, 'section': str, 'at': (int, float)}
 
 
 @dataclass(frozen=True)
@@ -58,14 +67,6 @@ def sections_of(exercises: list[tuple[str, str]]) -> list[tuple[str, list[str]]]
     for exercise, section in exercises:
         grouped.setdefault(section, []).append(exercise)
     return list(grouped.items())
-
-
-def home_of(name: str) -> Path | None:
-    """The account's home folder, None when there is no such account."""
-    try:
-        return Path(pwd.getpwnam(name).pw_dir)
-    except KeyError:
-        return None
 
 
 def age(seconds: float) -> str:
@@ -167,13 +168,43 @@ def page_html(table: str, xsrf: str) -> str:
                        refresh_ms=REFRESH_SECONDS * 1000)
 
 
-def class_results(roll: Roll) -> dict[str, dict[str, dict[str, Any]]]:
-    """Each student's latest results, read from their home (no account or no file: none)."""
-    found: dict[str, dict[str, dict[str, Any]]] = {}
-    for name in roll.students:
-        home = home_of(name)
-        found[name] = {} if home is None else read_latest(results_file({'HOME': str(home)}))
-    return found
+def parse_results(body: bytes, exercises: list[str]) -> dict[str, dict[str, Any]]:
+    """The results a student's `owl check` sent ({"exercises": {id: record}}), each record's known fields.
+
+    Exercises this class does not check are left out; ValueError (one line) for anything that is not
+    such a message.
+    """
+    if len(body) > MAX_RESULTS_BODY:
+        raise ValueError(f'results over {MAX_RESULTS_BODY // 1024} KiB')
+    try:
+        message = json.loads(body)
+    except (ValueError, UnicodeDecodeError):
+        raise ValueError('results must be JSON') from None
+    sent = message.get('exercises') if isinstance(message, dict) else None
+    if not isinstance(sent, dict):
+        raise ValueError('results must be {"exercises": {exercise: result}}')
+    kept = {}
+    for exercise, record in sent.items():
+        if exercise not in exercises:
+            continue
+        if not isinstance(record, dict) or not isinstance(record.get('passed'), bool):
+            raise ValueError(f'{exercise}: a result needs "passed": true or false')
+        kept[exercise] = {field: record[field] for field, kind in RESULT_FIELDS.items()
+                          if isinstance(record.get(field), kind)}
+    return kept
+
+
+def store_results(folder: Path, name: str, results: dict[str, dict[str, Any]]) -> None:
+    """Keep a student's latest results (whole or not at all: a refresh never reads half a file)."""
+    folder.mkdir(mode=0o700, exist_ok=True)
+    written = folder / f'.{name}.{os.getpid()}'
+    written.write_text(json.dumps({'exercises': results}, indent=1, sort_keys=True) + '\n')
+    written.replace(folder / f'{name}.json')
+
+
+def class_results(roll: Roll, folder: Path) -> dict[str, dict[str, dict[str, Any]]]:
+    """Each student's latest results as the page received them (none yet: none)."""
+    return {name: read_latest(folder / f'{name}.json') for name in roll.students}
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -198,7 +229,6 @@ def main(argv: list[str] | None = None) -> int:
 def serve(roll_path: Path) -> None:
     """Run the service's web server until the hub stops it (in the hub's venv: tests/test_class_server.py)."""
     import asyncio
-    import os
     import secrets
     from datetime import datetime
     from urllib.parse import urlsplit
@@ -206,7 +236,7 @@ def serve(roll_path: Path) -> None:
     from jupyterhub.services.auth import HubOAuthCallbackHandler, HubOAuthenticated
     from jupyterhub.utils import url_path_join
     from tornado import web
-    from tornado.httpclient import AsyncHTTPClient
+    from tornado.httpclient import AsyncHTTPClient, HTTPClientError
 
     async def activity() -> dict[str, float]:
         """When the hub last saw each user, from its API (the service's token may list users' activity)."""
@@ -220,9 +250,21 @@ def serve(roll_path: Path) -> None:
                 seen[user['name']] = when.timestamp()
         return seen
 
+    store = roll_path.parent / RESULTS
+
     async def current_table() -> str:
         roll = Roll.from_json(roll_path.read_text())  # read at each refresh: a restart may change it
-        return table_html(roll, class_results(roll), await activity(), time.time())
+        return table_html(roll, class_results(roll, store), await activity(), time.time())
+
+    async def owner_of(token: str) -> str | None:
+        """Whose token it is, as the hub says (None: not a token of this hub's)."""
+        try:
+            answer = await AsyncHTTPClient().fetch(url_path_join(os.environ['JUPYTERHUB_API_URL'], 'user'),
+                                                   headers={'Authorization': f'token {token}'})
+        except HTTPClientError:
+            return None
+        name = json.loads(answer.body).get('name')
+        return name if isinstance(name, str) else None
 
     class Page(HubOAuthenticated, web.RequestHandler):
         @web.authenticated
@@ -239,10 +281,34 @@ def serve(roll_path: Path) -> None:
                 return
             self.finish(await current_table())
 
+    class Results(web.RequestHandler):
+        """POST api/results: a student's `owl check` sends its latest results with their server's token."""
+
+        def refuse(self, status: int, reason: str) -> None:
+            self.set_status(status)
+            self.finish({'error': reason})
+
+        async def post(self) -> None:
+            scheme, _, token = self.request.headers.get('Authorization', '').partition(' ')
+            name = await owner_of(token.strip()) if scheme.lower() == 'token' and token.strip() else None
+            if name is None:
+                return self.refuse(403, "send the results with your server's token "
+                                        '(Authorization: token $JUPYTERHUB_API_TOKEN)')
+            roll = Roll.from_json(roll_path.read_text())
+            if name not in roll.students:
+                return self.refuse(403, f'{name} is not a student of this class: nothing kept')
+            try:
+                results = parse_results(self.request.body, [e for _, ids in roll.sections for e in ids])
+            except ValueError as error:
+                return self.refuse(400, str(error))
+            store_results(store, name, results)
+            self.finish({'kept': sorted(results)})
+
     prefix = os.environ['JUPYTERHUB_SERVICE_PREFIX']
     app = web.Application([
         (prefix, Page),
         (url_path_join(prefix, 'api/table'), Table),
+        (url_path_join(prefix, 'api/results'), Results),
         (url_path_join(prefix, 'oauth_callback'), HubOAuthCallbackHandler),
     ], cookie_secret=secrets.token_bytes(32))
     address = urlsplit(os.environ['JUPYTERHUB_SERVICE_URL'])
