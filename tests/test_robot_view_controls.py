@@ -225,11 +225,14 @@ def test_a_kp_change_shows_in_the_plotted_step_response(ros, kit_and_view, page)
     with page.expect_download() as download:
         page.click('#export-csv')
     lines = Path(download.value.path()).read_text().splitlines()
-    assert lines[0] == ('t,pan_goal,pan_position,pan_effort,tilt_goal,tilt_position,tilt_effort,'
+    assert lines[0] == ('t,unix_time,pan_goal,pan_position,pan_effort,tilt_goal,tilt_position,tilt_effort,'
                         'roll,pitch,yaw'), lines[0]
     assert len(lines) > 500, len(lines)  # 50 rows a second
-    assert all(len(line.split(',')) == 10 for line in lines)
-    assert any(line.split(',')[1] == '1.57' for line in lines[1:])  # the step is in it
+    assert all(len(line.split(',')) == 11 for line in lines)
+    assert lines[1].split(',')[0] == '0'  # seconds from the first row, as a spreadsheet plots them
+    assert 10 < float(lines[-1].split(',')[0]) < 65  # at most the longest window, 60 s
+    assert abs(float(lines[1].split(',')[1]) - time.time()) < 120  # and the clock's own time beside
+    assert any(line.split(',')[2] == '1.57' for line in lines[1:])  # the step is in it
 
 
 def test_goal_buttons_torque_switch_and_pause(ros, kit_and_view, page):

@@ -94,7 +94,8 @@ test("the last goal step's rise, overshoot, settling and error", () => {
   assert.equal(stepMeasurements([0, 1], [0.5, 0.5], [0, 0]), null);  // never stepped
 });
 
-test('CSV: a header and a row per bucket, an empty cell for no sample', () => {
-  assert.equal(columnsCsv({ t: [1.5, 1.52], pan_goal: [1.57, 1.57], pan_position: [0.2, null] }),
-               't,pan_goal,pan_position\n1.5,1.57,0.2\n1.52,1.57,\n');
+test('CSV: a header and a row per bucket, t from the first row, an empty cell for no sample', () => {
+  assert.equal(columnsCsv({ t: [1764705600.5, 1764705600.52], pan_goal: [1.57, 1.57], pan_position: [0.2, null] }),
+               't,unix_time,pan_goal,pan_position\n0,1764705600.5,1.57,0.2\n0.02,1764705600.52,1.57,\n');
+  assert.equal(columnsCsv({ t: [], pan_goal: [] }), 't,unix_time,pan_goal\n');
 });

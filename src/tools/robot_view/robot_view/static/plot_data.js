@@ -110,13 +110,17 @@ export function stepMeasurements(times, goals, positions, band = 0.02) {
   };
 }
 
-// The kept columns as CSV: a header row, then one row per bucket (t in s since the epoch; an empty
-// cell where a series had no sample).
+// The kept columns as CSV: a header row, then one row per bucket; t in seconds from the first row
+// (what a spreadsheet plots against), unix_time the clock's seconds since the epoch; an empty cell
+// where a series had no sample.
 export function columnsCsv(columns) {
-  const names = Object.keys(columns);
-  const lines = [names.join(',')];
+  const names = Object.keys(columns).filter((name) => name !== 't');
+  const lines = [['t', 'unix_time', ...names].join(',')];
+  const start = columns.t.length ? columns.t[0] : 0;
   for (let row = 0; row < columns.t.length; row += 1) {
-    lines.push(names.map((name) => (columns[name][row] === null ? '' : String(columns[name][row]))).join(','));
+    const since = Math.round((columns.t[row] - start) * 1000) / 1000;
+    const cells = names.map((name) => (columns[name][row] === null ? '' : String(columns[name][row])));
+    lines.push([String(since), String(columns.t[row]), ...cells].join(','));
   }
   return `${lines.join('\n')}\n`;
 }
