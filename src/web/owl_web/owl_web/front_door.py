@@ -8,7 +8,7 @@
 WSL2 forwards only 127.0.0.1's ports to the Windows browser, and a class server's proxy serves one
 port of each student's under a prefix (/user/NAME/proxy/8090/): one port, relative links, and the
 pages' servers found through the pages folder (owl_web.pages) make every page reachable both ways.
-The checks of every page (owl_web.origins.foreign_request; owl_web.owner_only on a class server)
+The checks of every page (owl_web.origins.request_refusal: Host, Origin, and the account on a class server)
 apply here first.
 
 A page server that joins the front door starts it when none runs (owl_web.pages.ensure_front_door).
@@ -24,7 +24,6 @@ import os
 import signal
 import socket
 import sys
-from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
@@ -33,7 +32,7 @@ from aiohttp import web
 
 from owl_web import pages
 from owl_web.forward import BackendAway, FirstRequest, Forwarder, RequestHead, rewritten_head
-from owl_web.origins import TrustedOrigins, foreign_request
+from owl_web.origins import TrustedOrigins, request_refusal
 from owl_web.owner_only import OwnerOnly
 from owl_web.pages import PageState
 from owl_web.server import json_response, one_line_logger
@@ -141,14 +140,9 @@ class FrontDoor:
         app.on_cleanup.append(lambda _: self.forwarder.close())
         return app
 
-    def refusal(self, headers: Mapping[str, str], transport: Any) -> str | None:
-        """Why a request may not pass: another account's connection, a foreign Host or Origin."""
-        return (self.owner_only.refusal(transport)
-                or foreign_request(headers.get('Host', ''), headers.get('Origin'), self.trusted))
-
     @web.middleware
     async def _own_pages_only(self, request: web.Request, handler: Any) -> web.StreamResponse:
-        refusal = self.refusal(request.headers, request.transport)
+        refusal = request_refusal(request.headers, request.transport, self.trusted, self.owner_only)
         if refusal is not None:
             return json_response(403, {'error': refusal})
         return await handler(request)
@@ -158,7 +152,7 @@ class FrontDoor:
 
         None leaves the request to handle(): a refused one, one for a page that is not running.
         """
-        if self.refusal(head.headers, transport) is not None:
+        if request_refusal(head.headers, transport, self.trusted, self.owner_only) is not None:
             return None
         path, question, query = head.target.partition('?')
         mount, slash, rest = path[1:].partition('/') if path.startswith('/') else ('', '', '')

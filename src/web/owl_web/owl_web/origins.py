@@ -11,7 +11,10 @@ import ipaddress
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Any
 from urllib.parse import urlsplit
+
+from owl_web.owner_only import OwnerOnly
 
 
 def is_loopback_name(hostname: str) -> bool:
@@ -82,6 +85,13 @@ def foreign_request(host: str, origin: str | None, trusted: TrustedOrigins = Tru
             and origin.lower() not in trusted.origins:
         return f'refused: a page of {origin} may not use this server'
     return None
+
+
+def request_refusal(headers: Mapping[str, str], transport: Any, trusted: TrustedOrigins,
+                    owner_only: OwnerOnly) -> str | None:
+    """Why a request may not reach a page or the front door (foreign_request, owner_only), or None."""
+    return (owner_only.refusal(transport)
+            or foreign_request(headers.get('Host', ''), headers.get('Origin'), trusted))
 
 
 def port_number(text: str) -> int:

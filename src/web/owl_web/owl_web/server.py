@@ -46,7 +46,7 @@ from owl_common.hints import did_you_mean
 
 from owl_web import codec, pages
 from owl_web.codec import ApiError
-from owl_web.origins import TrustedOrigins, foreign_request
+from owl_web.origins import TrustedOrigins, request_refusal
 from owl_web.owner_only import OwnerOnly
 from owl_web.pages import Page
 
@@ -488,9 +488,7 @@ class WebServer:
 
     @web.middleware
     async def _own_pages_only(self, request: web.Request, handler: Callable[..., Any]) -> web.StreamResponse:
-        headers = request.headers
-        refusal = (self.owner_only.refusal(request.transport)
-                   or foreign_request(headers.get('Host', ''), headers.get('Origin'), self.trusted))
+        refusal = request_refusal(request.headers, request.transport, self.trusted, self.owner_only)
         if refusal is not None:
             return json_response(403, {'error': refusal})
         return await handler(request)

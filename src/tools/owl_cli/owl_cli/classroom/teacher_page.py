@@ -25,6 +25,7 @@ import json
 import os
 import sys
 import time
+from collections import Counter
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -96,14 +97,14 @@ def table_html(roll: Roll, results: dict[str, dict[str, dict[str, Any]]], activi
             times.append(activity[name])
         last = age(now - max(times)) if times else 'never'
         cells = []
-        counts = {'passed': 0, 'failed': 0}
+        counts: Counter[str] = Counter()
         for _, exercises in roll.sections:
             marks = []
             for exercise in exercises:
                 record = mine.get(exercise)
                 state = ('not-run' if record is None
                          else 'passed' if record.get('passed') is True else 'failed')
-                counts[state] = counts.get(state, 0) + 1
+                counts[state] += 1
                 label = {'not-run': 'not run', 'passed': 'passed', 'failed': 'FAILED'}[state]
                 marks.append(f'<span class="{state}" data-exercise="{html.escape(exercise)}" '
                              f'title="{html.escape(exercise)}: {label}">{html.escape(exercise)}</span>')
