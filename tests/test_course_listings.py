@@ -5,8 +5,10 @@ runs in a private domain beside what it talks to, and gets one Ctrl-C (SIGINT to
 as a terminal sends it) at a random moment between its node's appearance in the graph and 1.5 s
 later (4 s for the appendix's, whose constructor waits for two services: within 1.5 s, 2-3 of 20
 runs got past it, and 1 test in about 10 saw none; within 4 s, 6-7): inside the rest of its
-constructor, its spin, its callbacks, its service wait. 20 runs per listing, RUNS_AT_ONCE at a
-time. Each run must end with exit code 0 and print no traceback. Every other copy also gets the
+constructor, its spin, its callbacks, its service wait. 12 runs per listing, RUNS_AT_ONCE at a
+time, each at a random moment of its own twelfth of that window (stratified: 20 uniform draws, as
+before, left gaps of up to a fifth of the window; 12 strata leave none wider than two twelfths).
+Each run must end with exit code 0 and print no traceback. Every other copy also gets the
 copy of the Ctrl-C that `ros2 launch` passes on, DOUBLE_PRESS s later: the appendix's torque-off
 must still happen. A run still alive EXIT_TIMEOUT s after its Ctrl-C fails with every thread's
 stack (faulthandler).
@@ -32,7 +34,7 @@ from owl_common.processes import RosProcess
 from ros_harness import RosHarness, wait_until
 from servo_helpers import start_servo
 
-RUNS = 20
+RUNS = 12
 RUNS_AT_ONCE = 4
 LATEST_CTRL_C = 1.5  # s after the node appeared
 EXIT_TIMEOUT = 10.0
@@ -112,16 +114,32 @@ def run_once(ros: RosHarness, listing: Listing, round_number: int,
     return list(zip(started, delays, strict=True))
 
 
+def ctrl_c_moments(rng: random.Random, latest: float) -> list[float]:
+    """RUNS moments in [0, latest): one at random in each of RUNS equal strata, in a random order.
+
+    The order spreads each round's copies over the window, so no round is all early or all late.
+    """
+    moments = [(stratum + rng.random()) * latest / RUNS for stratum in range(RUNS)]
+    rng.shuffle(moments)
+    return moments
+
+
+def test_the_ctrl_c_moments_cover_the_window_one_per_stratum():
+    latest = 1.5
+    moments = ctrl_c_moments(random.Random(7), latest)
+    assert sorted(int(moment * RUNS / latest) for moment in moments) == list(range(RUNS))
+
+
 @pytest.mark.parametrize('listing', CASES, ids=[c.script.removesuffix('.py') for c in CASES])
 def test_ctrl_c_at_any_moment_ends_a_listing_cleanly(ros: RosHarness, listing: Listing):
     servo = start_servo(ros, listing.servo) if listing.servo else None
     for other in listing.beside:
         ros.command(['python', str(course_lines.LISTINGS / other)], label=other)
-    rng = random.Random()
+    delays = ctrl_c_moments(random.Random(), listing.latest_ctrl_c)
     failures = []
     for round_number in range(RUNS // RUNS_AT_ONCE):
-        delays = [rng.uniform(0.0, listing.latest_ctrl_c) for _ in range(RUNS_AT_ONCE)]
-        for process, delay in run_once(ros, listing, round_number, delays):
+        at_once = delays[round_number * RUNS_AT_ONCE:(round_number + 1) * RUNS_AT_ONCE]
+        for process, delay in run_once(ros, listing, round_number, at_once):
             code = process.popen.returncode
             if code != 0 or TRACEBACK.search(FASTDDS_SHM_PORT_TAKEN.sub('', process.output)):
                 failures.append(f'Ctrl-C {delay:.2f} s after its node appeared: exit code {code}, '

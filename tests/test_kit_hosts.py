@@ -128,31 +128,42 @@ def test_a_module_whose_cable_is_pulled_is_seen_again_within_5_s(classroom):
     assert 'Traceback' not in classroom.kit.output + pan.output
 
 
-def owl_network(classroom, host: str, env: dict) -> tuple[int, list[str]]:
-    check = classroom.run(host, 'owl network --discovery-time 3', env, label=f'owl network on {host}')
+def owl_network(check) -> tuple[int, list[str]]:
+    """The exit code and report lines of an `owl network` started by start_owl_network."""
     code = check.wait(60)
     return code, [line for line in check.lines if line.startswith('owl network: ')]
 
 
+def start_owl_network(classroom, host: str, env: dict):
+    return classroom.run(host, 'owl network --discovery-time 3', env, label=f'owl network on {host}')
+
+
 def test_owl_network_on_a_good_set_up_and_three_broken_ones(classroom):
-    code, lines = owl_network(classroom, 'pc', OPEN)
+    # Each waits out its discovery time: the four run at once, in shells of their own.
+    good, private, other_domain, off_the_bridge = (
+        start_owl_network(classroom, host, env) for host, env in (
+            ('pc', OPEN),
+            ('pc', {'ROS_DOMAIN_ID': '0'}),  # OWL_NETWORK left at private
+            ('pc', {**OPEN, 'ROS_DOMAIN_ID': '7'}),
+            ('other', OPEN)))
+    code, lines = owl_network(good)
     print('\n'.join(['good set-up:', *lines]))
     assert code == 0, lines
     assert all(': ok: ' in line for line in lines), lines
     assert any('discovers 4 Olive module node(s)' in line for line in lines), lines
     assert lines[-1].startswith('owl network: ok: Humble modules are safe beside this shell'), lines
 
-    code, lines = owl_network(classroom, 'pc', {'ROS_DOMAIN_ID': '0'})  # OWL_NETWORK left at private
+    code, lines = owl_network(private)
     print('\n'.join(['private mode:', *lines]))
     assert code == 1
     assert 'fix: export OWL_NETWORK=open; source env.sh' in lines[0]
 
-    code, lines = owl_network(classroom, 'pc', {**OPEN, 'ROS_DOMAIN_ID': '7'})
+    code, lines = owl_network(other_domain)
     print('\n'.join(['another domain:', *lines]))
     assert code == 1, lines
     assert lines[-2].endswith('this shell is in domain 7; fix: export ROS_DOMAIN_ID=0'), lines
 
-    code, lines = owl_network(classroom, 'other', OPEN)
+    code, lines = owl_network(off_the_bridge)
     print('\n'.join(['not on the bridge:', *lines]))
     assert code == 1, lines
     assert "no network interface on the modules' subnet 10.42.0.0/24" in lines[1], lines

@@ -343,6 +343,23 @@ def test_lag_behind_a_moving_target_gives_the_benefit_of_the_doubt_about_its_sta
     assert judge.lag_behind_moving_target(0.3, 9.0, 0.3, 0.0, (10.0, 10.0)) == 0.0  # a still target
 
 
+def test_a_head_is_stopped_short_once_every_servo_stood_still_for_a_while_after_the_grace():
+    from types import SimpleNamespace
+
+    from owl_cli.exercises.section_4_6 import GRACE, STILL_FOR, stopped_short
+
+    def states(*positions_at: tuple[float, float]) -> list:
+        return [(t, SimpleNamespace(position=[p])) for t, p in positions_at]
+
+    still = states(*((t / 10, 0.0) for t in range(100)))
+    moving = states(*((t / 10, t / 1000) for t in range(100)))
+    assert stopped_short({'pan': still, 'tilt': still}, since=0.0, now=9.9)
+    assert not stopped_short({'pan': still, 'tilt': moving}, since=0.0, now=9.9)  # tilt still turns
+    assert not stopped_short({'pan': still, 'tilt': still}, since=9.9 - GRACE + 0.1, now=9.9)  # too early
+    assert not stopped_short({'pan': still, 'tilt': states()}, since=0.0, now=9.9)  # no joint states
+    assert not stopped_short({'pan': still, 'tilt': still}, since=0.0, now=9.9 + STILL_FOR + 0.1)  # stale
+
+
 def test_currency_and_factorial_answers():
     good = judge.currency_answers([116.0, 88.0, 93.0], [290.0, 220.0, 232.5])
     assert all(c.passed for c in good)

@@ -28,6 +28,11 @@ CENTRED = 0.03      # rad off the ball: 3 % of the image's width
 FOLLOWING = 0.1     # rad off the moving ball
 MOVING_SPEED = 0.2  # rad/s
 HIDDEN_BALL = (1.2, -0.05)  # out of sight at rest: only a search finds it
+# A head that has stood still this long away from a still ball has stopped there: a tracker sends
+# goals from every image (30 a second), so one that moves the head at all keeps it moving until it
+# aims. The verdict comes then rather than at the 15 s limit. Not before GRACE s after the tracker
+# subscribed, so one that starts slowly (its first image, its imports) gets its time.
+STILL_FOR, STILL_WITHIN, GRACE = 2.0, 0.002, 4.0  # s, rad, s
 
 
 def stamp_seconds(message: Any) -> float:
@@ -50,6 +55,20 @@ def near(joints: list, value: float, tolerance: float) -> bool:
     """Whether the servo's last position is within tolerance of value."""
     position = last_position(joints)
     return position is not None and abs(position - value) < tolerance
+
+
+def stopped_short(joints: dict[str, list], since: float, now: float) -> bool:
+    """Whether every servo's joint states of the last STILL_FOR s stayed within STILL_WITHIN rad.
+
+    since: when the tracker subscribed (monotonic); before since + GRACE nothing has stopped yet.
+    """
+    if now - since < GRACE:
+        return False
+    for received in joints.values():
+        recent = [m.position[0] for t, m in received if t >= now - STILL_FOR and m.position]
+        if not recent or max(recent) - min(recent) > STILL_WITHIN:
+            return False
+    return True
 
 
 def aim_criterion(s: Session, servo: str, joints: list, wanted: float) -> bool:
@@ -93,7 +112,9 @@ def check_track_object(s: Session) -> None:
         s.stop_student()
         return
     wanted = {'pan': BALL[0], 'tilt': -BALL[1]}
-    s.wait(lambda: all(near(joints[servo], wanted[servo], CENTRED) for servo in wanted), 15.0)
+    subscribed = time.monotonic()
+    s.wait(lambda: all(near(joints[servo], wanted[servo], CENTRED) for servo in wanted)
+           or stopped_short(joints, subscribed, time.monotonic()), 15.0)
     for servo in ('pan', 'tilt'):
         torque_criterion(s, servo, goals[servo])
     aimed = all([aim_criterion(s, servo, joints[servo], wanted[servo]) for servo in ('pan', 'tilt')])
