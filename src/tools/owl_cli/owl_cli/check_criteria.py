@@ -53,13 +53,25 @@ def rate(stamps: Sequence[float]) -> float:
     return (len(stamps) - 1) / (stamps[-1] - stamps[0])
 
 
+def outside(values: Sequence[float], low: float, high: float) -> list[float]:
+    """The values not within low..high."""
+    return [v for v in values if not low <= v <= high]
+
+
+def range_decided(values: Sequence[float], low: float, high: float, enough: int) -> bool:
+    """Whether in_range over values is decided before more arrive: enough did, or one is outside.
+
+    More values cannot bring one outside low..high back in: in_range fails from that one on.
+    """
+    return len(values) >= enough or bool(outside(values, low, high))
+
+
 def in_range(what: str, values: Sequence[float], low: float, high: float, hint: str) -> Criterion:
     """Whether every one of values lies in low..high; it fails when none arrived, too."""
-    outside = [v for v in values if not low <= v <= high]
     detail = f'{len(values)} values from {min(values):g} to {max(values):g}' if values else 'no values'
     return Criterion(
         f'{what} stay within {low:g}..{high:g}',
-        bool(values) and not outside,
+        bool(values) and not outside(values, low, high),
         hint if values else f'no {what} arrived',
         detail,
     )

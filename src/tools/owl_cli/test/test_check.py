@@ -334,6 +334,15 @@ def test_bounds_rate_and_sine():
     assert not judge.in_range('numbers', [1, 50], 1, 3, 'x').passed
 
 
+def test_numbers_in_a_range_are_decided_by_enough_of_them_or_by_one_outside():
+    assert not judge.range_decided([], 1, 3, 4)
+    assert not judge.range_decided([1, 3, 2], 1, 3, 4)  # within so far: more must come
+    assert judge.range_decided([1, 3, 2, 1], 1, 3, 4)
+    assert judge.range_decided([57], 1, 3, 4)  # fails in_range whatever follows
+    assert not judge.in_range('numbers', [57, 1, 2, 3], 1, 3, 'x').passed
+    assert judge.outside([0, 1, 3, 3.5], 1, 3) == [0, 3.5]
+
+
 def test_lag_behind_a_moving_target_gives_the_benefit_of_the_doubt_about_its_start():
     # A ball leaving 0.3 rad at 0.2 rad/s some time between t=10.0 and t=10.1; measured at t=12.0
     # it is between 0.68 and 0.70 rad.
@@ -358,6 +367,56 @@ def test_a_head_is_stopped_short_once_every_servo_stood_still_for_a_while_after_
     assert not stopped_short({'pan': still, 'tilt': still}, since=9.9 - GRACE + 0.1, now=9.9)  # too early
     assert not stopped_short({'pan': still, 'tilt': states()}, since=0.0, now=9.9)  # no joint states
     assert not stopped_short({'pan': still, 'tilt': still}, since=0.0, now=9.9 + STILL_FOR + 0.1)  # stale
+
+
+def test_the_moving_ball_is_lost_once_one_joint_state_of_the_window_lags_too_far():
+    from types import SimpleNamespace
+
+    from owl_cli.exercises.section_4_6 import (
+        BALL,
+        FOLLOW_FROM,
+        FOLLOW_UNTIL,
+        FOLLOWING,
+        MOVING_SPEED,
+        fell_behind,
+        lags_behind_moving_ball,
+    )
+
+    def state(measured: float, position: float) -> tuple[float, SimpleNamespace]:
+        stamp = SimpleNamespace(sec=int(measured), nanosec=round(measured % 1 * 1e9))
+        return 0.0, SimpleNamespace(header=SimpleNamespace(stamp=stamp), position=[position])
+
+    left = (100.0, 100.0)
+    seconds = [t / 10 + 0.05 for t in range(60)]  # after the ball set off, never on the window's edges
+    on_the_ball = [state(100 + t, BALL[0] + MOVING_SPEED * t) for t in seconds]
+    in_window = [t for t in seconds if FOLLOW_FROM <= t <= FOLLOW_UNTIL]
+    assert lags_behind_moving_ball(on_the_ball, left) == pytest.approx([0.0] * len(in_window), abs=1e-6)
+    assert not fell_behind(on_the_ball, left)
+    late = state(100 + FOLLOW_FROM + 0.5, BALL[0] + MOVING_SPEED * (FOLLOW_FROM + 0.5) - 1.5 * FOLLOWING)
+    assert fell_behind([*on_the_ball[:21], late], left)  # decided now: later states only add lags
+    too_soon = state(100 + FOLLOW_FROM - 0.1, BALL[0])  # the head may still be catching up then
+    assert not fell_behind([too_soon], left)
+    assert not fell_behind([], left)
+
+
+def test_held_keys_stop_when_each_servos_goals_stood_or_both_their_verdicts_are_known():
+    from types import SimpleNamespace
+
+    from owl_cli.exercises.section_4_4_1 import KEY_SWING, beyond_and_swung, goals_stopped
+
+    def goals(*values_at: tuple[float, float]) -> list:
+        return [(t, SimpleNamespace(data=v)) for t, v in values_at]
+
+    at_limit = goals(*((t / 100, min(1.5708, t / 100)) for t in range(300)))
+    assert goals_stopped(at_limit, 2.99)
+    assert not goals_stopped(at_limit, 1.8)  # reached the limit 0.23 s ago
+    assert not goals_stopped(goals(*((t / 100, t / 100) for t in range(300))), 2.99)  # still turning
+    assert not goals_stopped(goals(*((t / 100, 0.0) for t in range(100))), 2.99)  # nothing lately
+    assert goals_stopped(goals(*((t / 100, -1.3) for t in range(300))), 2.99)  # tilt, at a limit of its own
+    assert beyond_and_swung([4.9, 4.8], [0.0, 2.0, 5.0], -1.5708, 1.5708)
+    assert not beyond_and_swung([1.5, 1.4], [0.0, 2.0, 5.0], -1.5708, 1.5708)  # within so far
+    assert not beyond_and_swung([1.6], [1.6 - KEY_SWING / 2], -1.5708, 1.5708)  # may swing more yet
+    assert not beyond_and_swung([], [0.0, 5.0], -1.5708, 1.5708)
 
 
 def test_currency_and_factorial_answers():

@@ -159,7 +159,7 @@ def check_upper_limit(s: Session) -> None:
     ok, reason = s.set_parameter(node, 'upper_limit', 3)
     s.add(Criterion('ros2 param set /random_number_publisher upper_limit 3 succeeds', ok, reason))
     since = time.monotonic() + 0.2
-    s.wait(lambda: len(values_since(numbers, since, lambda m: m.data)) >= 4, 8.0)
+    s.wait(lambda: judge.range_decided(values_since(numbers, since, lambda m: m.data), 1, 3, 4), 8.0)
     values = values_since(numbers, since, lambda m: m.data)
     s.add(
         judge.in_range(
@@ -209,7 +209,7 @@ def check_lower_limit(s: Session) -> None:
         )
     )
     since = time.monotonic() + 0.2
-    s.wait(lambda: len(values_since(numbers, since, lambda m: m.data)) >= 4, 8.0)
+    s.wait(lambda: judge.range_decided(values_since(numbers, since, lambda m: m.data), 10, 12, 4), 8.0)
     s.add(
         judge.in_range(
             f'the numbers after {names[0]} 10 and upper_limit 12',

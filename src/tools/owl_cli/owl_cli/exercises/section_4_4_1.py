@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import itertools
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 from owl_common.processes import RosProcess
@@ -37,31 +38,64 @@ def press(s: Session, process: RosProcess, *events: str) -> bool:
     return True
 
 
+# A held key's goals count as stopped once they stayed one value (within GOAL_STEADY rad) for STEADY_FOR
+# s, the value they had just before too; not before HELD_AT_LEAST s, the node's time to see the key.
+STEADY_FOR, GOAL_STEADY, HELD_AT_LEAST = 0.5, 1e-3, 1.0  # s, rad, s
+KEY_SWING = 0.3  # rad the goal must swing across a pair of keys (Left and Right, Up and Down)
+
+
+def goals_stopped(goals: list, now: float) -> bool:
+    """Whether a servo's goals (Session.collect pairs) of the last STEADY_FOR s stayed one value.
+
+    That value must be the one of the 0.2 s before them too, so a servo that sent nothing lately
+    has not stopped.
+    """
+    recent = [m.data for t, m in goals if t >= now - STEADY_FOR]
+    earlier = [m.data for t, m in goals if now - STEADY_FOR - 0.2 <= t < now - STEADY_FOR]
+    return (
+        bool(recent)
+        and bool(earlier)
+        and max(recent) - min(recent) < GOAL_STEADY
+        and abs(recent[-1] - earlier[-1]) < GOAL_STEADY
+    )
+
+
+def beyond_and_swung(held: list[float], other: list[float], low: float, high: float) -> bool:
+    """Whether holding a key longer can change neither verdict on its servo's goals.
+
+    held: the goals since the key went down, other: those while the opposite key was held. When
+    held already left low..high, bounded_goal fails whatever comes after; when held and other
+    already swing KEY_SWING, the key moves the goal whatever comes after.
+    """
+    if not held or judge.bounded_goal('', held, low, high, '').passed:
+        return False
+    both = held + other
+    return max(both) - min(both) >= KEY_SWING
+
+
 def hold_keys(
-    s: Session, process: RosProcess, keys: tuple[str, ...], goals: dict[str, list], longest: float = 5.0
+    s: Session,
+    process: RosProcess,
+    keys: tuple[str, ...],
+    goals: dict[str, list],
+    decided: Callable[[str, float], bool] | None = None,
+    longest: float = 5.0,
 ) -> float:
-    """Hold keys until the goals stop changing (or longest s); return when it started."""
+    """Hold keys until each servo's goals stopped changing or decided(servo, start) (or longest s).
+
+    Return when it started. Each servo's goals are looked at on their own: pan and tilt stop at
+    limits of their own, never at one value.
+    """
     start = time.monotonic()
     press(s, process, *(f'down {k}' for k in keys))
 
-    def settled() -> bool:
-        if time.monotonic() - start < 1.0:
-            return False
-        recent = [m.data for servo in goals for t, m in goals[servo] if t >= time.monotonic() - 0.5]
-        earlier = [
-            m.data
-            for servo in goals
-            for t, m in goals[servo]
-            if time.monotonic() - 0.7 <= t < time.monotonic() - 0.5
-        ]
-        return (
-            bool(recent)
-            and bool(earlier)
-            and max(recent) - min(recent) < 1e-3
-            and abs(recent[-1] - earlier[-1]) < 1e-3
-        )
+    def done(servo: str) -> bool:
+        if decided is not None and decided(servo, start):
+            return True
+        now = time.monotonic()
+        return now - start >= HELD_AT_LEAST and goals_stopped(goals[servo], now)
 
-    s.wait(settled, longest)
+    s.wait(lambda: all(done(servo) for servo in goals), longest)
     press(s, process, *(f'up {k}' for k in keys))
     return start
 
@@ -103,21 +137,28 @@ def check_keyboard_servos(s: Session) -> None:
         s.stop_student()
         return
     s.wait(lambda: all(len(g) >= 5 for g in goals.values()), 5.0)
-    moves = {}
-    for keys in (('left', 'up'), ('right', 'down')):
-        start = hold_keys(s, process, keys, goals)
+    ranges = {'pan': PAN_RANGE, 'tilt': TILT_RANGE}
+    held: dict[str, list[list[float]]] = {'pan': [], 'tilt': []}  # each servo's goals for each pair of keys
+
+    def decided(servo: str, start: float) -> bool:
+        values = [m.data for t, m in goals[servo] if t >= start]
+        return beyond_and_swung(values, held[servo][0], *ranges[servo])
+
+    # The second keys start from where the first left the goals: only the second may end early on
+    # decided verdicts (the first end only once the goals stopped).
+    for keys, early in ((('left', 'up'), None), (('right', 'down'), decided)):
+        start = hold_keys(s, process, keys, goals, early)
         for servo, key in zip(('pan', 'tilt'), keys, strict=True):
             values = [m.data for t, m in goals[servo] if t >= start]
-            moves[key] = (values, start)
-            range_ = PAN_RANGE if servo == 'pan' else TILT_RANGE
-            s.add(judge.bounded_goal(servo, values, *range_, f'{key.title()} is held'))
+            held[servo].append(values)
+            s.add(judge.bounded_goal(servo, values, *ranges[servo], f'{key.title()} is held'))
     for servo, keys in (('pan', ('left', 'right')), ('tilt', ('up', 'down'))):
-        first, second = (moves[k][0] for k in keys)
-        swing = (max(first + second) - min(first + second)) if first + second else 0.0
+        both = held[servo][0] + held[servo][1]
+        swing = (max(both) - min(both)) if both else 0.0
         s.add(
             Criterion(
                 f'{keys[0].title()}/{keys[1].title()} move the {servo} goal',
-                swing >= 0.3,
+                swing >= KEY_SWING,
                 f'holding {keys[0].title()} and {keys[1].title()} left the {servo} goal where it was: '
                 'read pygame.key.get_pressed() in the timer callback',
                 f'it swung {swing:.2f} rad',

@@ -28,6 +28,8 @@ CENTRED = 0.03      # rad off the ball: 3 % of the image's width
 FOLLOWING = 0.1     # rad off the moving ball
 MOVING_SPEED = 0.2  # rad/s
 HIDDEN_BALL = (1.2, -0.05)  # out of sight at rest: only a search finds it
+# s after the ball set off: the head must follow it from FOLLOW_FROM to FOLLOW_UNTIL.
+FOLLOW_FROM, FOLLOW_UNTIL = 1.5, 5.0
 # A head that has stood still this long away from a still ball has stopped there: a tracker sends
 # goals from every image (30 a second), so one that moves the head at all keeps it moving until it
 # aims. The verdict comes then rather than at the 15 s limit. Not before GRACE s after the tracker
@@ -69,6 +71,28 @@ def stopped_short(joints: dict[str, list], since: float, now: float) -> bool:
         if not recent or max(recent) - min(recent) > STILL_WITHIN:
             return False
     return True
+
+
+def lags_behind_moving_ball(pan: list, left_between: tuple[float, float]) -> list[float]:
+    """How far the pan servo was from the ball going round, in each of its joint states of the window.
+
+    left_between: the wall-clock times between which the ball set off at MOVING_SPEED from BALL. The
+    window is FOLLOW_FROM to FOLLOW_UNTIL s after that, by the joint states' stamps (when the servo
+    measured), not by when they arrived here: on a busy machine this checker can get them in a burst,
+    late, which is not the tracker's lag.
+    """
+    after = left_between[1]
+    return [judge.lag_behind_moving_target(m.position[0], measured, BALL[0], MOVING_SPEED, left_between)
+            for measured, m in ((stamp_seconds(m), m) for _, m in pan)
+            if after + FOLLOW_FROM <= measured <= after + FOLLOW_UNTIL and m.position]
+
+
+def fell_behind(pan: list, left_between: tuple[float, float]) -> bool:
+    """Whether a joint state of the window already lags FOLLOWING or more: the head does not follow.
+
+    Later joint states only add lags, so no more of the window can make it follow.
+    """
+    return max(lags_behind_moving_ball(pan, left_between), default=0.0) >= FOLLOWING
 
 
 def aim_criterion(s: Session, servo: str, joints: list, wanted: float) -> bool:
@@ -119,15 +143,15 @@ def check_track_object(s: Session) -> None:
         torque_criterion(s, servo, goals[servo])
     aimed = all([aim_criterion(s, servo, joints[servo], wanted[servo]) for servo in ('pan', 'tilt')])
     if aimed:
-        # Judged by the joint states' stamps (when the servo measured), not by when they arrived here:
-        # on a busy machine this checker can get them in a burst, late, which is not the tracker's lag.
         before = time.time()
         s.set_parameter(CAMERA_NODE, 'ball_speed', MOVING_SPEED)
         after = time.time()
-        time.sleep(5.0)
-        lag = [judge.lag_behind_moving_target(m.position[0], measured, BALL[0], MOVING_SPEED, (before, after))
-               for measured, m in ((stamp_seconds(m), m) for _, m in joints['pan'])
-               if after + 1.5 <= measured <= after + 5.0 and m.position]
+        # Not Session.wait, which returns when the tracker ends: the head it leaves standing is still
+        # judged over the whole window.
+        deadline = time.monotonic() + FOLLOW_UNTIL
+        while time.monotonic() < deadline and not fell_behind(joints['pan'], (before, after)):
+            time.sleep(0.05)
+        lag = lags_behind_moving_ball(joints['pan'], (before, after))
         s.add(Criterion(
             f'the head follows the ball going round at {MOVING_SPEED} rad/s '
             f'(pan within {FOLLOWING} rad of it)',
