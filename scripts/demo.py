@@ -20,6 +20,8 @@ import socket
 import sys
 import time
 from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
+from contextlib import suppress
 from dataclasses import dataclass, field
 from functools import partial
 
@@ -242,6 +244,19 @@ def display_camera_lines(process: RosProcess) -> list[str]:
     return [line for line in process.lines if 'showing them in the window' in line or 'no display' in line]
 
 
+def stop_all(processes: dict[str, RosProcess]) -> dict[str, int]:
+    """Stop every process (SIGINT, as Ctrl-C would); each one's exit code.
+
+    All but the kit stop side by side, none waiting for another's goodbye; the kit stops last, as the
+    servos' torque is switched off through it.
+    """
+    others = {label: process for label, process in processes.items() if label != 'kit'}
+    with ThreadPoolExecutor(len(others)) as pool:
+        codes = dict(zip(others, pool.map(RosProcess.stop, others.values()), strict=True))
+    codes['kit'] = processes['kit'].stop()
+    return codes
+
+
 def run_demo(seconds: float, report_every: float, project: str = 'imu') -> int:
     """Run the demo for seconds, a status line every report_every s; the exit code, 0 if all stopped cleanly.
 
@@ -272,7 +287,9 @@ def run_demo(seconds: float, report_every: float, project: str = 'imu') -> int:
         try:
             state = watch(probe)
             processes = start_robot(sandbox, project)
-            time.sleep(0.5)  # the no-display line follows the first frame's
+            # Without a display, display_camera says so right after its first frame's line; with one, not.
+            with suppress(AssertionError):
+                processes['display_camera'].wait_for(r': no display \(', 0.5)
             for line in display_camera_lines(processes['display_camera']):
                 print(f'   display_camera says: {line}', flush=True)
             print_pages(processes)
@@ -288,7 +305,7 @@ def run_demo(seconds: float, report_every: float, project: str = 'imu') -> int:
         finally:
             probe.close()
         print('== stopping (SIGINT, as Ctrl-C would)', flush=True)
-        codes = {label: process.stop() for label, process in reversed(processes.items())}
+        codes = stop_all(processes)
     failed = {label: code for label, code in codes.items() if code != 0}
     if failed:
         print(f'== demo finished with errors (exit codes): {failed}', file=sys.stderr)

@@ -61,15 +61,15 @@ def stop_twin(twin):
 
 
 def seconds_until_listing(sandbox, condition, timeout=10.0):
-    """Seconds from now to the start of the first `ros2 node list` whose answer meets the condition.
+    """When the first `ros2 node list` whose answer meets the condition began (s from now), and that answer.
 
     Each call takes a while itself; what counts is when it was asked.
     """
     started = time.monotonic()
     while time.monotonic() < started + timeout:
         asked = time.monotonic()
-        if condition(node_list(sandbox)):
-            return asked - started
+        if condition(names := node_list(sandbox)):
+            return asked - started, names
     raise AssertionError(f'no ros2 node list within {timeout} s met the condition: {node_list(sandbox)}')
 
 
@@ -97,17 +97,32 @@ def test_a_humble_module_beside_the_kit_and_chapter_4_nodes_is_safe_listed_and_t
         servo = sandbox.run('owl_humble', 'humble_twin', '--module', 'servo', label='humble servo')
         imu.wait_for('ready: node ' + IMU_NODE, timeout=20)
         servo.wait_for('ready: node ' + SERVO_NODE, timeout=20)
-        listed_after = seconds_until_listing(sandbox, lambda names: {IMU_NODE, SERVO_NODE} <= names)
+        # Goals -> the twin's servo, which follows them in its joint state. The goal goes out while the
+        # twins are listed; not before the twin is ready: a goal sent while it still starts can be lost.
+        goal = sandbox.command(['ros2', 'topic', 'pub', '-1', '-w', '1', '/olive/servo/humble/goal/position',
+                                'std_msgs/msg/Float32', '{data: 0.5}'], label='ros2 topic pub')
+        listed_after, _ = seconds_until_listing(sandbox, lambda names: {IMU_NODE, SERVO_NODE} <= names)
         assert listed_after <= 2.0, f'the first call to list the Humble nodes began {listed_after:.2f} s ' \
                                     'after they started'
+
+        # IMU -> the course's imu_turtle: the twin's fixed 0.3 rad pitch drives the turtle forward. Started
+        # now, it comes up while the servo gets its goal.
+        imu_turtle = sandbox.run('olive_imu', 'imu_turtle', '--ros-args',
+                                 '-p', 'imu_topic:=/olive/imu/humble/imu')
+        goal.wait(30)
+        assert 'Traceback' not in goal.output, goal.output
+        servo.wait_for(r'goal \+0\.500 rad on /olive/servo/humble/goal/position', timeout=10)
+        # owl network --kit: every module with its distribution, one message each way. It mostly waits
+        # (discovery, acknowledgements: about 10 s), so the `ros2` checks below run meanwhile; it starts
+        # once the servo has the goal, as it reports the position the servo has then.
+        check = sandbox.command(['owl', 'network', '--kit', '--discovery-time', '2'], label='owl network')
+        joint = ros2(sandbox, 'topic', 'echo', '/olive/servo/humble/joint', '--once').stdout
+        assert re.search(r'position:\n- 0\.5', joint), joint
         info = ros2(sandbox, 'topic', 'info', '-v', '/olive/imu/humble/imu').stdout
         assert f'Node name: {IMU_NODE[1:]}' in info, info
         assert 'Topic type hash: INVALID' in info, info
         assert '/olive/imu/humble/imu' in ros2(sandbox, 'node', 'info', IMU_NODE).stdout
 
-        # IMU -> the course's imu_turtle: the twin's fixed 0.3 rad pitch drives the turtle forward.
-        imu_turtle = sandbox.run('olive_imu', 'imu_turtle', '--ros-args',
-                                 '-p', 'imu_topic:=/olive/imu/humble/imu')
         imu_turtle.wait_for('IMU data on /olive/imu/humble/imu: driving /turtle1/cmd_vel', timeout=20)
         # From the spawn point, not from a first reading: at 0.45 m/s the turtle reaches the east wall
         # about 12 s after it starts, and a first reading that a loaded suite's slow `ros2` calls delay
@@ -120,18 +135,10 @@ def test_a_humble_module_beside_the_kit_and_chapter_4_nodes_is_safe_listed_and_t
             raise AssertionError(f'{failure}; x is {turtle_x(sandbox)}\n/turtle1/cmd_vel:\n{cmd_vel}'
                                  f'\nimu_turtle:\n{imu_turtle.tail()}\nturtlesim:\n{turtlesim.tail()}'
                                  f'\nhumble imu:\n{imu.tail()}') from None
-        # Goals -> the twin's servo, which follows them in its joint state.
-        ros2(sandbox, 'topic', 'pub', '-1', '-w', '1', '/olive/servo/humble/goal/position',
-             'std_msgs/msg/Float32', '{data: 0.5}')
-        servo.wait_for(r'goal \+0\.500 rad on /olive/servo/humble/goal/position', timeout=10)
-        joint = ros2(sandbox, 'topic', 'echo', '/olive/servo/humble/joint', '--once').stdout
-        assert re.search(r'position:\n- 0\.5', joint), joint
 
-        # owl network --kit: every module with its distribution, one message each way.
-        check = subprocess.run(['owl', 'network', '--kit', '--discovery-time', '2'], env=sandbox.env,
-                               capture_output=True, text=True, timeout=90, check=False)
-        assert 'Traceback' not in check.stderr, check.stderr
-        lines = check.stdout
+        check.wait(90)
+        lines = check.output
+        assert 'Traceback' not in lines, lines
         assert (f'ok: imu humble ({IMU_NODE}, ROS 2 Humble): one Imu on /olive/imu/humble/imu from it, '
                 'one Bool (LED on) on /olive/imu/humble/led to it') in lines, lines
         assert re.search(rf'ok: servo humble \({SERVO_NODE}, ROS 2 Humble\): one JointState on '
@@ -144,13 +151,16 @@ def test_a_humble_module_beside_the_kit_and_chapter_4_nodes_is_safe_listed_and_t
         imu.wait_for('LED on', timeout=5)
 
         assert stop_twin(imu)[1] == 0, imu.output
-        gone_after = seconds_until_listing(sandbox, lambda names: IMU_NODE not in names)
+        gone_after, names = seconds_until_listing(sandbox, lambda names: IMU_NODE not in names)
         assert gone_after <= 5.0, f'the Humble IMU was listed by calls up to {gone_after:.2f} s after it left'
-        assert SERVO_NODE in node_list(sandbox)
+        assert SERVO_NODE in names, names
         assert stop_twin(servo)[1] == 0, servo.output
-        for process in (imu_turtle, robot, kit, turtlesim):
+        # The robot before the kit: stopping, imu_control_robot switches the servos' torque off through the
+        # kit (with the kit gone it waits 3.5 s for answers).
+        for process in (imu_turtle, robot, turtlesim):
             process.send_signal(signal.SIGINT)
         assert robot.wait(30) == 0, robot.tail() + kit.tail()
+        kit.send_signal(signal.SIGINT)
         assert kit.wait(30) == 0, robot.tail() + kit.tail()
 
 
