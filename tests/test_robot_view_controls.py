@@ -1,8 +1,10 @@
-"""robot_view's live plots and servo controls over real DDS with the kit's processes, in Chromium.
+"""robot_view's page on the kit over real DDS with the kit's processes, in Chromium.
 
-A Kp change shows in the plotted step response, the goal buttons move the servo, the torque switch
+The model follows the servos, the mouse holds the IMU and the head follows it (imu_control_robot),
+the camera shows at its rate, and the view fills any window. The live plots and servo controls: a Kp
+change shows in the plotted step response, the goal buttons move the servo, the torque switch
 switches, Pause freezes the plots, and bad input gets one line and reaches no servo.
-docs/screenshots/robot_view_plots.png is made here.
+docs/screenshots/robot_view.png and robot_view_plots.png are made here.
 
 The tests share one robot_view.launch.py (the kit and robot_view: starting it cost each test about
 8 s of CPU). Each test gets a probe node of its own and a fresh page, and leaves the kit as it
@@ -22,11 +24,13 @@ from typing import Any, TypedDict
 
 import pytest
 from diagnostic_msgs.msg import DiagnosticStatus
+from geometry_msgs.msg import Quaternion
+from olive_kit.description import IMU_NAMESPACE
 from ros_harness import RosHarness, wait_until
-from sensor_msgs.msg import JointState
+from sensor_msgs.msg import Imu, JointState
 from std_msgs.msg import Float32
 from std_srvs.srv import Trigger
-from test_robot_view import drag, start_kit_and_view
+from test_robot_view import TRUE_ORIENTATION, drag, start_kit_and_view
 from web_harness import PageSocket, SocketClosed
 
 PAN_NODE = '/olive_servo_pan_dcm_srv'
@@ -34,6 +38,10 @@ TILT_NODE = '/olive_servo_tilt_dcm_srv'
 pytestmark = pytest.mark.whole_kit  # every test here opens the page on the kit
 STEP = 1.57  # the appendix 5.3 script's goal
 SETTLE = 3.0  # s between two goals, as in the appendix script
+IMU_TOPIC = f'/olive/imu/{IMU_NAMESPACE}/imu'
+MIN_FPS = 15.0  # the camera publishes 30 frames/s; the target is in bench/, this is "it streams"
+CAMERA_COUNT = 4.0  # s of camera frames counted in the page
+LATENCY_SAMPLES = 6
 
 
 def servo_row(servo: str) -> str:
@@ -68,11 +76,14 @@ def kit_and_view() -> Iterator[KitAndView]:
 def ros(kit_and_view: KitAndView) -> Iterator[RosHarness]:
     """The module's kit and robot view, with a probe of this test's own; afterwards as the kit started."""
     with kit_and_view.ros.turn() as harness:
+        # The probe made now, not by the clean-up's first call: a request that comes before the servo
+        # has discovered a new probe is lost, and goes again only 2 s later.
+        probe = harness.probe
         yield harness
         for servo, node in SERVO_NODES.items():
-            assert all(result.successful for result in harness.probe.set_parameters(
+            assert all(result.successful for result in probe.set_parameters(
                 node, **dict(zip(GAINS, kit_and_view.gains[servo], strict=True))))
-            harness.probe.call(Trigger, f'/olive/servo/{servo}/setTorqueDisable', Trigger.Request())
+            probe.call(Trigger, f'/olive/servo/{servo}/setTorqueDisable', Trigger.Request())
         with PageSocket(kit_and_view.url) as page_socket:
             page_socket.send({'type': 'command', 'id': 'level', 'name': 'level'})
             assert page_socket.receive() == {'type': 'done', 'id': 'level'}
@@ -103,6 +114,23 @@ def set_gains(page: Any, servo: str, **gains: str) -> dict[str, Any]:
     for name, value in gains.items():
         page.fill(f'{servo_row(servo)} input.{name}', value)
     return click_and_wait_for_answer(page, f'{servo_row(servo)} button.set-gains')
+
+
+def wait_until_still(joints: list[JointState], what: str, still: float = 0.3) -> None:
+    """Wait until a joint (a list Probe.collect fills) has stayed within 2 mrad for `still` seconds.
+
+    2 mrad: a little over its encoder's step (2 pi / 4096), so a servo at rest is still.
+    """
+    anchor = (joints[-1].position[0], time.monotonic())
+
+    def settled() -> bool:
+        nonlocal anchor
+        position, now = joints[-1].position[0], time.monotonic()
+        if abs(position - anchor[0]) > 0.002:
+            anchor = (position, now)
+        return now - anchor[1] >= still
+
+    wait_until(settled, 10, what)
 
 
 def torque_enabled(diagnostics: list[DiagnosticStatus]) -> bool | None:
@@ -160,11 +188,14 @@ def test_a_kp_change_shows_in_the_plotted_step_response(ros, kit_and_view, page)
         assert ros.probe.get_parameters(PAN_NODE, 'kp', 'ki', 'kd') == [float(kp), 0.0, 0.0]
         click_and_wait_for_answer(page, f'{servo_row("pan")} button.goal[data-goal="0"]')
         wait_until(lambda: abs(pan_joints[-1].position[0]) < 0.1, 10, 'the pan servo near 0')
-        time.sleep(1.0)  # settled at its remaining error
+        wait_until_still(pan_joints, 'the pan servo settled at its remaining error')
         click_and_wait_for_answer(page, f'{servo_row("pan")} button.goal[data-goal="1.57"]')
         # the goal button moved the servo
         wait_until(lambda: abs(pan_joints[-1].position[0] - STEP) < 0.1, 10, 'the pan servo near 1.57')
-        time.sleep(SETTLE)
+        settled = time.monotonic() + SETTLE
+        if kp == '5':  # for the picture below, the IMU held a little off level while this step settles
+            drag(page, 40, 25)
+        time.sleep(max(0.0, settled - time.monotonic()))
         responses[kp] = step_response(page.evaluate('window.robotView.plotted("pan")'), STEP)
         # The page measures the same step from the same rows, and says it under the plot.
         measured = page.evaluate('window.robotView.plots.steps.pan')
@@ -183,9 +214,7 @@ def test_a_kp_change_shows_in_the_plotted_step_response(ros, kit_and_view, page)
     assert slow['seconds'] > 2.5, responses  # the plot kept the whole step
     assert fast['seconds'] > 2.5, responses
 
-    # A picture with something in every plot: the IMU held a little off level.
-    drag(page, 40, 25)
-    time.sleep(2.0)
+    # A picture with something in every plot: the IMU held a little off level (above).
     page.screenshot_to('robot_view_plots', full_page=True)
 
     # The rad and N*m axes share their 0 (an effort of 0 is drawn on the 0 rad line).
@@ -203,7 +232,8 @@ def test_a_kp_change_shows_in_the_plotted_step_response(ros, kit_and_view, page)
 
     wait_until(lambda: any(re.fullmatch(r'-?\d+(\.\d+)?', value) for value in hovered_values()), 5,
                'the values under the cursor')
-    # A wider window: the page kept more than 10 s.
+    # A wider window than the default 10 s: the page kept more.
+    assert page.input_value('#plot-window') == '10'
     page.select_option('#plot-window', '30')
     wait_until(lambda: page.evaluate('window.robotView.plotted("pan").x[0]') < -12, 5, 'a 30 s window')
     assert page.evaluate('window.robotView.plotted("pan").x[0]') >= -30.05
@@ -233,6 +263,9 @@ def test_a_kp_change_shows_in_the_plotted_step_response(ros, kit_and_view, page)
     assert 10 < float(lines[-1].split(',')[0]) < 65  # at most the longest window, 60 s
     assert abs(float(lines[1].split(',')[1]) - time.time()) < 120  # and the clock's own time beside
     assert any(line.split(',')[2] == '1.57' for line in lines[1:])  # the step is in it
+    # The 10 s window draws nothing older, though the page keeps more (the 30 s window above).
+    page.select_option('#plot-window', '10')
+    assert page.evaluate('window.robotView.plotted("imu").x[0]') >= -10.0
 
 
 def test_goal_buttons_torque_switch_and_pause(ros, kit_and_view, page):
@@ -240,7 +273,6 @@ def test_goal_buttons_torque_switch_and_pause(ros, kit_and_view, page):
     tilt_joints = ros.probe.collect(JointState, '/olive/servo/tilt/joint')
     tilt_goals = ros.probe.collect(Float32, '/olive/servo/tilt/goal/position')
     open_page(kit_and_view, page)
-    opened = time.monotonic()
     row = servo_row('tilt')
     # The tilt servo's top is 0.9 rad: its second button is 0.9, not pi/2.
     assert page.locator(f'{row} button.goal').all_inner_texts() == ['0', '0.9']
@@ -258,19 +290,17 @@ def test_goal_buttons_torque_switch_and_pause(ros, kit_and_view, page):
     wait_until(lambda: torque_enabled(diagnostics) is False, 10, 'tilt torque off')
     assert not page.is_checked(f'{row} input.torque')
 
-    # "flip every 3 s" sends the appendix script's goals in turn.
+    # "flip every 3 s" sends the appendix script's goals in turn. Meanwhile Pause freezes what the
+    # plots draw while the data keeps coming; Resume goes live again.
     click_and_wait_for_answer(page, f'{row} input.torque')
     tilt_goals.clear()
     page.check(f'{row} input.flip')
-    # as the appendix script: pi/2 (here the tilt's 0.9) first, 3 s after the start, then 0
-    wait_until(lambda: [round(g.data, 3) for g in tilt_goals][:2] == [0.9, 0.0], 10, 'two flipped goals')
-    page.uncheck(f'{row} input.flip')
-
-    # Pause freezes what the plots draw while the data keeps coming; Resume goes live again.
     page.click('#pause')
     frozen = page.evaluate('window.robotView.plotted("imu")')
     batches = page.evaluate('window.robotView.plots.batches')
-    time.sleep(1.5)
+    # as the appendix script: pi/2 (here the tilt's 0.9) first, 3 s after the start, then 0
+    wait_until(lambda: [round(g.data, 3) for g in tilt_goals][:2] == [0.9, 0.0], 10, 'two flipped goals')
+    page.uncheck(f'{row} input.flip')
     assert page.evaluate('window.robotView.plotted("imu")') == frozen
     assert page.evaluate('window.robotView.plotted("tilt").x.length') > 100
     assert page.evaluate('window.robotView.plots.batches') >= batches + 5  # still pushed
@@ -278,9 +308,6 @@ def test_goal_buttons_torque_switch_and_pause(ros, kit_and_view, page):
     assert page.inner_text('#pause') == 'Resume'
     page.click('#pause')
     wait_until(lambda: page.evaluate('window.robotView.plotted("imu")') != frozen, 5, 'the plots live again')
-    # The window is 10 s: once the page has had more, nothing older is drawn.
-    time.sleep(max(0.0, opened + 11 - time.monotonic()))
-    assert page.evaluate('window.robotView.plotted("imu").x[0]') >= -10.0
 
 
 def status_line(page: Any) -> str:
@@ -389,11 +416,10 @@ def test_bad_control_input_gets_one_line_and_reaches_no_servo(ros, kit_and_view,
         except SocketClosed as error:
             closed = error.code
         assert closed in (1009, 1006, None), closed
+    sent = time.monotonic()
 
-    # Nothing reached a servo: no goal published, the gains and the torque are as they were.
-    time.sleep(1.0)
-    assert pan_goals == []
-    assert tilt_goals == []
+    # Nothing reached a servo: the gains and the torque are as they were, and no goal was published
+    # for a second (checked last: the checks between take up part of that second).
     assert ros.probe.get_parameters(PAN_NODE, 'kp', 'ki', 'kd') == factory
     assert ros.probe.get_parameters(TILT_NODE, 'kp') == [factory[0]]
     wait_until(lambda: diagnostics, 5, 'pan diagnostics')
@@ -404,6 +430,9 @@ def test_bad_control_input_gets_one_line_and_reaches_no_servo(ros, kit_and_view,
     assert ros.probe.get_parameters(PAN_NODE, 'kp') == [2.5]
     wait_until(lambda: page.evaluate('window.robotView.servos.pan.kp') == 2.5, 5, 'the page showing kp 2.5')
     assert math.isclose(float(page.input_value(f'{servo_row("pan")} input.kp')), 2.5)
+    time.sleep(max(0.0, sent + 1.0 - time.monotonic()))
+    assert pan_goals == []
+    assert tilt_goals == []
 
 
 def test_gains_set_elsewhere_show_on_the_page(ros, kit_and_view, page):
@@ -413,3 +442,151 @@ def test_gains_set_elsewhere_show_on_the_page(ros, kit_and_view, page):
     wait_until(lambda: page.evaluate('[window.robotView.servos.pan.kp, window.robotView.servos.pan.kd]')
                == [7.5, 1.0], 10, 'the page showing kp 7.5 and kd 1.0')
     assert page.input_value(f'{servo_row("pan")} input.kp') == '7.5'
+
+
+def yaw_of(q: Any) -> float:
+    return math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z))
+
+
+def test_the_model_follows_the_kit_and_the_mouse_turns_the_head(ros, kit_and_view, page):
+    imu = ros.probe.collect(Imu, IMU_TOPIC)
+    pan_joints = ros.probe.collect(JointState, '/olive/servo/pan/joint')
+    robot = ros.run('olive_servo', 'imu_control_robot')
+    page.goto(kit_and_view.url)  # while imu_control_robot starts
+    page.wait_for_function('() => window.robotView.pan !== null && window.robotView.imu !== null',
+                           timeout=20_000)
+    robot.wait_for(r'torque enabled: pan, tilt', timeout=40)
+
+    # The model's pan follows the pan servo's joint: drag the IMU (yaw), the head turns, the model too.
+    wait_until(lambda: imu and pan_joints, 20, 'IMU and joint messages')
+    yaw_before = yaw_of(imu[-1].orientation)
+    drag(page, 60)  # 0.01 rad a pixel: 0.6 rad of yaw
+    wait_until(lambda: abs(yaw_of(imu[-1].orientation) - yaw_before - 0.6) < 0.05, 10,
+               'the IMU turned 0.6 rad by the mouse')
+    wait_until(lambda: abs(pan_joints[-1].position[0] - 0.6) < 0.05, 15, 'the pan servo at 0.6 rad')
+    def model_at_joint() -> bool:
+        return abs(page.evaluate('window.robotView.panOfModel()') - pan_joints[-1].position[0]) < 0.02
+    wait_until(model_at_joint, 5, "the model's pan at the servo's joint")
+    assert page.evaluate('window.robotView.commandsSent') > 0
+
+    # "Level" puts the IMU back flat, and the head follows.
+    page.click('#level')
+    wait_until(lambda: abs(yaw_of(imu[-1].orientation)) < 0.05, 10, 'the IMU levelled')
+    wait_until(lambda: abs(pan_joints[-1].position[0]) < 0.05, 15, 'the pan servo back at 0')
+
+    # The camera, pushed: frames per second counted in the page over at least CAMERA_COUNT s, while the
+    # latency's drags below run. (No probe subscribes to the camera here: a second subscriber of
+    # 30 images/s in this process cost the page 5-10 frames/s on a busy machine.)
+    page.wait_for_function('() => window.robotView.frames > 10', timeout=20_000)
+    counted_from = time.monotonic()
+    before = page.evaluate('[window.robotView.frames, window.robotView.lastFrame, performance.now()]')
+
+    # Latency: a drag to the pan servo's joint moving, split where the page's command reaches DDS
+    # (page, WebSocket, robot_view | imu_sim, imu_control_robot, servo_sim).
+    commands: list[float] = []
+    probe = ros.probe.node
+    probe.create_subscription(Quaternion, TRUE_ORIENTATION, lambda _: commands.append(time.monotonic()), 10)
+    timed_joints: list[tuple[float, float]] = []
+    probe.create_subscription(JointState, '/olive/servo/pan/joint',
+                              lambda joint: timed_joints.append((time.monotonic(), joint.position[0])), 10)
+    wait_until(lambda: timed_joints, 10, 'pan joints')
+    to_command, to_moving = [], []
+    for sample in range(LATENCY_SAMPLES):
+        commands.clear()
+        start_position = timed_joints[-1][1]
+        grip = page.evaluate('window.robotView.imuOnPage()')
+        page.mouse.move(grip['x'], grip['y'])
+        page.mouse.down()
+        started = time.monotonic()  # the one move that turns the IMU, as Playwright sends it
+        page.mouse.move(grip['x'] + (20 if sample % 2 == 0 else -20), grip['y'])
+        page.mouse.up()
+        def moved(started: float = started, start_position: float = start_position) -> float | None:
+            return next((t for t, position in timed_joints if t > started
+                         and abs(position - start_position) > 0.01), None)
+        wait_until(lambda: moved() is not None and commands, 10, 'the pan servo moving')
+        to_command.append(commands[0] - started)
+        moved_at = moved()
+        assert moved_at is not None
+        to_moving.append(moved_at - commands[0])
+        time.sleep(0.5)
+    for what, values in (('drag -> hold_imu on DDS', to_command),
+                         ('hold_imu -> pan servo moving', to_moving),
+                         ('drag -> pan servo moving',
+                          [a + b for a, b in zip(to_command, to_moving, strict=True)])):
+        print(f'{what}: p50 {statistics.median(values) * 1000:.0f} ms, max {max(values) * 1000:.0f} ms '
+              f'({len(values)} drags)')
+
+    time.sleep(max(0.0, counted_from + CAMERA_COUNT - time.monotonic()))
+    after = page.evaluate('[window.robotView.frames, window.robotView.lastFrame, performance.now()]')
+    seconds = (after[2] - before[2]) / 1000
+    fps, taken = ((end - start) / seconds for start, end in zip(before[:2], after[:2], strict=True))
+    print(f'camera in the page: {fps:.1f} frames/s; robot_view took {taken:.1f} frames/s from DDS')
+    # A video's rate in the page. How close to the camera's 30 frames/s it stays is
+    # bench/robot_view_smoothness.py's: a suite on 2 cores showed 21.5/s once (the camera itself fell
+    # to 22.5/s), and 27.8/s while robot_view's count seemed to say 35/s (the page was 0.7 s behind
+    # at the first look). Both numbers say which side of robot_view a drop is on.
+    assert fps >= MIN_FPS, f'{fps:.1f} frames/s in the page; robot_view took {taken:.1f}/s from DDS'
+
+    drag(page, 30, 25)  # a pose worth a picture (yaw 0.3, pitch 0.25 rad), once the head has followed it
+    page.wait_for_function('() => Math.abs(window.robotView.pan - 0.3) < 0.02 '
+                           '&& Math.abs(window.robotView.tilt - 0.25) < 0.02', timeout=10_000)
+    page.screenshot_to('robot_view')
+
+
+def no_sideways_scroll(page: Any) -> bool:
+    return page.evaluate('document.documentElement.scrollWidth <= window.innerWidth')
+
+
+def test_the_view_fills_the_window_turns_and_zooms_and_works_on_a_phone_with_touch(ros, kit_and_view, page):
+    held = ros.probe.collect(Quaternion, TRUE_ORIENTATION)
+    page.set_viewport_size({'width': 1920, 'height': 1080})
+    page.goto(kit_and_view.url)
+    page.wait_for_function('() => window.robotView.imu !== null && window.robotView.frames > 3',
+                           timeout=30_000)
+    # A wide window is used: the 3D view and the camera grow with it (they were 600 and 400 px).
+    wait_until(lambda: page.evaluate("document.querySelector('#model canvas').clientWidth") > 1000, 10,
+               'the 3D view over half of a 1920 px window')
+    assert page.evaluate("document.getElementById('camera').clientWidth") > 600
+    assert no_sideways_scroll(page)
+    page.screenshot_to('robot_view_1920')
+
+    # Dragging the background turns the view round the robot; the wheel zooms in.
+    box = page.locator('#model canvas').bounding_box()
+    before = page.evaluate('window.robotView.cameraPosition()')
+    distance = page.evaluate('window.robotView.cameraDistance()')
+    page.mouse.move(box['x'] + 30, box['y'] + 30)
+    page.mouse.down()
+    page.mouse.move(box['x'] + 230, box['y'] + 60, steps=10)
+    page.mouse.up()
+    assert page.evaluate('window.robotView.cameraPosition()') != before
+    assert page.evaluate('window.robotView.cameraDistance()') == pytest.approx(distance, rel=0.02)
+    page.mouse.move(box['x'] + box['width'] / 2, box['y'] + box['height'] / 2)
+    page.mouse.wheel(0, -400)
+    wait_until(lambda: page.evaluate('window.robotView.cameraDistance()') < 0.9 * distance, 5, 'zoomed in')
+    # Holding the IMU block turns the IMU, not the view.
+    turned = page.evaluate('window.robotView.cameraPosition()')
+    held.clear()
+    drag(page, 80)
+    wait_until(lambda: len(held) >= 3, 10, 'the held IMU orientations')
+    assert page.evaluate('window.robotView.cameraPosition()') == turned
+
+    # A phone: one column, nothing wider than the screen, and a finger holds the IMU without the
+    # browser taking the gesture over (no pointercancel after a few moves).
+    page.set_viewport_size({'width': 390, 'height': 844})
+    wait_until(lambda: no_sideways_scroll(page), 10, 'the page within 390 px')
+    assert page.evaluate("document.querySelector('#model canvas').clientWidth") <= 390
+    page.screenshot_to('robot_view_390')
+    page.evaluate("() => { window.cancelled = 0; document.querySelector('#model canvas')"
+                  ".addEventListener('pointercancel', () => { window.cancelled += 1; }); }")
+    start = page.evaluate('window.robotView.imuOnPage()')
+    sent = page.evaluate('window.robotView.commandsSent')
+    touch = page.context.new_cdp_session(page.page)
+    point = {'x': start['x'], 'y': start['y']}
+    touch.send('Input.dispatchTouchEvent', {'type': 'touchStart', 'touchPoints': [point]})
+    for step in range(1, 16):
+        touch.send('Input.dispatchTouchEvent', {'type': 'touchMove', 'touchPoints': [
+            {'x': start['x'] + 4 * step, 'y': start['y']}]})
+        time.sleep(0.03)
+    touch.send('Input.dispatchTouchEvent', {'type': 'touchEnd', 'touchPoints': []})
+    assert page.evaluate('window.cancelled') == 0
+    assert page.evaluate('window.robotView.commandsSent') - sent >= 10, 'the finger did not hold the IMU'
