@@ -45,6 +45,12 @@ def seam_image(path):
     return decode(path.read_bytes()) if path.exists() else None
 
 
+def file_version(path):
+    """What changes when a file is replaced (the seam replaces a window's file with each image it writes)."""
+    status = path.stat()
+    return status.st_ino, status.st_mtime_ns
+
+
 def own_lines(process, node='display_camera'):
     """The lines a process printed itself: not rclpy's log lines of the node."""
     return [line for line in process.lines if f'] [{node}]: ' not in line]
@@ -68,7 +74,9 @@ def test_without_a_display_it_says_so_once_and_its_window_gets_the_cameras_image
     assert tower is not None
     assert tower == pytest.approx(find_colour(decode(images[-1].data), RED), abs=3)
     assert min(np.abs(shown.astype(int) - decode(m.data).astype(int)).mean() for m in images[-5:]) < 6
-    time.sleep(1.0)
+    # It runs on: the window's file is replaced by a later image.
+    seen = file_version(window)
+    wait_until(lambda: file_version(window) != seen, 10, "a later image in the window's file")
     assert display_camera.running()
     display_camera.stop_cleanly(timeout=10)
     assert own_lines(display_camera) == [f"{NOTICE_START}To see it in a browser, run 'owl windows' "
@@ -78,10 +86,12 @@ def test_without_a_display_it_says_so_once_and_its_window_gets_the_cameras_image
 
 
 def test_without_a_display_and_without_the_seam_the_line_is_exactly_this(ros):
+    images = ros.probe.collect(CompressedImage, IMAGE_TOPIC, COURSE_QOS)
     ros.run('olive_sim', 'camera_sim')
     display_camera = ros.run('olive_camera', 'display_camera', env={**NO_DISPLAY, 'OWL_WINDOWS_DIR': ''})
     display_camera.wait_for(r'no display', timeout=60)
-    time.sleep(2.0)
+    # While 30 more images come, which display_camera shows too: a line that came with each would be there.
+    wait_for_messages(images, len(images) + 30, timeout=30)
     display_camera.stop_cleanly(timeout=10)
     assert own_lines(display_camera) == [NOTICE]
 
@@ -150,7 +160,8 @@ def test_the_courses_qos_receives_the_camera_and_a_reliable_subscription_receive
     assert subscription.qos_profile.durability == DurabilityPolicy.VOLATILE
     reliable = probe.collect(CompressedImage, IMAGE_TOPIC, 10)  # the default profile: reliable
     course = probe.collect(CompressedImage, IMAGE_TOPIC, COURSE_QOS)
-    wait_for_messages(course, 20, timeout=30)
+    # The camera finds both subscriptions at once: had it matched the reliable one, that would have these too.
+    wait_for_messages(course, 10, timeout=30)
     display_camera.wait_for(r'images on /olive/camera/eye/image/compressed', timeout=30)
     assert reliable == []  # a reliable subscription is never connected to the best-effort camera
     display_camera.stop_cleanly(timeout=10)

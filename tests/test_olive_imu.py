@@ -5,6 +5,7 @@ input, Ctrl-C.
 """
 
 import math
+import re
 import signal
 import time
 
@@ -149,6 +150,21 @@ def publish_for(publisher, msg, seconds):
         time.sleep(0.01)
 
 
+def publish_until(publisher, msg, done, what, timeout=10.0):
+    """Publish msg at 100 Hz, as an IMU does, until done() is true."""
+    deadline = time.monotonic() + timeout
+    while not done():
+        if time.monotonic() > deadline:
+            raise AssertionError(f'timed out after {timeout} s publishing until {what}')
+        publisher.publish(msg)
+        time.sleep(0.01)
+
+
+def said(process, pattern):
+    """A done() for publish_until: whether the process has printed a line matching the regex pattern."""
+    return lambda: any(re.search(pattern, line) for line in list(process.lines))
+
+
 def test_it_names_the_topic_it_waits_for_and_ignores_unusable_orientations_with_a_throttled_warning(ros):
     imu_turtle = ros.run('olive_imu', 'imu_turtle', '--ros-args', '-p', 'imu_topic:=/test_imu')
     imu_turtle.wait_for(r'waiting for IMU messages on /test_imu \(0 publisher\(s\) so far\)', timeout=30)
@@ -156,29 +172,29 @@ def test_it_names_the_topic_it_waits_for_and_ignores_unusable_orientations_with_
     twists = probe.collect(Twist, CMD_VEL)
     imu = probe.node.create_publisher(Imu, '/test_imu', 10)
     wait_until(lambda: imu.get_subscription_count() > 0, 20, 'imu_turtle subscribing to /test_imu')
-    imu_turtle.wait_for(r'waiting for IMU messages on /test_imu \(1 publisher\(s\) so far\)', timeout=15)
 
     publish_for(imu, imu_message(x=math.nan), 1.0)
     imu_turtle.wait_for(r'IMU message ignored: the orientation quaternion \(nan, 0.0, 0.0, 1.0\) is not fin')
     # throttled: one line (two when a busy machine spread their handling past the 2 s), not 100
     assert len([line for line in imu_turtle.lines if 'IMU message ignored' in line]) in (1, 2)
-    time.sleep(2.1)  # the warning's throttle
-    publish_for(imu, imu_message(w=0.0), 0.5)
-    imu_turtle.wait_for(r'IMU message ignored: the orientation quaternion is zero, not a rotation')
-    time.sleep(2.1)
-    publish_for(imu, imu_message(covariance=-1.0), 0.5)
-    imu_turtle.wait_for(r'IMU message ignored: the IMU reports no orientation')
+    # The other kinds, each until its warning: the first one after the throttle's 2 s is said.
+    for msg, warning in ((imu_message(w=0.0), 'the orientation quaternion is zero, not a rotation'),
+                         (imu_message(covariance=-1.0), 'the IMU reports no orientation')):
+        publish_until(imu, msg, said(imu_turtle, f'IMU message ignored: {re.escape(warning)}'), warning)
+    # Still waiting, and it counts this test's publisher. That line comes every 5 s: looked for after
+    # the unusable messages, not waited for before them.
+    imu_turtle.wait_for(r'waiting for IMU messages on /test_imu \(1 publisher\(s\) so far\)', timeout=15)
     assert twists == []  # never driven by an unusable orientation
 
-    x, y, z, w = quat.from_euler(0.0, 0.2, 0.0)
-    publish_for(imu, imu_message(x, y, z, w), 1.0)
-    wait_until(lambda: twists and twists[-1].linear.x == pytest.approx(0.3), 10, 'driving at 0.3 m/s')
+    usable = imu_message(*quat.from_euler(0.0, 0.2, 0.0))
+    publish_until(imu, usable, lambda: twists and twists[-1].linear.x == pytest.approx(0.3),
+                  'driving at 0.3 m/s')
     imu_turtle.wait_for(r'no usable IMU message on /test_imu for 0.5 s: the turtle stops', timeout=10)
     count = wait_for_quiet(twists, 5 * PUBLISH_PERIOD, what='velocities after the stale warning')
     time.sleep(0.5)
     assert len(twists) == count  # stale: no more commands
-    publish_for(imu, imu_message(x, y, z, w), 0.5)  # and the node is alive: a usable message drives again
-    wait_for_messages(twists, count + 1, what='velocities once the IMU is back')
+    # and the node is alive: a usable message drives again
+    publish_until(imu, usable, lambda: len(twists) > count, 'a velocity once the IMU is back')
     imu_turtle.stop_cleanly()
     assert 'Traceback' not in imu_turtle.output
 

@@ -5,6 +5,7 @@ off after Ctrl-C, signs, bounds, bad input.
 """
 
 import math
+import threading
 import time
 
 import pytest
@@ -64,14 +65,15 @@ def test_a_servo_that_answers_late_is_asked_again_until_it_answers(ros):
     """A kit started with the node on a busy machine once took 11 s to answer the first torque request.
 
     control_servo gave up after 5 s and ended with an error; now it asks again. The stand-in servo
-    here answers its first request 6 s late and the next at once.
+    here answers its first request only once the node has asked again, and the next at once.
     """
     enable_requests = []
+    asked_again = threading.Event()
 
     def enable_late_at_first(request, response):
         enable_requests.append(request)
         if len(enable_requests) == 1:
-            time.sleep(6.0)  # the node's wait is 5 s
+            asked_again.wait(timeout=30)
         response.success = True
         return response
 
@@ -82,8 +84,11 @@ def test_a_servo_that_answers_late_is_asked_again_until_it_answers(ros):
     ros.probe.node.create_service(Trigger, '/olive/servo/pan/setTorqueEnable', enable_late_at_first)
     ros.probe.node.create_service(Trigger, '/olive/servo/pan/setTorqueDisable', disable)
     control_servo = ros.run('olive_servo', 'control_servo')
-    control_servo.wait_for(r'/olive/servo/pan/setTorqueEnable did not answer within 5.0 s: asking again',
-                           timeout=30)
+    try:
+        control_servo.wait_for(r'/olive/servo/pan/setTorqueEnable did not answer within 5.0 s: asking again',
+                               timeout=30)
+    finally:
+        asked_again.set()  # the late answer; also when the test fails, so the probe's thread ends
     control_servo.wait_for(r'torque enabled: pan', timeout=30)
     assert len(enable_requests) == 2
     control_servo.stop_cleanly(timeout=10)
@@ -91,10 +96,11 @@ def test_a_servo_that_answers_late_is_asked_again_until_it_answers(ros):
     assert 'Traceback' not in control_servo.output
 
 
-def goal_rate(goals, seconds=2.0):
-    count = len(goals)
-    time.sleep(seconds)
-    return (len(goals) - count) / seconds
+def goal_rate(goals, count):
+    """Goals per second, from how long the probe takes to receive count more of them."""
+    start, began = len(goals), time.monotonic()
+    wait_for_messages(goals, start + count, timeout=20, what='goals')
+    return (len(goals) - start) / (time.monotonic() - began)
 
 
 def test_control_servo_frequency_and_amplitude_change_at_runtime_and_bad_values_are_refused(ros):
@@ -102,13 +108,14 @@ def test_control_servo_frequency_and_amplitude_change_at_runtime_and_bad_values_
     control_servo = ros.run('olive_servo', 'control_servo', '--ros-args', '-p', 'amplitude:=0.5')
     control_servo.wait_for(r'torque enabled: pan', timeout=30)
     goals = collect(ros, 'pan', 'goal/position')
-    wait_for_messages(goals, 100, timeout=20, what='goals')
-    assert goal_rate(goals) > 60  # 100 asked for; the machine may be busy
+    wait_for_messages(goals, 1, timeout=20, what='the first goal')  # timed from there, not from discovery
+    # 200 goals: the sine's input goes 2 rad on, so at amplitude 1 at least one would be above 0.84.
+    assert goal_rate(goals, 200) > 60  # 100 asked for; the machine may be busy
     assert max(abs(g.data) for g in goals) <= 0.5
     probe = ros.probe
     assert all(r.successful for r in probe.set_parameters('/control_servo', frequency=10.0, amplitude=1.5))
-    time.sleep(0.5)
-    assert 5 <= goal_rate(goals) <= 13
+    time.sleep(0.5)  # goals sent at 100 Hz before the change may still be on their way
+    assert 5 <= goal_rate(goals, 10) <= 13
     for name, value, reason in (('frequency', 0.5, 'out of range'), ('frequency', 1000.0, 'out of range'),
                                 ('amplitude', 1.6, 'out of range'), ('amplitude', -0.1, 'out of range'),
                                 ('frequency', 'fast', 'type'), ('frequency', 100, 'type')):

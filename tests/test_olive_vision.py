@@ -54,12 +54,17 @@ def stamp(msg: CompressedImage) -> float:
 
 
 def start_tracking(ros, **ball):
+    """The servos, the camera's images, track_object and when it began tracking; all started together.
+
+    The tracker tracks only once the servos' torque is on and the camera's images come; the probe
+    subscribes before any of them starts, so it has the images from before then on.
+    """
+    images = ros.probe.collect(CompressedImage, IMAGE_TOPIC, CAMERA_QOS)
     servos = {name: start_servo(ros, name) for name in ('pan', 'tilt')}
     args = [arg for key, value in {'scene': 'ball', **ball}.items() for arg in ('-p', f'{key}:={value}')]
     ros.run('olive_sim', 'camera_sim', '--ros-args', *args)
-    images = ros.probe.collect(CompressedImage, IMAGE_TOPIC, CAMERA_QOS)
-    wait_for_messages(images, 3, timeout=60)
     tracker = ros.run('olive_vision', 'track_object')
+    wait_for_messages(images, 3, timeout=60)
     [line] = tracker.wait_for(r'\[(\d+\.\d+)\] \[track_object\]: red ball at .* tracking it$', timeout=60)
     return servos, images, tracker, float(line.group(1))
 
@@ -128,6 +133,8 @@ def set_gesture(ros, gesture):
 
 def test_the_gesture_app_says_the_gesture_and_draws_the_skeleton_and_the_head_nods(ros):
     servos = {name: start_servo(ros, name) for name in ('pan', 'tilt')}
+    # Started with the kit: it waits for the servos' torque, then for the camera's gestures.
+    control = ros.run('olive_vision', 'gesture_control')
     gestures = start_person(ros)
     assert gestures[-1].data == '1'  # both hands down
     [refused] = ros.probe.set_parameters(CAMERA, gesture='waving')
@@ -139,7 +146,6 @@ def test_the_gesture_app_says_the_gesture_and_draws_the_skeleton_and_the_head_no
     yellow = (np.abs(rgb.astype(int) - (255, 255, 0)).max(axis=2) < 60).sum()
     assert yellow > 500, f'{yellow} yellow px: no skeleton drawn'
     keep_screenshot('camera_gesture_skeleton', png(skeletons[-1]))
-    control = ros.run('olive_vision', 'gesture_control')
     control.wait_for(r'\[gesture_control\]: gesture 1 \(both hands down\): rest$', timeout=60)
     tilt_goals = collect(ros, 'tilt', 'goal/position')
     set_gesture(ros, 'both_hands_up')
@@ -154,11 +160,11 @@ def test_the_gesture_app_says_the_gesture_and_draws_the_skeleton_and_the_head_no
 
 
 def test_with_target_turtle_the_gestures_drive_turtlesims_turtle(ros):
-    ros.run('turtlesim', 'turtlesim_node', '--headless')
     poses = ros.probe.collect(Pose, '/turtle1/pose')
-    wait_for_messages(poses, 1, timeout=30)
-    start_person(ros, 'both_hands_up')
+    ros.run('turtlesim', 'turtlesim_node', '--headless')
     control = ros.run('olive_vision', 'gesture_control', '--ros-args', '-p', 'target:=turtle')
+    start_person(ros, 'both_hands_up')
+    wait_for_messages(poses, 1, timeout=30)
     control.wait_for(r'gesture 2 \(both hands up\): turtle \(1.5, 0.0\)$', timeout=60)
     x = poses[-1].x
     wait_until(lambda: poses[-1].x > x + 1.0, 10, 'the turtle driving forward')
@@ -169,10 +175,24 @@ def test_with_target_turtle_the_gestures_drive_turtlesims_turtle(ros):
 
 
 def test_bad_scenes_gestures_speeds_and_places_get_one_line_each_and_nothing_breaks(ros):
+    # Every bad start is on its own: they all start at once, and each is judged once it has ended.
     bad = ros.run('olive_sim', 'camera_sim', '--ros-args', '-p', 'scene:=beach')
+    nodes = [(executable, message, ros.run('olive_vision', executable, '--ros-args', *args))
+             for executable, args, message in (
+                 ('track_object', ['-p', 'gain_pan:=1.5'], 'out of range'),
+                 ('track_object', ['-p', 'image_topic:=my camera'], "image_topic 'my camera' is not a valid"),
+                 ('gesture_control', ['-p', 'target:=fish'], "target 'fish' is not one of head, turtle"))]
+    launches = [(message, ros.command(['ros2', 'launch', 'olive_sim', 'owl_kit.launch.py', 'web_port:=0',
+                                       argument]))
+                for argument, message in (
+                    ('scene:=beach', "scene must be one of landmarks, ball, person, got 'beach'"),
+                    ('ball_speed:=-1',
+                     "ball_speed must be a number of rad/s from 0 (still) to 2.0, got '-1'"),
+                    ('gesture:=waving', 'gesture must be one of both_hands_down'))]
     assert bad.wait(60) == 2
     assert "error: unknown scene 'beach': expected one of landmarks, ball, person" in bad.output
     assert 'Traceback' not in bad.output
+    # Once the bad camera has gone: both are /olive_camera_eye_dcm_srv, whose parameters are set below.
     # A still ball: a moving one leaves the picture after about 2 s, and this test takes longer.
     ros.run('olive_sim', 'camera_sim', '--ros-args', '-p', 'scene:=ball', '-p', 'ball_speed:=0.0')
     images = ros.probe.collect(CompressedImage, IMAGE_TOPIC, CAMERA_QOS)
@@ -188,20 +208,12 @@ def test_bad_scenes_gestures_speeds_and_places_get_one_line_each_and_nothing_bre
     count = len(images)
     wait_for_messages(images, count + 10, timeout=20)  # the camera goes on
     assert ball_error(images[-1]) is not None
-    for executable, args, message in (
-            ('track_object', ['-p', 'gain_pan:=1.5'], 'out of range'),
-            ('track_object', ['-p', 'image_topic:=my camera'], "image_topic 'my camera' is not a valid"),
-            ('gesture_control', ['-p', 'target:=fish'], "target 'fish' is not one of head, turtle")):
-        node = ros.run('olive_vision', executable, '--ros-args', *args)
+    for executable, message, node in nodes:
         assert node.wait(30) == 2
         assert len(node.lines) == 1, node.output
         assert node.lines[0].startswith(f'{executable}: error: '), node.output
         assert message in node.output
-    for argument, message in (('scene:=beach', "scene must be one of landmarks, ball, person, got 'beach'"),
-                              ('ball_speed:=-1', "ball_speed must be a number of rad/s from 0 (still) "
-                                                 "to 2.0, got '-1'"),
-                              ('gesture:=waving', 'gesture must be one of both_hands_down')):
-        launch = ros.command(['ros2', 'launch', 'olive_sim', 'owl_kit.launch.py', 'web_port:=0', argument])
+    for message, launch in launches:
         launch.wait(timeout=60)
         assert message in launch.output
         assert 'Traceback' not in launch.output
