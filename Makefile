@@ -15,8 +15,9 @@ demo: setup
 # The system tests mostly wait on processes, discovery and timers: pytest-xdist runs them in this many
 # workers; `make test TEST_WORKERS=0` runs them in one. worksteal: each worker starts on a run of
 # whole test files (a module's shared fixtures start once) and an idle one takes half of the busiest
-# one's queue, so the suite does not end on one worker's long tail.
-TEST_WORKERS ?= 3
+# one's queue, so the suite does not end on one worker's long tail. One worker per test slot (a core
+# and one more, tests/conftest.py) and one that may wait outside them for the class server's lab.
+TEST_WORKERS ?= $(shell echo $$(( $$(nproc) + 2 )))
 PYTEST := python -m pytest -n $(TEST_WORKERS) --dist worksteal
 
 test: setup

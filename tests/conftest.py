@@ -4,6 +4,7 @@ import gc
 import os
 import re
 import shutil
+import subprocess
 import sys
 import tempfile
 import threading
@@ -107,7 +108,23 @@ SYSTEM_TESTS = Path(__file__).parent
 SYSTEM_TEST_RERUNS = 1
 
 
+# The class server's tests and bench need the students' lab, a build of this checkout (a minute of
+# both cores): one worker starts it at the lowest priority as the run begins, and a test marked
+# class_lab waits for it before it takes its slots (make test runs a worker more than there are slots).
+CLASS_LAB = 'class_lab'
+LAB_BUILD: list[subprocess.Popen] = []
+
+
+def needs_class_lab(item: pytest.Item) -> bool:
+    # Only root makes the class's accounts: elsewhere these tests stop at their prerequisite.
+    return item.get_closest_marker(CLASS_LAB) is not None and os.geteuid() == 0
+
+
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    if os.environ.get('PYTEST_XDIST_WORKER', 'gw0') == 'gw0' and any(map(needs_class_lab, items)):
+        import class_harness
+
+        LAB_BUILD.append(class_harness.start_lab_build())
     if config.getoption('usepdb'):
         return  # a failure should stop in the debugger, and the plugin refuses reruns with --pdb
     for item in items:
@@ -148,10 +165,15 @@ def pytest_runtest_protocol(item: pytest.Item,
                             nextitem: pytest.Item | None) -> Generator[None, object, object]:
     """A system test runs (with its rerun, fixtures and timeout) only while it holds a slot.
 
-    A test marked whole_kit holds two. The waits are outside its timeout.
+    A test marked whole_kit holds two; one marked class_lab waits for the lab before it takes any.
+    The waits are outside its timeout.
     """
     if not item.path.is_relative_to(SYSTEM_TESTS):
         return (yield)
+    if needs_class_lab(item):
+        import class_harness
+
+        class_harness.wait_for_lab()
     with ExitStack() as held:
         with wait_for_lock(TAKING_SLOTS_DIR, range(1)):
             for _ in range(slots_needed(item)):

@@ -46,7 +46,7 @@ def test_every_benchmark_has_a_shrunk_run():
 
 def marks_of(script: str) -> list[pytest.MarkDecorator]:
     if script == CLASS_SERVER:
-        return [pytest.mark.whole_kit, pytest.mark.timeout(CLASS_SERVER_TIMEOUT + 10)]
+        return [pytest.mark.whole_kit, pytest.mark.class_lab, pytest.mark.timeout(CLASS_SERVER_TIMEOUT + 10)]
     return [pytest.mark.whole_kit] if script in NEEDS_CHROMIUM else []
 
 

@@ -72,6 +72,7 @@ def server_processes_of(name: str) -> list[str]:
 
 
 @pytest.mark.whole_kit
+@pytest.mark.class_lab
 @pytest.mark.timeout(HUB_TEST_TIMEOUT)
 def test_students_log_in_to_servers_of_their_own_and_reach_nothing_else(hub):
     first, second, _ = hub.students
@@ -99,6 +100,7 @@ def test_students_log_in_to_servers_of_their_own_and_reach_nothing_else(hub):
 
 
 @pytest.mark.whole_kit
+@pytest.mark.class_lab
 @pytest.mark.timeout(HUB_TEST_TIMEOUT)
 def test_each_student_has_a_terminal_of_the_lab_a_ros_world_and_a_front_door_of_their_own(hub):
     names = list(hub.students)
@@ -156,6 +158,7 @@ def row_of(table: str, name: str) -> str:
 
 
 @pytest.mark.whole_kit
+@pytest.mark.class_lab
 @pytest.mark.timeout(HUB_TEST_TIMEOUT)
 def test_the_teachers_page_shows_each_students_owl_check_and_no_student_opens_it(hub, browser):
     passing, failing, idle = hub.students
@@ -248,6 +251,7 @@ def log_in_with_chromium(page: Any, hub: Hub, name: str, password: str, then: st
 
 
 @pytest.mark.whole_kit
+@pytest.mark.class_lab
 @pytest.mark.timeout(HUB_TEST_TIMEOUT)
 def test_students_in_chromium_start_their_kits_and_open_their_own_pages_through_the_hub(hub, browser):
     hub_url = f'https://127.0.0.1:{hub.port}'
@@ -293,6 +297,7 @@ def test_students_in_chromium_start_their_kits_and_open_their_own_pages_through_
 
 
 @pytest.mark.whole_kit
+@pytest.mark.class_lab
 @pytest.mark.timeout(HUB_TEST_TIMEOUT)
 def test_a_restart_with_a_longer_list_adds_a_student_and_keeps_everyones_files(hub):
     first = next(iter(hub.students))

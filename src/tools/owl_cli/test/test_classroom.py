@@ -99,6 +99,8 @@ def test_the_hub_configuration_lets_the_class_log_in_with_the_teacher_as_admin(t
     [role] = c['JupyterHub']['load_roles']  # the page may list the users; who may open it is the hub's rule
     assert role['services'] == [page['name']]
     assert role['scopes'] == ['list:users', 'read:users:activity']
+    # JupyterHub's service check, which could run amid Ctrl-C's clean-up and print a traceback, is off
+    assert c['JupyterHub']['service_check_interval'] == 0
 
 
 def test_a_students_server_opens_terminals_in_the_lab_and_a_tile_for_their_front_door(monkeypatch):

@@ -165,6 +165,10 @@ def config_text(settings: HubSettings) -> str:
         'JupyterHub.cookie_secret_file': str(settings.state / 'jupyterhub_cookie_secret'),
         'JupyterHub.pid_file': str(settings.state / 'jupyterhub.pid'),
         'JupyterHub.cleanup_servers': True,  # Ctrl-C stops every student's server (their files stay)
+        # Off: the check only logs, and its 60 s tick could fall within Ctrl-C's clean-up, after the
+        # teacher's page stopped and before the students' servers did; JupyterHub then printed a
+        # traceback (its check reads the stopped service's server, None by then).
+        'JupyterHub.service_check_interval': 0,
         'JupyterHub.authenticator_class': 'pam',
         'Authenticator.allowed_users': sorted(settings.students),
         'Authenticator.admin_users': [settings.teacher],
