@@ -20,6 +20,7 @@ import tempfile
 import threading
 import time
 from collections.abc import Callable, Iterable, Sequence
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from typing import IO
 
@@ -292,11 +293,17 @@ class RosSandbox:
         return process
 
     def close(self) -> None:
-        """Stop the processes still running (newest first) and the domain's ros2 daemon; free the domain."""
-        for process in reversed(self.processes):
-            if process.running():
-                process.stop(timeout=3.0)
-        stop_ros2_daemon(self.domain_id, self.env)
+        """Stop the processes still running and the domain's ros2 daemon; free the domain.
+
+        Side by side: a stop is mostly the process's own clean-up (about 0.2 s for a node), which
+        needs nothing of the others.
+        """
+        running = [process for process in self.processes if process.running()]
+        with ThreadPoolExecutor(len(running) + 1) as pool:
+            stops = [pool.submit(process.stop, 3.0) for process in running]
+            stops.append(pool.submit(stop_ros2_daemon, self.domain_id, self.env))
+            for stop in stops:
+                stop.result()
         if self.pages_dir is not None:  # a front door a test started leaves with its folder
             shutil.rmtree(self.pages_dir, ignore_errors=True)
             self.pages_dir = None
