@@ -295,15 +295,19 @@ class RosSandbox:
     def close(self) -> None:
         """Stop the processes still running and the domain's ros2 daemon; free the domain.
 
-        Side by side: a stop is mostly the process's own clean-up (about 0.2 s for a node), which
-        needs nothing of the others.
+        All but the first started stop side by side (a stop is mostly a node's own clean-up, about
+        0.2 s); the first, most often the kit or the server the others use, stops after them, as a
+        node that turns the servos' torque off at Ctrl-C needs the kit still there.
         """
-        running = [process for process in self.processes if process.running()]
-        with ThreadPoolExecutor(len(running) + 1) as pool:
-            stops = [pool.submit(process.stop, 3.0) for process in running]
-            stops.append(pool.submit(stop_ros2_daemon, self.domain_id, self.env))
-            for stop in stops:
+        first, others = self.processes[:1], self.processes[1:]
+        with ThreadPoolExecutor(len(others) + 1) as pool:
+            daemon = pool.submit(stop_ros2_daemon, self.domain_id, self.env)
+            for stop in [pool.submit(process.stop, 3.0) for process in others if process.running()]:
                 stop.result()
+            daemon.result()
+        for process in first:
+            if process.running():
+                process.stop(3.0)
         if self.pages_dir is not None:  # a front door a test started leaves with its folder
             shutil.rmtree(self.pages_dir, ignore_errors=True)
             self.pages_dir = None
