@@ -28,6 +28,7 @@ TOPICS = ('/camera', '/fast')
 PUBLISHER = textwrap.dedent('''
     import os, sys, time
     import rclpy
+    from rclpy.duration import Duration
     from rclpy.qos import HistoryPolicy, QoSProfile
     from sensor_msgs.msg import Image
     from std_msgs.msg import Int64
@@ -55,7 +56,10 @@ PUBLISHER = textwrap.dedent('''
             sent['/camera'] += 1
         time.sleep(0.0005)
     print(sent['/camera'], sent['/fast'], flush=True)
-    time.sleep(1.0)  # the last reliable messages are still being delivered
+    # The last reliable messages are still being delivered: up to 1 s until every reader has them.
+    deadline = time.monotonic() + 1.0
+    for publisher in (camera, fast):
+        publisher.wait_for_all_acked(Duration(nanoseconds=int(max(0.0, deadline - time.monotonic()) * 1e9)))
     node.destroy_node()
     rclpy.shutdown()
 ''')
@@ -112,7 +116,7 @@ def main() -> int:
         info = yaml.safe_load((bag / 'metadata.yaml').read_text())['rosbag2_bagfile_information']
         written = {t['topic_metadata']['name']: t['message_count'] for t in info['topics_with_message_count']}
         size = sum(p.stat().st_size for p in bag.iterdir())
-    print(f'{args.seconds:.0f} s of a 30 fps 640x480 rgb8 camera and a 1 kHz Int64; '
+    print(f'{args.seconds:g} s of a 30 fps 640x480 rgb8 camera and a 1 kHz Int64; '
           f'bag {size / 2**20:.1f} MiB')
     print(f"{'topic':10} {'baseline sent/got':>18} {'recorder sent/wrote':>20} {'written share':>14} "
           f"{'ratio':>6}")

@@ -63,9 +63,12 @@ print(f'{first:.4f} {whole:.4f}')
 '''
 
 
-def measure(profile: str | None, runs: int, nodes: int,
-            idle_seconds: float) -> tuple[list[float], list[float], float]:
-    """(times to the first topic, times to the whole graph, idle CPU % of all the nodes)."""
+def measure(profile: str | None, runs: int, nodes: int, idle_seconds: float,
+            settle_seconds: float) -> tuple[list[float], list[float], float]:
+    """(times to the first topic, times to the whole graph, idle CPU % of all the nodes).
+
+    The idle CPU is counted, and the first watcher starts, settle_seconds after the nodes are up.
+    """
     with RosSandbox() as sandbox:
         for variable in (PROFILE_VARIABLE, OTHER_PROFILE_VARIABLE):
             sandbox.env.pop(variable, None)
@@ -76,7 +79,7 @@ def measure(profile: str | None, runs: int, nodes: int,
         # Start-up takes several seconds of CPU on a busy machine: idle means after it, not 3 s in.
         for publisher in publishers:
             publisher.wait_for('^up$', timeout=120)
-        time.sleep(2.0)  # past the initial announcements: known to each other before the first watcher
+        time.sleep(settle_seconds)  # past the initial announcements: all known to each other before a watcher
         cpu_before, started = sum(cpu_seconds(p.pid) for p in publishers), time.monotonic()
         time.sleep(idle_seconds)
         cpu_used = sum(cpu_seconds(p.pid) for p in publishers) - cpu_before
@@ -119,6 +122,8 @@ def main() -> int:
                         help='other announcement periods (ms) to measure as variants of our profile')
     parser.add_argument('--idle-seconds', type=float, default=5.0,
                         help="window of the running nodes' idle CPU measurement")
+    parser.add_argument('--settle-seconds', type=float, default=2.0,
+                        help='s after the nodes are up (past their initial announcements) before measuring')
     args = parser.parse_args()
     print(f'discovery by a new process ({args.runs} runs, {args.nodes} node processes running; '
           f'whole graph = every node and topic)')
@@ -129,7 +134,8 @@ def main() -> int:
                      for ms in args.periods]
         results = {}
         for label, profile in variants:
-            first, whole, idle_cpu = measure(profile, args.runs, args.nodes, args.idle_seconds)
+            first, whole, idle_cpu = measure(profile, args.runs, args.nodes, args.idle_seconds,
+                                             args.settle_seconds)
             results[label] = whole
             print(f'{label:<28} {summary(first):<38} {summary(whole):<38} {idle_cpu:.1f} %', flush=True)
     baseline, ours = results['Fast DDS defaults'], results['config/fastdds.xml (500 ms)']

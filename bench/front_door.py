@@ -24,6 +24,7 @@ import os
 import sys
 import tempfile
 import time
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from urllib.parse import urlsplit
 
@@ -39,7 +40,7 @@ from web_harness import Browser, chromium_missing  # noqa: E402
 
 PAGE = {'mount': 'bench', 'title': 'bench', 'start': 'python bench/front_door.py'}
 STARTUP_TIMEOUT = 60.0
-WARM_UP = 3.0  # s of streaming before the CPU is counted
+WARM_UP = 3.0  # s of streaming before the CPU is counted (--warm-up)
 
 
 def timed_requests(urls: list[str], count: int) -> dict[str, list[float]]:
@@ -114,8 +115,11 @@ def latency(requests: int, messages: int) -> None:
               f'p95 {percentile(through, 0.95) / percentile(own, 0.95):.2f}x ({count} each)')
 
 
-def streaming_cpu(seconds: float) -> int:
-    """Print the front door's CPU while the robot view streams through it; 1 when Chromium is missing."""
+def streaming_cpu(seconds: float, warm_up: float) -> int:
+    """Print the front door's CPU while the robot view streams through it; 1 when Chromium is missing.
+
+    Counted over `seconds`, after `warm_up` s of streaming.
+    """
     missing = chromium_missing()
     if missing:
         print(f'front_door: cannot run the streaming part: {missing}', file=sys.stderr)
@@ -124,19 +128,19 @@ def streaming_cpu(seconds: float) -> int:
         sandbox.env.update({'OWL_FRONT_DOOR': 'on', 'OWL_FRONT_DOOR_PORT': '0'})
         launch = sandbox.command(['ros2', 'launch', 'robot_view', 'robot_view.launch.py', 'port:=0'],
                                  label='robot_view.launch')
-        opened = launch.wait_for(r'robot_view: open (http://127\.0\.0\.1:\d+/robot-view/) in a browser',
-                                 STARTUP_TIMEOUT)[0].group(1)
-        assert sandbox.pages_dir is not None
-        door = pages.front_door_record(Path(sandbox.pages_dir))
-        view = pages.registered(Path(sandbox.pages_dir))['robot-view']
-        if door is None:
-            raise SystemExit('front_door: no front door runs')
-        browser = Browser()
+        browser = Browser()  # Chromium starts while the launch does
         try:
+            opened = launch.wait_for(r'robot_view: open (http://127\.0\.0\.1:\d+/robot-view/) in a browser',
+                                     STARTUP_TIMEOUT)[0].group(1)
+            assert sandbox.pages_dir is not None
+            door = pages.front_door_record(Path(sandbox.pages_dir))
+            view = pages.registered(Path(sandbox.pages_dir))['robot-view']
+            if door is None:
+                raise SystemExit('front_door: no front door runs')
             page = browser.new_page()
             page.goto(opened)
             page.wait_for_function('() => window.robotView.frames > 10', timeout=STARTUP_TIMEOUT * 1000)
-            time.sleep(WARM_UP)
+            time.sleep(warm_up)
             frames, cpu, view_cpu = (page.evaluate('window.robotView.frames'), cpu_seconds(door.pid),
                                      cpu_seconds(view.pid))
             started = time.monotonic()
@@ -145,7 +149,9 @@ def streaming_cpu(seconds: float) -> int:
             frames = page.evaluate('window.robotView.frames') - frames
             cpu, view_cpu = cpu_seconds(door.pid) - cpu, cpu_seconds(view.pid) - view_cpu
         finally:
-            browser.close()
+            with ThreadPoolExecutor(1) as pool:  # the launch stops while Chromium closes
+                pool.submit(launch.stop, 3.0)
+                browser.close()
     print(f'streaming through the front door for {elapsed:.1f} s: {frames / elapsed:.1f} camera frames/s '
           f'on the page; the front door used {100 * cpu / elapsed:.2f} % of a core (target <= 2 %), '
           f'robot_view {100 * view_cpu / elapsed:.1f} %; ratio front door / robot_view '
@@ -161,11 +167,14 @@ def main() -> int:
     parser.add_argument('--messages', type=int, default=1000,
                         help='WebSocket commands per path (default 1000)')
     parser.add_argument('--seconds', type=float, default=20.0, help='s of streaming counted (default 20)')
+    parser.add_argument('--warm-up', type=float, default=WARM_UP,
+                        help=f's of streaming before the counting starts (default {WARM_UP:g})')
     args = parser.parse_args()
-    if args.requests < 1 or args.messages < 1 or not args.seconds > 0:
-        parser.error('--requests and --messages must be at least 1, --seconds positive')
+    if args.requests < 1 or args.messages < 1 or not args.seconds > 0 or args.warm_up < 0:
+        parser.error('--requests and --messages must be at least 1, --seconds positive, '
+                     '--warm-up not negative')
     latency(args.requests, args.messages)
-    return streaming_cpu(args.seconds)
+    return streaming_cpu(args.seconds, args.warm_up)
 
 
 if __name__ == '__main__':

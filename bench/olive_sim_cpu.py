@@ -9,7 +9,7 @@ Everything is measured in one run, against baselines measured in the same run:
 - Servo physics: time of each fixed step of the model (p50/p99) against its 1 ms period.
 - The modules' own web pages: the kit without pages (web_port 0), with pages no browser watches
   (the default), and with a page client watching every module's System Status (and the IMU's and
-  camera's Debug GUI), the client's own CPU not counted.
+  camera's Debug GUI), the client's own CPU not counted, nor any time before it hears from every page.
 """
 
 from __future__ import annotations
@@ -55,9 +55,15 @@ def baseline_node() -> None:
         rclpy.try_shutdown()
 
 
-def cpu_percent(processes: list[RosProcess], warmup: float, seconds: float) -> float:
-    """Combined CPU of the processes over `seconds`, after `warmup`, in % of one core."""
+def cpu_percent(processes: list[RosProcess], warmup: float, seconds: float,
+                watcher: PageWatcher | None = None) -> float:
+    """Combined CPU of the processes over `seconds`, after `warmup`, in % of one core.
+
+    With a watcher, also not before it watches every page.
+    """
     time.sleep(warmup)
+    if watcher is not None and not watcher.watching.wait(60):
+        raise SystemExit('the page client had not heard from every module page after 60 s')
     before = sum(cpu_seconds(p.pid) for p in processes)
     started = time.monotonic()
     time.sleep(seconds)
@@ -99,7 +105,7 @@ def measure_cpu(args: argparse.Namespace) -> dict[str, float]:
                    for m in OWL_KIT]
             watcher = PageWatcher(port) if watch else None
             try:
-                results[name] = cpu_percent(kit, args.warmup, args.seconds)
+                results[name] = cpu_percent(kit, args.warmup, args.seconds, watcher)
             finally:
                 if watcher is not None:
                     updates = watcher.stop()
@@ -126,6 +132,8 @@ class PageWatcher:
         self.aiohttp = aiohttp
         self.port = port
         self.updates = 0
+        self.heard_from = 0  # module pages that sent their first update
+        self.watching = threading.Event()  # set once every one has
         self.loop = asyncio.new_event_loop()
         # made here (Python 3.10+ binds it to the loop that first waits on it): stop() always has it
         self.stopping = asyncio.Event()
@@ -151,13 +159,19 @@ class PageWatcher:
             except OSError:
                 if time.monotonic() > deadline:
                     raise
-                await asyncio.sleep(0.5)
+                await asyncio.sleep(0.1)  # the page is not up yet
         channels = ['system'] + (['orientation'] if module.module_type in ('imu', 'camera') else [])
         async with websocket:  # closed when stop() cancels this task
             for index, channel in enumerate(channels):
                 await websocket.send_str(json.dumps({'type': 'subscribe', 'id': index, 'channel': channel}))
+            first = True
             async for _ in websocket:
                 self.updates += 1
+                if first:  # the page answers a subscription with an update at once
+                    first = False
+                    self.heard_from += 1
+                    if self.heard_from == len(OWL_KIT):
+                        self.watching.set()
 
     def stop(self) -> int:
         """Stop watching; the number of updates the pages sent in all, for the bench's report."""
@@ -244,7 +258,7 @@ def main() -> int:
     print(f'CPU over {args.seconds:g} s at default settings (% of one core; {os.cpu_count()} cores)')
     print(f'{"process":<38}{"CPU %":>8}{"x baseline":>12}')
     for name, value in cpu.items():
-        print(f'{name:<38}{value:>8.1f}{value / base:>12.2f}')
+        print(f'{name:<38}{value:>8.1f}{value / base if base else float("nan"):>12.2f}')
     kit = cpu['whole kit (4 processes)']
     print(f'whole kit: {kit:.1f} % of one core (target < 25 %: {"met" if kit < 25 else "NOT met"})')
     print(f"web pages with no browser: {kit - cpu['whole kit, no web pages (web_port 0)']:+.1f} points; "

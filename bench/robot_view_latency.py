@@ -23,12 +23,13 @@ import argparse
 import math
 import sys
 import time
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 from geometry_msgs.msg import Quaternion
 from measure import percentile
 from owl_common.probe import Probe
-from owl_common.processes import RosSandbox
+from owl_common.processes import RosProcess, RosSandbox
 from sensor_msgs.msg import JointState
 
 TESTS = Path(__file__).resolve().parents[1] / 'tests'
@@ -120,6 +121,16 @@ def line(what: str, values: list[float]) -> str:
             f'max {max(values):6.1f} ms   ({len(values)} samples)')
 
 
+def stop_in_turn(robot: RosProcess, launch: RosProcess) -> None:
+    """Stop imu_control_robot, then the launch.
+
+    The robot disables the servos' torque as it stops, which takes the servos still running: stopped
+    side by side (as the sandbox stops what runs), it waits 3 s for a dead servo_sim, then is killed.
+    """
+    robot.stop(3.0)
+    launch.stop(3.0)
+
+
 def main() -> int:
     """Time both paths in a private domain and print them; exit code 0, or 1 when Chromium is missing."""
     parser = argparse.ArgumentParser(description=__doc__,
@@ -138,12 +149,13 @@ def main() -> int:
             ['ros2', 'launch', 'robot_view', 'robot_view.launch.py', f'port:={free_port()}'],
             label='robot_view.launch')
         robot = sandbox.run('olive_servo', 'imu_control_robot')
-        base = launch.wait_for(URL_LINE, STARTUP_TIMEOUT)[0].group(1)
-        robot.wait_for(r'torque enabled: pan, tilt', STARTUP_TIMEOUT)
+        # The probe and Chromium start while the nodes do.
         probe = Probe(sandbox.domain_id, 'latency_bench')
+        timings = Timings(probe)
         browser = Browser()
         try:
-            timings = Timings(probe)
+            base = launch.wait_for(URL_LINE, STARTUP_TIMEOUT)[0].group(1)
+            robot.wait_for(r'torque enabled: pan, tilt', STARTUP_TIMEOUT)
             page = browser.new_page()
             page.goto(base)
             page.wait_for_function('() => window.robotView.pan !== null && window.robotView.imu !== null',
@@ -153,7 +165,9 @@ def main() -> int:
             page.click('#level')
             to_moving, to_command = measure_page(page, timings, args.samples, args.pause)
         finally:
-            browser.close()
+            with ThreadPoolExecutor(1) as pool:  # the nodes stop while Chromium closes
+                pool.submit(stop_in_turn, robot, launch)
+                browser.close()
             probe.close()
     print(line('page: drag -> pan servo moving', to_moving))
     if to_command:

@@ -22,11 +22,12 @@ from __future__ import annotations
 import argparse
 import sys
 import time
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from typing import Any
 
 from measure import percentile
-from owl_common.processes import RosSandbox
+from owl_common.processes import RosProcess, RosSandbox
 
 TESTS = Path(__file__).resolve().parents[1] / 'tests'
 sys.path.insert(0, str(TESTS))  # the browser tests' Chromium set-up: one piece of code for it
@@ -97,6 +98,16 @@ def line(what: str, numbers: dict[str, float]) -> str:
             f"camera label {numbers['camera_fps']:.1f} fps")
 
 
+def stop_in_turn(robot: RosProcess, launch: RosProcess) -> None:
+    """Stop imu_control_robot, then the launch.
+
+    The robot disables the servos' torque as it stops, which takes the servos still running: stopped
+    side by side (as the sandbox stops what runs), it waits 3 s for a dead servo_sim, then is killed.
+    """
+    robot.stop(3.0)
+    launch.stop(3.0)
+
+
 def main() -> int:
     """Drag with plots live, then paused; print both and the targets. Exit code 1 without Chromium."""
     parser = argparse.ArgumentParser(description=__doc__,
@@ -114,10 +125,10 @@ def main() -> int:
             ['ros2', 'launch', 'robot_view', 'robot_view.launch.py', f'port:={free_port()}'],
             label='robot_view.launch')
         robot = sandbox.run('olive_servo', 'imu_control_robot')
-        base = launch.wait_for(URL_LINE, STARTUP_TIMEOUT)[0].group(1)
-        robot.wait_for(r'torque enabled: pan, tilt', STARTUP_TIMEOUT)
-        browser = Browser()
+        browser = Browser()  # Chromium starts while the nodes do
         try:
+            base = launch.wait_for(URL_LINE, STARTUP_TIMEOUT)[0].group(1)
+            robot.wait_for(r'torque enabled: pan, tilt', STARTUP_TIMEOUT)
             page = browser.new_page()
             page.add_init_script(RECORDER)
             page.goto(base)
@@ -127,7 +138,9 @@ def main() -> int:
             page.click('#pause')
             paused = summary(drag_for(page, args.seconds))
         finally:
-            browser.close()
+            with ThreadPoolExecutor(1) as pool:  # the nodes stop while Chromium closes
+                pool.submit(stop_in_turn, robot, launch)
+                browser.close()
     print(line('plots live', live))
     print(line('plots paused', paused))
     print(f"ratio live / paused: input delay p95 {live['p95'] / paused['p95']:.2f}x, "

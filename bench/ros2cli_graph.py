@@ -6,7 +6,8 @@ Measures, in one run:
   whether each listing saw all 20 nodes / topics; targets: cold median <= 0.6 s and complete in
   every run, warm <= 0.15 s (the fresh daemon has no target: it is shown for completeness). Warm
   calls start once the daemon is DAEMON_SETTLED s old: a younger one is still asked whether its
-  graph has settled, as in the fresh case (0.19-0.26 s per call before 1.5 s of age);
+  graph has settled, as in the fresh case (0.19-0.26 s per call before 1.5 s of age). The three
+  measurements below run while it ages (none of them asks the daemon); their lines follow the table;
 - `ros2 topic hz` on a 100 Hz publisher (target 100 +- 1 Hz);
 - `ros2 topic pub -r 100` as measured by a subscriber here (target 100 +- 1 Hz);
 - `ros2 topic echo` of a 1 kHz std_msgs/Int32 stream: messages lost (target 0).
@@ -24,6 +25,7 @@ import statistics
 import subprocess
 import sys
 import time
+from collections.abc import Callable
 
 from owl_common.processes import RosSandbox
 from ros2cli.node.strategy import DAEMON_SETTLED
@@ -76,8 +78,12 @@ def wait_for_graph(sandbox: RosSandbox) -> None:
     raise SystemExit('the 20-node graph did not come up within 60 s')
 
 
-def latency(sandbox: RosSandbox, runs: int) -> None:
-    """Print the baseline, then each verb's cold, fresh-daemon and warm wall time against its target."""
+def latency(sandbox: RosSandbox, runs: int, while_the_daemon_ages: Callable[[], None]) -> None:
+    """Print the baseline, then each verb's cold, fresh-daemon and warm wall time against its target.
+
+    while_the_daemon_ages runs once the warm daemon is started: its DAEMON_SETTLED s of ageing need
+    nothing of this process.
+    """
     node_pattern = re.compile(r'^/graph_node_\d+$', re.M)
     topic_pattern = re.compile(r'^/graph_topic_\d+$', re.M)
     verbs = [
@@ -96,6 +102,7 @@ def latency(sandbox: RosSandbox, runs: int) -> None:
         if mode == 'warm':
             started = time.monotonic()
             subprocess.run(['ros2', 'daemon', 'start'], env=sandbox.env, capture_output=True, check=False)
+            while_the_daemon_ages()
             wait_for_graph(sandbox)
             # Until then a verb checks with the daemon that its graph has settled (the fresh case).
             time.sleep(max(0.0, started + DAEMON_SETTLED - time.monotonic()))
@@ -109,23 +116,31 @@ def latency(sandbox: RosSandbox, runs: int) -> None:
             subprocess.run(daemon_stop, env=sandbox.env, capture_output=True, check=False)
 
 
-def hz(sandbox: RosSandbox, seconds: float) -> None:
-    """Print the last rate `ros2 topic hz` reports for a 100 Hz counter after `seconds`, against 100 +- 1."""
+def hz(sandbox: RosSandbox, seconds: float) -> str:
+    """The last rate `ros2 topic hz` reports for a 100 Hz counter after `seconds`, against 100 +- 1.
+
+    If its first report comes later than that (a short run), that report.
+    """
     counter = sandbox.run(FIXTURES, 'counter', '--ros-args', '-p', 'rate:=100.0', '-r', 'count:=/hz_count')
     process = sandbox.command(['ros2', 'topic', 'hz', '/hz_count'])
-    time.sleep(seconds)
+    started = time.monotonic()
+    report = r'average rate: (\d+\.\d+)'
+    try:
+        process.wait_for(report, timeout=max(seconds, 30.0))
+    except AssertionError:
+        pass  # no report: said below
+    time.sleep(max(0.0, started + seconds - time.monotonic()))
     process.stop()
     counter.stop()
-    rates = [float(m) for m in re.findall(r'average rate: (\d+\.\d+)', process.output)]
+    rates = [float(m) for m in re.findall(report, process.output)]
     if not rates:
-        print('topic hz: no report')
-        return
-    print(f'topic hz on a 100 Hz publisher: {rates[-1]:.3f} Hz (target 100 +- 1) '
-          f"{'ok' if abs(rates[-1] - 100) <= 1 else 'MISS'}")
+        return 'topic hz: no report'
+    return (f'topic hz on a 100 Hz publisher: {rates[-1]:.3f} Hz (target 100 +- 1) '
+            f"{'ok' if abs(rates[-1] - 100) <= 1 else 'MISS'}")
 
 
-def pub_rate(sandbox: RosSandbox, seconds: float) -> None:
-    """Print the rate of `ros2 topic pub -r 100` that a subscriber here measures, after its first second."""
+def pub_rate(sandbox: RosSandbox, seconds: float) -> str:
+    """The rate of `ros2 topic pub -r 100` a subscriber here measures over `seconds` past its first second."""
     import rclpy
     from rclpy.context import Context
     from rclpy.executors import SingleThreadedExecutor
@@ -141,9 +156,13 @@ def pub_rate(sandbox: RosSandbox, seconds: float) -> None:
     executor.add_node(node)
     publisher = sandbox.command(['ros2', 'topic', 'pub', '-p', '0', '-r', '100', '/pub_rate',
                                  'std_msgs/msg/Int32', '{data: 1}'])
-    deadline = time.monotonic() + seconds + 3.0
-    while time.monotonic() < deadline:
+    deadline = time.monotonic() + 60.0  # for the first message
+    while not arrivals and time.monotonic() < deadline:
         executor.spin_once(timeout_sec=0.05)
+    if arrivals:
+        deadline = arrivals[0] + 1.0 + seconds
+        while time.monotonic() < deadline:
+            executor.spin_once(timeout_sec=0.05)
     publisher.stop()
     # Before the context goes: Jazzy's Executor.__del__ otherwise destroys its guard condition
     # after the context did, and prints an "Exception ignored" traceback.
@@ -152,15 +171,14 @@ def pub_rate(sandbox: RosSandbox, seconds: float) -> None:
     rclpy.try_shutdown(context=context)
     window = [t for t in arrivals if t >= arrivals[0] + 1.0] if arrivals else []
     if len(window) < 2:
-        print('topic pub -r 100: nothing received')
-        return
+        return 'topic pub -r 100: nothing received'
     rate = (len(window) - 1) / (window[-1] - window[0])
-    print(f'topic pub -r 100 measured by a subscriber: {rate:.3f} Hz (target 100 +- 1) '
-          f"{'ok' if abs(rate - 100) <= 1 else 'MISS'}")
+    return (f'topic pub -r 100 measured by a subscriber: {rate:.3f} Hz (target 100 +- 1) '
+            f"{'ok' if abs(rate - 100) <= 1 else 'MISS'}")
 
 
-def echo_loss(sandbox: RosSandbox, count: int) -> None:
-    """Print how many of `count` Int32 messages at 1 kHz a reliable `ros2 topic echo` did not print."""
+def echo_loss(sandbox: RosSandbox, count: int) -> str:
+    """How many of `count` Int32 messages at 1 kHz a reliable `ros2 topic echo` did not print."""
     # The counter's own policies: a late-matching echo still gets the first messages of the burst,
     # so any loss is echo falling more than 1000 messages behind.
     echo = sandbox.command(['ros2', 'topic', 'echo', '--qos-reliability', 'reliable', '--qos-durability',
@@ -169,13 +187,21 @@ def echo_loss(sandbox: RosSandbox, count: int) -> None:
     counter = sandbox.run(FIXTURES, 'counter', '--ros-args', '-p', 'rate:=1000.0', '-p', f'limit:={count}',
                           '-p', 'wait_for:=1', '-r', 'count:=/echo_count')
     counter.wait_for(f'published {count} messages', timeout=60)
-    time.sleep(1.0)
+    # Up to 1 s more for echo to catch up; done once it printed the last one (in order: reliable, one
+    # writer), for whatever it lost is lost by then.
+    deadline, last, seen = time.monotonic() + 1.0, str(count), 0
+    while time.monotonic() < deadline:
+        new = echo.lines[seen:]
+        seen += len(new)
+        if last in new:
+            break
+        time.sleep(0.01)
     echo.stop()
     counter.stop()
     received = [int(line) for line in echo.lines if line.isdigit()]
     lost = count - len(set(received))
-    print(f'topic echo (reliable, depth 1000) of a 1 kHz Int32 stream: {len(set(received))}/{count} '
-          f"received, {lost} lost (target 0) {'ok' if lost == 0 else 'MISS'}")
+    return (f'topic echo (reliable, depth 1000) of a 1 kHz Int32 stream: {len(set(received))}/{count} '
+            f"received, {lost} lost (target 0) {'ok' if lost == 0 else 'MISS'}")
 
 
 def main() -> None:
@@ -190,10 +216,14 @@ def main() -> None:
         graph.wait_for(f'{NODES} nodes up', timeout=60)
         try:
             wait_for_graph(sandbox)
-            latency(sandbox, args.runs)
-            hz(sandbox, args.seconds)
-            pub_rate(sandbox, args.seconds)
-            echo_loss(sandbox, args.messages)
+            lines: list[str] = []
+
+            def rates_and_loss() -> None:
+                lines.extend((hz(sandbox, args.seconds), pub_rate(sandbox, args.seconds),
+                              echo_loss(sandbox, args.messages)))
+
+            latency(sandbox, args.runs, rates_and_loss)
+            print('\n'.join(lines))
         finally:
             subprocess.run(['ros2', 'daemon', 'stop'], env=sandbox.env, capture_output=True, check=False)
 

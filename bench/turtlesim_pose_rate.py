@@ -182,7 +182,7 @@ def main() -> int:
     if args.window and not os.environ.get('DISPLAY'):
         parser.error('--window needs a DISPLAY (e.g. run under xvfb-run)')
     mode = 'windowed' if args.window else 'headless'
-    print(f'turtlesim_node ({mode}) vs bare rclpy publisher, {args.seconds:.0f} s per run, '
+    print(f'turtlesim_node ({mode}) vs bare rclpy publisher, {args.seconds:g} s per run, '
           f'nominal {1000 / NOMINAL_MS:.1f} Hz')
     print(f'{"scenario":<22}{"publisher":<16}{"rate Hz":>9}{"p50 ms":>8}{"p99 ms":>8}'
           f'{"p99 jit":>9}{"CPU %":>7}')

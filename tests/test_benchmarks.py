@@ -22,20 +22,21 @@ NEEDS_CHROMIUM = {'front_door.py', 'robot_view_latency.py', 'robot_view_smoothne
 # and the time to build the students' lab when no class test has built it yet.
 CLASS_SERVER, CLASS_SERVER_TIMEOUT = 'class_server.py', 330.0
 SHRUNK = {
-    'bag_record.py': ['--seconds', '1'],
+    'bag_record.py': ['--seconds', '0.5'],
     CLASS_SERVER: ['--students', '1', '--seconds', '1'],
-    'dds_discovery.py': ['--runs', '1', '--nodes', '2', '--periods', '--idle-seconds', '0.5'],
-    'front_door.py': ['--requests', '5', '--messages', '5', '--seconds', '1'],
+    'dds_discovery.py': ['--runs', '1', '--nodes', '2', '--periods', '200', '--idle-seconds', '0.2',
+                         '--settle-seconds', '0'],
+    'front_door.py': ['--requests', '5', '--messages', '5', '--seconds', '0.5', '--warm-up', '0'],
     'launch_timings.py': ['--repeat', '1'],
-    'olive_sim_cpu.py': ['--seconds', '0.5', '--warmup', '0.5', '--camera-seconds', '1'],
+    'olive_sim_cpu.py': ['--seconds', '0.3', '--warmup', '0', '--camera-seconds', '0.3'],
     'robot_view_latency.py': ['--samples', '1', '--pause', '0.3'],
-    'robot_view_smoothness.py': ['--seconds', '1'],
+    'robot_view_smoothness.py': ['--seconds', '0.5'],
     'ros2_help.py': ['--runs', '1'],
-    'ros2cli_graph.py': ['--runs', '1', '--seconds', '2.5', '--messages', '200'],
+    'ros2cli_graph.py': ['--runs', '1', '--seconds', '0.5', '--messages', '200'],
     'service_roundtrip.py': ['--calls', '20', '--long-calls', '100'],
     'stop_stress.py': ['--stops', '1', '--hogs', '0', '--kinds', 'temp_server ALL'],
-    'teardown_hangs.py': ['--pairs', '2', '--hogs', '0'],
-    'turtlesim_pose_rate.py': ['--seconds', '1'],
+    'teardown_hangs.py': ['--pairs', '1', '--hogs', '0'],
+    'turtlesim_pose_rate.py': ['--seconds', '0.3'],
 }
 
 
