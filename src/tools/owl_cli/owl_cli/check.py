@@ -27,6 +27,7 @@ from owl_cli import check_catalogue as catalogue
 from owl_cli import check_workspace as ws
 from owl_cli.check_catalogue import Exercise
 from owl_cli.check_report import (
+    CHECK_DONE,
     RESULT_PREFIX,
     WORKSPACE_VARIABLE,
     Criterion,
@@ -40,8 +41,9 @@ from owl_cli.check_report import (
     to_json,
 )
 
-# s: the most one check may take, start-up and clean-up included (each aims at well under 30 s).
+# s: the most one check may take from its begin to its last criterion (each aims at well under 30 s).
 HARD_LIMIT = 60.0
+CLEANUP_LIMIT = 30.0  # s for a check's clean-up after its last criterion (it stops its nodes)
 BUILD_LIMIT = 900.0
 
 
@@ -79,64 +81,148 @@ def build(workspace: Path, names: list[str], quiet: bool) -> str | None:
     return None
 
 
-def run_check(
-    exercise: Exercise, workspace: Path, on_criterion: Callable[[Criterion], None]
-) -> ExerciseResult:
-    """Run the check's ROS part in a shell that sourced the workspace, with a hard time limit."""
-    result = ExerciseResult(exercise.id)
+class CheckRun:
+    """One exercise's check in a process of its own (owl_cli.check_ros), started before its turn.
+
+    The process imports, leases its ROS domain and starts its probe node while the check before it
+    runs; begin() starts the check. Once every criterion is out (CHECK_DONE) owl check goes on to
+    the next exercise while this one stops its nodes; finish() waits for that and reports a crash.
+    """
+
+    def __init__(self, exercise_id: str, command: list[str], env: dict[str, str]) -> None:
+        self.result = ExerciseResult(exercise_id)
+        self.other: list[str] = []
+        self.on_criterion: Callable[[Criterion], None] = lambda c: None
+        self.started = time.monotonic()
+        self.done = threading.Event()  # CHECK_DONE, or the process's output ended
+        self.all_out = False  # CHECK_DONE came: what is left is the clean-up
+        self.finished = False
+        self.process = subprocess.Popen(
+            command,
+            env=env,
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+            errors='replace',
+            start_new_session=True,
+        )
+        self.reader = threading.Thread(target=self._read, daemon=True)
+        self.reader.start()
+
+    def _read(self) -> None:
+        assert self.process.stdout is not None
+        for line in self.process.stdout:
+            if line.startswith(RESULT_PREFIX):
+                self._add(Criterion.from_dict(json.loads(line[len(RESULT_PREFIX) :])))
+            elif line.rstrip('\n') == CHECK_DONE:
+                self.all_out = True
+                self.done.set()
+            else:
+                self.other.append(line.rstrip())
+        self.done.set()
+
+    def _add(self, criterion: Criterion) -> None:
+        self.result.criteria.append(criterion)
+        self.on_criterion(criterion)
+
+    def begin(self, on_criterion: Callable[[Criterion], None]) -> None:
+        """Start the check (its set-up may still be under way); on_criterion gets each criterion."""
+        self.on_criterion = on_criterion
+        self.started = time.monotonic()
+        assert self.process.stdin is not None
+        try:
+            self.process.stdin.write('begin\n')
+            self.process.stdin.close()
+        except OSError:
+            pass  # it ended during its set-up: finish() says why
+
+    def remaining(self) -> float:
+        """Seconds left of the hard time limit, from begin()."""
+        return max(0.0, self.started + HARD_LIMIT - time.monotonic())
+
+    def wait_done(self) -> None:
+        """Wait until every criterion is out (or the process ended), else stop it at the hard time limit."""
+        # The process's end counts too: a process it left behind may hold its output open.
+        while not self.done.wait(min(0.5, self.remaining())) and self.process.poll() is None:
+            if self.remaining() == 0:
+                # SIGTERM lets the check stop what it started; SIGKILL if even that hangs.
+                self.kill(15.0)
+                self._add(Criterion(
+                    f'the check ends within {HARD_LIMIT:.0f} s',
+                    False,
+                    'the check was stopped: a node that never answers or never ends',
+                ))
+                break
+        self.result.seconds = time.monotonic() - self.started
+
+    def kill(self, grace: float) -> None:
+        """SIGTERM to the check's process group, SIGKILL after grace s."""
+        try:
+            os.killpg(self.process.pid, 15)
+            self.process.wait(grace)
+        except subprocess.TimeoutExpired:
+            os.killpg(self.process.pid, 9)
+        except ProcessLookupError:
+            pass  # it has just ended by itself
+        self.process.wait()
+
+    def finish(self) -> ExerciseResult:
+        """Wait for the check's clean-up to end; a crash or a check that could not run is in the result."""
+        if self.finished:
+            return self.result
+        self.finished = True
+        try:
+            self.process.wait(CLEANUP_LIMIT)
+        except subprocess.TimeoutExpired:
+            self.kill(15.0)
+        self.reader.join(5)
+        code = self.process.returncode
+        if code not in (0, -15, None) and not self.result.criteria:
+            self.result.error = f'the check itself failed: {" | ".join(self.other[-5:]) or "no output"}'
+        elif code != 0 and any('Traceback' in line for line in self.other):
+            self._add(Criterion('the check ran to its end', False, ' | '.join(self.other[-3:])))
+        return self.result
+
+
+def start_check(exercise: Exercise, workspace: Path) -> CheckRun:
+    """The exercise's CheckRun, in a shell that sourced the workspace (it waits for begin())."""
     setup = workspace / 'install' / 'local_setup.bash'
     python = shlex.quote(sys.executable)
-    script = f'source {shlex.quote(str(setup))} && exec {python} -m owl_cli.check_ros {exercise.id}'
-    started = time.monotonic()
-    process = subprocess.Popen(
-        ['bash', '-c', script],
-        env={**os.environ, WORKSPACE_VARIABLE: str(workspace)},
-        stdout=subprocess.PIPE,
-        stderr=subprocess.STDOUT,
-        text=True,
-        errors='replace',
-        start_new_session=True,
-    )
-    other: list[str] = []
+    script = f'source {shlex.quote(str(setup))} && exec {python} -m owl_cli.check_ros --wait {exercise.id}'
+    return CheckRun(exercise.id, ['bash', '-c', script], {**os.environ, WORKSPACE_VARIABLE: str(workspace)})
 
-    def read() -> None:
-        assert process.stdout is not None
-        for line in process.stdout:
-            if line.startswith(RESULT_PREFIX):
-                criterion = Criterion.from_dict(json.loads(line[len(RESULT_PREFIX) :]))
-                result.criteria.append(criterion)
-                on_criterion(criterion)
-            else:
-                other.append(line.rstrip())
 
-    reader = threading.Thread(target=read, daemon=True)
-    reader.start()
-    try:
-        process.wait(HARD_LIMIT)
-    except subprocess.TimeoutExpired:
-        # SIGTERM lets the check stop what it started; SIGKILL if even that hangs.
-        os.killpg(process.pid, 15)
-        try:
-            process.wait(15)
-        except subprocess.TimeoutExpired:
-            os.killpg(process.pid, 9)
-            process.wait()
-        timeout = Criterion(
-            f'the check ends within {HARD_LIMIT:.0f} s',
-            False,
-            'the check was stopped: a node that never answers or never ends',
-        )
-        result.criteria.append(timeout)
-        on_criterion(timeout)
-    reader.join(5)
-    if process.returncode not in (0, -15, None) and not result.criteria:
-        result.error = f'the check itself failed: {" | ".join(other[-5:]) or "no output"}'
-    elif process.returncode != 0 and any('Traceback' in line for line in other):
-        crash = Criterion('the check ran to its end', False, ' | '.join(other[-3:]))
-        result.criteria.append(crash)
-        on_criterion(crash)
-    result.seconds = time.monotonic() - started
-    return result
+def run_checks(
+    exercises: list[Exercise],
+    workspace: Path,
+    on_criterion: Callable[[Criterion], None],
+    on_start: Callable[[Exercise], None],
+    on_result: Callable[[ExerciseResult], None],
+) -> list[ExerciseResult]:
+    """Check the exercises in turn, each one's set-up and clean-up beside the checks next to it.
+
+    The next exercise's process sets up while this one runs, the clean-up of the one before runs
+    while this one starts: only the checks themselves, from begin() to CHECK_DONE, run one at a
+    time. on_result gets each result once its criteria are in.
+    """
+    runs: list[CheckRun] = []
+    upcoming = start_check(exercises[0], workspace)
+    for index, exercise in enumerate(exercises):
+        run = upcoming
+        on_start(exercise)
+        run.begin(on_criterion)
+        if runs:
+            runs[-1].finish()
+        runs.append(run)
+        if index + 1 < len(exercises):
+            upcoming = start_check(exercises[index + 1], workspace)
+        run.wait_done()
+        if not run.all_out or index + 1 == len(exercises):
+            run.finish()  # a check that crashed or was stopped: its result is complete before it is shown
+        on_result(run.result)
+    runs[-1].finish()
+    return [run.result for run in runs]
 
 
 def attempted(exercise: Exercise, workspace: Path, available: dict[str, ws.Package]) -> bool:
@@ -205,23 +291,26 @@ def check(args: argparse.Namespace) -> int:
     if args.all:
         exercises = [e for e in exercises if attempted(e, workspace, available)]
 
-    results = []
-    for exercise in exercises:
+    def started(exercise: Exercise) -> None:
         if not args.json:
             print(f'owl check {exercise.id} (section {exercise.section}): {exercise.description}', flush=True)
-        result = run_check(
-            exercise,
-            workspace,
-            (lambda c: None) if args.json else (lambda c: print(criterion_line(c), flush=True)),
-        )
-        results.append(result)
+
+    def ended(result: ExerciseResult) -> None:
         if not args.json:
             if result.error:
                 print(f'  {result.error}')
             verdict = (
                 'passed' if result.passed else f'FAILED ({result.failed_count} of {len(result.criteria)})'
             )
-            print(f'{exercise.id}: {verdict} in {result.seconds:.1f} s', flush=True)
+            print(f'{result.exercise}: {verdict} in {result.seconds:.1f} s', flush=True)
+
+    results = run_checks(
+        exercises,
+        workspace,
+        (lambda c: None) if args.json else (lambda c: print(criterion_line(c), flush=True)),
+        started,
+        ended,
+    )
     record = results_file(os.environ)
     try:
         record_latest(record, results, {e.id: e.section for e in exercises}, str(workspace))

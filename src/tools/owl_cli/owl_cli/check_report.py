@@ -14,6 +14,9 @@ from pathlib import Path
 
 # How the check's ROS process (check_ros.py) hands each decided criterion to `owl check`: one line.
 RESULT_PREFIX = 'owl-check-criterion '
+# ... and that every criterion is out: what follows is the check's clean-up, which owl check lets run
+# beside the next exercise's check.
+CHECK_DONE = 'owl-check-done'
 # The student's workspace, for the check's ROS process (its executables, its parameter files).
 WORKSPACE_VARIABLE = 'OWL_CHECK_WORKSPACE'
 

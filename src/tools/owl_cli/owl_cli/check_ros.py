@@ -1,7 +1,7 @@
 """The part of `owl check` that drives ROS: one exercise's check in a private ROS domain.
 
-Runs as its own process (`python -m owl_cli.check_ros EXERCISE`), started by `owl check` in a
-shell that has sourced the student's workspace, so `ros2 run` finds the student's executables and
+Runs as its own process (`python -m owl_cli.check_ros [--wait] EXERCISE`), started by `owl check`
+in a shell that has sourced the student's workspace, so `ros2 run` finds the student's executables and
 this process imports the student's interface types. The check itself is the exercise's plug-in
 (owl_cli/exercises/), run on a check_session.Session that stops everything it started.
 """
@@ -16,13 +16,19 @@ import sys
 os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
 
 from owl_cli import check_catalogue as catalogue
+from owl_cli.check_report import CHECK_DONE
 from owl_cli.check_session import Failed, Session
 
+WAIT = '--wait'
 
-def run(exercise_id: str) -> int:
+
+def run(exercise_id: str, wait: bool = False) -> int:
     """Run the exercise's check on a new Session and close it, also at SIGTERM; the exit code, 0.
 
-    The criteria go to stdout as the check decides them; a Failed criterion ends the check early.
+    The criteria go to stdout as the check decides them, then CHECK_DONE before the clean-up; a
+    Failed criterion ends the check early. With wait (owl check starts an exercise's process while
+    the one before is checked) the imports and the Session (its domain, its probe node) are made
+    first and the check begins at a line on stdin; end of input ends it unchecked.
     """
     check = catalogue.BY_ID[exercise_id].check
     assert check is not None
@@ -36,9 +42,13 @@ def run(exercise_id: str) -> int:
 
     signal.signal(signal.SIGTERM, on_term)
     try:
-        check(session)
-    except Failed:
-        pass
+        if wait and not sys.stdin.readline():
+            return 0  # owl check ended before this exercise's turn
+        try:
+            check(session)
+        except Failed:
+            pass
+        print(CHECK_DONE, flush=True)
     except KeyboardInterrupt:
         if not stop['signal']:
             raise
@@ -52,10 +62,14 @@ def run(exercise_id: str) -> int:
 def main() -> int:
     """The process's entry point: check the exercise named by the one argument; 2 for a bad one."""
     ids = [e.id for e in catalogue.CHECKABLE]
-    if len(sys.argv) != 2 or sys.argv[1] not in ids:
-        print(f'usage: python -m owl_cli.check_ros {{{",".join(ids)}}}', file=sys.stderr)
+    args = sys.argv[1:]
+    wait = args[:1] == [WAIT]
+    if wait:
+        args = args[1:]
+    if len(args) != 1 or args[0] not in ids:
+        print(f'usage: python -m owl_cli.check_ros [{WAIT}] {{{",".join(ids)}}}', file=sys.stderr)
         return 2
-    return run(sys.argv[1])
+    return run(args[0], wait)
 
 
 if __name__ == '__main__':

@@ -16,7 +16,7 @@ import os
 import signal
 import tempfile
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -244,13 +244,18 @@ class Session:
     # -- waiting and the graph -------------------------------------------------------------------
 
     def wait(self, condition: Callable[[], bool], timeout: float) -> bool:
-        """Wait for condition; False at the timeout or as soon as the student's node has exited."""
+        """Wait for condition; False at the timeout or as soon as the student's node has exited.
+
+        It is looked at after 5, 10, 20, 40 ms, then every 50 ms (poll_intervals): most waits (a
+        service call's answer, a client that matches its server) end within a few ms.
+        """
         deadline = time.monotonic() + timeout
+        intervals = poll_intervals()
         while not condition():
             process = self.student_process
             if time.monotonic() > deadline or (process is not None and not process.running()):
                 return condition()
-            time.sleep(0.05)
+            time.sleep(next(intervals))
         return True
 
     def endpoints(self, topic: str, kind: str) -> list[TopicEndpointInfo]:
@@ -347,6 +352,14 @@ class Session:
             return False, f'/{node}/set_parameters did not answer'
         result = response.results[0]
         return result.successful, result.reason
+
+
+def poll_intervals(first: float = 0.005, longest: float = 0.05) -> Iterator[float]:
+    """The pauses between looks at a condition: first, doubling up to longest, then longest for ever."""
+    interval = first
+    while True:
+        yield min(interval, longest)
+        interval *= 2
 
 
 def values_since(

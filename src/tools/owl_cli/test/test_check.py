@@ -3,16 +3,20 @@
 import http.server
 import json
 import os
+import sys
 import threading
 import time
 from pathlib import Path
 from typing import ClassVar
 
 import pytest
+from owl_cli import check
 from owl_cli import check_catalogue as catalogue
 from owl_cli import check_criteria as judge
 from owl_cli import check_workspace as ws
 from owl_cli.check_report import (
+    CHECK_DONE,
+    RESULT_PREFIX,
     Criterion,
     ExerciseResult,
     exit_code,
@@ -445,6 +449,108 @@ def test_numbers_printed_and_the_slope_of_held_keys():
     assert judge.slope([(0.0, 0.0), (0.5, 0.5), (1.0, 1.0)]) == pytest.approx(1.0)
     assert judge.slope([(0.0, 1.0), (0.5, 0.0), (1.0, -1.0)]) == pytest.approx(2.0)
     assert judge.slope([(0.0, 1.0)]) == 0.0
+
+
+# -- running the checks ----------------------------------------------------------------------------
+
+# A stand-in for `python -m owl_cli.check_ros --wait ID`, which leaves marks in a folder: set up
+# (its process started), begun, running (from begin to CHECK_DONE). how: ok, crash (before
+# CHECK_DONE), crash_after_done (in its clean-up), hang.
+FAKE_CHECK = f'''
+import json, pathlib, sys, time
+name, following, folder, how = sys.argv[1:5]
+folder = pathlib.Path(folder)
+
+def mark(what):
+    (folder / f'{{name}}.{{what}}').touch()
+
+def seen(other, what):  # whether the other check gets there within 10 s
+    deadline = time.monotonic() + 10
+    while not (folder / f'{{other}}.{{what}}').exists():
+        if time.monotonic() > deadline:
+            return False
+        time.sleep(0.01)
+    return True
+
+def criterion(text, passed):
+    print({RESULT_PREFIX!r} + json.dumps({{'text': text, 'passed': passed}}), flush=True)
+
+mark('set-up')
+if not sys.stdin.readline():
+    sys.exit(0)
+alone = not list(folder.glob('*.running'))
+mark('running')
+mark('begun')
+if how == 'hang':
+    time.sleep(60)
+criterion('no other check was running at its begin', alone)
+if how != 'crash':
+    criterion('the next one set up during this check', not following or seen(following, 'set-up'))
+(folder / f'{{name}}.running').unlink()
+if how == 'crash':
+    raise RuntimeError('the check broke')
+print({CHECK_DONE!r}, flush=True)
+if following and not seen(following, 'begun'):
+    raise RuntimeError('the next check began only after this clean-up')
+if how == 'crash_after_done':
+    raise RuntimeError('the clean-up broke')
+'''
+
+
+def fake_checks(monkeypatch, folder: Path, how: dict[str, str]) -> list[catalogue.Exercise]:
+    """The exercises of how, each checked by FAKE_CHECK (check.start_check replaced)."""
+    ids = list(how)
+
+    def start(exercise: catalogue.Exercise, workspace: Path) -> check.CheckRun:
+        following = ids[ids.index(exercise.id) + 1] if exercise.id != ids[-1] else ''
+        command = [sys.executable, '-c', FAKE_CHECK, exercise.id, following, str(folder), how[exercise.id]]
+        return check.CheckRun(exercise.id, command, dict(os.environ))
+
+    monkeypatch.setattr(check, 'start_check', start)
+    return [catalogue.Exercise(i, '0', 'pkg', 'fake') for i in ids]
+
+
+def run_fakes(exercises: list[catalogue.Exercise], folder: Path) -> tuple[list[ExerciseResult], list[str]]:
+    """check.run_checks over the fakes: the results and what was shown, in order."""
+    shown: list[str] = []
+    results = check.run_checks(
+        exercises, folder, lambda c: None, lambda e: shown.append(e.id),
+        lambda r: shown.append(f'{r.exercise}: {", ".join(c.text for c in r.criteria if not c.passed)}'))
+    return results, shown
+
+
+def test_a_check_sets_up_during_the_one_before_and_cleans_up_during_the_next(monkeypatch, tmp_path):
+    exercises = fake_checks(monkeypatch, tmp_path, {'a': 'ok', 'b': 'ok', 'c': 'ok'})
+    results, shown = run_fakes(exercises, tmp_path)
+    assert shown == ['a', 'a: ', 'b', 'b: ', 'c', 'c: ']  # one check at a time, each shown whole
+    for result in results:
+        assert [(c.text, c.passed) for c in result.criteria] == [
+            ('no other check was running at its begin', True),
+            ('the next one set up during this check', True),
+        ]
+
+
+def test_a_check_that_crashes_in_or_after_its_criteria_fails_and_one_past_the_limit_is_stopped(
+        monkeypatch, tmp_path):
+    ended = 'the check ran to its end'
+    exercises = fake_checks(monkeypatch, tmp_path, {'a': 'crash', 'b': 'crash_after_done', 'c': 'ok'})
+    results, shown = run_fakes(exercises, tmp_path)
+    assert shown[:2] == ['a', f'a: {ended}']  # the crash is in the result before it is shown
+    assert [[c.text for c in r.criteria if not c.passed] for r in results] == [[ended], [ended], []]
+    assert 'the clean-up broke' in results[1].criteria[-1].hint
+    monkeypatch.setattr(check, 'HARD_LIMIT', 1.0)
+    (tmp_path / 'hang').mkdir()
+    [stopped], shown = run_fakes(fake_checks(monkeypatch, tmp_path / 'hang', {'d': 'hang'}), tmp_path)
+    assert shown == ['d', 'd: the check ends within 1 s']
+    assert 1.0 <= stopped.seconds < 10.0
+
+
+def test_a_wait_looks_soon_at_first_then_every_50_ms():
+    from itertools import islice
+
+    from owl_cli.check_session import poll_intervals
+
+    assert list(islice(poll_intervals(), 7)) == [0.005, 0.01, 0.02, 0.04, 0.05, 0.05, 0.05]
 
 
 # -- report ----------------------------------------------------------------------------------------

@@ -245,12 +245,12 @@ def check_control_servo_frequency(s: Session) -> None:
     s.student('olive_servo', 'control_servo')
     s.wait(lambda: len(goals) >= 20 and 'control_servo' in s.node.get_node_names(), START_TIMEOUT)
 
-    def measured_rate() -> float:
-        start = time.monotonic() + 0.3  # the new period takes effect from the timer's next call
+    def measured_rate(settle: float = 0.3) -> float:
+        start = time.monotonic() + settle  # a new period takes effect from the timer's next call
         s.wait(lambda: time.monotonic() > start + 1.2, 2.0)
         return judge.rate([t for t, _ in goals if t >= start])
 
-    before = measured_rate()
+    before = measured_rate(0.0)  # nothing was set yet: the node has published at this rate all along
     found, detail = None, []
     for name, value in numeric_parameters(s, 'control_servo', ('freq', 'rate', 'period', 'hz')):
         changed = scaled(value, 0.5)
