@@ -140,26 +140,50 @@ def test_a_failure_showing_a_process_output_is_reported_by_the_exception_it_name
             'first failure: AssertionError: ... [node-1] RuntimeError: the real reason') in stdout, stdout
 
 
-# Each test appends when it ran to a file of its session's.
-TIMED_TESTS = '''
+# How long each timed test below runs: far longer than a test waits for a free slot (0.1 s polls)
+# and than what pytest does between two tests, so tests that may run side by side do overlap.
+RUN_FOR = 1.0
+
+# Start of a test module whose tests, once every worker of the run (of both sessions: they share a
+# slot folder) has collected it, spend RUN_FOR s and append when they ran to the session's ran.jsonl.
+# Workers start seconds apart on two cores: a clock started only when all are up means that
+# nothing but the slots keeps the tests from all running at once.
+TIMED_MODULE = '''
 import json
+import os
 import time
 from pathlib import Path
 
+import pytest
 
-def test_{n}():
+WORKERS = Path(os.environ['OWL_TEST_SLOT_DIR']).parent / 'workers'
+if 'PYTEST_XDIST_WORKER' in os.environ:
+    WORKERS.mkdir(exist_ok=True)
+    (WORKERS / str(os.getpid())).touch()
+
+
+def run_for_a_while(*name):
+    deadline = time.monotonic() + 60
+    while len(list(WORKERS.iterdir())) < WORKER_COUNT and time.monotonic() < deadline:
+        time.sleep(0.02)
     started = time.time()
-    time.sleep(3)
+    time.sleep(RUN_FOR)
     with open(Path(__file__).parents[1] / 'ran.jsonl', 'a') as ran:
-        ran.write(json.dumps([started, time.time()]) + '\\n')
+        ran.write(json.dumps([*name, started, time.time()]) + '\\n')
 '''
+
+
+def timed_module(workers: int, tests: str) -> str:
+    """TIMED_MODULE for a run of that many workers in all, then the tests."""
+    return TIMED_MODULE + f'\nWORKER_COUNT = {workers}\nRUN_FOR = {RUN_FOR}\n\n' + tests
 
 
 def test_suites_side_by_side_run_no_more_system_tests_at_once_than_the_machine_has_slots(tmp_path):
     sessions = []
-    for suite in range(2):  # two suites of SLOTS workers, each test 3 s long
+    for suite in range(2):  # two suites of SLOTS workers, each test RUN_FOR s long
         root = tmp_path / f'suite{suite}'
-        lay_out(root, ''.join(TIMED_TESTS.format(n=n) for n in range(SLOTS)))
+        tests = ''.join(f'\ndef test_{n}():\n    run_for_a_while()\n' for n in range(SLOTS))
+        lay_out(root, timed_module(2 * SLOTS, tests))
         sessions.append(start_session(root, tmp_path / 'slots', '-n', str(SLOTS), 'tests'))
     for process in sessions:
         stdout, _ = process.communicate(timeout=120)
@@ -173,29 +197,15 @@ def test_suites_side_by_side_run_no_more_system_tests_at_once_than_the_machine_h
 
 # Two tests marked whole_kit and four unmarked; each appends its name and when it ran.
 MARKED_TESTS = '''
-import json
-import time
-from pathlib import Path
-
-import pytest
-
-
-def run_for_3_s(name):
-    started = time.time()
-    time.sleep(3)
-    with open(Path(__file__).parents[1] / 'ran.jsonl', 'a') as ran:
-        ran.write(json.dumps([name, started, time.time()]) + '\\n')
-
-
 @pytest.mark.whole_kit
 @pytest.mark.parametrize('n', range(2))
 def test_whole_kit(n):
-    run_for_3_s(f'whole_kit {n}')
+    run_for_a_while(f'whole_kit {n}')
 
 
 @pytest.mark.parametrize('n', range(4))
 def test_unmarked(n):
-    run_for_3_s(f'unmarked {n}')
+    run_for_a_while(f'unmarked {n}')
 '''
 
 
@@ -205,7 +215,7 @@ def test_marked_tests_hold_their_share_of_the_slots_and_tests_that_fit_run_side_
     In 4 workers: an unmarked test runs beside another, and (with more than two slots) a whole_kit test
     beside an unmarked one.
     """
-    lay_out(tmp_path, MARKED_TESTS)
+    lay_out(tmp_path, timed_module(4, MARKED_TESTS))
     session = start_session(tmp_path, tmp_path / 'slots', '-n', '4', 'tests')
     stdout, _ = session.communicate(timeout=120)
     assert session.returncode == 0, stdout

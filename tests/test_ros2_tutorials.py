@@ -14,6 +14,7 @@ import signal
 import subprocess
 import textwrap
 import time
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import pytest
@@ -235,9 +236,11 @@ def test_py_talker_counts_from_zero_and_servers_answer_the_demo_clients(ros: Ros
     for client in waiting.values():
         client.wait_for(r'\[add_two_ints_client\]: Result of add_two_ints: 5$', timeout=20)
         assert client.wait(10) == 0, client.tail()
-    for package, executable in (('demo_nodes_py', 'add_two_ints_client'),
-                                ('demo_nodes_cpp', 'add_two_ints_client_async')):
-        result = ros2(ros, 'run', package, executable)
+    with ThreadPoolExecutor(max_workers=2) as pool:  # the two clients side by side
+        results = list(pool.map(lambda client: ros2(ros, 'run', *client),
+                                (('demo_nodes_py', 'add_two_ints_client'),
+                                 ('demo_nodes_cpp', 'add_two_ints_client_async'))))
+    for result in results:
         assert result.returncode == 0, result.stderr
         assert re.search(r'\[add_two_ints_client\]: Result of add_two_ints: 5$', result.stderr, re.M), \
             result.stderr
@@ -476,30 +479,48 @@ def test_doctor_hello_on_two_hosts_hear_each_other(ros: RosHarness):
 
 # ---- Recording and playing back data -----------------------------------------------------------
 
-def pose_of(ros: RosHarness) -> tuple[float, float, float]:
-    from turtlesim.msg import Pose
-    poses = ros.probe.collect(Pose, '/turtle1/pose')
-    wait_until(lambda: poses, 10, 'a pose')
-    return poses[-1].x, poses[-1].y, poses[-1].theta
+def moving(pose) -> bool:
+    return bool(pose.linear_velocity or pose.angular_velocity)
+
+
+def rest_after_driving(poses: list, since: int, what: str):
+    """The first pose at rest after the turtle last moved in poses[since:] (a list Probe.collect fills).
+
+    The turtle stops 1 s after its last velocity command; it must have moved since poses[since].
+    """
+    def resting():
+        later = poses[since:]
+        last_moving = max((i for i, pose in enumerate(later) if moving(pose)), default=None)
+        if last_moving is None:
+            return None
+        return next((pose for pose in later[last_moving + 1:] if not moving(pose)), None)
+
+    wait_until(resting, 10, what)
+    return resting()
 
 
 def test_record_info_and_play_move_the_turtle_along_the_same_path(ros: RosHarness, tmp_path: Path):
+    from std_srvs.srv import Empty
+    from turtlesim.msg import Pose
+
     ros.run('turtlesim', 'turtlesim_node')
     ros.probe.wait_for_node('turtlesim', timeout=20)
-    start = pose_of(ros)
+    poses = ros.probe.collect(Pose, '/turtle1/pose')
+    wait_until(lambda: poses, 10, 'a pose')
+    start = poses[-1]
     record = ros.command(['ros2', 'bag', 'record', '-o', 'subset', '/turtle1/cmd_vel', '/turtle1/pose'],
                          label='record', cwd=str(tmp_path))
     record.wait_for(r"\[rosbag2_recorder\]: Subscribed to topic '/turtle1/pose'", timeout=20)
     record.wait_for(r"\[rosbag2_recorder\]: Subscribed to topic '/turtle1/cmd_vel'", timeout=20)
     # What the tutorial does with the arrow keys: drive a curve for a while.
     # -w 2: once both turtlesim and the recorder hear it.
-    driven = ros2(ros, 'topic', 'pub', '-w', '2', '-r', '10', '-t', '15', '/turtle1/cmd_vel',
+    driving = len(poses)
+    driven = ros2(ros, 'topic', 'pub', '-w', '2', '-r', '20', '-t', '15', '/turtle1/cmd_vel',
                   'geometry_msgs/msg/Twist', '{linear: {x: 1.5}, angular: {z: 1.0}}')
     assert driven.returncode == 0, driven.stderr
-    time.sleep(1.5)  # the turtle stops 1 s after the last command
-    end = pose_of(ros)
+    end = rest_after_driving(poses, driving, 'the turtle at rest after the drive')
     record.stop_cleanly()
-    assert math.dist(start[:2], end[:2]) > 1.0
+    assert math.dist((start.x, start.y), (end.x, end.y)) > 1.0
     bag = tmp_path / 'subset'
     assert sorted(p.name for p in bag.iterdir()) == ['metadata.yaml', 'subset_0.mcap']
 
@@ -513,15 +534,16 @@ def test_record_info_and_play_move_the_turtle_along_the_same_path(ros: RosHarnes
     assert int(counts['/turtle1/cmd_vel']) == 15, info.stdout
     assert int(counts['/turtle1/pose']) > 100, info.stdout
 
-    # Back to the start, then the bag's commands only: the turtle drives the same curve.
-    reset = ros2(ros, 'service', 'call', '/reset', 'std_srvs/srv/Empty')
-    assert reset.returncode == 0, reset.stderr
-    wait_until(lambda: math.dist(pose_of(ros)[:2], start[:2]) < 0.01, 10, 'the turtle back at the start')
+    # Back to the start (the test's own step, not the tutorial's), then the bag's commands only: the
+    # turtle drives the same curve.
+    ros.probe.call(Empty, '/reset', Empty.Request())
+    wait_until(lambda: math.dist((poses[-1].x, poses[-1].y), (start.x, start.y)) < 0.01, 10,
+               'the turtle back at the start')
+    playing = len(poses)
     played = ros2(ros, 'bag', 'play', '--topics', '/turtle1/cmd_vel', '--', str(bag))
     assert played.returncode == 0, played.stderr
-    time.sleep(1.5)
-    replayed = pose_of(ros)
-    assert math.dist(replayed[:2], end[:2]) < 0.5, (replayed, end)
+    replayed = rest_after_driving(poses, playing, 'the turtle at rest after the replay')
+    assert math.dist((replayed.x, replayed.y), (end.x, end.y)) < 0.5, (replayed, end)
 
 
 def test_play_waits_for_a_subscriber_that_discovery_has_not_shown_yet(ros: RosHarness, tmp_path: Path):
@@ -562,20 +584,36 @@ def test_play_waits_for_a_subscriber_that_discovery_has_not_shown_yet(ros: RosHa
 
 
 def test_a_recorded_bag_reads_back_with_the_mcap_librarys_own_reader(ros: RosHarness, tmp_path: Path):
+    from example_interfaces.srv import AddTwoInts
     from mcap.reader import make_reader
     from mcap_ros2.decoder import DecoderFactory
     from rclpy.serialization import deserialize_message
     from ros2bag.interfaces import import_type
+    from std_msgs.msg import String
 
     ros.command(['ros2', 'launch', 'demo_nodes_cpp', 'introspect_services_launch.py'], label='demo')
     ros.command(['ros2', 'run', 'demo_nodes_cpp', 'talker'], label='talker')
     wait_until(lambda: ros2(ros, 'param', 'set', '/introspection_service', 'service_configure_introspection',
                             'contents').returncode == 0, 30, 'introspection on')
+    # What the recorder is sent, seen by the probe as well (subscribed first: it must not join the
+    # graph while the recorder discovers it).
+    chatter = ros.probe.collect(String, '/chatter')
+    service_events = ros.probe.collect(AddTwoInts.Event, '/add_two_ints/_service_event')
     record = ros.command(['ros2', 'bag', 'record', '-a', '-o', 'everything'], label='record',
                          cwd=str(tmp_path))
     record.wait_for(r"Subscribed to topic '/add_two_ints/_service_event'", timeout=20)
     record.wait_for(r"Subscribed to topic '/chatter'", timeout=20)
-    time.sleep(3)
+    subscribed = len(chatter), len(service_events)
+
+    def recorded_for_sure() -> bool:
+        """Two of each kind sent since the recorder subscribed: the first is in the bag by the second."""
+        kinds = [event.info.event_type for event in service_events[subscribed[1]:]]
+        return len(chatter) - subscribed[0] >= 2 and kinds.count(1) >= 2 and kinds.count(2) >= 2
+
+    wait_until(recorded_for_sure, 20, 'two chatter messages and two requests answered, while recording')
+    # And the events of one more request (0.5 s apart): the recorder has taken what came before them.
+    seen = len(service_events)
+    wait_until(lambda: len(service_events) >= seen + 2, 20, 'one more request answered, while recording')
     record.stop_cleanly()
     bag = tmp_path / 'everything'
     metadata = yaml.safe_load((bag / 'metadata.yaml').read_text())['rosbag2_bagfile_information']

@@ -14,11 +14,22 @@ TRIES = 6
 TURTLES = ('/turtle1', '/turtle2')
 
 
+@pytest.fixture(scope='module')
+def turtles():
+    """The launched turtles, in a domain that every way of asking below shares: they only read it."""
+    harness = RosHarness()
+    try:
+        harness.command(['ros2', 'launch', 'olive_launch', 'turtle_launch.py'], label='turtle_launch')
+        for name in ('turtle1', 'turtle2'):
+            harness.probe.wait_until_spinning(name, timeout=30)
+        yield harness
+    finally:
+        harness.close()
+
+
 @pytest.mark.parametrize('how', ['daemon stopped', 'daemon just started', 'no daemon'])
-def test_the_first_node_list_names_both_turtles(ros: RosHarness, how: str):
-    ros.command(['ros2', 'launch', 'olive_launch', 'turtle_launch.py'], label='turtle_launch')
-    for name in ('turtle1', 'turtle2'):
-        ros.probe.wait_until_spinning(name, timeout=30)
+def test_the_first_node_list_names_both_turtles(turtles: RosHarness, how: str):
+    ros = turtles
     partial = []
     for _ in range(TRIES):
         stop_ros2_daemon(ros.domain_id, ros.env)
