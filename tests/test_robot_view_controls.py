@@ -527,7 +527,15 @@ def test_the_model_follows_the_kit_and_the_mouse_turns_the_head(ros, kit_and_vie
     # at the first look). Both numbers say which side of robot_view a drop is on.
     assert fps >= MIN_FPS, f'{fps:.1f} frames/s in the page; robot_view took {taken:.1f}/s from DDS'
 
-    drag(page, 30, 25)  # a pose worth a picture (yaw 0.3, pitch 0.25 rad), once the head has followed it
+    # A pose worth a picture (yaw 0.3, pitch 0.25 rad), once the head has followed it. The page's timers
+    # stand still through the drag, so its last orientation waits to be sent while the kit's states
+    # come in: what is sent is still where the mouse left the IMU, not where a state put it back.
+    page.clock.install()
+    page.clock.pause_at(page.evaluate('Date.now()') + 1000)
+    drag(page, 30, 25)
+    page.evaluate('window.robotView.imu = null')
+    page.wait_for_function('() => window.robotView.imu !== null', polling=100, timeout=10_000)
+    page.clock.resume()
     page.wait_for_function('() => Math.abs(window.robotView.pan - 0.3) < 0.02 '
                            '&& Math.abs(window.robotView.tilt - 0.25) < 0.02', timeout=10_000)
     page.screenshot_to('robot_view')

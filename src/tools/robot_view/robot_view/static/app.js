@@ -211,7 +211,7 @@ socket.subscribe('kit', {}, (state) => {
   if (view.followGoal) view.followGoal();
   if (state.pan !== null) panJoint.rotation.z = state.pan;
   if (state.tilt !== null) tiltJoint.rotation.y = -state.tilt;  // about -y: a positive tilt looks down
-  if (state.imu !== null && !dragging) imuBlock.quaternion.set(...state.imu);
+  if (state.imu !== null && !holding()) imuBlock.quaternion.set(...state.imu);
   document.getElementById('pan').textContent = degrees(state.pan);
   document.getElementById('tilt').textContent = degrees(state.tilt);
   const [roll, pitch, yaw] = state.imu ? eulerOf(state.imu) : [null, null, null];
@@ -286,6 +286,11 @@ const WORLD_Y = new THREE.Vector3(0, 1, 0);
 const HOLD_EVERY = 20;  // ms: at most 50 commands a second; the newest orientation is what matters
 let lastHold = -Infinity;
 let trailingHold = null;
+// The orientation the mouse gave. A hold still to be sent sends it, not the block's: a state of the
+// kit's that comes after the mouse let go holds the IMU where it was before the last moves (seen in
+// a suite: the head stopped short of the drag).
+const held = new THREE.Quaternion();
+const holding = () => dragging !== null || trailingHold !== null;
 
 function sendHold() {
   // at once when the last command is old enough (no wait for a frame), else once, a little later
@@ -295,8 +300,9 @@ function sendHold() {
     return;
   }
   lastHold = performance.now();
-  const q = imuBlock.quaternion;
-  if (socket.command('hold_imu', { orientation: { x: q.x, y: q.y, z: q.z, w: q.w } })) view.commandsSent += 1;
+  if (socket.command('hold_imu', { orientation: { x: held.x, y: held.y, z: held.z, w: held.w } })) {
+    view.commandsSent += 1;
+  }
 }
 
 renderer.domElement.addEventListener('pointerdown', (event) => {
@@ -315,6 +321,7 @@ renderer.domElement.addEventListener('pointermove', (event) => {
   const turn = new THREE.Quaternion().setFromAxisAngle(WORLD_Z, dx * DRAG_RADIANS_PER_PIXEL)
     .multiply(new THREE.Quaternion().setFromAxisAngle(WORLD_Y, dy * DRAG_RADIANS_PER_PIXEL));
   imuBlock.quaternion.premultiply(turn).normalize();
+  held.copy(imuBlock.quaternion);
   render();
   sendHold();
 });
