@@ -213,9 +213,10 @@ def test_the_person_is_shown_with_the_gesture_of_the_camera(ros, page):
     page.screenshot_to('robot_view_person')
 
 
-def test_without_a_kit_the_page_says_what_to_start_and_after_its_server_stops_it_says_it_is_frozen(ros, page):
+def test_the_page_says_what_of_the_kit_runs_greys_what_stops_and_says_when_its_server_stops(ros, page):
     view = ros.run('robot_view', 'robot_view', '--port', str(free_port()))
-    page.goto(view.wait_for(URL_LINE, timeout=30)[0].group(1))
+    base = view.wait_for(URL_LINE, timeout=30)[0].group(1)
+    page.goto(base)
     # No module at all: one line names the commands that start the kit, the camera says it has none,
     # and "Level the IMU" cannot be pressed.
     page.wait_for_function("() => document.getElementById('kit-state').textContent.startsWith("
@@ -227,17 +228,62 @@ def test_without_a_kit_the_page_says_what_to_start_and_after_its_server_stops_it
     assert page.inner_text('#camera-missing').startswith('No camera runs. Start the kit:')
     assert page.is_disabled('#level')
     assert page.inner_text('#imu-hint') == 'No IMU runs: the block has nothing to hold.'
+    # The servos' controls wait for their servos and say so; the server refuses their commands at once.
+    page.wait_for_function("() => document.querySelector('#servo-controls tr[data-servo=pan] .steering')"
+                           "?.textContent === 'not running'", timeout=10_000)
+    assert page.is_disabled('#servo-controls tr[data-servo=pan] button.goal[data-goal="1.57"]')
+    assert page.is_disabled('#servo-controls tr[data-servo=tilt] input.torque')
+    assert page.is_disabled('#servo-controls tr[data-servo=pan] input.kp')
+    assert page.is_disabled('#servo-pad .arrow.left')
+    with PageSocket(base) as page_socket:
+        for number, command in enumerate([{'name': 'goal', 'servo': 'pan', 'position': 1.0},
+                                          {'name': 'torque', 'servo': 'tilt', 'enabled': True},
+                                          {'name': 'set_gains', 'servo': 'pan', 'kp': 3}]):
+            asked = time.monotonic()
+            page_socket.send({'type': 'command', 'id': number, **command})
+            answer = page_socket.receive()
+            refusal = f"the {command['servo']} servo has sent no joint state: is it running?"
+            assert answer['error'].startswith(refusal), answer
+            assert time.monotonic() - asked < 1.0  # not after a wait for its service
     page.screenshot_to('robot_view_no_kit')
     page.screenshot_at_390('robot_view_no_kit', '#kit-state')
 
     # An IMU that follows its own script (as in owl_kit.launch.py): dragging cannot steer it, and the
     # hint says so and how to start one that can be held.
-    ros.run('olive_sim', 'imu_sim')
+    imu = ros.run('olive_sim', 'imu_sim')
     page.wait_for_function("() => document.getElementById('kit-state').textContent.startsWith("
                            "'Not running: pan, tilt, camera')", timeout=20_000)
     wait_until(lambda: 'follows its own motion' in page.inner_text('#imu-hint'), 10, 'the scripted IMU hint')
     assert 'dragging the block does nothing' in page.inner_text('#imu-hint')
     assert page.is_disabled('#level')
+
+    # A module that stops, however it stops, is greyed and said to send nothing within 2 s of its last
+    # message (the graph would say it went after its DDS lease, about 10 s for a killed one).
+    pan = ros.run('olive_sim', 'servo_sim', '--ros-args', '-p', 'web_port:=0')
+    page.wait_for_function('() => window.robotView.pan !== null && window.robotView.servos.pan.kp !== null '
+                           '&& !document.querySelector("#servo-controls tr[data-servo=pan] input.kp")'
+                           '.disabled', timeout=20_000)
+    assert page.inner_text('#silences').strip() == ''
+    imu.send_signal(signal.SIGKILL)
+    killed = time.monotonic()
+    page.wait_for_function("() => document.querySelector('#silences').textContent"
+                           ".includes('No data from the IMU for 1 s.')", timeout=2_000)
+    print(f'the IMU said silent {time.monotonic() - killed:.2f} s after it was killed')
+    assert 'Running but sending nothing: imu.' in page.inner_text('#kit-state')
+    assert page.evaluate("document.getElementById('roll').classList.contains('silent')")
+    assert page.evaluate("document.querySelector('.plot-cell[data-module=imu]').classList.contains('silent')")
+    assert not page.evaluate("document.getElementById('pan').classList.contains('silent')")  # the servo runs
+    wait_until(lambda: 'No data from the IMU for 2 s.' in page.inner_text('#silences'), 5, 'the count going')
+    pan.send_signal(signal.SIGINT)  # a clean stop
+    stopped = time.monotonic()
+    page.wait_for_function("() => document.querySelector('#silences').textContent"
+                           ".includes('No data from the pan servo for')"
+                           "|| document.querySelector('#servo-controls tr[data-servo=pan] .steering')"
+                           ".textContent === 'not running'", timeout=2_000)
+    print(f'the pan servo said gone {time.monotonic() - stopped:.2f} s after its Ctrl-C')
+    assert page.is_disabled('#servo-controls tr[data-servo=pan] button.goal[data-goal="1.57"]')
+    assert page.evaluate("document.getElementById('pan').classList.contains('silent')")
+    page.screenshot_to('robot_view_modules_stopped')
 
     # robot_view dies (killed: no goodbye, the WebSocket's code 1006): the page greys out what it shows
     # and says, in words, that it is frozen.

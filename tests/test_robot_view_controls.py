@@ -49,6 +49,7 @@ def servo_row(servo: str) -> str:
 
 
 SERVO_NODES = {'pan': PAN_NODE, 'tilt': TILT_NODE}
+SERVOS = tuple(SERVO_NODES)
 GAINS = ('kp', 'ki', 'kd')
 
 
@@ -320,6 +321,7 @@ def test_each_command_says_what_the_kit_did_with_it(ros, kit_and_view, page):
     # robot_view.launch.py starts no imu_control_robot: the hint says what would steer the head.
     hint = 'Nothing steers the servos from the IMU yet: run ros2 run olive_servo imu_control_robot'
     wait_until(lambda: hint in page.inner_text('#imu-hint'), 10, 'the hint naming imu_control_robot')
+    assert page.inner_text(f'{row} .steering') == ''  # no other node publishes its goals
 
     # The torque is off: the servo ignores the goal, and the page says so (not "goal 1.57 rad").
     wait_until(lambda: page.evaluate('window.robotView.servos.pan.torque') is False, 10, 'the torque off')
@@ -456,6 +458,17 @@ def test_the_model_follows_the_kit_and_the_mouse_turns_the_head(ros, kit_and_vie
     page.wait_for_function('() => window.robotView.pan !== null && window.robotView.imu !== null',
                            timeout=20_000)
     robot.wait_for(r'torque enabled: pan, tilt', timeout=40)
+
+    # Each servo's row names the other node that steers it, and a goal sent meanwhile is said to be
+    # overridden by it (it was "sent, moving", then "not reached after 5 s").
+    for servo in SERVOS:
+        page.wait_for_function(f"() => document.querySelector('{servo_row(servo)} .steering').textContent "
+                               "=== 'goals also from /imu_control_robot'", timeout=10_000)
+    answer = click_and_wait_for_answer(page, f'{servo_row("pan")} button.goal[data-goal="1.57"]')
+    assert answer['result']['outcome'] == 'overridden', answer
+    assert answer['result']['by'] == ['/imu_control_robot'], answer
+    assert status_line(page).startswith('pan: goal 1.57 rad sent, but overridden: /imu_control_robot also '
+                                        "publishes the pan servo's goals"), status_line(page)
 
     # The model's pan follows the pan servo's joint: drag the IMU (yaw), the head turns, the model too.
     wait_until(lambda: imu and pan_joints, 20, 'IMU and joint messages')

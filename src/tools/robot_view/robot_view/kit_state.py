@@ -23,6 +23,11 @@ LEVEL = (0.0, 0.0, 0.0, 1.0)  # x, y, z, w: the IMU lying flat, pointing along b
 # launch starts the modules beside robot_view, and on a loaded machine its first look at 1 s found
 # some still starting, so a "Not running" line came and went and the page shifted under the mouse.
 STARTUP_GRACE = 3.0
+# s without a message from a module after which the page greys what it shows of it. The kit's
+# modules publish 30-100 times a second; the graph says a module went only when DDS does (a killed
+# process: after its lease, about 10 s), the data says it within a second.
+SILENT_AFTER = 1.0
+MODULE_NAMES = {'imu': 'the IMU', 'pan': 'the pan servo', 'tilt': 'the tilt servo', 'camera': 'the camera'}
 
 
 def hold_imu_orientation(arguments: dict[str, Any]) -> tuple[float, float, float, float]:
@@ -55,20 +60,22 @@ def goal_topic(servo: str) -> str:
     return f'/olive/servo/{servo}/goal/position'
 
 
-def kit_presence(publishers: dict[str, int], subscribers: dict[str, int]) -> dict[str, Any]:
+def kit_presence(publishers: dict[str, int], subscribers: dict[str, int],
+                 steering: dict[str, list[str]] | None = None) -> dict[str, Any]:
     """Which modules run and what steers them, from the graph's publisher and subscriber counts by topic.
 
     modules: each module publishes (a servo its joint, the IMU, the camera); imu_steerable: a
     simulated IMU takes the page's orientation (it subscribes to true_orientation; a scripted one or a
-    real module does not); steered: a node other than robot_view (whose own goal publisher is one)
-    publishes the servo's goals, e.g. imu_control_robot.
+    real module does not); steered: servo -> the nodes other than robot_view that publish its goals
+    (steering, e.g. ['/imu_control_robot']), sorted.
     """
     modules = {servo: publishers.get(joint_topic(servo), 0) > 0 for servo in SERVOS}
     modules['imu'] = publishers.get(IMU_TOPIC, 0) > 0
     modules['camera'] = publishers.get(CAMERA_TOPIC, 0) > 0
+    steering = steering or {}
     return {'modules': modules,
             'imu_steerable': subscribers.get(TRUE_ORIENTATION_TOPIC, 0) > 0,
-            'steered': {servo: publishers.get(goal_topic(servo), 0) > 1 for servo in SERVOS}}
+            'steered': {servo: sorted(set(steering.get(servo, []))) for servo in SERVOS}}
 
 
 def first_presence_due(presence: dict[str, Any], since_start: float) -> bool:
@@ -80,14 +87,44 @@ def first_presence_due(presence: dict[str, Any], since_start: float) -> bool:
     return all(presence['modules'].values()) or since_start >= STARTUP_GRACE
 
 
-def goal_outcome(servo: str, torque: bool | None) -> dict[str, Any]:
+def servo_unavailable(servo: str, silent_for: int | None, heard: bool) -> str | None:
+    """Why a command to the servo cannot act: it never sent a joint state, or none for silent_for s.
+
+    None when it can (its joint states come).
+    """
+    if not heard:
+        return (f'{MODULE_NAMES[servo]} has sent no joint state: is it running? The simulated kit: '
+                'ros2 launch olive_sim owl_kit.launch.py')
+    if silent_for is not None:
+        return f'no data from {MODULE_NAMES[servo]} for {silent_for} s: has it stopped?'
+    return None
+
+
+def goal_outcome(servo: str, torque: bool | None, steered_by: list[str] | None = None) -> dict[str, Any]:
     """What came of a goal sent to a servo whose torque is as its diagnostics last said (None: not known).
 
-    A servo with its torque off ignores every goal (it says so in its log); otherwise the goal is
-    sent, and whether it is reached shows in the servo's joint.
+    A servo with its torque off ignores every goal (it says so in its log). A goal the servo takes
+    while other nodes publish its goals too (steered_by, e.g. imu_control_robot 100 times a second)
+    is overridden by their next one. Otherwise it is sent, and whether it is reached shows in the
+    servo's joint.
     """
     if torque is False:
         return {'outcome': 'ignored',
                 'reason': f"the {servo} servo's torque is off, so it ignores goals: switch it on "
                           f'(torque column, or /olive/servo/{servo}/setTorqueEnable) first'}
+    if steered_by:
+        nodes = ' and '.join(steered_by)
+        return {'outcome': 'overridden', 'by': list(steered_by),
+                'reason': f"{nodes} also publish{'es' if len(steered_by) == 1 else ''} the {servo} "
+                          f"servo's goals, and {'its' if len(steered_by) == 1 else 'their'} next goal "
+                          'replaces this one: stop it (Ctrl-C in its terminal) to steer the servo from here'}
     return {'outcome': 'sent'}
+
+
+def silences(last_heard: dict[str, float], now: float) -> dict[str, int]:
+    """Whole seconds since each module's last message, for the modules silent SILENT_AFTER s or more.
+
+    last_heard: module -> the monotonic time of its last message; a module never heard is not in it
+    (whether it runs at all is the graph's to say, kit_presence).
+    """
+    return {module: int(now - heard) for module, heard in last_heard.items() if now - heard >= SILENT_AFTER}

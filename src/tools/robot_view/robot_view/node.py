@@ -54,6 +54,8 @@ from robot_view.kit_state import (
     joint_topic,
     kit_presence,
     level_orientation,
+    servo_unavailable,
+    silences,
 )
 from robot_view.plot_window import PlotWindow, PushCursor, sample_time
 
@@ -67,6 +69,7 @@ DISCOVERY_WAIT = 2.0  # s a command waits for its service to be discovered befor
 RESEND_EVERY = 1.0  # s: see _call
 ASK_GAINS_EVERY = 1.0  # s between two questions to a servo whose gains are not known yet
 LOOK_AT_GRAPH_EVERY = 1.0  # s between two looks at which modules run and what steers them
+LISTEN_FOR_SILENCE_EVERY = 0.25  # s: a module's silence shows within SILENT_AFTER and this
 
 
 class RobotViewNode(Node):
@@ -77,7 +80,10 @@ class RobotViewNode(Node):
         self._started = time.monotonic()
         self._lock = threading.Lock()
         # 'kit' is what runs of the kit and what steers it (kit_presence), None until the first look
-        self._state: dict[str, Any] = {'pan': None, 'tilt': None, 'imu': None, 'scene': None, 'kit': None}
+        # 'silent': module -> whole seconds since its last message, for those silent (kit_state.silences)
+        self._state: dict[str, Any] = {'pan': None, 'tilt': None, 'imu': None, 'scene': None, 'kit': None,
+                                       'silent': {}}
+        self._heard: dict[str, float] = {}  # module -> when its last message came (time.monotonic)
         self._kit_watchers: set[Subscription] = set()
         self._camera_watchers: set[Subscription] = set()
         self._plot_watchers: dict[Subscription, PushCursor] = {}
@@ -123,6 +129,7 @@ class RobotViewNode(Node):
         self._asking: dict[str, Any] = {}  # servo -> its unanswered question for its gains
         self.create_timer(ASK_GAINS_EVERY, self._ask_for_unknown_gains)
         self.create_timer(LOOK_AT_GRAPH_EVERY, self._look_at_graph)
+        self.create_timer(LISTEN_FOR_SILENCE_EVERY, self._listen_for_silence)
         server.channel('kit', self._watch_kit, self._kit_watchers.discard)
         server.channel('camera', self._watch_camera, self._camera_watchers.discard)
         server.channel('plots', self._watch_plots, self._forget_plot_watcher)
@@ -146,13 +153,23 @@ class RobotViewNode(Node):
         Whether a sent goal is reached the page sees in the servo's joint.
         """
         servo, position = goal_request(arguments)
+        self._require_running(servo)
         self._goal_publishers[servo].publish(Float32(data=position))
         with self._lock:
             torque = self._servos[servo]['torque']
-        return goal_outcome(servo, torque)
+            steered_by = self._state['kit']['steered'][servo] if self._state['kit'] else []
+        return goal_outcome(servo, torque, steered_by)
+
+    def _require_running(self, servo: str) -> None:
+        """An ApiError saying why a command to the servo cannot act, when it sends no joint states."""
+        with self._lock:
+            why = servo_unavailable(servo, self._state['silent'].get(servo), servo in self._heard)
+        if why is not None:
+            raise ApiError(409, why)
 
     def _torque(self, arguments: dict[str, Any]) -> None:
         servo, enabled = torque_request(arguments)
+        self._require_running(servo)
         client = self._torque_clients[servo, enabled]
         response = self._call(client, Trigger.Request(), f'servo {servo}')
         if not response.success:
@@ -161,6 +178,7 @@ class RobotViewNode(Node):
 
     def _set_gains(self, arguments: dict[str, Any]) -> None:
         servo, gains = gains_request(arguments)
+        self._require_running(servo)
         request = SetParameters.Request(parameters=double_parameters(gains))
         response = self._call(self._set_parameters[servo], request, f'servo {servo}')
         refusals = [f'{name}: {result.reason}' for name, result in zip(gains, response.results, strict=False)
@@ -273,7 +291,8 @@ class RobotViewNode(Node):
         presence = kit_presence(
             publishers={topic: self.count_publishers(topic) for topic in (
                 IMU_TOPIC, CAMERA_TOPIC, *map(joint_topic, SERVOS), *map(goal_topic, SERVOS))},
-            subscribers={TRUE_ORIENTATION_TOPIC: self.count_subscribers(TRUE_ORIENTATION_TOPIC)})
+            subscribers={TRUE_ORIENTATION_TOPIC: self.count_subscribers(TRUE_ORIENTATION_TOPIC)},
+            steering={servo: self._goal_publisher_nodes(servo) for servo in SERVOS})
         with self._lock:
             if self._state['kit'] == presence:
                 return
@@ -281,6 +300,22 @@ class RobotViewNode(Node):
             if self._state['kit'] is None and not first_presence_due(presence, since_start):
                 return
             self._state['kit'] = presence
+        self._push_state()
+
+    def _goal_publisher_nodes(self, servo: str) -> list[str]:
+        """The nodes other than this one that publish the servo's goals, by their full names."""
+        own = self.get_fully_qualified_name()
+        names = (('/' + '/'.join(part for part in (info.node_namespace.strip('/'), info.node_name) if part))
+                 for info in self.get_publishers_info_by_topic(goal_topic(servo)))
+        return [name for name in names if name != own]
+
+    def _listen_for_silence(self) -> None:
+        """Which modules have sent nothing for SILENT_AFTER s or more; pushed when it changes."""
+        with self._lock:
+            silent = silences(self._heard, time.monotonic())
+            if silent == self._state['silent']:
+                return
+            self._state['silent'] = silent
         self._push_state()
 
     def _push_plots(self) -> None:
@@ -321,6 +356,7 @@ class RobotViewNode(Node):
             samples[f'{servo}_effort'] = effort
         with self._lock:
             self._state[servo] = position
+            self._heard[servo] = time.monotonic()
         self._plot(finite(samples), Time.from_msg(message.header.stamp).nanoseconds)
         self._push_state()
 
@@ -345,6 +381,7 @@ class RobotViewNode(Node):
         q = message.orientation
         with self._lock:
             self._state['imu'] = [q.x, q.y, q.z, q.w]
+            self._heard['imu'] = time.monotonic()
         euler = quaternion.usable_euler((q.x, q.y, q.z, q.w))
         if euler is not None:
             roll, pitch, yaw = euler
@@ -365,6 +402,7 @@ class RobotViewNode(Node):
         with self._lock:
             self._frames += 1
             number = self._frames
+            self._heard['camera'] = time.monotonic()
             watchers = list(self._camera_watchers)
         if not watchers:
             return

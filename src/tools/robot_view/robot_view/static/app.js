@@ -172,18 +172,8 @@ function showKit(kit) {
   view.kit = kit;
   if (kit === null) return;  // not looked yet: nothing said (a line that then goes would move the page)
   const modules = kit.modules;
-  const missing = Object.keys(modules).filter((name) => !modules[name]);
-  if (missing.length === Object.keys(modules).length) {
-    kitState.innerHTML = 'No Owl Kit module runs in this ROS domain. Start the simulated kit with this page: '
-      + `${KIT_LAUNCH}, or the kit alone: <code>ros2 launch olive_sim owl_kit.launch.py</code>. `
-      + 'Real modules: <code>owl network</code> checks the way to them.';
-  } else if (missing.length) {
-    kitState.innerHTML = `Not running: ${missing.join(', ')}. The whole simulated kit: `
-      + '<code>ros2 launch olive_sim owl_kit.launch.py</code>.';
-  } else {
-    kitState.textContent = '';
-  }
   levelButton.disabled = !kit.imu_steerable;
+  showLiveness();
   if (!modules.imu) {
     imuHint.textContent = 'No IMU runs: the block has nothing to hold.';
   } else if (!kit.imu_steerable) {
@@ -191,7 +181,7 @@ function showKit(kit) {
       + 'real module), so dragging the block does nothing. To hold it with the mouse, start the kit with '
       + `${KIT_LAUNCH} (its IMU takes the page's orientation).`;
   } else {
-    const steered = kit.steered.pan || kit.steered.tilt;
+    const steered = kit.steered.pan.length || kit.steered.tilt.length;
     imuHint.innerHTML = 'Drag the IMU block: left/right turns it (yaw), up/down tips it (pitch).'
       + (steered ? '' : ' Nothing steers the servos from the IMU yet: run '
         + '<code>ros2 run olive_servo imu_control_robot</code> and the head follows it.');
@@ -201,8 +191,55 @@ function showKit(kit) {
   showCamera();
 }
 
+// ---- modules that send nothing or do not run: greyed where the page shows them --------------------
+const MODULE_NAMES = { imu: 'the IMU', pan: 'the pan servo', tilt: 'the tilt servo', camera: 'the camera' };
+view.silent = {};
+
+// What the page shows of a module is live only while its data comes (the server says which modules
+// have sent nothing for a second, and for how long) and the graph has it.
+function showLiveness() {
+  const silent = view.silent;
+  const gone = (module) => module in silent || (view.kit !== null && !view.kit.modules[module]);
+  for (const element of document.querySelectorAll('[data-module]')) {
+    element.classList.toggle('silent', gone(element.dataset.module));
+  }
+  for (const line of document.querySelectorAll('#silences [data-silence]')) {
+    const seconds = silent[line.dataset.silence];
+    line.textContent = seconds === undefined ? ''
+      : `No data from ${MODULE_NAMES[line.dataset.silence]} for ${seconds} s.`;
+  }
+  imuBody.material.color.set(gone('imu') ? 0x9ca3af : 0xdc2626);
+  render();
+  showKitLine();
+  if (view.showServoAvailability) view.showServoAvailability();
+}
+
+// The line above the view: what of the kit does not run, or runs and sends nothing (a module that
+// was killed stays in the graph for its DDS lease, about 10 s, but sends nothing at once).
+function showKitLine() {
+  if (view.kit === null) return;  // not looked yet: nothing said (a line that then goes would move the page)
+  const modules = view.kit.modules;
+  const missing = Object.keys(modules).filter((name) => !modules[name]);
+  const silent = Object.keys(view.silent).filter((name) => modules[name]);
+  if (missing.length === Object.keys(modules).length) {
+    kitState.innerHTML = 'No Owl Kit module runs in this ROS domain. Start the simulated kit with this page: '
+      + `${KIT_LAUNCH}, or the kit alone: <code>ros2 launch olive_sim owl_kit.launch.py</code>. `
+      + 'Real modules: <code>owl network</code> checks the way to them.';
+  } else if (missing.length || silent.length) {
+    kitState.innerHTML = (missing.length ? `Not running: ${missing.join(', ')}. ` : '')
+      + (silent.length ? `Running but sending nothing: ${silent.join(', ')}. ` : '')
+      + 'The whole simulated kit: <code>ros2 launch olive_sim owl_kit.launch.py</code>.';
+  } else {
+    kitState.textContent = '';
+  }
+}
+
 socket.subscribe('kit', {}, (state) => {
   const sceneChanged = updateScene(state.scene);
+  if (JSON.stringify(state.silent) !== JSON.stringify(view.silent)) {
+    view.silent = state.silent;
+    showLiveness();
+  }
   document.getElementById('ball-hint').hidden = !(state.scene && state.scene.ball);
   if (JSON.stringify(state.kit) !== JSON.stringify(view.kit)) showKit(state.kit);
   view.pan = state.pan;

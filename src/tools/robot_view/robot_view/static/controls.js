@@ -56,6 +56,11 @@ export function startControls(socket, view) {
         say(`${servo}: goal ${goal} rad ignored: ${result.reason}`, true);
         return;
       }
+      if (result && result.outcome === 'overridden') {
+        following = null;
+        say(`${servo}: goal ${goal} rad sent, but overridden: ${result.reason}`, true);
+        return;
+      }
       following = { servo, goal, since: performance.now(), note };
       followGoal();
     });
@@ -84,8 +89,11 @@ export function startControls(socket, view) {
     const row = document.createElement('tr');
     row.dataset.servo = servo;
     const cells = [];
+    row.dataset.module = servo;  // greyed while the servo sends nothing (app.js)
     const name = document.createElement('th');
-    name.textContent = servo;
+    const steering = document.createElement('small');
+    steering.className = 'steering';
+    name.append(servo, steering);
     cells.push(name);
     const torque = document.createElement('input');
     torque.type = 'checkbox';
@@ -165,7 +173,7 @@ export function startControls(socket, view) {
       row.append(td);
     }
     body.append(row);
-    rows[servo] = { torque, gains };
+    rows[servo] = { row, torque, gains, steering, controls: [...row.querySelectorAll('input, button')] };
   }
 
   // The servos' values in their rows; a field being edited keeps the edit unless `only` (a servo's
@@ -175,7 +183,7 @@ export function startControls(socket, view) {
     for (const [servo, state] of Object.entries(view.servos)) {
       const row = rows[servo];
       if (!row || (only !== null && servo !== only)) continue;
-      if (state.torque !== null) row.torque.checked = state.torque;
+      row.torque.checked = state.torque === true;  // not known (no servo yet): off
       for (const [key] of GAINS) {
         const input = row.gains[key];
         if (drop) input.classList.remove('edited');
@@ -183,6 +191,30 @@ export function startControls(socket, view) {
       }
     }
   }
+
+  // Why the servo cannot act on a command now (not running, silent), or null; kit and silent are
+  // what app.js shows of the kit channel.
+  function unavailable(servo) {
+    if (view.kit && !view.kit.modules[servo]) return 'not running';
+    const seconds = view.silent && view.silent[servo];
+    if (seconds !== undefined && seconds !== null) return `no data for ${seconds} s`;
+    return null;
+  }
+
+  // Each row's controls work only while its servo runs, and name the other nodes that steer it.
+  view.showServoAvailability = () => {
+    for (const [servo, { row, controls, steering }] of Object.entries(rows)) {
+      const why = unavailable(servo);
+      for (const control of controls) control.disabled = why !== null;
+      row.title = why === null ? '' : `the ${servo} servo: ${why}; its controls wait for it`;
+      const others = view.kit ? view.kit.steered[servo] : [];
+      steering.textContent = why !== null ? why : others.length ? `goals also from ${others.join(', ')}` : '';
+      steering.classList.toggle('warning', why !== null || others.length > 0);
+    }
+    for (const arrow of document.querySelectorAll('#servo-pad .arrow')) {
+      arrow.disabled = unavailable(arrow.dataset.servo) !== null;
+    }
+  };
 
   // An on-screen arrow pad (a phone, a tablet): each arrow nudges a servo's goal by NUDGE from its
   // last goal (or where it is), within its range; held, it repeats.
@@ -192,6 +224,7 @@ export function startControls(socket, view) {
       const button = document.createElement('button');
       button.type = 'button';
       button.className = `arrow ${key}`;
+      button.dataset.servo = servo;
       button.textContent = label;
       button.setAttribute('aria-label', `${servo} ${key}`);
       const nudge = () => {
@@ -223,5 +256,6 @@ export function startControls(socket, view) {
     }
     view.servos = message.state;
     showState();
+    view.showServoAvailability();
   }, (line) => { status.textContent = line; status.classList.add('refused'); });
 }
