@@ -7,8 +7,9 @@ its plots and the camera), prints the front door's address (one address for ever
 readable lines of what happens, then stops everything with Ctrl-C's signal, as a user at a terminal
 would.
 
-With --project tracking it is section 4.6's robot instead: a red ball goes round the robot and
-track_object keeps it in the middle of the camera's picture; each line says how far off it is.
+With --project tracking it is section 4.6's robot instead: a red ball swings to and fro in front of
+the robot and track_object keeps it in the middle of the camera's picture; each line says how far off
+it is.
 """
 
 from __future__ import annotations
@@ -47,7 +48,13 @@ ROBOT_VIEW_LINE = r'robot_view: open (http://127\.0\.0\.1:\d+/)(robot-view/)? in
 WINDOWS_PORT = 8092  # owl windows' own default, likewise
 WINDOWS_LINE = r'owl windows: open (http://127\.0\.0\.1:\d+/)(windows/)? in a browser'
 PROJECTS = ('imu', 'tracking')
-BALL_SPEED = 0.15  # rad/s of the ball going round the robot in the tracking project
+# The tracking project's ball swings to and fro in front of the robot, BALL_SWING rad to either side
+# of where the kit puts it (0.25 rad left), passing the middle at BALL_SPEED rad/s: the pan servo
+# (+-1.57 rad) can follow it the whole time. (Going round, it passed the pan's limit after 9 s.)
+BALL_SPEED = 0.2
+BALL_SWING = 0.9
+KIT_WITH_BALL = ('ros2', 'launch', 'olive_sim', 'owl_kit.launch.py', 'scene:=ball',
+                 f'ball_speed:={BALL_SPEED}', f'ball_swing:={BALL_SWING}')
 
 
 @dataclass
@@ -200,8 +207,7 @@ def owl_windows_on(sandbox: RosSandbox) -> Callable[[int], RosProcess]:
 def start_tracking_robot(sandbox: RosSandbox) -> dict[str, RosProcess]:
     """Section 4.6's robot: the kit with a red ball going round, track_object and display_camera."""
     processes = {
-        'kit': sandbox.command(['ros2', 'launch', 'olive_sim', 'owl_kit.launch.py', 'scene:=ball',
-                                f'ball_speed:={BALL_SPEED}'], label='kit'),
+        'kit': sandbox.command(list(KIT_WITH_BALL), label='kit'),
         'track_object': sandbox.run('olive_vision', 'track_object'),
         'display_camera': sandbox.run('olive_camera', 'display_camera'),
         'robot_view': serve_page(robot_view_on(sandbox), ROBOT_VIEW_PORT, ROBOT_VIEW_LINE),
@@ -220,19 +226,20 @@ def page_address(process: RosProcess, line: str) -> tuple[str, bool]:
     return match.group(1), match.group(2) is not None
 
 
-def print_pages(processes: dict[str, RosProcess]) -> None:
+def print_pages(processes: dict[str, RosProcess], project: str = 'imu') -> None:
     """Where to watch: the front door, one address for every page; each page's own without one."""
     robot_view, front_door = page_address(processes['robot_view'], ROBOT_VIEW_LINE)
     windows = 'owl_windows' in processes
+    hint = ('the IMU follows its script here' if project == 'imu'
+            else 'drag the red ball elsewhere and the head follows it')
     if front_door:
         turtle = (", windows (the TurtleSim window and display_camera's, when they have no display)"
                   if windows else '')
         print(f'== pages: open {robot_view} in a browser: the robot view (the kit in 3D, live plots, the '
-              f"camera; the IMU follows its script here){turtle}, each module's own page; `owl pages` lists "
-              'them', flush=True)
+              f"camera; {hint}){turtle}, each module's own page; `owl pages` lists them", flush=True)
         return
-    print(f'== robot view: open {robot_view} in a browser (the kit in 3D, live plots, the camera; the IMU '
-          'follows its script here)', flush=True)
+    print(f'== robot view: open {robot_view} in a browser (the kit in 3D, live plots, the camera; {hint})',
+          flush=True)
     if windows:
         print(f"== turtlesim: open {page_address(processes['owl_windows'], WINDOWS_LINE)[0]} in a browser "
               "(owl windows: the TurtleSim window and display_camera's window, when they have no display)",
@@ -270,8 +277,9 @@ def run_demo(seconds: float, report_every: float, project: str = 'imu') -> int:
         print(f'== Owl Kit Lab demo: the simulated Owl Kit and the course\'s chapter 4 projects, '
               f'ROS 2 domain {sandbox.domain_id}, {seconds:.0f} s', flush=True)
         if project == 'tracking':
-            print('   kit: IMU, servos pan and tilt, camera eye, and a red ball going round the robot at '
-                  f'{BALL_SPEED} rad/s (ros2 launch olive_sim owl_kit.launch.py scene:=ball)\n'
+            print('   kit: IMU, servos pan and tilt, camera eye, and a red ball swinging '
+                  f'{math.degrees(BALL_SWING):.0f}° to either side in front of the robot '
+                  f"({' '.join(KIT_WITH_BALL)})\n"
                   '   track_object: the head keeps the ball in the middle of the picture (section 4.6)\n'
                   '   display_camera: the camera\'s picture', flush=True)
         else:
@@ -292,7 +300,7 @@ def run_demo(seconds: float, report_every: float, project: str = 'imu') -> int:
                 processes['display_camera'].wait_for(r': no display \(', 0.5)
             for line in display_camera_lines(processes['display_camera']):
                 print(f'   display_camera says: {line}', flush=True)
-            print_pages(processes)
+            print_pages(processes, project)
             print('== running', flush=True)
             start = last = time.monotonic()
             frames_then = state.frames

@@ -1,12 +1,16 @@
 """`make demo`: the chapter 4 robot live over real DDS, reported in readable lines, stopped cleanly."""
 
+import importlib.util
 import os
 import re
 import subprocess
 import sys
 from pathlib import Path
+from types import ModuleType
 
 import pytest
+from olive_kit.description import SERVO_RANGES
+from olive_sim.scene_model import BALL_START, BallPath
 from owl_web.pages import stop_front_door
 
 DEMO = Path(__file__).parents[1] / 'scripts' / 'demo.py'
@@ -58,6 +62,28 @@ def test_demo_runs_the_robot_reports_it_and_stops_every_node_cleanly(tmp_path):
     assert 'Traceback' not in result.stdout + result.stderr
 
 
+def demo_module() -> ModuleType:
+    spec = importlib.util.spec_from_file_location('owl_demo_script', DEMO)
+    assert spec is not None
+    assert spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module  # its dataclasses look their module up there
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_the_tracking_demos_ball_stays_where_the_pan_servo_can_centre_it():
+    demo = demo_module()
+    assert f'ball_swing:={demo.BALL_SWING}' in demo.KIT_WITH_BALL
+    assert f'ball_speed:={demo.BALL_SPEED}' in demo.KIT_WITH_BALL
+    path = BallPath(*BALL_START, speed=demo.BALL_SPEED, swing=demo.BALL_SWING)
+    low, high = SERVO_RANGES['pan']
+    margin = 0.3  # rad: the head turns beyond the ball by its lag, and the picture has edges
+    assert all(low + margin <= path.at(t)[0] <= high - margin for t in range(0, 600))
+    # it moves: in a 20 s demo it goes most of the way to one side and back
+    assert max(path.at(t)[0] for t in range(20)) - BALL_START[0] > 0.8 * demo.BALL_SWING
+
+
 TRACKING = re.compile(r'ball +([+-]\d+\.\d) % right, +([+-]\d+\.\d) % down of the middle \| pan goal')
 
 
@@ -69,6 +95,8 @@ def test_the_tracking_demo_keeps_the_ball_in_the_middle_and_says_how_far_off_it_
                       pages_dir=tmp_path / 'pages')
     assert result.returncode == 0, result.stdout + result.stderr
     assert 'track_object: the head keeps the ball in the middle of the picture' in result.stdout
+    assert 'a red ball swinging 52° to either side in front of the robot' in result.stdout
+    assert 'drag the red ball elsewhere and the head follows it' in result.stdout  # not the IMU demo's hint
     offsets = [tuple(map(float, m.groups()))
                for line in result.stdout.splitlines() if (m := TRACKING.search(line))]
     assert len(offsets) >= 4, result.stdout

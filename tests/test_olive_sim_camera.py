@@ -33,7 +33,7 @@ DEFAULTS = {
     'orientation_noise': 0.002, 'seed': 0, 'imu_rate': 100.0, 'imu_frame_id': 'eye_body_link',
     'imu_reliability': 'reliable', 'button_pressed': False, 'use_sim_time': False,
     'start_type_description_service': True, 'address': '10.42.0.7', 'web_port': 8042,
-    'scene': 'landmarks', 'ball_speed': 0.1, 'ball_azimuth': 0.25, 'ball_elevation': -0.12,
+    'scene': 'landmarks', 'ball_speed': 0.1, 'ball_swing': 0.0, 'ball_azimuth': 0.25, 'ball_elevation': -0.12,
     'gesture': 'both_hands_down',
 }
 RED = LANDMARKS[0][1]

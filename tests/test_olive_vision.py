@@ -188,6 +188,8 @@ def test_bad_scenes_gestures_speeds_and_places_get_one_line_each_and_nothing_bre
                     ('scene:=beach', "scene must be one of landmarks, ball, person, got 'beach'"),
                     ('ball_speed:=-1',
                      "ball_speed must be a number of rad/s from 0 (still) to 2.0, got '-1'"),
+                    ('ball_swing:=4',
+                     "ball_swing must be a number of rad from 0 (round the robot) to 3.1416, got '4'"),
                     ('gesture:=waving', 'gesture must be one of both_hands_down'))]
     assert bad.wait(60) == 2
     assert "error: unknown scene 'beach': expected one of landmarks, ball, person" in bad.output
@@ -198,6 +200,7 @@ def test_bad_scenes_gestures_speeds_and_places_get_one_line_each_and_nothing_bre
     images = ros.probe.collect(CompressedImage, IMAGE_TOPIC, CAMERA_QOS)
     wait_for_messages(images, 3, timeout=60)
     for values, reason in (({'ball_speed': -0.2}, 'out of range'), ({'ball_elevation': 1.2}, 'out of range'),
+                           ({'ball_swing': -1.0}, 'out of range'),
                            ({'ball_azimuth': math.nan}, 'out of range'),
                            ({'gesture': 'both_hands_up'},
                             "there is no person in the scene 'ball' (start the camera with scene:=person)"),

@@ -22,6 +22,7 @@ from olive_sim.scene_draw import SceneView
 from olive_sim.scene_model import (
     BALL_ELEVATION_RANGE,
     BALL_MAX_SPEED,
+    BALL_MAX_SWING,
     BALL_START,
     GESTURE_NAMES,
     NO_GESTURE,
@@ -71,7 +72,7 @@ class CameraModule(OliveModule):
         if self.scene not in SCENES:
             raise ValueError(f"unknown scene '{self.scene}': expected one of {', '.join(SCENES)}")
         self.ball = BallPath(value('ball_azimuth').value, value('ball_elevation').value,
-                             value('ball_speed').value, time.monotonic())
+                             value('ball_speed').value, time.monotonic(), value('ball_swing').value)
         self.gesture = gesture_named(value('gesture').value)
         self.recognised = NO_GESTURE  # what the gesture app says: its last recognised gesture
         self.renderer = CameraRenderer(
@@ -119,6 +120,10 @@ class CameraModule(OliveModule):
         self.declare_parameter('ball_speed', 0.1, describe(
             "Speed of the ball along its path around the robot [rad/s of azimuth]; 0 keeps it still.",
             floating_point_range=[FloatingPointRange(from_value=0.0, to_value=BALL_MAX_SPEED)]))
+        self.declare_parameter('ball_swing', 0.0, describe(
+            'How far the ball swings to either side of where it was put [rad of azimuth], to and fro in '
+            'front of the robot at ball_speed; 0 sends it round the robot instead.',
+            floating_point_range=[FloatingPointRange(from_value=0.0, to_value=BALL_MAX_SWING)]))
         self.declare_parameter('ball_azimuth', BALL_START[0], describe(
             'Where the ball is put: its azimuth [rad], 0 straight ahead, positive to the left; it moves '
             'on from there.',
@@ -153,6 +158,8 @@ class CameraModule(OliveModule):
                 self.gesture = gesture_named(p.value)
             elif p.name == 'ball_speed':
                 self.ball = self.ball.moved(now, speed=p.value)
+            elif p.name == 'ball_swing':
+                self.ball = self.ball.moved(now, swing=p.value)
             elif p.name == 'ball_azimuth':
                 self.ball = self.ball.moved(now, azimuth=wrap(p.value))
             elif p.name == 'ball_elevation':

@@ -19,6 +19,7 @@ BALL_RADIUS = 0.035         # rad: a 7 cm ball 1 m away
 BALL_BOB = 0.08             # rad: how far the ball's path rises and falls as it goes round
 BALL_BOBS_PER_TURN = 3      # rises and falls per turn around the robot
 BALL_MAX_SPEED = 2.0        # rad/s along its path: more than the head can follow
+BALL_MAX_SWING = math.pi    # rad to either side of its middle: a swing of pi is a whole circle
 # Where a ball may be put: in front of the camera's whole tilt range, not under the robot.
 BALL_ELEVATION_RANGE = (-0.6, 0.6)
 
@@ -116,27 +117,45 @@ def person_directions(gesture: Gesture) -> dict[str, tuple[float, float]]:
 class BallPath:
     """The ball going round the robot at speed rad/s of azimuth, rising and falling as it goes.
 
-    It starts at (azimuth, elevation) at time start (s, any clock); speed 0 keeps it there.
+    It starts at (azimuth, elevation) at time start (s, any clock); speed 0 keeps it there. With a
+    swing (rad), it goes to and fro about that azimuth instead, swing to either side, at speed rad/s
+    where it passes the middle: a ball the pan servo can follow the whole time. phase: where in its
+    swing it is at start (rad of the swing's sine; 0 is the middle, moving left).
     """
 
     azimuth: float
     elevation: float
     speed: float = 0.0
     start: float = 0.0
+    swing: float = 0.0
+    phase: float = 0.0
 
     def at(self, t: float) -> tuple[float, float]:
         """(azimuth, elevation) at time t."""
-        turned = self.speed * max(0.0, t - self.start)
-        bob = BALL_BOB * math.sin(BALL_BOBS_PER_TURN * turned)
-        return wrap(self.azimuth + turned), clamp_elevation(self.elevation + bob)
+        travelled = self.speed * max(0.0, t - self.start)
+        bob = BALL_BOB * math.sin(BALL_BOBS_PER_TURN * travelled)
+        elevation = clamp_elevation(self.elevation + bob)
+        if self.swing > 0.0:
+            return wrap(self.azimuth + self.swing * math.sin(self._phase_at(t))), elevation
+        return wrap(self.azimuth + travelled), elevation
+
+    def _phase_at(self, t: float) -> float:
+        return self.phase + self.speed * max(0.0, t - self.start) / self.swing
 
     def moved(self, t: float, *, azimuth: float | None = None, elevation: float | None = None,
-              speed: float | None = None) -> BallPath:
-        """The path from where the ball is at t, with a new place or speed if given."""
+              speed: float | None = None, swing: float | None = None) -> BallPath:
+        """The path from where the ball is at t, with a new place, speed or swing if given.
+
+        A swinging ball keeps its middle and its place in the swing when only its speed or
+        elevation changes; a new place is the new middle; a new swing is about where it is.
+        """
         here_azimuth, here_elevation = self.at(t)
-        return BallPath(here_azimuth if azimuth is None else azimuth,
+        new_swing = self.swing if swing is None else swing
+        keeps_swing = new_swing > 0.0 and swing is None and azimuth is None and self.swing > 0.0
+        return BallPath(self.azimuth if keeps_swing else here_azimuth if azimuth is None else azimuth,
                         here_elevation if elevation is None else elevation,
-                        self.speed if speed is None else speed, t)
+                        self.speed if speed is None else speed, t, new_swing,
+                        self._phase_at(t) if keeps_swing else 0.0)
 
 
 def wrap(angle: float) -> float:

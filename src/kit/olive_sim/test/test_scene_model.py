@@ -81,6 +81,30 @@ def test_putting_the_ball_somewhere_or_changing_its_speed_goes_on_from_where_it_
     assert wrap(3.5) == pytest.approx(3.5 - 2 * math.pi)
 
 
+def test_a_swinging_ball_goes_to_and_fro_about_where_it_was_put_and_keeps_its_swing_through_changes():
+    path = BallPath(0.25, 0.0, speed=0.3, start=0.0, swing=1.0)
+    azimuths = [path.at(t)[0] for t in np.linspace(0, 60, 1200)]
+    assert max(azimuths) == pytest.approx(1.25, abs=0.005)
+    assert min(azimuths) == pytest.approx(-0.75, abs=0.005)
+    # it passes the middle at its speed, and is back there after half a period (pi * swing / speed)
+    assert (path.at(0.01)[0] - path.at(0.0)[0]) / 0.01 == pytest.approx(0.3, rel=1e-3)
+    assert path.at(math.pi / 0.3)[0] == pytest.approx(0.25, abs=1e-9)
+    # a new speed keeps the middle and the place in the swing; a new place is the new middle
+    here = path.at(4.0)
+    faster = path.moved(4.0, speed=0.6)
+    assert faster.at(4.0) == pytest.approx(here)
+    assert max(faster.at(t)[0] for t in np.linspace(4, 30, 600)) == pytest.approx(1.25, abs=0.005)
+    put = path.moved(4.0, azimuth=-0.5)
+    assert put.at(4.0)[0] == pytest.approx(-0.5)
+    assert max(put.at(t)[0] for t in np.linspace(4, 30, 600)) == pytest.approx(0.5, abs=0.005)
+    # a swing set on a ball going round is about where it is; a swing of 0 sends it round again
+    swinging = BallPath(0.0, 0.0, speed=0.2, start=0.0).moved(5.0, swing=0.5)
+    assert swinging.at(5.0)[0] == pytest.approx(1.0)
+    assert max(swinging.at(t)[0] for t in np.linspace(5, 40, 700)) == pytest.approx(1.5, abs=0.005)
+    round_again = swinging.moved(6.0, swing=0.0)
+    assert round_again.at(7.0)[0] == pytest.approx(round_again.at(6.0)[0] + 0.2)
+
+
 def test_each_gesture_puts_the_arms_where_its_name_says():
     def wrist_above_shoulder(pose, side):
         return pose[f'{side}_wrist'][1] > pose[f'{side}_shoulder'][1]
