@@ -277,6 +277,7 @@ def test_goal_buttons_torque_switch_and_pause(ros, kit_and_view, page):
     row = servo_row('tilt')
     # The tilt servo's top is 0.9 rad: its second button is 0.9, not pi/2.
     assert page.locator(f'{row} button.goal').all_inner_texts() == ['0', '0.9']
+    assert servo_table_fits(page), 'the servo table is wider than its panel at 1280 px'
 
     click_and_wait_for_answer(page, f'{row} input.torque')
     wait_until(lambda: torque_enabled(diagnostics), 10, 'tilt torque on')
@@ -345,12 +346,21 @@ def test_each_command_says_what_the_kit_did_with_it(ros, kit_and_view, page):
     wait_until(lambda: status_line(page).startswith('pan: goal 1.5708 rad'), 10, 'the nudge held at the top')
     page.screenshot_at_390('robot_view_servo_pad', '#servo-pad')
 
-    # A refused Kp leaves the field showing the servo's own Kp, not the refused one.
+    # A refused Kp stays in its field, marked, to be corrected; its line stays while a goal sent
+    # just before it moves on (the goal's progress used to replace it at once).
+    assert click_and_wait_for_answer(page, f'{row} button.goal[data-goal="0"]')['result'] == {'outcome': 'sent'}
     kp = page.evaluate('window.robotView.servos.pan.kp')
     answer = set_gains(page, 'pan', kp='1000')
-    assert answer['error'] == 'pan kp must be within 0..100, got 1000', answer
+    refusal = 'pan kp must be within 0..100, got 1000'
+    assert answer['error'] == refusal, answer
+    assert page.input_value(f'{row} input.kp') == '1000'
+    assert 'refused' in page.get_attribute(f'{row} input.kp', 'class')
+    assert page.get_attribute(f'{row} input.kp', 'title') == refusal
+    wait_until(lambda: abs(page.evaluate('window.robotView.pan')) < 0.02, 10, 'the pan servo at 0')
+    assert status_line(page) == f'refused: {refusal}'
+    page.press(f'{row} input.kp', 'Escape')  # the servo's own Kp back
     assert float(page.input_value(f'{row} input.kp')) == kp
-    assert 'edited' not in (page.get_attribute(f'{row} input.kp', 'class') or '')
+    assert 'refused' not in page.get_attribute(f'{row} input.kp', 'class')
     # An edit not yet set is marked as such; Escape drops it.
     page.fill(f'{row} input.ki', '7')
     assert 'edited' in page.get_attribute(f'{row} input.ki', 'class')
@@ -369,7 +379,7 @@ def test_bad_control_input_gets_one_line_and_reaches_no_servo(ros, kit_and_view,
     answer = set_gains(page, 'pan', kp='500')
     assert answer['error'] == 'pan kp must be within 0..100, got 500', answer
     assert page.inner_text('#command-status') == 'refused: pan kp must be within 0..100, got 500'
-    assert float(page.input_value(f'{servo_row("pan")} input.kp')) == factory[0]  # the servo's, not 500
+    assert page.input_value(f'{servo_row("pan")} input.kp') == '500'  # kept to be corrected
     page.fill(f'{servo_row("pan")} input.kp', '5')
     answer = set_gains(page, 'pan', kd='')
     assert answer['error'] == 'pan kd must be a number, got null', answer
@@ -464,6 +474,8 @@ def test_the_model_follows_the_kit_and_the_mouse_turns_the_head(ros, kit_and_vie
     for servo in SERVOS:
         page.wait_for_function(f"() => document.querySelector('{servo_row(servo)} .steering').textContent "
                                "=== 'goals also from /imu_control_robot'", timeout=10_000)
+    # (the servo's diagnostics tell robot_view its torque is on about once a second)
+    page.wait_for_function('() => window.robotView.servos.pan.torque === true', timeout=10_000)
     answer = click_and_wait_for_answer(page, f'{servo_row("pan")} button.goal[data-goal="1.57"]')
     assert answer['result']['outcome'] == 'overridden', answer
     assert answer['result']['by'] == ['/imu_control_robot'], answer
@@ -554,6 +566,16 @@ def test_the_model_follows_the_kit_and_the_mouse_turns_the_head(ros, kit_and_vie
     page.screenshot_to('robot_view')
 
 
+def servo_table_fits(page: Any) -> bool:
+    """Whether the servo table shows whole in its panel: no sideways scroll, every goal control in view."""
+    return page.evaluate("""() => {
+        const wrap = document.getElementById('servo-controls-wrap');
+        const right = wrap.getBoundingClientRect().right;
+        return wrap.scrollWidth <= wrap.clientWidth && [...wrap.querySelectorAll('button.goal, label')]
+          .every((control) => control.getBoundingClientRect().right <= right + 0.5);
+    }""")
+
+
 def no_sideways_scroll(page: Any) -> bool:
     return page.evaluate('document.documentElement.scrollWidth <= window.innerWidth')
 
@@ -595,6 +617,7 @@ def test_the_view_fills_the_window_turns_and_zooms_and_works_on_a_phone_with_tou
     # browser taking the gesture over (no pointercancel after a few moves).
     page.set_viewport_size({'width': 390, 'height': 844})
     wait_until(lambda: no_sideways_scroll(page), 10, 'the page within 390 px')
+    assert servo_table_fits(page), 'the servo table is wider than a phone'
     assert page.evaluate("document.querySelector('#model canvas').clientWidth") <= 390
     page.screenshot_to('robot_view_390')
     page.evaluate("() => { window.cancelled = 0; document.querySelector('#model canvas')"

@@ -5,12 +5,13 @@
 // and answers a refusal with one line, shown under the table. Every outcome is what the kit says:
 // a goal the servo ignores (torque off) says so, a sent goal is followed in the servo's joint until
 // it is reached (or not); a gain field shows the servo's value except while it is being edited
-// (marked), and goes back to the servo's value when the servo refuses the edit.
+// (marked), and a refused edit stays, marked, until it is corrected or dropped with Escape.
 
 const FLIP_EVERY = 3000;  // ms, the appendix script's timer
 const GAINS = [['kp', 'Kp'], ['ki', 'Ki'], ['kd', 'Kd']];
 const REACHED = 0.02;  // rad from its goal: the servo is there
 const REACH_WITHIN = 5000;  // ms after which a goal not reached is said so
+const REFUSAL_STAYS = 5000;  // ms a refusal stays on the status line against a goal's progress
 const NUDGE = 0.1;  // rad an arrow of the pad moves a goal
 const NUDGE_EVERY = 250;  // ms between nudges while an arrow is held
 // [key, label, servo, sign]: left turns the head left (pan +), up looks up (tilt -: + looks down)
@@ -29,18 +30,33 @@ export function startControls(socket, view) {
   let following = null;  // {servo, goal, since}: the sent goal whose arrival the status line follows
   const lastGoal = {};  // servo -> the goal this page sent it last
 
-  function say(line, refused = false) {
+  // A goal's progress (and the flip's goals) does not replace a refusal for REFUSAL_STAYS ms: the
+  // line that says what was wrong stays long enough to be read.
+  let refusedAt = -Infinity;
+  function say(line, refused = false, progress = false) {
+    if (progress && performance.now() - refusedAt < REFUSAL_STAYS) return;
     status.textContent = line;
     status.classList.toggle('refused', refused);
+    if (refused && !progress) refusedAt = performance.now();
   }
 
-  // onDone(result) when it was carried out; a refusal is said, and the row shows the servo's values.
+  // onDone(result) when it was carried out. A refusal is said; refused gains stay in their fields,
+  // marked, to be corrected (Escape brings the servo's back); other controls show the servo's state.
   function send(name, args, what, onDone = () => say(what)) {
     const sent = socket.command(name, args, (error, result) => {
       view.commandAnswers.push({ name, error, result });
       if (error) {
         say(`refused: ${error}`, true);
-        if (args.servo) showState(args.servo, true);  // back to what the servo has
+        if (name === 'set_gains' && rows[args.servo]) {
+          for (const input of Object.values(rows[args.servo].gains)) {
+            if (input.classList.contains('edited')) {
+              input.classList.add('refused');
+              input.title = error;
+            }
+          }
+        } else if (args.servo) {
+          showState(args.servo, true);  // back to what the servo has
+        }
       } else {
         onDone(result);
       }
@@ -50,15 +66,17 @@ export function startControls(socket, view) {
 
   function sendGoal(servo, goal, note = '') {
     lastGoal[servo] = goal;
+    if (note === '') refusedAt = -Infinity;  // a goal of the user's own: its progress is what they want to see
     send('goal', { servo, position: goal }, '', (result) => {
+      const flipping = note !== '';
       if (result && result.outcome === 'ignored') {
         following = null;
-        say(`${servo}: goal ${goal} rad ignored: ${result.reason}`, true);
+        say(`${servo}: goal ${goal} rad ignored: ${result.reason}`, true, flipping);
         return;
       }
       if (result && result.outcome === 'overridden') {
         following = null;
-        say(`${servo}: goal ${goal} rad sent, but overridden: ${result.reason}`, true);
+        say(`${servo}: goal ${goal} rad sent, but overridden: ${result.reason}`, true, flipping);
         return;
       }
       following = { servo, goal, since: performance.now(), note };
@@ -74,13 +92,13 @@ export function startControls(socket, view) {
     const elapsed = performance.now() - since;
     const where = at === null ? 'no joint state from it' : `at ${at.toFixed(2)} rad`;
     if (at !== null && Math.abs(at - goal) <= REACHED) {
-      say(`${servo}: goal ${goal} rad reached in ${(elapsed / 1000).toFixed(1)} s${note}`);
+      say(`${servo}: goal ${goal} rad reached in ${(elapsed / 1000).toFixed(1)} s${note}`, false, true);
       following = null;
     } else if (elapsed > REACH_WITHIN) {
-      say(`${servo}: goal ${goal} rad not reached after ${REACH_WITHIN / 1000} s (${where})${note}`, true);
+      say(`${servo}: goal ${goal} rad not reached after ${REACH_WITHIN / 1000} s (${where})${note}`, true, true);
       following = null;
     } else {
-      say(`${servo}: goal ${goal} rad sent, moving (${where})${note}`);
+      say(`${servo}: goal ${goal} rad sent, moving (${where})${note}`, false, true);
     }
   }
   view.followGoal = followGoal;  // app.js calls it at each joint update
@@ -112,7 +130,11 @@ export function startControls(socket, view) {
       input.max = String(limits.gains[key]);
       input.step = 'any';
       input.setAttribute('aria-label', `${servo} ${label}`);
-      input.addEventListener('input', () => input.classList.add('edited'));
+      input.addEventListener('input', () => {
+        input.classList.add('edited');
+        input.classList.remove('refused');
+        input.title = '';
+      });
       input.addEventListener('keydown', (event) => {
         if (event.key === 'Enter') setGains();
         if (event.key === 'Escape') showState(servo, true);  // drop the edit
@@ -136,7 +158,11 @@ export function startControls(socket, view) {
     }
     setButton.addEventListener('click', setGains);
     cells.push(setButton);
+    // The goals go on a row of their own under the gains: one row of both was 578 px wide, more
+    // than a phone's screen and than the panel beside the view at 1280 px.
     const goalCell = document.createElement('span');
+    goalCell.className = 'goals';
+    goalCell.append('goal (rad) ');
     for (const goal of limits.servos[servo].goals) {
       const button = document.createElement('button');
       button.type = 'button';
@@ -166,14 +192,22 @@ export function startControls(socket, view) {
       }, FLIP_EVERY);
     });
     goalCell.append(flipLabel);
-    cells.push(goalCell);
     for (const cell of cells) {
       const td = cell.tagName === 'TH' ? cell : document.createElement('td');
       if (td !== cell) td.append(cell);
       row.append(td);
     }
-    body.append(row);
-    rows[servo] = { row, torque, gains, steering, controls: [...row.querySelectorAll('input, button')] };
+    const goalRow = document.createElement('tr');
+    goalRow.className = 'goal-row';
+    goalRow.dataset.servo = servo;
+    goalRow.dataset.module = servo;
+    const goalTd = document.createElement('td');
+    goalTd.colSpan = cells.length - 1;
+    goalTd.append(goalCell);
+    goalRow.append(document.createElement('td'), goalTd);
+    body.append(row, goalRow);
+    const controls = [...row.querySelectorAll('input, button'), ...goalRow.querySelectorAll('input, button')];
+    rows[servo] = { row, goalRow, torque, gains, steering, controls };
   }
 
   // The servos' values in their rows; a field being edited keeps the edit unless `only` (a servo's
@@ -186,7 +220,10 @@ export function startControls(socket, view) {
       row.torque.checked = state.torque === true;  // not known (no servo yet): off
       for (const [key] of GAINS) {
         const input = row.gains[key];
-        if (drop) input.classList.remove('edited');
+        if (drop) {
+          input.classList.remove('edited', 'refused');
+          input.title = '';
+        }
         if (state[key] !== null && !input.classList.contains('edited')) input.value = String(state[key]);
       }
     }
@@ -203,10 +240,10 @@ export function startControls(socket, view) {
 
   // Each row's controls work only while its servo runs, and name the other nodes that steer it.
   view.showServoAvailability = () => {
-    for (const [servo, { row, controls, steering }] of Object.entries(rows)) {
+    for (const [servo, { row, goalRow, controls, steering }] of Object.entries(rows)) {
       const why = unavailable(servo);
       for (const control of controls) control.disabled = why !== null;
-      row.title = why === null ? '' : `the ${servo} servo: ${why}; its controls wait for it`;
+      row.title = goalRow.title = why === null ? '' : `the ${servo} servo: ${why}; its controls wait for it`;
       const others = view.kit ? view.kit.steered[servo] : [];
       steering.textContent = why !== null ? why : others.length ? `goals also from ${others.join(', ')}` : '';
       steering.classList.toggle('warning', why !== null || others.length > 0);
