@@ -250,8 +250,22 @@ def test_a_kp_change_shows_in_the_plotted_step_response(ros, kit_and_view, page)
     assert page.inner_text('#pause') == 'Resume'
     page.screenshot_to('robot_view_plots_zoomed', full_page=True)
     page.screenshot_at_390('robot_view_plots_zoomed', '#step-pan')
-    page.dblclick('#plot-pan .u-over')
+    assert page.inner_text('#plots-hint').startswith('Paused: the plots hold still')
+    page.dblclick('#plot-pan .u-over')  # zoomed out: live again, as the zoom had paused them
     assert page.evaluate('window.robotView.plots.zoom') is None
+    assert page.evaluate('window.robotView.plots.paused') is False
+    assert page.inner_text('#pause') == 'Pause'
+    assert page.inner_text('#plots-hint').startswith('Hover for values')
+    # Paused first by its button, a zoom and a zoom out leave it paused, and the hint says so.
+    page.click('#pause')
+    page.mouse.move(plot['x'] + plot['width'] * 0.55, plot['y'] + plot['height'] / 2)
+    page.mouse.down()
+    page.mouse.move(plot['x'] + plot['width'] * 0.95, plot['y'] + plot['height'] / 2, steps=5)
+    page.mouse.up()
+    page.dblclick('#plot-pan .u-over')
+    assert page.evaluate('[window.robotView.plots.zoom, window.robotView.plots.paused]') == [None, True]
+    assert page.inner_text('#plots-hint').startswith('Paused: the plots hold still')
+    page.click('#pause')
     # CSV export of what the page keeps, every series a column.
     with page.expect_download() as download:
         page.click('#export-csv')

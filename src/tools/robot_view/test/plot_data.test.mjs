@@ -3,7 +3,7 @@
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
 import {
-  alignedRanges, columnsCsv, emptyColumns, mergeBatch, plotData, stepMeasurements,
+  MIN_STEP, alignedRanges, columnsCsv, emptyColumns, mergeBatch, plotData, stepMeasurements,
 } from '../robot_view/static/plot_data.js';
 
 const rows = (from, to, step = 1) => {
@@ -92,6 +92,17 @@ test("the last goal step's rise, overshoot, settling and error", () => {
   assert.ok(Math.abs(step.settling - 1.52) < 0.02, step.settling);
   assert.ok(Math.abs(step.error - -0.005) < 1e-9, step.error);
   assert.equal(stepMeasurements([0, 1], [0.5, 0.5], [0, 0]), null);  // never stepped
+});
+
+test('goal changes under MIN_STEP (the small moves of a steering node) are not measured as steps', () => {
+  assert.equal(MIN_STEP, 0.1);
+  const times = [0, 0.1, 0.2, 0.3, 0.4, 0.5];
+  assert.equal(stepMeasurements(times, [0, 0, 0.02, 0.02, 0.04, 0.04], [0, 0, 0, 0.03, 0.03, 0.04]), null);
+  // the last step of 0.1 rad or more is measured, and the small changes after it end its samples
+  const step = stepMeasurements(times, [0, 0.5, 0.5, 0.5, 0.52, 0.52], [0, 0, 0.3, 0.5, 0.5, 0.52]);
+  assert.equal(step.from, 0);
+  assert.equal(step.to, 0.5);
+  assert.equal(step.time, 0.1);
 });
 
 test('CSV: a header and a row per bucket, t from the first row, an empty cell for no sample', () => {

@@ -69,15 +69,23 @@ export function alignedRanges(extents, minSpan = 0.5) {
   return ranges;
 }
 
-// The last step of a goal and the response to it, measured from plotted rows: times (s), the held
-// goal and the position (nulls where a bucket had none). null when the goal never stepped.
-// Rise: 10 % to 90 % of the step; overshoot: beyond the goal, in % of the step; settling: from the
-// step until the position stays within band (2 %) of the step around the goal, null if it has not
-// yet; error: goal minus the last position.
+// A goal change smaller than this is no step to measure: imu_control_robot moves its goals by
+// hundredths of a radian 100 times a second, and a 0.02 rad "step" measured an overshoot of 363 %
+// that was the encoder's resolution. A nudge of the pad's arrows (0.1 rad) is one.
+export const MIN_STEP = 0.1;  // rad
+
+// The last step of a goal (MIN_STEP or more) and the response to it, measured from plotted rows:
+// times (s), the held goal and the position (nulls where a bucket had none). null when the goal
+// never stepped. Rise: 10 % to 90 % of the step; overshoot: beyond the goal, in % of the step;
+// settling: from the step until the position stays within band (2 %) of the step around the goal,
+// null if it has not yet; error: goal minus the last position.
 export function stepMeasurements(times, goals, positions, band = 0.02) {
   let step = -1;
   for (let i = goals.length - 1; i > 0; i -= 1) {
-    if (goals[i] !== null && goals[i - 1] !== null && goals[i] !== goals[i - 1]) { step = i; break; }
+    if (goals[i] !== null && goals[i - 1] !== null && Math.abs(goals[i] - goals[i - 1]) >= MIN_STEP - 1e-9) {
+      step = i;
+      break;
+    }
   }
   if (step < 0) return null;
   const from = goals[step - 1];

@@ -2,11 +2,11 @@
 // IMU's roll, pitch and yaw over the last 5 to 60 s (the page keeps 60), drawn with uPlot. Pause
 // freezes what is drawn while the batches keep coming, so Resume shows the live window at once.
 // For the PID exercise: values on hover, zoom by dragging across a plot (it pauses; double-click
-// zooms out), each servo's last goal step measured from the plotted rows (rise, overshoot,
+// zooms out and goes live again, unless Pause had paused it first), each servo's last goal step measured from the plotted rows (rise, overshoot,
 // settling, error), CSV export of what the page keeps, and the rad and N*m axes sharing their 0.
 import uPlot from 'uplot';
 import {
-  WINDOWS, WINDOW_SECONDS, alignedRanges, columnsCsv, emptyColumns, mergeBatch, plotData, stepMeasurements,
+  MIN_STEP, WINDOWS, WINDOW_SECONDS, alignedRanges, columnsCsv, emptyColumns, mergeBatch, plotData, stepMeasurements,
 } from './plot_data.js';
 
 const SERVO_SERIES = (servo) => [
@@ -107,7 +107,8 @@ export function startPlots(socket, view, showError) {
     view.plots.steps[servo] = step;
     const line = document.getElementById(`step-${servo}`);
     if (step === null) {
-      line.textContent = 'No goal step in this window: press 0 or π/2 (torque on), or run pid_testing.';
+      line.textContent = `No goal step of ${MIN_STEP} rad or more in this window: press 0 or π/2 (torque on), `
+        + 'or run pid_testing.';
       return;
     }
     const seconds = (value) => (value === null ? '–' : `${value.toFixed(2)} s`);
@@ -117,10 +118,18 @@ export function startPlots(socket, view, showError) {
       + `error ${step.error.toFixed(3)} rad`;
   }
 
-  function setPaused(paused) {
+  // While paused the hint says so: the data keeps coming, the plots hold still until Resume.
+  const hint = document.getElementById('plots-hint');
+  const liveHint = hint.textContent;
+  let pausedByZoom = false;  // a zoom paused the plots, so zooming out takes them live again
+  function setPaused(paused, byZoom = false) {
     view.plots.paused = paused;
+    pausedByZoom = paused && byZoom;
     pauseButton.textContent = paused ? 'Resume' : 'Pause';
     pauseButton.setAttribute('aria-pressed', String(paused));
+    hint.textContent = paused ? 'Paused: the plots hold still while the data keeps coming; Resume goes live.'
+      : liveHint;
+    hint.classList.toggle('paused', paused);
     if (!paused) {
       view.plots.zoom = null;  // live again: the whole window
       drawn = columns;
@@ -130,7 +139,11 @@ export function startPlots(socket, view, showError) {
 
   function zoom(range) {
     if (range === null && view.plots.zoom === null) return;
-    if (range !== null && !view.plots.paused) setPaused(true);  // a moving plot cannot be measured
+    if (range !== null && !view.plots.paused) setPaused(true, true);  // a moving plot cannot be measured
+    if (range === null && pausedByZoom) {
+      setPaused(false);  // zoomed out: live again, as before the zoom
+      return;
+    }
     view.plots.zoom = range;
     draw();
   }
