@@ -17,7 +17,7 @@ from typing import Any
 from olive_sim.restart import BOOT_DELAY
 from ros_harness import wait_until
 from sensor_msgs.msg import JointState
-from web_harness import PageSocket, free_port, http
+from web_harness import VIEWPORT, PageSocket, free_port, http
 
 PAGE_LINE = (r'\[(olive_\w+_dcm_srv)\]: web page at (http://127\.\d+\.\d+\.\d+:\d+/) '
              r'\(module address ([\d.]+)\)')
@@ -84,6 +84,14 @@ def test_every_module_page_loads_with_live_status_debug_view_and_log(ros, page):
                                        timeout=10_000)
                 assert page.text_content('#yaw').endswith('°')
             page.screenshot_to(f'{name}_debug')
+            # The 3D view grows with the window and fits a phone (it was 560 px whatever the screen).
+            view_width = "document.querySelector('#view3d canvas').clientWidth"
+            page.set_viewport_size({'width': 1920, 'height': 1080})
+            page.wait_for_function(f'() => {view_width} > 700', timeout=5_000)
+            page.set_viewport_size({'width': 390, 'height': 844})
+            page.wait_for_function(f'() => {view_width} <= 370 '
+                                   '&& document.documentElement.scrollWidth <= 390', timeout=5_000)
+            page.set_viewport_size(VIEWPORT)
 
         page.click('text=Log Monitor')
         page.wait_for_function('() => window.modulePage.logLines > 0', timeout=10_000)

@@ -278,7 +278,7 @@ async function startView() {
   const container = $('view3d');
   const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
   renderer.setPixelRatio(window.devicePixelRatio);
-  renderer.setSize(container.clientWidth, container.clientHeight);
+  renderer.setSize(container.clientWidth, container.clientHeight, false);
   container.appendChild(renderer.domElement);
   const scene = new THREE.Scene();
   scene.background = new THREE.Color(0xf3f4f6);
@@ -305,6 +305,14 @@ async function startView() {
   scene.add(imu);
   view.imu = imu;
   view.render = () => renderer.render(scene, camera);
+  // The canvas follows its card's size (the window's width, a phone's turn).
+  new ResizeObserver(() => {
+    if (!container.clientWidth || !container.clientHeight) return;  // hidden with its page
+    renderer.setSize(container.clientWidth, container.clientHeight, false);
+    camera.aspect = container.clientWidth / container.clientHeight;
+    camera.updateProjectionMatrix();
+    view.render();
+  }).observe(container);
   view.render();
   state.viewReady = true;
 }
