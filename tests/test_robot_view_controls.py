@@ -362,7 +362,8 @@ def test_each_command_says_what_the_kit_did_with_it(ros, kit_and_view, page):
 
     # A refused Kp stays in its field, marked, to be corrected; its line stays while a goal sent
     # just before it moves on (the goal's progress used to replace it at once).
-    assert click_and_wait_for_answer(page, f'{row} button.goal[data-goal="0"]')['result'] == {'outcome': 'sent'}
+    sent = click_and_wait_for_answer(page, f'{row} button.goal[data-goal="0"]')
+    assert sent['result'] == {'outcome': 'sent'}, sent
     kp = page.evaluate('window.robotView.servos.pan.kp')
     answer = set_gains(page, 'pan', kp='1000')
     refusal = 'pan kp must be within 0..100, got 1000'
