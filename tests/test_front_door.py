@@ -145,6 +145,12 @@ def check_rqt(page: BrowserPage, base: str) -> None:
     open_from_index(page, base, 'rqt')
     page.wait_for_selector('#graph-svg g[data-id="/robot_view"]', timeout=20_000)
     page.wait_for_selector('#graph-svg g[data-id="/olive/servo/pan/joint"]', timeout=20_000)
+    # The kit's graph (a long chain of layers) wraps into rows, and fitted to the page its labels stay
+    # readable (it used to be one row drawn at 24-47 %, labels of 3-6 px); the rest scrolls.
+    fit = page.text_content('#graph-zoom-level')
+    zoom = re.match(r'(?:fit \()?(\d+) %', fit)
+    assert zoom is not None, fit
+    assert int(zoom.group(1)) >= 60, fit
 
 
 def check_windows(page: BrowserPage, base: str) -> None:

@@ -64,7 +64,7 @@ def test_page_node_graph_and_ctrl_c(ros):
         socket.subscribe('debug', 'graph', hide_debug=False)
         first = socket.receive_matching(lambda m: m['id'] == 'all' and ('/turtlesim', '/turtle1/pose') in
                                         edges_of(m), 'the graph with turtlesim')
-        assert first['data']['nodes'] == ['/turtlesim']  # not rqt's own node
+        assert first['data']['nodes'] == ['/turtlesim']  # not rqt's own node, which shows no topic
         ros.probe.node.create_publisher(Twist, '/turtle1/cmd_vel', 10)
         expected = {('/owl_test_probe', '/turtle1/cmd_vel'), ('/turtle1/cmd_vel', '/turtlesim'),
                     ('/turtlesim', '/turtle1/pose')}
@@ -124,6 +124,12 @@ def test_message_publisher_moves_the_turtle(ros):
                                 'angular': {'x': 0.0, 'y': 0.0, 'z': 1.0}}
     path = f"/api/publishers/{entry['id']}"
     assert rqt.ok('PATCH', path, {'enabled': True})['enabled'] is True
+    with rqt.socket() as socket:  # the Node Graph shows rqt's own node publishing, as rqt_graph does
+        socket.subscribe('graph', 'graph')
+        def rqt_publishes(update: dict[str, Any]) -> bool:
+            return any(source.startswith('/rqt_gui_py_node_') and target == '/turtle1/cmd_vel'
+                       for source, target in edges_of(update))
+        socket.receive_matching(rqt_publishes, "rqt's node on the graph")
     rqt.wait_for(lambda: abs(poses[-1].x - start.x) > 0.2 and abs(poses[-1].theta - start.theta) > 0.2,
                  'the turtle to drive a circle')
     assert rqt.ok('GET', '/api/publishers')[0]['published'] > 0

@@ -44,12 +44,15 @@ class GraphModel:
                 'edges': [{'from': source, 'to': target} for source, target in self.edges]}
 
 
-def build_model(endpoints: Endpoints, hide_debug: bool = True, hide_leaf_topics: bool = False) -> GraphModel:
+def build_model(endpoints: Endpoints, hide_debug: bool = True, hide_leaf_topics: bool = False,
+                own_node: str | None = None) -> GraphModel:
     """The graph to draw from {node: (published [(topic, types)], subscribed [(topic, types)])}.
 
     hide_debug (rqt_graph's "Debug", on by default there too) hides /rosout, /parameter_events
     and hidden nodes and topics (a name part starting with '_', e.g. `ros2 topic pub`'s
     /_ros2cli_1234 node); hide_leaf_topics hides topics with only publishers or only subscribers.
+    own_node, the drawing page's own node, shows only while it has a topic shown (rqt's Message
+    Publisher publishing, its Image View subscribed): a box of its own would say nothing.
     """
     def shown(name: str, is_hidden: Callable[[str], bool]) -> bool:
         return not hide_debug or not (is_hidden(name) or name in DEBUG_TOPICS)
@@ -69,6 +72,9 @@ def build_model(endpoints: Endpoints, hide_debug: bool = True, hide_leaf_topics:
     topics = sorted(types)
     if hide_leaf_topics:
         topics = [t for t in topics if publishers.get(t) and subscribers.get(t)]
+    if own_node in nodes and not any(own_node in publishers.get(t, ()) or own_node in subscribers.get(t, ())
+                                     for t in topics):
+        nodes.remove(own_node)
     model = GraphModel(nodes=nodes, topics={t: sorted(types[t]) for t in topics})
     for topic in topics:
         model.edges += [(node, topic) for node in sorted(publishers.get(topic, ()))]
@@ -76,13 +82,11 @@ def build_model(endpoints: Endpoints, hide_debug: bool = True, hide_leaf_topics:
     return model
 
 
-def read_endpoints(queries: GraphQueries, leave_out: str) -> Endpoints:
-    """Every node's published and subscribed topics, but the node named leave_out (the page's own)."""
+def read_endpoints(queries: GraphQueries) -> Endpoints:
+    """Every node's published and subscribed topics."""
     endpoints: Endpoints = {}
     for name, namespace in queries.node_names_and_namespaces():
         full_name = full_node_name(namespace, name)
-        if full_name == leave_out:
-            continue
         try:
             published = queries.publishers_by_node(name, namespace)
             subscribed = queries.subscribers_by_node(name, namespace)
@@ -116,14 +120,14 @@ class GraphChannel:
         self._timer = node.create_timer(GRAPH_CHECK_PERIOD, self._check)
 
     def model(self, hide_debug: bool, hide_leaf_topics: bool) -> GraphModel:
-        """The graph as it is now, leaving out the server's own node, for the given options."""
-        return build_model(read_endpoints(self._queries, self._own_name), hide_debug, hide_leaf_topics)
+        """The graph as it is now for the given options (the server's own node while it has a topic shown)."""
+        return build_model(read_endpoints(self._queries), hide_debug, hide_leaf_topics, self._own_name)
 
     def _open(self, subscription: Subscription) -> None:
         options = graph_options(subscription.params)
         with self._lock:
             self._watchers[subscription] = (options, None)
-        self._push(read_endpoints(self._queries, self._own_name), force=True)
+        self._push(read_endpoints(self._queries), force=True)
 
     def _close(self, subscription: Subscription) -> None:
         with self._lock:
@@ -133,7 +137,7 @@ class GraphChannel:
         with self._lock:
             if not self._watchers:
                 return
-        self._push(read_endpoints(self._queries, self._own_name))
+        self._push(read_endpoints(self._queries))
 
     def _push(self, endpoints: Endpoints, force: bool = False) -> None:
         """Send each watcher its view of the graph if it differs from what it has."""
@@ -142,7 +146,7 @@ class GraphChannel:
                 return
             self._endpoints = endpoints
             for subscription, (options, sent) in list(self._watchers.items()):
-                model = build_model(endpoints, *options).as_json()
+                model = build_model(endpoints, *options, own_node=self._own_name).as_json()
                 if model != sent:
                     self._watchers[subscription] = (options, model)
                     subscription.send(model)

@@ -55,6 +55,19 @@ def test_cycles_and_lonely_nodes_are_kept():
                                    ('/pong', '/a'), ('/self', '/loop')]
 
 
+def test_the_pages_own_node_shows_while_it_publishes_or_subscribes_a_shown_topic():
+    rqt = '/rqt_gui_py_node_42'
+    quiet = {**COURSE_GRAPH, rqt: ([('/rosout', LOG)], [('/parameter_events', EVENTS)])}
+    assert rqt not in build_model(quiet, own_node=rqt).nodes  # only debug topics: no box
+    assert rqt in build_model(quiet, hide_debug=False, own_node=rqt).nodes
+    publishing = {**COURSE_GRAPH, rqt: ([('/turtle1/cmd_vel', TWIST), ('/rosout', LOG)], [])}
+    model = build_model(publishing, own_node=rqt)  # rqt's Message Publisher drives the turtle
+    assert rqt in model.nodes
+    assert (rqt, '/turtle1/cmd_vel') in model.edges
+    # another node with nothing shown keeps its box, as rqt_graph draws it
+    assert '/idle' in build_model({'/idle': ([], [])}, own_node=rqt).nodes
+
+
 def test_as_json_is_what_the_page_gets():
     assert build_model({}).as_json() == {'nodes': [], 'topics': [], 'edges': []}
     assert build_model(COURSE_GRAPH).as_json() == {

@@ -183,7 +183,18 @@ const LAYOUT = {
   'elk.spacing.nodeNode': '16',
   'elk.layered.spacing.nodeNodeBetweenLayers': '48',
   'elk.padding': '[top=16,left=16,bottom=16,right=16]',
+  // A long chain of layers (the kit's: IMU, imu_control_robot, servos, camera) goes on in a second
+  // row rather than ever wider: fitted into the page's width, one row was drawn at 24-47 % with
+  // labels of 3-6 px.
+  'elk.layered.wrapping.strategy': 'MULTI_EDGE',
 };
+
+// The shape the graph should take: its box's width over the height the window leaves for it.
+function graphAspect() {
+  const box = $('graph-svg').parentElement;
+  const height = Math.max(window.innerHeight - box.getBoundingClientRect().top - 16, 200);
+  return Math.min(Math.max(box.clientWidth / height, 1), 4);
+}
 const measure = document.createElement('canvas').getContext('2d');
 let graphSubscription = null;
 let graphDrawing = Promise.resolve();
@@ -219,7 +230,7 @@ async function drawGraph(graph) {
   const boxes = [...graph.nodes, ...graph.topics.map((topic) => topic.name)];
   const laid = await elk.layout({
     id: 'root',
-    layoutOptions: LAYOUT,
+    layoutOptions: { ...LAYOUT, 'elk.aspectRatio': String(graphAspect()) },
     children: boxes.map((id) => ({
       id, width: boxWidth(id, id in topics ? BOX_PADDING : ELLIPSE_PADDING), height: BOX_HEIGHT })),
     edges: graph.edges.map((edge, index) => ({ id: `e${index}`, sources: [edge.from], targets: [edge.to] })),
@@ -258,24 +269,32 @@ async function drawGraph(graph) {
   $('graph-status').textContent = `${count(graph.nodes.length, 'node')}, ${count(graph.topics.length, 'topic')}`;
 }
 
-// Fit (the whole graph in the page's width, the default) or a zoom factor (1 = the layout's pixels).
+// 'readable' (the default: the page's width, but never labels under 8 px, 12 px at 100 %: a graph
+// still wider scrolls sideways, as a map would, rather than shrinking to unreadable), 'fit' (the
+// whole graph in the page's width, however small: the Fit button) or a zoom factor (1 = the
+// layout's pixels).
 let graphSize = { width: 200, height: 100 };
-let graphZoom = 'fit';
+let graphZoom = 'readable';
 const ZOOM_STEP = 1.25;
+const MIN_READABLE = 2 / 3;
 
 function applyGraphZoom() {
   const canvas = $('graph-svg');
   const box = canvas.parentElement;
-  if (graphZoom === 'fit' && box.clientWidth < 10) return;  // hidden: fitted when shown (ResizeObserver)
+  const fitting = typeof graphZoom === 'string';
+  if (fitting && box.clientWidth < 10) return;  // hidden: fitted when shown (ResizeObserver)
   const fitted = Math.min(1, (box.clientWidth - 2) / graphSize.width);
-  const zoom = graphZoom === 'fit' ? fitted : graphZoom;
+  const zoom = graphZoom === 'fit' ? fitted : graphZoom === 'readable' ? Math.max(fitted, MIN_READABLE) : graphZoom;
   canvas.setAttribute('width', String(Math.round(graphSize.width * zoom)));
   canvas.setAttribute('height', String(Math.round(graphSize.height * zoom)));
-  $('graph-zoom-level').textContent = graphZoom === 'fit' ? `fit (${Math.round(zoom * 100)} %)` : `${Math.round(zoom * 100)} %`;
+  const percent = `${Math.round(zoom * 100)} %`;
+  $('graph-zoom-level').textContent = !fitting ? percent : graphZoom === 'fit' ? `fit (${percent})`
+    : fitted < MIN_READABLE ? `${percent}: wider than the page, it scrolls (Fit: all of it)` : `fit (${percent})`;
 }
 
 function zoomGraph(to) {
-  const current = graphZoom === 'fit' ? Number($('graph-svg').getAttribute('width')) / graphSize.width : graphZoom;
+  const current = typeof graphZoom === 'string' ? Number($('graph-svg').getAttribute('width')) / graphSize.width
+    : graphZoom;
   graphZoom = to === 'fit' ? 'fit' : Math.min(4, Math.max(0.1, to === 'in' ? current * ZOOM_STEP
     : to === 'out' ? current / ZOOM_STEP : 1));
   applyGraphZoom();
@@ -289,7 +308,8 @@ $('graph-svg').parentElement.addEventListener('wheel', (event) => {
   event.preventDefault();
   zoomGraph(event.deltaY < 0 ? 'in' : 'out');
 }, { passive: false });
-new ResizeObserver(() => { if (graphZoom === 'fit') applyGraphZoom(); }).observe($('graph-svg').parentElement);
+new ResizeObserver(() => { if (typeof graphZoom === 'string') applyGraphZoom(); })
+  .observe($('graph-svg').parentElement);
 
 function watchGraph() {
   if (graphSubscription !== null) socket.unsubscribe(graphSubscription);
