@@ -4,6 +4,7 @@ Every tab loads with no console error, the graph is pushed and laid out live, th
 its rate. The screenshots in docs/screenshots/ are made here.
 """
 
+import re
 import statistics
 import time
 from typing import Any
@@ -166,6 +167,20 @@ def test_rqt_graph_fits_and_zooms_two_plugins_sit_side_by_side_and_counters_coun
     page.click('#graph-zoom-in')
     assert page.inner_text('#graph-zoom-level') == '125 %'
     page.click('#graph-fit')
+    # A click on a topic inspects it: its rate, publishers and subscribers with QoS, its last message.
+    page.click(drawn('/random_numbers'))
+    page.wait_for_function('() => window.rqtInspector.state && window.rqtInspector.state.rate !== null '
+                           '&& window.rqtInspector.state.message !== null', timeout=15_000)
+    assert page.inner_text('#inspected-topic') == '/random_numbers'
+    assert page.inner_text('#inspected-type') == 'std_msgs/msg/Int32'
+    assert re.fullmatch(r'\d+\.\d Hz, \d+ messages', page.inner_text('#inspected-rate'))
+    publishers = page.inner_text('#inspected-publishers')
+    assert '/random_number_publisher\tRELIABLE\tVOLATILE\tAUTOMATIC' in publishers, publishers
+    assert '/random_number_subscriber' in page.inner_text('#inspected-subscribers')
+    assert '"data":' in page.inner_text('#inspected-message')
+    page.screenshot_at_390('rqt_topic_inspector', '#topic-inspector')
+    page.click('#inspector-close')
+    assert page.is_hidden('#topic-inspector')
 
     # Two plugins side by side: the graph on the left, the Message Publisher on the right.
     page.set_viewport_size({'width': 1280, 'height': 800})

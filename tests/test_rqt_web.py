@@ -80,10 +80,30 @@ def test_page_node_graph_and_ctrl_c(ros):
         socket.receive_matching(lambda m: m['id'] == 'debug' and ('/turtlesim', '/rosout') in edges_of(m),
                                 'the graph with /rosout')
 
+        # The topic inspector: the last message, its rate and the publishers and subscribers with QoS.
+        socket.subscribe('pose', 'topic', topic='/turtle1/pose')
+        pose = socket.receive_matching(lambda m: m['id'] == 'pose' and m['data']['rate'] is not None
+                                       and m['data']['count'] > 10, "the pose's inspection")['data']
+        assert pose['type'] == 'turtlesim/msg/Pose'
+        assert set(pose['message']) == {'x', 'y', 'theta', 'linear_velocity', 'angular_velocity'}
+        assert 40 < pose['rate'] < 80, pose['rate']  # turtlesim's 62.5 Hz
+        assert pose['publishers'] == [{'node': '/turtlesim', 'reliability': 'RELIABLE',
+                                       'durability': 'VOLATILE', 'liveliness': 'AUTOMATIC'}]
+        assert [s['node'].startswith('/rqt_gui_py_node_') for s in pose['subscribers']] == [True]
+        socket.send({'type': 'unsubscribe', 'id': 'pose'})
+        def inspection_error(topic: Any, **extra: Any) -> str:
+            socket.subscribe('bad', 'topic', topic=topic, **extra)
+            return socket.receive_matching(lambda m: m['id'] == 'bad' and m['type'] == 'error',
+                                           f'the error of {topic}')['error']
+        assert inspection_error('/turtle1/pos') == \
+            "unknown topic '/turtle1/pos' (did you mean '/turtle1/pose'?)"
+        assert inspection_error('/turtle1/pose', rate=5).startswith("unknown key 'rate'; expected: topic")
+        assert inspection_error(7).startswith('topic must be')
+
         # bad subscriptions: one line each, the connection and the server live on
         bad: list[tuple[dict[str, Any] | str, str]] = [
             ({'type': 'subscribe', 'id': 'x', 'channel': 'grahp'},
-             'unknown channel "grahp" (did you mean \'graph\'?); known: graph, image'),
+             'unknown channel "grahp" (did you mean \'graph\'?); known: graph, image, topic'),
             ({'type': 'subscribe', 'id': 'y', 'channel': 'graph', 'hide_debugs': False},
              "unknown key 'hide_debugs' (did you mean 'hide_debug'?); "
              'expected: hide_debug, hide_leaf_topics'),

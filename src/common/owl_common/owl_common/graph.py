@@ -41,6 +41,18 @@ def endpoint_to_dict(info: Any) -> dict[str, Any]:
     }
 
 
+def matching_policies(publishers: list[dict[str, Any]]) -> tuple[str, str]:
+    """(reliability, durability) a subscriber takes to get every publisher's messages (endpoint_to_dict's).
+
+    RELIABLE only if every publisher offers it, else BEST_EFFORT; TRANSIENT_LOCAL only if every one
+    does (a latched message then comes too), else VOLATILE: `ros2 topic echo`'s choice. With no
+    publisher yet, the policies any later one matches: BEST_EFFORT, VOLATILE.
+    """
+    reliable = bool(publishers) and all(p['reliability'] == 'RELIABLE' for p in publishers)
+    durable = bool(publishers) and all(p['durability'] == 'TRANSIENT_LOCAL' for p in publishers)
+    return ('RELIABLE' if reliable else 'BEST_EFFORT'), ('TRANSIENT_LOCAL' if durable else 'VOLATILE')
+
+
 def _plain(names_and_types: list[tuple[str, list[str]]]) -> NamesAndTypes:
     return sorted([name, list(types)] for name, types in names_and_types)
 

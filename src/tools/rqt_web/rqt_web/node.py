@@ -13,7 +13,7 @@ import time
 from dataclasses import dataclass, field
 from typing import Any
 
-from owl_common.graph import GraphQueries, is_hidden_name
+from owl_common.graph import GraphQueries, endpoint_to_dict, is_hidden_name, matching_policies
 from owl_web.codec import ApiError, boolean, check_keys, message_fields
 from owl_web.graph import GraphChannel
 from owl_web.server import Request, Subscription, WebServer
@@ -21,7 +21,7 @@ from rclpy.client import Client
 from rclpy.exceptions import InvalidServiceNameException, InvalidTopicNameException
 from rclpy.node import Node
 from rclpy.publisher import Publisher
-from rclpy.qos import qos_profile_sensor_data
+from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy, qos_profile_sensor_data
 from rosidl_runtime_py.get_interfaces import interface_index
 from rosidl_runtime_py.set_message import FieldError, StampSetter, set_message_fields
 from rosidl_runtime_py.utilities import InvalidType, canonical_type, import_type, type_name_of
@@ -29,11 +29,15 @@ from rosidl_runtime_py.utilities import InvalidType, canonical_type, import_type
 from rqt_web import api_input
 from rqt_web.images import ImageError, compressed_for_browser, raw_to_png
 from rqt_web.interface_template import RosMessage, field_template
+from rqt_web.topic_inspector import ArrivalRate, endpoint_summary, message_summary
 
 IMAGE_TYPES = ('sensor_msgs/msg/Image', 'sensor_msgs/msg/CompressedImage')
 PUBLISHER_KEYS = ('topic', 'type', 'rate', 'fields', 'enabled')
 CALL_KEYS = ('service', 'type', 'request', 'timeout')
 IMAGE_KEYS = ('topic',)
+INSPECT_KEYS = ('topic',)
+INSPECTOR_PUSH_EVERY = 0.2  # s: a message's fields at most five times a second
+INSPECTOR_REFRESH = 1.0  # s between two pushes of a topic that sent nothing new (its rate, its endpoints)
 DEFAULT_CALL_TIMEOUT = 10.0  # s
 FIRST_FRAME_TIMEOUT = 5.0  # s before the page hears that no frame came yet
 
@@ -59,6 +63,21 @@ class MessagePublisher:
         return {'id': self.id, 'topic': self.topic, 'type': self.type_name, 'rate': self.rate,
                 'enabled': self.enabled, 'fields': self.fields,
                 'message': message_fields(self.message), 'published': self.published}
+
+
+@dataclass
+class InspectedTopic:
+    """A topic the topic inspector watches: its subscription, the pages watching it, what came."""
+
+    topic: str
+    type_name: str
+    subscription: Any = None
+    watchers: set[Subscription] = field(default_factory=set)
+    rate: ArrivalRate = field(default_factory=ArrivalRate)
+    count: int = 0
+    latest: Any = None  # the last message, converted only when pushed
+    pushed: float = 0.0  # when the watchers were last told (time.monotonic)
+    fresh: bool = False  # a message came since
 
 
 @dataclass
@@ -103,11 +122,14 @@ class RqtWebNode(Node):
         self._next_publisher_id = 1
         self._service_clients: dict[tuple[str, Any], Client] = {}  # key: (name, service class)
         self._image_feeds: dict[str, ImageFeed] = {}
+        self._inspected: dict[str, InspectedTopic] = {}
+        self.create_timer(INSPECTOR_PUSH_EVERY, self._push_inspected_topics)
         self._silence_check = self.create_timer(1.0, self._report_silent_feeds)
         self._server = server
         self._add_routes(server)
         GraphChannel(self, server)
         server.channel('image', self.watch_images, self.stop_watching_images)
+        server.channel('topic', self.inspect_topic, self.stop_inspecting)
         server.start()
 
     def _add_routes(self, server: WebServer) -> None:
@@ -401,6 +423,76 @@ class RqtWebNode(Node):
             watchers = list(feed.watchers)
         for watcher in watchers:
             watcher.error(error)
+
+    # ---- topic inspector ----------------------------------------------------------------------
+
+    def inspect_topic(self, watcher: Subscription) -> None:
+        """Push a topic's last message, rate and endpoints to a page ({"channel": "topic", "topic": ...})."""
+        check_keys(watcher.params, INSPECT_KEYS, required=INSPECT_KEYS)
+        inspected = self._inspected_topic(watcher.params['topic'])
+        with self._state_lock:
+            inspected.watchers.add(watcher)
+        watcher.send(self._inspection(inspected))
+
+    def stop_inspecting(self, watcher: Subscription) -> None:
+        """The page closed the inspector or left; the last one out drops the topic's subscription."""
+        with self._state_lock:
+            for topic, inspected in list(self._inspected.items()):
+                inspected.watchers.discard(watcher)
+                if not inspected.watchers:
+                    self.destroy_subscription(inspected.subscription)
+                    del self._inspected[topic]
+
+    def _inspected_topic(self, wanted: Any) -> InspectedTopic:
+        topic = api_input.name(wanted, 'topic')
+        with self._state_lock:
+            if topic in self._inspected:
+                return self._inspected[topic]
+        type_name = api_input.known_name(topic, self.topic_types(), 'topic')[0]
+        # The publishers' own policies where they all agree (a latched message comes too), as
+        # `ros2 topic echo` subscribes; best effort takes reliable publishers' messages as well.
+        reliability, durability = matching_policies(
+            [endpoint_to_dict(info) for info in self.get_publishers_info_by_topic(topic)])
+        qos = QoSProfile(depth=10, reliability=ReliabilityPolicy[reliability],
+                         durability=DurabilityPolicy[durability])
+        with self._state_lock:
+            if topic not in self._inspected:
+                inspected = InspectedTopic(topic, type_name)
+                inspected.subscription = self.create_subscription(
+                    import_type(type_name, 'msg'), topic,
+                    lambda message: self._on_inspected(inspected, message), qos)
+                self._inspected[topic] = inspected
+            return self._inspected[topic]
+
+    def _on_inspected(self, inspected: InspectedTopic, message: Any) -> None:
+        with self._state_lock:
+            inspected.count += 1
+            inspected.latest = message
+            inspected.rate.add(time.monotonic())
+            inspected.fresh = True
+
+    def _inspection(self, inspected: InspectedTopic) -> dict[str, Any]:
+        """What the inspector shows of a topic now."""
+        now = time.monotonic()
+        with self._state_lock:
+            latest, count, rate = inspected.latest, inspected.count, inspected.rate.rate(now)
+            inspected.fresh, inspected.pushed = False, now
+        endpoints = {side: [endpoint_summary(endpoint_to_dict(info)) for info in infos] for side, infos in (
+            ('publishers', self.get_publishers_info_by_topic(inspected.topic)),
+            ('subscribers', self.get_subscriptions_info_by_topic(inspected.topic)))}
+        return {'topic': inspected.topic, 'type': inspected.type_name, 'count': count,
+                'rate': None if rate is None else round(rate, 2),
+                'message': None if latest is None else message_summary(latest), **endpoints}
+
+    def _push_inspected_topics(self) -> None:
+        now = time.monotonic()
+        with self._state_lock:
+            due = [(inspected, list(inspected.watchers)) for inspected in self._inspected.values()
+                   if inspected.fresh or now - inspected.pushed >= INSPECTOR_REFRESH]
+        for inspected, watchers in due:
+            state = self._inspection(inspected)
+            for watcher in watchers:
+                watcher.send(state)
 
     def _report_silent_feeds(self) -> None:
         now = time.monotonic()

@@ -254,6 +254,7 @@ async function drawGraph(graph) {
   for (const box of laid.children) {
     const kind = box.id in topics ? 'topic' : 'node';
     const group = svg('g', { 'data-id': box.id, 'data-kind': kind });
+    if (box.id === window.rqtInspector.topic && inspectorSubscription !== null) group.classList.add('inspected');
     group.append(svg('title', {}, kind === 'topic' ? `${box.id} [${topics[box.id].join(', ')}]` : box.id));
     if (kind === 'node') {
       group.append(svg('ellipse', { class: 'node', cx: box.x + box.width / 2, cy: box.y + box.height / 2,
@@ -328,7 +329,63 @@ function stopWatchingGraph() {
 
 $('graph-hide-debug').addEventListener('change', watchGraph);
 $('graph-hide-leaf').addEventListener('change', watchGraph);
-tabs['node-graph'] = { enter: watchGraph, leave: stopWatchingGraph };
+tabs['node-graph'] = { enter: watchGraph, leave: () => { stopWatchingGraph(); stopInspecting(); } };
+
+// ---- Topic inspector: a topic's last message, rate, publishers and subscribers with their QoS ----
+let inspectorSubscription = null;
+window.rqtInspector = { topic: null, state: null, updates: 0 };  // what a test reads
+
+function endpointRows(table, caption, endpoints) {
+  const head = `<caption>${caption} (${endpoints.length})</caption>`
+    + '<tr><th>node</th><th>reliability</th><th>durability</th><th>liveliness</th></tr>';
+  table.innerHTML = head;
+  for (const endpoint of endpoints) {
+    const row = table.insertRow();
+    for (const key of ['node', 'reliability', 'durability', 'liveliness']) {
+      row.insertCell().textContent = String(endpoint[key]);
+    }
+  }
+}
+
+function showInspection(state) {
+  window.rqtInspector.state = state;
+  window.rqtInspector.updates += 1;
+  $('inspected-type').textContent = state.type;
+  $('inspected-rate').textContent = state.rate === null
+    ? `${state.count} messages, none in the last seconds` : `${state.rate.toFixed(1)} Hz, ${state.count} messages`;
+  endpointRows($('inspected-publishers'), 'Publishers', state.publishers);
+  endpointRows($('inspected-subscribers'), 'Subscribers', state.subscribers);
+  $('inspected-message').textContent = state.message === null ? 'No message yet.'
+    : JSON.stringify(state.message, null, 2);
+}
+
+function inspect(topic) {
+  stopInspecting();
+  window.rqtInspector = { topic, state: null, updates: 0 };
+  $('topic-inspector').hidden = false;
+  $('inspected-topic').textContent = topic;
+  for (const id of ['inspected-type', 'inspected-rate', 'inspected-message']) $(id).textContent = '';
+  showError('inspector-error');
+  for (const group of document.querySelectorAll('#graph-svg g.inspected')) group.classList.remove('inspected');
+  document.querySelector(`#graph-svg g[data-id="${CSS.escape(topic)}"]`)?.classList.add('inspected');
+  inspectorSubscription = socket.subscribe('topic', { topic }, showInspection,
+                                           (error) => showError('inspector-error', error));
+}
+
+function stopInspecting() {
+  if (inspectorSubscription !== null) socket.unsubscribe(inspectorSubscription);
+  inspectorSubscription = null;
+}
+
+$('graph-svg').addEventListener('click', (event) => {
+  const group = event.target.closest('g[data-kind=topic]');
+  if (group) inspect(group.dataset.id);
+});
+$('inspector-close').addEventListener('click', () => {
+  stopInspecting();
+  $('topic-inspector').hidden = true;
+  for (const group of document.querySelectorAll('#graph-svg g.inspected')) group.classList.remove('inspected');
+});
 
 // ---- Message Publisher ----------------------------------------------------------------------
 

@@ -5,7 +5,7 @@ import sys
 import time
 from typing import TYPE_CHECKING, Any
 
-from owl_common.graph import expand_topic_name
+from owl_common.graph import expand_topic_name, matching_policies
 
 from ros2cli.api.topic import (
     RECEIVE_DEPTH,
@@ -58,7 +58,7 @@ def add_message_output_arguments(parser: argparse.ArgumentParser, with_field: bo
 def choose_qos(args: argparse.Namespace, publishers: list[dict[str, Any]]) -> 'QoSProfile':
     """Explicit policies win; otherwise match the publishers (reliable/durable only if all are)."""
     # Lazy: rclpy is slow to import, and `ros2 topic -h` imports this module.
-    from rclpy.qos import QoSDurabilityPolicy, QoSReliabilityPolicy
+    from rclpy.qos import DurabilityPolicy, ReliabilityPolicy
 
     profile = profile_from_args(args)
     if has_overrides(args):
@@ -68,20 +68,13 @@ def choose_qos(args: argparse.Namespace, publishers: list[dict[str, Any]]) -> 'Q
     profile.depth = max(profile.depth, RECEIVE_DEPTH)
     if not publishers:
         return profile
-    reliable = sum(p['reliability'] == 'RELIABLE' for p in publishers)
-    durable = sum(p['durability'] == 'TRANSIENT_LOCAL' for p in publishers)
-    if reliable == len(publishers):
-        profile.reliability = QoSReliabilityPolicy.RELIABLE
-    else:
-        if reliable:
-            print(RELIABLE_FALLBACK)
-        profile.reliability = QoSReliabilityPolicy.BEST_EFFORT
-    if durable == len(publishers):
-        profile.durability = QoSDurabilityPolicy.TRANSIENT_LOCAL
-    else:
-        if durable:
-            print(DURABLE_FALLBACK)
-        profile.durability = QoSDurabilityPolicy.VOLATILE
+    reliability, durability = matching_policies(publishers)
+    if reliability == 'BEST_EFFORT' and any(p['reliability'] == 'RELIABLE' for p in publishers):
+        print(RELIABLE_FALLBACK)
+    if durability == 'VOLATILE' and any(p['durability'] == 'TRANSIENT_LOCAL' for p in publishers):
+        print(DURABLE_FALLBACK)
+    profile.reliability = ReliabilityPolicy[reliability]
+    profile.durability = DurabilityPolicy[durability]
     return profile
 
 
