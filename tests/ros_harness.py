@@ -7,7 +7,9 @@ node in the same private domain, spun by a background thread.
 
 from __future__ import annotations
 
+import shutil
 import sys
+import tempfile
 import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
@@ -104,6 +106,9 @@ class RosHarness(RosSandbox):
         # test gives them a folder: a suite's turtlesims and cameras would fill the user's own folder,
         # which `owl windows` shows, and spend the machine on frames nobody sees.
         self.env['OWL_WINDOWS_DIR'] = ''
+        # The robot view's recordings go to a folder of the test's, not the user's ~/owl_recordings.
+        self.recordings = Path(tempfile.mkdtemp(prefix='owl-recordings-'))
+        self.env['OWL_RECORDINGS'] = str(self.recordings)
         self._probe: Probe | None = None
 
     @property
@@ -121,6 +126,7 @@ class RosHarness(RosSandbox):
     def close(self) -> None:
         self.close_probe()
         super().close()
+        shutil.rmtree(self.recordings, ignore_errors=True)
 
     @contextmanager
     def turn(self) -> Iterator[RosHarness]:

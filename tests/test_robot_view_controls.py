@@ -471,6 +471,48 @@ def test_gains_set_elsewhere_show_on_the_page(ros, kit_and_view, page):
     assert page.input_value(f'{servo_row("pan")} input.kp') == '7.5'
 
 
+def test_record_makes_a_bag_of_the_plotted_topics_and_draws_it_under_the_live_plots(ros, kit_and_view, page):
+    open_page(kit_and_view, page)
+    row = servo_row('pan')
+    click_and_wait_for_answer(page, f'{row} input.torque')
+    record = page.locator('#record')
+    record.click()
+    page.wait_for_function('() => window.robotView.plots.recording !== null', timeout=30_000)
+    assert record.get_attribute('aria-pressed') == 'true'
+    assert page.inner_text('#recording').startswith(f'recording the servos and the IMU into {ros.recordings}')
+    # a step to record: pi/2 from 0, reached
+    click_and_wait_for_answer(page, f'{row} button.goal[data-goal="1.57"]')
+    wait_until(lambda: status_line(page).startswith('pan: goal 1.57 rad reached in '), 10, 'the goal reached')
+    record.click()
+    page.wait_for_function('() => window.robotView.plots.lastRecording !== null', timeout=30_000)
+    summary = page.evaluate('window.robotView.plots.recordAnswers.at(-1).result')
+    # the bag as `ros2 bag record` writes it: joints at 100 Hz, the page's goal, the IMU
+    assert summary['topics']['/olive/servo/pan/joint'] > 50, summary
+    assert summary['topics']['/olive/servo/pan/goal/position'] >= 1, summary
+    assert summary['topics'][IMU_TOPIC] > 50, summary
+    info = ros.command(['ros2', 'bag', 'info', summary['folder']])
+    assert info.wait(30) == 0, info.output
+    assert '/olive/servo/pan/joint' in info.output
+    assert page.inner_text('#recording').startswith(f"recorded {summary['messages']} messages in ")
+    # drawn faintly under the live plot: the recorded step lies on the live plot's last step
+    page.wait_for_function('() => window.robotView.plotted("pan").recorded.some((v) => v !== null)',
+                           timeout=5_000)
+    page.screenshot_to('robot_view_recording', full_page=True)
+
+    # bad record commands: one line each, nothing recorded
+    with PageSocket(kit_and_view.url) as page_socket:
+        for message, error in [({'type': 'command', 'id': 1, 'name': 'record', 'on': 'yes'},
+                                '"on" must be true or false, got "yes"'),
+                               ({'type': 'command', 'id': 2, 'name': 'record'}, "missing key 'on'"),
+                               ({'type': 'command', 'id': 3, 'name': 'record', 'on': False},
+                                'not recording: there is nothing to stop')]:
+            page_socket.send(message)
+            answer = page_socket.receive()
+            assert answer['type'] == 'error', (answer, error)
+            assert answer['error'].startswith(error), (answer, error)
+    assert [path.name for path in ros.recordings.iterdir()] == [Path(summary['folder']).name]
+
+
 def yaw_of(q: Any) -> float:
     return math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z))
 

@@ -8,6 +8,7 @@ simulated IMU's true_orientation, and "set_gains", "torque" and "goal" on the se
 
 from __future__ import annotations
 
+import datetime
 import json
 import math
 import threading
@@ -58,6 +59,7 @@ from robot_view.kit_state import (
     silences,
 )
 from robot_view.plot_window import PlotWindow, PushCursor, sample_time
+from robot_view.recording import BagRecording, record_request, recordings_folder
 
 CAMERA_NODE = f"/{node_name('camera', CAMERA_NAMESPACE)}"
 SCENE_TOPIC = f'{CAMERA_NODE}/scene'  # the simulated camera's ball and person (scene:=ball or person)
@@ -81,8 +83,11 @@ class RobotViewNode(Node):
         self._lock = threading.Lock()
         # 'kit' is what runs of the kit and what steers it (kit_presence), None until the first look
         # 'silent': module -> whole seconds since its last message, for those silent (kit_state.silences)
+        # 'recording': the folder of the bag being recorded (the Record button), None when not recording
         self._state: dict[str, Any] = {'pan': None, 'tilt': None, 'imu': None, 'scene': None, 'kit': None,
-                                       'silent': {}}
+                                       'silent': {}, 'recording': None}
+        self._recording: BagRecording | None = None
+        self._recording_lock = threading.Lock()  # one start or stop at a time (each takes seconds)
         self._heard: dict[str, float] = {}  # module -> when its last message came (time.monotonic)
         self._kit_watchers: set[Subscription] = set()
         self._camera_watchers: set[Subscription] = set()
@@ -140,6 +145,7 @@ class RobotViewNode(Node):
         server.command('torque', self._torque)
         server.command('goal', self._goal)
         server.command('place_ball', self._place_ball)
+        server.command('record', self._record)
 
     # ---- the page's commands (each runs in a worker thread of the web server) ---------------
 
@@ -159,6 +165,33 @@ class RobotViewNode(Node):
             torque = self._servos[servo]['torque']
             steered_by = self._state['kit']['steered'][servo] if self._state['kit'] else []
         return goal_outcome(servo, torque, steered_by)
+
+    def _record(self, arguments: dict[str, Any]) -> dict[str, Any]:
+        """Start `ros2 bag record` of the plotted topics, or stop it: the folder, or what the bag holds."""
+        on = record_request(arguments)
+        with self._recording_lock:
+            if on == (self._recording is not None):
+                raise ApiError(409, f"already recording into {self._recording.folder}: stop it first"
+                               if self._recording is not None else 'not recording: there is nothing to stop')
+            if on:
+                self._recording = BagRecording(recordings_folder(), datetime.datetime.now())
+                result: dict[str, Any] = {'folder': str(self._recording.folder)}
+            else:
+                assert self._recording is not None
+                recording, self._recording = self._recording, None
+                result = recording.stop()
+        with self._lock:
+            self._state['recording'] = result['folder'] if on else None
+        self._push_state()
+        return result
+
+    def destroy_node(self) -> None:
+        """Finish a recording still running, so its bag is whole; then destroy the node as rclpy does."""
+        with self._recording_lock:
+            if self._recording is not None:
+                self._recording.process.stop()
+                self._recording = None
+        super().destroy_node()
 
     def _require_running(self, servo: str) -> None:
         """An ApiError saying why a command to the servo cannot act, when it sends no joint states."""

@@ -3,7 +3,8 @@
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
 import {
-  MIN_STEP, alignedRanges, columnsCsv, emptyColumns, mergeBatch, plotData, stepMeasurements,
+  MIN_STEP, alignedRanges, columnsCsv, emptyColumns, mergeBatch, plotData, recordedOverlay, recordingOf,
+  stepMeasurements,
 } from '../robot_view/static/plot_data.js';
 
 const rows = (from, to, step = 1) => {
@@ -109,4 +110,22 @@ test('CSV: a header and a row per bucket, t from the first row, an empty cell fo
   assert.equal(columnsCsv({ t: [1764705600.5, 1764705600.52], pan_goal: [1.57, 1.57], pan_position: [0.2, null] }),
                't,unix_time,pan_goal,pan_position\n0,1764705600.5,1.57,0.2\n0.02,1764705600.52,1.57,\n');
   assert.equal(columnsCsv({ t: [], pan_goal: [] }), 't,unix_time,pan_goal\n');
+});
+
+test('a recording lies under the live plot with both last goal steps lined up', () => {
+  // recorded: a step at -2 s of its own end, the position reaching 1 a second later
+  const recorded = { x: [-3, -2.5, -2, -1.5, -1, -0.5, 0], goal: [0, 0, 1, 1, 1, 1, 1],
+                     position: [0, 0, 0, 0.5, 1, 1, 1] };
+  // live: the same step at -4 s
+  const liveX = [-5, -4.5, -4, -3.5, -3, -2.5];
+  const overlay = recordedOverlay(liveX, [0, 0, 1, 1, 1, 1], [0, 0, 0, 0.2, 0.4, 0.6], recorded);
+  assert.deepEqual(overlay, [0, 0, 0, 0.5, 1, 1]);
+  // no step in the live plot: end on end; nothing recorded there: null
+  assert.deepEqual(recordedOverlay([-1, 0, 5], [0, 0, 0], [0, 0, 0], recorded), [1, 1, null]);
+  assert.deepEqual(recordedOverlay([0], [0], [0], null), [null]);
+});
+
+test('a recording is the rows between two times, x before its end', () => {
+  const columns = { t: [10, 10.5, 11, 11.5], pan_goal: [0, 1, 1, 1], pan_position: [0, 0.2, 0.9, 1] };
+  assert.deepEqual(recordingOf(columns, 'pan', 10.5, 11.2), { x: [-0.5, 0], goal: [1, 1], position: [0.2, 0.9] });
 });

@@ -25,4 +25,4 @@ def test_plot_data_functions():
     result = subprocess.run([node, '--test', '--test-reporter=tap', str(TEST_FILE)], capture_output=True,
                             text=True, timeout=60, check=False)
     assert result.returncode == 0, result.stdout + result.stderr
-    assert '# pass 10' in result.stdout, result.stdout
+    assert '# pass 12' in result.stdout, result.stdout

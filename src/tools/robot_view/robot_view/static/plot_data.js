@@ -118,6 +118,40 @@ export function stepMeasurements(times, goals, positions, band = 0.02) {
   };
 }
 
+// The last recording's position under a live plot: each live x (s before the newest row) gets the
+// recorded position at the same time after its last goal step as the live plot's last goal step, so
+// two tunings' responses to a step lie on each other; with no step in either, at the same time
+// before the end. recorded: {x, goal, position}, x in s before the recording's end. null where the
+// recording has no sample within tolerance (s) of that time.
+export function recordedOverlay(liveX, liveGoals, livePositions, recorded, tolerance = 0.05) {
+  if (!recorded || !recorded.x.length) return liveX.map(() => null);
+  const live = stepMeasurements(liveX, liveGoals, livePositions);
+  const past = stepMeasurements(recorded.x, recorded.goal, recorded.position);
+  const offset = live && past ? past.time - live.time : 0;
+  const times = recorded.x;
+  return liveX.map((x) => {
+    const wanted = x + offset;
+    let low = 0;
+    let high = times.length - 1;
+    while (low < high) {  // the first sample at or after wanted
+      const middle = (low + high) >> 1;
+      if (times[middle] < wanted) low = middle + 1; else high = middle;
+    }
+    const nearest = low > 0 && Math.abs(times[low - 1] - wanted) < Math.abs(times[low] - wanted) ? low - 1 : low;
+    return Math.abs(times[nearest] - wanted) <= tolerance ? recorded.position[nearest] : null;
+  });
+}
+
+// A recording's rows of one servo from the page's columns between two times (s since the epoch, as
+// columns.t): {x, goal, position}, x in s before its end.
+export function recordingOf(columns, servo, from, to) {
+  const rows = columns.t.map((time, i) => i).filter((i) => columns.t[i] >= from && columns.t[i] <= to);
+  const end = rows.length ? columns.t[rows[rows.length - 1]] : to;
+  return { x: rows.map((i) => Math.round((columns.t[i] - end) * 1000) / 1000),
+           goal: rows.map((i) => columns[`${servo}_goal`][i]),
+           position: rows.map((i) => columns[`${servo}_position`][i]) };
+}
+
 // The kept columns as CSV: a header row, then one row per bucket; t in seconds from the first row
 // (what a spreadsheet plots against), unix_time the clock's seconds since the epoch; an empty cell
 // where a series had no sample.

@@ -6,13 +6,16 @@
 // settling, error), CSV export of what the page keeps, and the rad and N*m axes sharing their 0.
 import uPlot from 'uplot';
 import {
-  MIN_STEP, WINDOWS, WINDOW_SECONDS, alignedRanges, columnsCsv, emptyColumns, mergeBatch, plotData, stepMeasurements,
+  MIN_STEP, WINDOWS, WINDOW_SECONDS, alignedRanges, columnsCsv, emptyColumns, mergeBatch, plotData, recordedOverlay,
+  recordingOf, stepMeasurements,
 } from './plot_data.js';
 
 const SERVO_SERIES = (servo) => [
   { name: `${servo}_goal`, label: 'goal', stroke: '#6b7280', dash: [6, 4], scale: 'rad' },
   { name: `${servo}_position`, label: 'position', stroke: '#2563eb', scale: 'rad' },
   { name: `${servo}_effort`, label: 'effort', stroke: '#f59e0b', scale: 'Nm' },
+  // the last recording's position, faint, its last goal step under the live one (not a column kept)
+  { name: `${servo}_recorded`, label: 'recorded', stroke: '#93c5fd', dash: [2, 3], scale: 'rad', computed: true },
 ];
 const PLOTS = {
   pan: { title: 'pan servo', series: SERVO_SERIES('pan'), axes: ['rad', 'N·m'] },
@@ -81,7 +84,8 @@ function makePlot(key, spec, xRange, onZoom) {
 }
 
 export function startPlots(socket, view, showError) {
-  const names = Object.values(PLOTS).flatMap((spec) => spec.series.map((s) => s.name));
+  const kept = (spec) => spec.series.filter((s) => !s.computed).map((s) => s.name);
+  const names = Object.values(PLOTS).flatMap(kept);
   let columns = emptyColumns(names);
   let drawn = columns;  // what the plots draw: the live columns, or those of the moment of Pause
   const pauseButton = document.getElementById('pause');
@@ -92,7 +96,11 @@ export function startPlots(socket, view, showError) {
 
   function draw() {
     for (const [key, spec] of Object.entries(PLOTS)) {
-      plots[key].setData(plotData(drawn, spec.series.map((s) => s.name), view.plots.window));
+      const data = plotData(drawn, kept(spec), view.plots.window);
+      if (spec.series.some((s) => s.computed)) {
+        data.push(recordedOverlay(data[0], data[1], data[2], view.plots.lastRecording?.[key]));
+      }
+      plots[key].setData(data);
     }
     for (const servo of ['pan', 'tilt']) showStep(servo);
   }
@@ -158,6 +166,48 @@ export function startPlots(socket, view, showError) {
   }, showError);
 
   pauseButton.addEventListener('click', () => setPaused(!view.plots.paused));
+
+  // Record: `ros2 bag record` of the servos and the IMU (the server runs it); at Stop the page keeps
+  // what it plotted meanwhile as the last recording, drawn faintly under the live servo plots.
+  const recordButton = document.getElementById('record');
+  const recordingLine = document.getElementById('recording');
+  view.plots.recording = null;  // {folder, since: columns' time} while recording
+  view.plots.lastRecording = null;  // {pan: {x, goal, position}, tilt: ...}
+  view.plots.recordAnswers = [];
+  const newest = () => (columns.t.length ? columns.t[columns.t.length - 1] : 0);
+  recordButton.addEventListener('click', () => {
+    const on = view.plots.recording === null;
+    recordButton.disabled = true;
+    recordingLine.textContent = on ? 'starting ros2 bag record…' : 'finishing the bag…';
+    const sent = socket.command('record', { on }, (error, result) => {
+      view.plots.recordAnswers.push({ error, result });
+      recordButton.disabled = false;
+      if (error) {
+        recordingLine.textContent = `refused: ${error}`;
+        recordingLine.classList.add('refused');
+        return;
+      }
+      recordingLine.classList.remove('refused');
+      if (on) {
+        view.plots.recording = { folder: result.folder, since: newest() };
+        recordingLine.textContent = `recording the servos and the IMU into ${result.folder}`;
+      } else {
+        const { since } = view.plots.recording;
+        view.plots.lastRecording = Object.fromEntries(['pan', 'tilt'].map(
+          (servo) => [servo, recordingOf(columns, servo, since, newest())]));
+        view.plots.recording = null;
+        recordingLine.textContent = `recorded ${result.messages} messages in ${result.seconds.toFixed(1)} s to `
+          + `${result.folder} (ros2 bag info, ros2 bag play); drawn faintly under the live plots`;
+        draw();
+      }
+      recordButton.textContent = view.plots.recording ? 'Stop recording' : 'Record';
+      recordButton.setAttribute('aria-pressed', String(view.plots.recording !== null));
+    });
+    if (!sent) {
+      recordButton.disabled = false;
+      recordingLine.textContent = 'not connected: nothing was recorded';
+    }
+  });
 
   for (const seconds of WINDOWS) windowSelect.add(new Option(`${seconds} s`, String(seconds), false,
                                                              seconds === WINDOW_SECONDS));
