@@ -59,7 +59,7 @@ def test_bad_websocket_input_gets_one_line_and_nothing_reaches_the_imu(ros):
             ({'type': 'command', 'id': 4, 'name': 'hold_imu'}, "missing key 'orientation'"),
             ({'type': 'command', 'id': 5, 'name': 'levle'},
              'unknown command "levle" (did you mean \'level\'?); known: goal, hold_imu, level, '
-             'place_ball, set_gains, torque'),
+             'place_ball, record, set_gains, torque'),
             ({'type': 'command', 'id': 6, 'name': 'level', 'now': 1}, "unknown key 'now'; expected: "),
             ('{"type": "command", ', 'malformed JSON in the message: '),
             ({'type': 'comand', 'id': 7}, 'unknown message type "comand" (did you mean \'command\'?)'),

@@ -423,7 +423,7 @@ def test_bad_control_input_gets_one_line_and_reaches_no_servo(ros, kit_and_view,
              '"enabled" must be true or false, got "yes"'),
             ({'type': 'command', 'id': 11, 'name': 'torqe', 'servo': 'pan', 'enabled': True},
              'unknown command "torqe" (did you mean \'torque\'?); known: goal, hold_imu, level, '
-             'place_ball, set_gains, torque'),
+             'place_ball, record, set_gains, torque'),
             ('{"type": "command", "name": "goal", "servo": "pan", "position": ',
              'malformed JSON in the message: '),
             ('{"type": "command", "id": 12, "name": "goal", "servo": "pan", "position": 1, "pad": "'
@@ -483,13 +483,15 @@ def test_record_makes_a_bag_of_the_plotted_topics_and_draws_it_under_the_live_pl
     # a step to record: pi/2 from 0, reached
     click_and_wait_for_answer(page, f'{row} button.goal[data-goal="1.57"]')
     wait_until(lambda: status_line(page).startswith('pan: goal 1.57 rad reached in '), 10, 'the goal reached')
+    batches = page.evaluate('window.robotView.plots.batches')  # and a second more of it (10 batches)
+    page.wait_for_function(f'() => window.robotView.plots.batches >= {batches + 10}', timeout=10_000)
     record.click()
     page.wait_for_function('() => window.robotView.plots.lastRecording !== null', timeout=30_000)
     summary = page.evaluate('window.robotView.plots.recordAnswers.at(-1).result')
     # the bag as `ros2 bag record` writes it: joints at 100 Hz, the page's goal, the IMU
     assert summary['topics']['/olive/servo/pan/joint'] > 50, summary
     assert summary['topics']['/olive/servo/pan/goal/position'] >= 1, summary
-    assert summary['topics'][IMU_TOPIC] > 50, summary
+    assert summary['topics'][IMU_TOPIC] > 20, summary
     info = ros.command(['ros2', 'bag', 'info', summary['folder']])
     assert info.wait(30) == 0, info.output
     assert '/olive/servo/pan/joint' in info.output

@@ -7,6 +7,7 @@ plotted meanwhile, to draw it faintly under the live plots (plot_data.js).
 
 from __future__ import annotations
 
+import contextlib
 import datetime
 import os
 from collections.abc import Mapping
@@ -25,6 +26,9 @@ from robot_view.kit_state import IMU_TOPIC, goal_topic, joint_topic
 # would make a minute's bag hundreds of megabytes).
 RECORDED_TOPICS = (*(topic(servo) for servo in SERVOS for topic in (joint_topic, goal_topic)), IMU_TOPIC)
 START_TIMEOUT = 15.0  # s for `ros2 bag record` to listen (its imports on a loaded machine)
+# s more for it to have subscribed to every topic (a module that does not run never comes: the
+# recording goes on without it, and takes it when it starts)
+SUBSCRIBED_TIMEOUT = 5.0
 STOP_TIMEOUT = 10.0  # s for it to finish the bag after Ctrl-C
 
 
@@ -72,6 +76,8 @@ class BagRecording:
             self.process.stop(STOP_TIMEOUT)
             raise ApiError(500, f"ros2 bag record did not start within {START_TIMEOUT:g} s: "
                                 f"{self.process.tail(1)}") from None
+        with contextlib.suppress(AssertionError):  # the recording starts when all is subscribed
+            self.process.wait_for(r'All requested topics are subscribed', SUBSCRIBED_TIMEOUT)
 
     def stop(self) -> dict[str, Any]:
         """Ctrl-C for `ros2 bag record`, which finishes the bag; what the bag holds."""
