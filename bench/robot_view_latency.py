@@ -13,8 +13,14 @@ robot_view) and the course's imu_control_robot (the head points where the IMU po
   turning, imu_control_robot, servo_sim. Also split where the page's hold_imu reaches DDS.
 - direct (baseline): this process publishes the same 0.2 rad turns on imu_sim's true_orientation:
   everything after robot_view.
+- round trip (what a student sees, issue 57's item 7): in the page, from the pointer event of that
+  mouse move to the first frame whose shown IMU yaw has turned half of the way: page, WebSocket,
+  robot_view, DDS, imu_sim, DDS, robot_view, WebSocket, page. "Turned": SHOWN rad, beyond the IMU's
+  noise (imu_sim turns toward a commanded orientation at most 3 rad/s, as a hand does, so the whole
+  0.2 rad takes 67 ms more). Its baseline: this process publishing the turn on true_orientation until
+  the first IMU message turned as much arrives here (imu_sim's turn-around).
 
-Prints p50, p99 and max of each in ms and the ratio page / direct: what the browser path adds.
+Prints p50, p95, p99 and max of each in ms and the ratios page / direct: what the browser path adds.
 """
 
 from __future__ import annotations
@@ -30,18 +36,20 @@ from geometry_msgs.msg import Quaternion
 from measure import percentile
 from owl_common.probe import Probe
 from owl_common.processes import RosProcess, RosSandbox
-from sensor_msgs.msg import JointState
+from sensor_msgs.msg import Imu, JointState
 
 TESTS = Path(__file__).resolve().parents[1] / 'tests'
 sys.path.insert(0, str(TESTS))  # the browser tests' Chromium set-up: one piece of code for it
 from web_harness import Browser, chromium_missing, free_port  # noqa: E402
 
 TRUE_ORIENTATION = '/olive_imu_x1684267976913_dcm_srv/true_orientation'
+IMU_TOPIC = '/olive/imu/x1684267976913/imu'
 PAN_JOINT = '/olive/servo/pan/joint'
 URL_LINE = r'robot_view: open (http://127\.0\.0\.1:\d+/) in a browser'
 PIXELS = 20  # one drag; the page turns the IMU 0.01 rad a pixel
 TURN = PIXELS * 0.01
 MOVED = 0.01  # rad: the pan servo has moved
+SHOWN = 0.01  # rad: the IMU has turned (its orientation noise is 0.002 rad)
 STARTUP_TIMEOUT = 60.0
 SAMPLE_TIMEOUT = 10.0
 
@@ -52,12 +60,30 @@ class Timings:
     def __init__(self, probe: Probe) -> None:
         self.joints: list[tuple[float, float]] = []
         self.commands: list[float] = []
+        self.yaws: list[tuple[float, float]] = []  # the IMU's (arrival, yaw)
         probe.node.create_subscription(JointState, PAN_JOINT, self._on_joint, 10)
+        probe.node.create_subscription(Imu, IMU_TOPIC, self._on_imu, 10)
         probe.node.create_subscription(
             Quaternion, TRUE_ORIENTATION, lambda _: self.commands.append(time.monotonic()), 10)
 
     def _on_joint(self, joint: JointState) -> None:
         self.joints.append((time.monotonic(), joint.position[0]))
+
+    def _on_imu(self, imu: Imu) -> None:
+        q = imu.orientation
+        yaw = math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y ** 2 + q.z ** 2))
+        self.yaws.append((time.monotonic(), yaw))
+
+    def wait_for_yaw(self, started: float, from_yaw: float) -> float:
+        """Time of the first IMU message after `started` whose yaw turned SHOWN rad from `from_yaw`."""
+        deadline = time.monotonic() + SAMPLE_TIMEOUT
+        while time.monotonic() < deadline:
+            turned = [arrived for arrived, yaw in self.yaws[-50:]
+                      if arrived > started and abs(yaw - from_yaw) > SHOWN]
+            if turned:
+                return turned[0]
+            time.sleep(0.001)
+        raise SystemExit(f'the IMU did not turn within {SAMPLE_TIMEOUT} s')
 
     def wait_for_move(self, started: float, from_position: float) -> float:
         """Time of the first joint message after `started` MOVED away from `from_position`."""
@@ -83,14 +109,33 @@ def yaw_quaternion(yaw: float) -> Quaternion:
     return Quaternion(x=0.0, y=0.0, z=math.sin(yaw / 2), w=math.cos(yaw / 2))
 
 
-def measure_page(page, timings: Timings, samples: int, pause: float) -> tuple[list[float], list[float]]:
-    """Ms from the mouse move to the pan moving, and to robot_view's hold_imu on DDS."""
-    to_moving, to_command = [], []
+# In the page: from the next pointermove's event to the first frame (requestAnimationFrame's time)
+# whose shown IMU (window.robotView.imu, the readout's) has turned SHOWN rad of yaw.
+ROUND_TRIP = f"""() => {{
+  const yaw = ([x, y, z, w]) => Math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z));
+  const before = yaw(window.robotView.imu);
+  const trip = {{ moved: null, shown: null }};
+  window.roundTrip = trip;
+  const once = {{ capture: true, once: true }};
+  addEventListener('pointermove', (event) => {{ trip.moved = event.timeStamp; }}, once);
+  const frame = (time) => {{
+    if (trip.moved !== null && Math.abs(yaw(window.robotView.imu) - before) > {SHOWN}) trip.shown = time;
+    else requestAnimationFrame(frame);
+  }};
+  requestAnimationFrame(frame);
+}}"""
+
+
+def measure_page(page, timings: Timings, samples: int,
+                 pause: float) -> tuple[list[float], list[float], list[float]]:
+    """Ms from the mouse move to the pan moving, to robot_view's hold_imu on DDS, and to the turn shown."""
+    to_moving, to_command, round_trips = [], [], []
     for sample in range(samples):
         start_position = timings.settle(pause)
         grip = page.evaluate('window.robotView.imuOnPage()')
         page.mouse.move(grip['x'], grip['y'])
         page.mouse.down()
+        page.evaluate(ROUND_TRIP)
         commands_before = len(timings.commands)
         started = time.monotonic()
         page.mouse.move(grip['x'] + (PIXELS if sample % 2 == 0 else -PIXELS), grip['y'])
@@ -99,26 +144,31 @@ def measure_page(page, timings: Timings, samples: int, pause: float) -> tuple[li
         to_moving.append((moved - started) * 1000)
         if len(timings.commands) > commands_before:  # the probe heard robot_view's command
             to_command.append((timings.commands[commands_before] - started) * 1000)
-    return to_moving, to_command
+        page.wait_for_function('() => window.roundTrip.shown !== null', timeout=SAMPLE_TIMEOUT * 1000)
+        round_trips.append(page.evaluate('window.roundTrip.shown - window.roundTrip.moved'))
+    return to_moving, to_command, round_trips
 
 
-def measure_direct(probe: Probe, timings: Timings, samples: int, pause: float) -> list[float]:
-    """Ms from publishing a 0.2 rad turn on true_orientation to the pan moving."""
+def measure_direct(probe: Probe, timings: Timings, samples: int,
+                   pause: float) -> tuple[list[float], list[float]]:
+    """Ms from publishing a 0.2 rad turn on true_orientation to the pan moving, and to the IMU turned."""
     publisher = probe.node.create_publisher(Quaternion, TRUE_ORIENTATION, 10)
     publisher.publish(yaw_quaternion(0.0))
-    results = []
+    to_moving, to_imu = [], []
     for sample in range(samples):
         start_position = timings.settle(pause)
+        start_yaw = timings.yaws[-1][1]
         started = time.monotonic()
         publisher.publish(yaw_quaternion(TURN if sample % 2 == 0 else 0.0))
-        results.append((timings.wait_for_move(started, start_position) - started) * 1000)
-    return results
+        to_imu.append((timings.wait_for_yaw(started, start_yaw) - started) * 1000)
+        to_moving.append((timings.wait_for_move(started, start_position) - started) * 1000)
+    return to_moving, to_imu
 
 
 def line(what: str, values: list[float]) -> str:
     """One printed row: p50, p99 and max of values (ms), and how many samples there were."""
-    return (f'{what:<38} p50 {percentile(values, 0.5):6.1f} ms   p99 {percentile(values, 0.99):6.1f} ms   '
-            f'max {max(values):6.1f} ms   ({len(values)} samples)')
+    return (f'{what:<46} p50 {percentile(values, 0.5):6.1f} ms   p95 {percentile(values, 0.95):6.1f} ms   '
+            f'p99 {percentile(values, 0.99):6.1f} ms   max {max(values):6.1f} ms   ({len(values)} samples)')
 
 
 def stop_in_turn(robot: RosProcess, launch: RosProcess) -> None:
@@ -161,9 +211,9 @@ def main() -> int:
             page.wait_for_function('() => window.robotView.pan !== null && window.robotView.imu !== null',
                                    timeout=STARTUP_TIMEOUT * 1000)
             # the baseline first, then the page: both start from a level IMU and the head at rest
-            direct = measure_direct(probe, timings, args.samples, args.pause)
+            direct, direct_imu = measure_direct(probe, timings, args.samples, args.pause)
             page.click('#level')
-            to_moving, to_command = measure_page(page, timings, args.samples, args.pause)
+            to_moving, to_command, round_trips = measure_page(page, timings, args.samples, args.pause)
         finally:
             with ThreadPoolExecutor(1) as pool:  # the nodes stop while Chromium closes
                 pool.submit(stop_in_turn, robot, launch)
@@ -175,6 +225,12 @@ def main() -> int:
     print(line('direct: true_orientation -> pan moving', direct))
     print(f'ratio page / direct: p50 {percentile(to_moving, 0.5) / percentile(direct, 0.5):.2f}x, '
           f'p99 {percentile(to_moving, 0.99) / percentile(direct, 0.99):.2f}x')
+    print(line('page: mouse move -> the turn shown (a frame)', round_trips))
+    print(line('direct: true_orientation -> IMU turned', direct_imu))
+    trip, baseline = round_trips, direct_imu
+    print(f'ratio round trip / direct: p50 {percentile(trip, 0.5) / percentile(baseline, 0.5):.2f}x, '
+          f'p95 {percentile(trip, 0.95) / percentile(baseline, 0.95):.2f}x '
+          '(the target: a round trip p95 under 50 ms on a quiet machine)')
     return 0
 
 
