@@ -3,9 +3,9 @@
 import time
 from collections.abc import Sequence
 
-import rclpy
 from rclpy.client import Client
 from rclpy.duration import Duration
+from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from std_srvs.srv import Trigger
 
@@ -83,10 +83,22 @@ class ServoTorque:
         self.enabled.clear()
 
     def _call(self, clients: dict[str, Client], timeout: float) -> dict[str, Trigger.Response | None]:
-        """Call every client at once; each one's response, or None if it did not come in time."""
+        """Call every client at once; each one's response, or None if it did not come in time.
+
+        The answers are waited for in an executor of their own: the one the node spun in may still
+        hold callbacks made ready before Ctrl-C (an image that leads to a goal), which would run
+        here and send a goal after the torque request (seen in suite runs: the servo warned that it
+        ignored it). A fresh executor waits only on what the node has now.
+        """
         futures = {servo: client.call_async(Trigger.Request()) for servo, client in clients.items()}
         deadline = time.monotonic() + timeout
-        # Short waits: with rclpy's Ctrl-C handler off, Ctrl-C is only seen when a wait returns.
-        while not all(f.done() for f in futures.values()) and time.monotonic() < deadline:
-            rclpy.spin_once(self.node, timeout_sec=0.1)
+        executor = SingleThreadedExecutor(context=self.node.context)
+        executor.add_node(self.node)
+        try:
+            # Short waits: with rclpy's Ctrl-C handler off, Ctrl-C is only seen when a wait returns.
+            while not all(f.done() for f in futures.values()) and time.monotonic() < deadline:
+                executor.spin_once(timeout_sec=0.1)
+        finally:
+            executor.remove_node(self.node)
+            executor.shutdown()
         return {servo: future.result() if future.done() else None for servo, future in futures.items()}
