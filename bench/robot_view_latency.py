@@ -166,7 +166,7 @@ def measure_direct(probe: Probe, timings: Timings, samples: int,
 
 
 def line(what: str, values: list[float]) -> str:
-    """One printed row: p50, p99 and max of values (ms), and how many samples there were."""
+    """One printed row: p50, p95, p99 and max of values (ms), and how many samples there were."""
     return (f'{what:<46} p50 {percentile(values, 0.5):6.1f} ms   p95 {percentile(values, 0.95):6.1f} ms   '
             f'p99 {percentile(values, 0.99):6.1f} ms   max {max(values):6.1f} ms   ({len(values)} samples)')
 

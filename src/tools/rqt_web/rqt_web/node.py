@@ -365,13 +365,17 @@ class RqtWebNode(Node):
             watcher.error(error)
 
     def stop_watching_images(self, watcher: Subscription) -> None:
-        """The page unsubscribed or left; the last one out drops the topic's subscription."""
+        """The page unsubscribed from Image View or left."""
+        self._drop_watcher(self._image_feeds, watcher)
+
+    def _drop_watcher(self, feeds: dict[str, Any], watcher: Subscription) -> None:
+        """A page left topics' feeds (ImageFeed, InspectedTopic); the last one out drops a subscription."""
         with self._state_lock:
-            for topic, feed in list(self._image_feeds.items()):
+            for topic, feed in list(feeds.items()):
                 feed.watchers.discard(watcher)
                 if not feed.watchers:
                     self.destroy_subscription(feed.subscription)
-                    del self._image_feeds[topic]
+                    del feeds[topic]
 
     def _image_feed(self, wanted: Any) -> ImageFeed:
         topic = api_input.name(wanted, 'topic')
@@ -435,13 +439,8 @@ class RqtWebNode(Node):
         watcher.send(self._inspection(inspected))
 
     def stop_inspecting(self, watcher: Subscription) -> None:
-        """The page closed the inspector or left; the last one out drops the topic's subscription."""
-        with self._state_lock:
-            for topic, inspected in list(self._inspected.items()):
-                inspected.watchers.discard(watcher)
-                if not inspected.watchers:
-                    self.destroy_subscription(inspected.subscription)
-                    del self._inspected[topic]
+        """The page closed the inspector or left."""
+        self._drop_watcher(self._inspected, watcher)
 
     def _inspected_topic(self, wanted: Any) -> InspectedTopic:
         topic = api_input.name(wanted, 'topic')
