@@ -20,6 +20,7 @@ from diagnostic_msgs.msg import DiagnosticStatus
 from geometry_msgs.msg import Quaternion
 from olive_kit.description import CAMERA_NAMESPACE, node_name
 from owl_common import quaternion
+from owl_common.graph import full_node_name
 from owl_common.polled_subscription import PolledSubscription
 from owl_web.codec import ApiError
 from owl_web.server import Subscription, WebServer
@@ -340,7 +341,7 @@ class RobotViewNode(Node):
     def _goal_publisher_nodes(self, servo: str) -> list[str]:
         """The nodes other than this one that publish the servo's goals, by their full names."""
         own = self.get_fully_qualified_name()
-        names = (('/' + '/'.join(part for part in (info.node_namespace.strip('/'), info.node_name) if part))
+        names = (full_node_name(info.node_namespace, info.node_name)
                  for info in self.get_publishers_info_by_topic(goal_topic(servo)))
         return [name for name in names if name != own]
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 from collections import deque
 from typing import Any
 
+from owl_common.graph import full_node_name
 from owl_web.codec import json_safe
 
 RATE_WINDOW = 5.0  # s of arrivals a rate is measured over
@@ -69,6 +70,6 @@ def endpoint_summary(endpoint: dict[str, Any]) -> dict[str, Any]:
     The policies discovery tells of another node's endpoint: its history and depth it does not (as
     `ros2 topic info -v` says, UNKNOWN), so they are left out.
     """
-    namespace = endpoint['node_namespace'].rstrip('/')
-    return {'node': f"{namespace}/{endpoint['node_name']}", 'reliability': endpoint['reliability'],
+    return {'node': full_node_name(endpoint['node_namespace'], endpoint['node_name']),
+            'reliability': endpoint['reliability'],
             'durability': endpoint['durability'], 'liveliness': endpoint['liveliness']}
