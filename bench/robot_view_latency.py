@@ -111,15 +111,29 @@ def yaw_quaternion(yaw: float) -> Quaternion:
 
 # In the page: from the next pointermove's event to the first frame (requestAnimationFrame's time)
 # whose shown IMU (window.robotView.imu, the readout's) has turned SHOWN rad of yaw.
+# Also when the turned IMU arrived in the page (the kit state setting robotView.imu): the split between
+# the way there and back and the wait for a frame.
 ROUND_TRIP = f"""() => {{
   const yaw = ([x, y, z, w]) => Math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z));
-  const before = yaw(window.robotView.imu);
-  const trip = {{ moved: null, shown: null }};
+  const view = window.robotView;
+  const before = yaw(view.imu);
+  const trip = {{ moved: null, arrived: null, shown: null }};
   window.roundTrip = trip;
+  let imu = view.imu;
+  Object.defineProperty(view, 'imu', {{
+    configurable: true,
+    get: () => imu,
+    set: (value) => {{
+      imu = value;
+      if (trip.moved !== null && trip.arrived === null && value && Math.abs(yaw(value) - before) > {SHOWN}) {{
+        trip.arrived = performance.now();
+      }}
+    }},
+  }});
   const once = {{ capture: true, once: true }};
   addEventListener('pointermove', (event) => {{ trip.moved = event.timeStamp; }}, once);
   const frame = (time) => {{
-    if (trip.moved !== null && Math.abs(yaw(window.robotView.imu) - before) > {SHOWN}) trip.shown = time;
+    if (trip.moved !== null && Math.abs(yaw(view.imu) - before) > {SHOWN}) trip.shown = time;
     else requestAnimationFrame(frame);
   }};
   requestAnimationFrame(frame);
@@ -127,9 +141,9 @@ ROUND_TRIP = f"""() => {{
 
 
 def measure_page(page, timings: Timings, samples: int,
-                 pause: float) -> tuple[list[float], list[float], list[float]]:
-    """Ms from the mouse move to the pan moving, to robot_view's hold_imu on DDS, and to the turn shown."""
-    to_moving, to_command, round_trips = [], [], []
+                 pause: float) -> tuple[list[float], list[float], list[float], list[float]]:
+    """Ms from the mouse move: to the pan moving, hold_imu on DDS, the turn shown, the turn in the page."""
+    to_moving, to_command, round_trips, arrivals = [], [], [], []
     for sample in range(samples):
         start_position = timings.settle(pause)
         grip = page.evaluate('window.robotView.imuOnPage()')
@@ -145,8 +159,11 @@ def measure_page(page, timings: Timings, samples: int,
         if len(timings.commands) > commands_before:  # the probe heard robot_view's command
             to_command.append((timings.commands[commands_before] - started) * 1000)
         page.wait_for_function('() => window.roundTrip.shown !== null', timeout=SAMPLE_TIMEOUT * 1000)
-        round_trips.append(page.evaluate('window.roundTrip.shown - window.roundTrip.moved'))
-    return to_moving, to_command, round_trips
+        trip = page.evaluate('window.roundTrip')
+        round_trips.append(trip['shown'] - trip['moved'])
+        if trip['arrived'] is not None:
+            arrivals.append(trip['arrived'] - trip['moved'])
+    return to_moving, to_command, round_trips, arrivals
 
 
 def measure_direct(probe: Probe, timings: Timings, samples: int,
@@ -213,7 +230,8 @@ def main() -> int:
             # the baseline first, then the page: both start from a level IMU and the head at rest
             direct, direct_imu = measure_direct(probe, timings, args.samples, args.pause)
             page.click('#level')
-            to_moving, to_command, round_trips = measure_page(page, timings, args.samples, args.pause)
+            to_moving, to_command, round_trips, arrivals = measure_page(
+                page, timings, args.samples, args.pause)
         finally:
             with ThreadPoolExecutor(1) as pool:  # the nodes stop while Chromium closes
                 pool.submit(stop_in_turn, robot, launch)
@@ -226,6 +244,8 @@ def main() -> int:
     print(f'ratio page / direct: p50 {percentile(to_moving, 0.5) / percentile(direct, 0.5):.2f}x, '
           f'p99 {percentile(to_moving, 0.99) / percentile(direct, 0.99):.2f}x')
     print(line('page: mouse move -> the turn shown (a frame)', round_trips))
+    if arrivals:
+        print(line('  of which: mouse move -> turned IMU in the page', arrivals))
     print(line('direct: true_orientation -> IMU turned', direct_imu))
     trip, baseline = round_trips, direct_imu
     print(f'ratio round trip / direct: p50 {percentile(trip, 0.5) / percentile(baseline, 0.5):.2f}x, '
