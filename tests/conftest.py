@@ -25,6 +25,7 @@ os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
 os.environ['OWL_PAGES_DIR'] = tempfile.mkdtemp(prefix='owl-test-pages-')
 os.environ['OWL_FRONT_DOOR'] = 'off'
 
+import gates
 import suite_report
 from gates import prerequisite_missing
 from owl_common.processes import LEASE_DIR, try_lock_file
@@ -205,8 +206,9 @@ STACKS_AT_TIMEOUT: IO[str] | None = None
 
 def pytest_configure(config: pytest.Config) -> None:
     global IN_WORKER, STACKS_AT_TIMEOUT
-    if not config.pluginmanager.has_plugin('suite_report'):  # for every test of the run, src/'s too
-        config.pluginmanager.register(suite_report, 'suite_report')
+    for plugin in (suite_report, gates):  # for every test of the run, src/'s too
+        if not config.pluginmanager.has_plugin(plugin.__name__):
+            config.pluginmanager.register(plugin, plugin.__name__)
     IN_WORKER = hasattr(config, 'workerinput')
     if not IN_WORKER:
         shutil.rmtree(RERUN_REPORTS, ignore_errors=True)  # this run's reports only

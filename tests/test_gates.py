@@ -7,6 +7,7 @@ import sys
 from pathlib import Path
 
 import pytest
+from gates import ALLOWED_IN_CI
 
 ROOT = Path(__file__).resolve().parents[1]
 PREREQS = ROOT / 'scripts' / 'test_prereqs.sh'
@@ -33,6 +34,56 @@ def test_a_missing_prerequisite_skips_here_and_fails_in_ci(tmp_path: Path, ci: b
                              '-p', 'no:randomly', str(tmp_path / 'test_needs.py')],
                             cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120)
     assert outcome in result.stdout, result.stdout + result.stderr
+
+
+def run_in_a_suite(tmp_path: Path, test_source: str, ci: bool) -> str:
+    """The output of pytest with our settings (pyproject.toml) and the gate over one test file in tmp_path."""
+    (tmp_path / 'test_one.py').write_text('import pytest\n\n' + test_source)
+    env = without_ci(**({'CI': 'true'} if ci else {}))
+    result = subprocess.run([sys.executable, '-m', 'pytest', '-c', str(ROOT / 'pyproject.toml'),
+                             '-p', 'gates', '-p', 'no:xdist', '-p', 'no:randomly', '-p', 'no:rerunfailures',
+                             str(tmp_path / 'test_one.py')],
+                            cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120)
+    return result.stdout + result.stderr
+
+
+UNGATED_SKIP = """
+def test_needs_a_frobnicator():
+    pytest.skip('no frobnicator here')
+"""
+UNGATED_SKIPIF = """
+@pytest.mark.skipif(True, reason='no frobnicator here')
+def test_needs_a_frobnicator():
+    pass
+"""
+ALLOWED_SKIP = """
+def test_needs_multicast():
+    pytest.skip('no multicast-capable interface here: [Errno 19] No such device')
+"""
+EXPECTED_FAILURE = """
+@pytest.mark.xfail(reason='a known defect', strict=True)
+def test_a_known_defect():
+    assert False
+"""
+
+
+@pytest.mark.parametrize(('source', 'ci', 'outcome', 'says'), [
+    (UNGATED_SKIP, False, '1 skipped', 'no frobnicator here'),  # -rs: the reason in the summary
+    (UNGATED_SKIP, True, '1 failed', 'skipped in CI: no frobnicator here'),
+    (UNGATED_SKIPIF, True, '1 failed', 'skipped in CI: no frobnicator here'),
+    (ALLOWED_SKIP, True, '1 skipped', 'no multicast-capable interface here'),
+    (EXPECTED_FAILURE, True, '1 xfailed', ''),
+], ids=['skip-here', 'skip-in-ci', 'skipif-in-ci', 'allowed-in-ci', 'xfail-in-ci'])
+def test_in_ci_a_skip_off_the_allow_list_fails_and_its_reason_is_printed(
+        tmp_path: Path, source: str, ci: bool, outcome: str, says: str):
+    output = run_in_a_suite(tmp_path, source, ci)
+    assert outcome in output, output
+    assert says in output, output
+
+
+def test_every_reason_allowed_in_ci_says_why():
+    assert 0 < len(ALLOWED_IN_CI) <= 5
+    assert all(len(why) > 40 for why in ALLOWED_IN_CI.values()), ALLOWED_IN_CI
 
 
 def machine_without_the_programs(tmp_path: Path) -> Path:
