@@ -167,6 +167,18 @@ if [ "$(cat "$BUILD_STAMP" 2>/dev/null)" != "$src_hash" ]; then
   echo "$layout_hash" >"$LAYOUT_STAMP"
 fi
 
+# --- CONTRIBUTING.md's commit subjects (at most 72 characters): its commit-msg hook, in a git checkout
+# that has none of its own (the students' lab is a copy, not a checkout: nothing to do there). ---
+COMMIT_HOOK="$ROOT/scripts/git-hooks/commit-msg"
+if [ "$(git -C "$ROOT" rev-parse --show-toplevel 2>/dev/null)" = "$ROOT" ] \
+  && hooks="$(git -C "$ROOT" rev-parse --path-format=absolute --git-path hooks 2>/dev/null)"; then
+  if [ ! -e "$hooks/commit-msg" ]; then
+    mkdir -p "$hooks" && cp "$COMMIT_HOOK" "$hooks/commit-msg"
+  elif ! cmp -s "$COMMIT_HOOK" "$hooks/commit-msg" && grep -q "Owl Kit Lab's commit-msg hook" "$hooks/commit-msg"; then
+    cp "$COMMIT_HOOK" "$hooks/commit-msg"  # ours, changed since
+  fi
+fi
+
 steps=""
 [ ${#STEP_TIMES[@]} -eq 0 ] || steps=" ($(IFS=,; echo "${STEP_TIMES[*]}" | sed 's/,/, /g'))"
 echo "setup: ready in $((SECONDS - START)) s$steps. Next: 'source env.sh' for the course's commands, 'make demo', 'make test'."

@@ -1,10 +1,14 @@
-"""The repository stays ruff clean, mypy clean (rules in pyproject.toml), free of conflict markers."""
+"""Ruff and mypy clean (rules in pyproject.toml), no conflict markers, commit subjects of 72 at most."""
 
+import itertools
+import os
+import re
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
+from gates import prerequisite_missing
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -63,3 +67,77 @@ def test_a_conflict_left_in_a_file_is_found(tmp_path: Path):
     heading = tmp_path / 'guide.md'
     heading.write_text('Title\n=====\n')
     assert unresolved_conflicts([left, heading]) == [f'{left}:2', f'{left}:4', f'{left}:6']
+
+
+# Commit subjects: at most 72 characters (aim for 50), from this date on; earlier ones are history.
+COMMIT_HOOK = ROOT / 'scripts' / 'git-hooks' / 'commit-msg'
+SUBJECT_LIMIT = 72
+SUBJECT_RULE_SINCE = '2026-12-03T12:00:00+00:00'
+
+
+def git(*arguments: str) -> subprocess.CompletedProcess:
+    return subprocess.run(['git', '-C', str(ROOT), *arguments], capture_output=True, text=True)
+
+
+def test_commit_subjects_since_the_rule_are_at_most_72_characters():
+    listed = git('log', f'--since={SUBJECT_RULE_SINCE}', '--format=%h %s')
+    if listed.returncode != 0:
+        prerequisite_missing(f'no git history here: {listed.stderr.strip()}')
+    long = [line for line in listed.stdout.splitlines() if len(line.split(' ', 1)[1]) > SUBJECT_LIMIT]
+    assert not long, long
+
+
+@pytest.mark.parametrize(('message', 'accepted'), [
+    ('x' * 72 + '\n\nA body line may be as long as it likes, ' + 'y' * 80 + '\n', True),
+    ('# a comment of git, longer than the limit: ' + 'z' * 80 + '\n\n' + 'x' * 50 + '\n', True),
+    ('x' * 73 + '\n', False),
+    ('\n\n' + 'é' * 73 + '\n', False),
+], ids=['72', 'comments-skipped', '73', 'after-blank-lines'])
+def test_the_commit_msg_hook_refuses_a_subject_over_72_characters_in_one_line(tmp_path: Path, message: str,
+                                                                               accepted: bool):
+    (tmp_path / 'COMMIT_EDITMSG').write_text(message)
+    result = subprocess.run([str(COMMIT_HOOK), str(tmp_path / 'COMMIT_EDITMSG')], capture_output=True,
+                            text=True)
+    assert (result.returncode == 0) == accepted, result.stderr
+    if not accepted:
+        [line] = result.stderr.splitlines()
+        assert line.startswith('commit-msg: the subject has 73 characters, at most 72'), line
+    assert (tmp_path / 'COMMIT_EDITMSG').read_text() == message  # the message is kept
+
+
+def test_setup_installed_the_commit_msg_hook():
+    hooks = git('rev-parse', '--path-format=absolute', '--git-path', 'hooks')
+    if hooks.returncode != 0:
+        prerequisite_missing(f'not a git checkout: {hooks.stderr.strip()}')
+    installed = Path(hooks.stdout.strip()) / 'commit-msg'
+    assert installed.read_bytes() == COMMIT_HOOK.read_bytes()
+    assert os.access(installed, os.X_OK)
+
+
+# A new reader's path: the README, CONTRIBUTING.md, the architecture; every relative link on it resolves.
+READERS_PATH = ('README.md', 'CONTRIBUTING.md', 'docs/architecture.md')
+MARKDOWN_LINK = re.compile(r'\]\(([^)\s]+)\)')
+
+
+def dead_links(document: Path) -> list[str]:
+    """The relative links of a Markdown document whose file is missing (web addresses and anchors aside)."""
+    dead = []
+    for target in MARKDOWN_LINK.findall(document.read_text()):
+        if re.match(r'[a-z]+:', target) or target.startswith('#'):
+            continue
+        if not (document.parent / target.split('#', 1)[0]).exists():
+            dead.append(target)
+    return dead
+
+
+def test_the_readers_path_links_on_and_has_no_dead_link():
+    for earlier, later in itertools.pairwise(READERS_PATH):
+        assert later.rsplit('/', 1)[-1] in (ROOT / earlier).read_text(), (earlier, later)
+    for name in READERS_PATH:
+        assert dead_links(ROOT / name) == [], name
+
+
+def test_a_dead_link_is_found(tmp_path: Path):
+    (tmp_path / 'there.md').write_text('')
+    (tmp_path / 'a.md').write_text('[ok](there.md) [web](https://ros.org) [gone](docs/gone.md#x) [top](#a)')
+    assert dead_links(tmp_path / 'a.md') == ['docs/gone.md#x']
