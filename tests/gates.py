@@ -1,7 +1,7 @@
 """Nothing passes untested in CI: a test that cannot run here skips, and in CI (`CI=true`) fails.
 
 On a developer's machine a missing Chromium or Xvfb is one skip line with the install command (the
-run prints every skip's reason, `-rs`). In CI the same test fails, so a green run means it ran.
+run prints every skip's reason, `-rfEs`). In CI the same test fails, so a green run means it ran.
 prerequisite_missing says so in the test itself; as a plugin (tests/conftest.py registers it for
 every test of the run, src/'s too) this module also fails any other skip in CI whose reason is not on
 ALLOWED_IN_CI, whoever wrote it: pytest.skip, skipif, importorskip.
