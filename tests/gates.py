@@ -23,6 +23,9 @@ ALLOWED_IN_CI = {
 }
 
 
+IN_CI_IT_FAILS = 'in CI (CI=true) a test that cannot run fails'
+
+
 def in_ci() -> bool:
     return os.environ.get('CI') == 'true'
 
@@ -30,7 +33,7 @@ def in_ci() -> bool:
 def prerequisite_missing(reason: str) -> NoReturn:
     """Skip the test for reason, or fail it in CI."""
     if in_ci():
-        pytest.fail(f'{reason}; in CI (CI=true) a test that cannot run fails', pytrace=False)
+        pytest.fail(f'{reason}; {IN_CI_IT_FAILS}', pytrace=False)
     pytest.skip(reason)
 
 
@@ -54,6 +57,6 @@ def pytest_runtest_makereport(item: pytest.Item, call: pytest.CallInfo) -> Gener
         reason = skip_reason(report)
         if not allowed_in_ci(reason):
             report.outcome = 'failed'
-            report.longrepr = (f'skipped in CI: {reason}; in CI (CI=true) a test that cannot run fails '
+            report.longrepr = (f'skipped in CI: {reason}; {IN_CI_IT_FAILS} '
                                '(unless its reason is on tests/gates.py ALLOWED_IN_CI, with why)')
     return report

@@ -25,26 +25,25 @@ def without_ci(**extra: str) -> dict[str, str]:
     return env
 
 
-@pytest.mark.parametrize(('ci', 'outcome'), [(False, '1 skipped'), (True, '1 failed')])
-def test_a_missing_prerequisite_skips_here_and_fails_in_ci(tmp_path: Path, ci: bool, outcome: str):
-    (tmp_path / 'test_needs.py').write_text(NEEDS_A_BROWSER)
-    env = without_ci(PYTHONPATH=f'{ROOT / "tests"}{os.pathsep}{os.environ.get("PYTHONPATH", "")}',
-                     **({'CI': 'true'} if ci else {}))
-    result = subprocess.run([sys.executable, '-m', 'pytest', '-q', '-p', 'no:cacheprovider', '-p', 'no:xdist',
-                             '-p', 'no:randomly', str(tmp_path / 'test_needs.py')],
-                            cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120)
-    assert outcome in result.stdout, result.stdout + result.stderr
+def run_in_a_suite(tmp_path: Path, test_source: str, ci: bool, gate: bool = True) -> str:
+    """The output of pytest with our settings (pyproject.toml) over one test file in tmp_path.
 
-
-def run_in_a_suite(tmp_path: Path, test_source: str, ci: bool) -> str:
-    """The output of pytest with our settings (pyproject.toml) and the gate over one test file in tmp_path."""
+    gate: with gates.py as a plugin, as tests/conftest.py registers it; without, only what the test
+    calls of it acts.
+    """
     (tmp_path / 'test_one.py').write_text('import pytest\n\n' + test_source)
     env = without_ci(**({'CI': 'true'} if ci else {}))
     result = subprocess.run([sys.executable, '-m', 'pytest', '-c', str(ROOT / 'pyproject.toml'),
-                             '-p', 'gates', '-p', 'no:xdist', '-p', 'no:randomly', '-p', 'no:rerunfailures',
-                             str(tmp_path / 'test_one.py')],
+                             *(['-p', 'gates'] if gate else []), '-p', 'no:xdist', '-p', 'no:randomly',
+                             '-p', 'no:rerunfailures', str(tmp_path / 'test_one.py')],
                             cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120)
     return result.stdout + result.stderr
+
+
+@pytest.mark.parametrize(('ci', 'outcome'), [(False, '1 skipped'), (True, '1 failed')])
+def test_a_missing_prerequisite_skips_here_and_fails_in_ci(tmp_path: Path, ci: bool, outcome: str):
+    output = run_in_a_suite(tmp_path, NEEDS_A_BROWSER, ci, gate=False)
+    assert outcome in output, output
 
 
 UNGATED_SKIP = """
@@ -68,7 +67,7 @@ def test_a_known_defect():
 
 
 @pytest.mark.parametrize(('source', 'ci', 'outcome', 'says'), [
-    (UNGATED_SKIP, False, '1 skipped', 'no frobnicator here'),  # -rs: the reason in the summary
+    (UNGATED_SKIP, False, '1 skipped', 'no frobnicator here'),  # -rfEs: the reason in the summary
     (UNGATED_SKIP, True, '1 failed', 'skipped in CI: no frobnicator here'),
     (UNGATED_SKIPIF, True, '1 error', 'skipped in CI: no frobnicator here'),  # in set-up: an error
     (ALLOWED_SKIP, True, '1 skipped', 'no multicast-capable interface here'),
