@@ -29,6 +29,7 @@ SHRUNK = {
     'front_door.py': ['--requests', '5', '--messages', '5', '--seconds', '0.5', '--warm-up', '0'],
     'launch_timings.py': ['--repeat', '1'],
     'olive_sim_cpu.py': ['--seconds', '0.3', '--warmup', '0', '--camera-seconds', '0.3'],
+    'owl_check_timings.py': ['--exercises', 'currency_server', '--kit-runs', '1'],
     'robot_view_latency.py': ['--samples', '1', '--pause', '0.3'],
     'robot_view_smoothness.py': ['--seconds', '0.5'],
     'ros2_help.py': ['--runs', '1'],
