@@ -7,6 +7,7 @@ drives the servos; a module whose cable is pulled past its lease is seen again w
 `owl network` reports the good set-up and says what is wrong, with the fix, in broken ones.
 """
 
+import os
 import re
 import subprocess
 import time
@@ -201,6 +202,15 @@ def test_owl_network_refuses_bad_arguments_in_one_line(args, message):
     assert result.returncode == 2
     assert 'Traceback' not in result.stderr
     assert result.stderr.strip().splitlines()[-1] == f'owl network: error: {message}'
+
+
+def test_owl_network_refuses_a_domain_no_node_can_use_in_one_line():
+    result = subprocess.run(['owl', 'network'], capture_output=True, text=True, timeout=60,
+                            env={**os.environ, 'ROS_DOMAIN_ID': '233'})
+    assert result.returncode == 1
+    assert result.stderr == ''
+    assert result.stdout == ("owl network: problem: ROS_DOMAIN_ID is '233'; it must be a number from 0 "
+                             'to 232; fix: export ROS_DOMAIN_ID=0\n')
 
 
 @pytest.mark.parametrize(('args', 'message'), [

@@ -543,6 +543,18 @@ def test_invalid_names_are_one_line(cli, args, fragments):
     assert '.c:' not in line
 
 
+@pytest.mark.parametrize(('domain', 'args'), [
+    ('300', ['topic', 'list']),                  # through the daemon: not domain 0's graph instead
+    ('abc', ['node', 'list', '--no-daemon']),    # a node of its own: not Fast DDS's log lines
+])
+def test_a_domain_no_node_can_use_is_one_line(domain, args):
+    result = subprocess.run(['ros2', *args], env={**os.environ, 'ROS_DOMAIN_ID': domain},
+                            capture_output=True, text=True, timeout=30, check=False)
+    expected = f"ros2: ROS_DOMAIN_ID is '{domain}'; it must be a number from 0 to 232"
+    assert assert_one_line_error(result, expected) == expected
+    assert result.stdout == ''  # nothing of another domain
+
+
 def test_topic_hz_and_bw(graph):
     # All three at once: each mostly waits (for its once-a-second reports, or its grace period).
     hz = graph.command(['ros2', 'topic', 'hz', '/chatter'])

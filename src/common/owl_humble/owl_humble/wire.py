@@ -26,6 +26,7 @@ from cyclonedds.idl.types import uint8
 from cyclonedds.pub import DataWriter, Publisher
 from cyclonedds.sub import DataReader, Subscriber
 from cyclonedds.topic import Topic
+from owl_common.ros_domain import domain_id
 
 DISCOVERY_TYPE = 'rmw_dds_common::msg::dds_::ParticipantEntitiesInfo_'
 SECOND = 1_000_000_000
@@ -50,7 +51,7 @@ def cyclone_config(discovery_range: str, static_peers: list[str]) -> str | None:
 def ros_discovery_settings(environ: dict[str, str] | None = None) -> tuple[int, str, list[str]]:
     """ROS_DOMAIN_ID, ROS_AUTOMATIC_DISCOVERY_RANGE and ROS_STATIC_PEERS as rcl reads them."""
     env = os.environ if environ is None else environ
-    domain = int(env.get('ROS_DOMAIN_ID') or 0)
+    domain = domain_id(env)
     discovery_range = (env.get('ROS_AUTOMATIC_DISCOVERY_RANGE') or 'SUBNET').upper()
     if discovery_range == 'SYSTEM_DEFAULT':
         discovery_range = 'SUBNET'

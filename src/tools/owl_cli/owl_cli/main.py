@@ -10,6 +10,7 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 from olive_kit.description import WINDOWS_PORT, page_catalogue, tool_page
+from owl_common import ros_domain
 from owl_humble.graph_partition import profile_in_effect, profile_protects
 from owl_web.origins import port_number
 
@@ -38,12 +39,11 @@ def read_text(path: str) -> str:
 
 def network(args: argparse.Namespace) -> int:
     """Run `owl network`: gather the facts, print one verdict a line; exit code 0 when all are ok, else 1."""
-    domain_text = os.environ.get('ROS_DOMAIN_ID', '0') or '0'
-    if not domain_text.isdigit() or int(domain_text) > 232:
-        print(f"owl network: problem: ROS_DOMAIN_ID '{domain_text}' is not a domain (0..232); "
-              'fix: export ROS_DOMAIN_ID=0')
+    try:
+        domain_id = ros_domain.domain_id()
+    except ros_domain.DomainIdError as error:
+        print(f'owl network: problem: {error}; fix: export ROS_DOMAIN_ID=0')
         return 1
-    domain_id = int(domain_text)
     interfaces = network_check.interfaces()
     addresses = [*network_check.MODULE_ADDRESSES, network_check.FACTORY_ADDRESS]
     answering = dict.fromkeys(addresses, False)

@@ -6,7 +6,7 @@ JSON at /ros2cli/json, which our own client uses: importing xmlrpc.client (http.
 ssl) took 45 ms of every warm `ros2` call, a third of it.
 """
 
-import os
+from owl_common import ros_domain
 
 BASE_PORT = 11511
 RPC_PATH = '/ros2cli/'
@@ -14,11 +14,14 @@ JSON_PATH = '/ros2cli/json'  # a POST of {"method": name, "params": [...]}
 
 
 def domain_id() -> int:
-    """This shell's ROS_DOMAIN_ID; 0 when it is unset, empty or not a number."""
+    """This shell's ROS domain; RuntimeError, one line `ros2` prints, for a ROS_DOMAIN_ID no node can use.
+
+    Not domain 0 instead: that would show another domain's graph as if it were this shell's.
+    """
     try:
-        return int(os.environ.get('ROS_DOMAIN_ID') or 0)
-    except ValueError:
-        return 0
+        return ros_domain.domain_id()
+    except ros_domain.DomainIdError as error:
+        raise RuntimeError(f'ros2: {error}') from None
 
 
 def daemon_port(domain: int | None = None) -> int:

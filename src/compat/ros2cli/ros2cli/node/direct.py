@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 from owl_common.graph import GraphQueries
 
+from ros2cli.daemon import domain_id
 from ros2cli.node.settle import (
     MOST,
     MOST_COUNTED,
@@ -83,6 +84,7 @@ class DirectNode:
         use_sim_time = bool(getattr(args, 'use_sim_time', False))
         if spin_time is None:
             spin_time = getattr(args, 'spin_time', None)
+        domain_id()  # one line for a domain no node can use, before Fast DDS prints its own log lines
         rclpy.init(args=[])
         # Without the type description service nobody asks this hidden node for: its service type
         # is what would load numpy (service_msgs' fixed array), half of the node's 0.1 s start.

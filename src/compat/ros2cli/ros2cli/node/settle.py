@@ -27,6 +27,8 @@ import os
 from collections.abc import Hashable, Iterator
 from typing import TYPE_CHECKING, Any
 
+from owl_common.ros_domain import domain_id
+
 if TYPE_CHECKING:
     from ros2cli.node.graph import Graph
 
@@ -98,9 +100,9 @@ def local_participants() -> int | None:
     if os.environ.get('ROS_AUTOMATIC_DISCOVERY_RANGE') != 'LOCALHOST' or os.environ.get('ROS_STATIC_PEERS'):
         return None
     try:
-        domain_id = int(os.environ.get('ROS_DOMAIN_ID') or 0)
+        domain = domain_id()
         with open('/proc/net/udp', encoding='ascii') as table:
-            return bound_discovery_ports(domain_id, table.read())
+            return bound_discovery_ports(domain, table.read())
     except (OSError, ValueError):
         return None
 

@@ -10,6 +10,8 @@ import struct
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from owl_common.ros_domain import DomainIdError, domain_id
+
 from ros2doctor.api import DoctorCheck, DoctorReport, Report, Result
 from ros2doctor.api.format import doctor_error, doctor_warn
 
@@ -22,7 +24,6 @@ FLAG_NAMES = {0x1: 'UP', 0x2: 'BROADCAST', 0x8: 'LOOPBACK', 0x10: 'POINTOPOINT',
               0x100: 'PROMISC', 0x1000: 'MULTICAST'}
 LOOPBACK, MULTICAST = 0x8, 0x1000
 RANGES = ('SUBNET', 'LOCALHOST', 'OFF', 'SYSTEM_DEFAULT')
-MAX_DOMAIN_ID = 232  # the highest whose ports fit (Fast DDS's default port base)
 
 
 @dataclass
@@ -85,10 +86,13 @@ def interfaces() -> list[Interface]:
     return found
 
 
-def domain_id_valid() -> bool:
-    """Whether ROS_DOMAIN_ID is unset or one Fast DDS can use (it ends the process on any other)."""
-    domain = os.environ.get('ROS_DOMAIN_ID', '')
-    return not domain or (domain.isdigit() and int(domain) <= MAX_DOMAIN_ID)
+def domain_id_problem() -> str | None:
+    """Why ROS_DOMAIN_ID is one no node can use (Fast DDS ends the process on it), or None when it is fine."""
+    try:
+        domain_id()
+    except DomainIdError as error:
+        return str(error)
+    return None
 
 
 def discovery_settings() -> dict[str, str]:
@@ -133,9 +137,8 @@ class NetworkCheck(DoctorCheck):
             doctor_warn('ROS_LOCALHOST_ONLY is deprecated since Jazzy; use ROS_AUTOMATIC_DISCOVERY_RANGE='
                         'LOCALHOST instead.')
             result.add_warning()
-        if not domain_id_valid():
-            doctor_error(f"ROS_DOMAIN_ID is '{os.environ['ROS_DOMAIN_ID']}'; it must be a number from 0 to "
-                         f'{MAX_DOMAIN_ID}.')
+        if (problem := domain_id_problem()) is not None:
+            doctor_error(f'{problem}.')
             result.add_error()
         return result
 

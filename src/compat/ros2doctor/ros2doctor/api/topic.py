@@ -8,7 +8,7 @@ from typing import Any
 
 from ros2doctor.api import DoctorCheck, DoctorReport, Report, Result
 from ros2doctor.api.format import doctor_error, doctor_warn
-from ros2doctor.api.network import domain_id_valid
+from ros2doctor.api.network import domain_id_problem
 
 # Every node has these; a publisher without subscribers there says nothing.
 ALWAYS_THERE = ('/parameter_events', '/rosout')
@@ -34,7 +34,7 @@ def graph_topics() -> list[TopicEndpoints]:
     # Lazy: rclpy is slow to import, and `ros2 -h` imports the command module.
     from ros2cli.node.direct import DirectNode
 
-    if not domain_id_valid():
+    if domain_id_problem() is not None:
         return []
 
     with DirectNode() as direct:
