@@ -246,15 +246,16 @@ class Session:
         return True
 
     def graph_nodes(self) -> set[bytes]:
-        """The nodes in the graph now, each by its /rosout publisher's id (unique, where names repeat).
+        """The nodes that may be the student's, by their /rosout publisher's id (unique where names repeat).
 
-        By name a student's node started a second time would look old: the first run's node may still
-        be in the graph until discovery notices that it left.
+        By name, a node started a second time looks old while the first run's lingers in the graph.
+        Left out: the kit's, the probe's, `ros2 launch`'s own and hidden ones (a `ros2` daemon's),
+        which discovery may report only after the student's program has started.
         """
         return {
             bytes(info.endpoint_gid)
             for info in self.node.get_publishers_info_by_topic('/rosout')
-            if not info.node_name.startswith('launch_ros_')  # `ros2 launch`'s own node
+            if info.node_name != PROBE_NODE and not info.node_name.startswith(('launch_ros_', '_', 'olive_'))
         }
 
     def endpoints(self, topic: str, kind: str) -> list[TopicEndpointInfo]:
