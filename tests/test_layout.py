@@ -246,3 +246,29 @@ def test_every_page_refers_to_its_files_api_and_websocket_relatively():
              for path in files for number, line in enumerate(path.read_text().splitlines(), 1)
              if ABSOLUTE_REFERENCE.search(line)]
     assert found == []
+
+
+# Where the ROS environment's variables may still be read as raw text: the one reader, and two that
+# need the text as typed (ros2 doctor reports and judges it; the bridge's socket name carries it).
+ROS_ENV_READERS = {
+    'common/owl_common/owl_common/ros_env.py',
+    'compat/ros2doctor/ros2doctor/api/network.py',
+    'common/owl_humble/owl_humble/launcher.py',
+}
+ROS_ENV_READ = re.compile(r"""(environ|env)(\.get\(|\[)['"](ROS_DOMAIN_ID|ROS_AUTOMATIC_DISCOVERY_RANGE|"""
+                          r"""ROS_STATIC_PEERS)['"](?!\]\s*=[^=])""")  # a read, not `environ[...] = ...`
+
+
+def product_modules() -> Iterable[tuple[str, str]]:
+    """(path under src/, text) of every Python module of ours outside the course and the tests."""
+    for path in sorted(SRC.rglob('*.py')):
+        relative = path.relative_to(SRC).as_posix()
+        if not relative.startswith('course/') and '/test/' not in relative:
+            yield relative, path.read_text()
+
+
+def test_the_ros_environment_is_read_in_one_place():
+    readers = {relative for relative, text in product_modules() if ROS_ENV_READ.search(text)}
+    assert readers <= ROS_ENV_READERS, readers - ROS_ENV_READERS  # use owl_common.ros_env instead
+    bounds = {relative for relative, text in product_modules() if re.search(r'\b232\b', text)}
+    assert bounds == {'common/owl_common/owl_common/ros_env.py'}, bounds  # MAX_DOMAIN_ID's one home

@@ -15,6 +15,8 @@ import socket
 import subprocess
 import sys
 
+from owl_common.ros_env import discovery_range, static_peers
+
 
 def bridge_address(environ: dict[str, str] | None = None, local_twin: bool = False) -> str | None:
     """The abstract socket name that the one bridge per user, domain and discovery range holds.
@@ -23,13 +25,13 @@ def bridge_address(environ: dict[str, str] | None = None, local_twin: bool = Fal
     static peers (unless for a local twin).
     """
     env = os.environ if environ is None else environ
-    discovery_range = (env.get('ROS_AUTOMATIC_DISCOVERY_RANGE') or 'SUBNET').upper()
-    peers = env.get('ROS_STATIC_PEERS', '')
-    if discovery_range == 'OFF' or env.get('RMW_IMPLEMENTATION', 'rmw_fastrtps_cpp') != 'rmw_fastrtps_cpp':
+    reach = discovery_range(env)
+    peers = ';'.join(static_peers(env))
+    if reach == 'OFF' or env.get('RMW_IMPLEMENTATION', 'rmw_fastrtps_cpp') != 'rmw_fastrtps_cpp':
         return None
-    if discovery_range == 'LOCALHOST' and not peers.strip() and not local_twin:
+    if reach == 'LOCALHOST' and not peers and not local_twin:
         return None
-    return f'\0owl-discovery-bridge-{os.getuid()}-{env.get("ROS_DOMAIN_ID") or 0}-{discovery_range}-{peers}'
+    return f'\0owl-discovery-bridge-{os.getuid()}-{env.get("ROS_DOMAIN_ID") or 0}-{reach}-{peers}'
 
 
 def ensure_discovery_bridge(environ: dict[str, str] | None = None, local_twin: bool = False) -> bool:

@@ -12,7 +12,6 @@ Fast DDS sends no type information, and Cyclone then matches on the name as well
 
 from __future__ import annotations
 
-import os
 import types
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -26,7 +25,7 @@ from cyclonedds.idl.types import uint8
 from cyclonedds.pub import DataWriter, Publisher
 from cyclonedds.sub import DataReader, Subscriber
 from cyclonedds.topic import Topic
-from owl_common.ros_domain import domain_id
+from owl_common.ros_env import discovery_range, domain_id, static_peers
 
 DISCOVERY_TYPE = 'rmw_dds_common::msg::dds_::ParticipantEntitiesInfo_'
 SECOND = 1_000_000_000
@@ -50,13 +49,7 @@ def cyclone_config(discovery_range: str, static_peers: list[str]) -> str | None:
 
 def ros_discovery_settings(environ: dict[str, str] | None = None) -> tuple[int, str, list[str]]:
     """ROS_DOMAIN_ID, ROS_AUTOMATIC_DISCOVERY_RANGE and ROS_STATIC_PEERS as rcl reads them."""
-    env = os.environ if environ is None else environ
-    domain = domain_id(env)
-    discovery_range = (env.get('ROS_AUTOMATIC_DISCOVERY_RANGE') or 'SUBNET').upper()
-    if discovery_range == 'SYSTEM_DEFAULT':
-        discovery_range = 'SUBNET'
-    peers = [peer.strip() for peer in (env.get('ROS_STATIC_PEERS') or '').split(';') if peer.strip()]
-    return domain, discovery_range, peers
+    return domain_id(environ), discovery_range(environ), static_peers(environ)
 
 
 _opaque_types: dict[str, type] = {}

@@ -10,7 +10,7 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 from olive_kit.description import WINDOWS_PORT, page_catalogue, tool_page
-from owl_common import ros_domain
+from owl_common import ros_env
 from owl_humble.graph_partition import profile_in_effect, profile_protects
 from owl_web.origins import port_number
 
@@ -40,8 +40,8 @@ def read_text(path: str) -> str:
 def network(args: argparse.Namespace) -> int:
     """Run `owl network`: gather the facts, print one verdict a line; exit code 0 when all are ok, else 1."""
     try:
-        domain_id = ros_domain.domain_id()
-    except ros_domain.DomainIdError as error:
+        domain_id = ros_env.domain_id()
+    except ros_env.DomainIdError as error:
         print(f'owl network: problem: {error}; fix: export ROS_DOMAIN_ID=0')
         return 1
     interfaces = network_check.interfaces()
@@ -56,7 +56,7 @@ def network(args: argparse.Namespace) -> int:
     distributions = network_check.olive_nodes(domain_id, args.discovery_time)
     profile = profile_in_effect()
     facts = network_check.NetworkFacts(
-        discovery_range=os.environ.get('ROS_AUTOMATIC_DISCOVERY_RANGE', 'SUBNET') or 'SUBNET',
+        discovery_range=ros_env.discovery_range(),
         domain_id=domain_id, interfaces=interfaces, answering=answering,
         olive_nodes=sorted(distributions), distributions=distributions,
         graph_profile=str(profile) if profile else None,

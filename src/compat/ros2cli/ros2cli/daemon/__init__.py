@@ -6,7 +6,7 @@ JSON at /ros2cli/json, which our own client uses: importing xmlrpc.client (http.
 ssl) took 45 ms of every warm `ros2` call, a third of it.
 """
 
-from owl_common import ros_domain
+from owl_common import ros_env
 
 BASE_PORT = 11511
 RPC_PATH = '/ros2cli/'
@@ -19,8 +19,8 @@ def domain_id() -> int:
     Not domain 0 instead: that would show another domain's graph as if it were this shell's.
     """
     try:
-        return ros_domain.domain_id()
-    except ros_domain.DomainIdError as error:
+        return ros_env.domain_id()
+    except ros_env.DomainIdError as error:
         raise RuntimeError(f'ros2: {error}') from None
 
 

@@ -23,11 +23,10 @@ for QUIET s. A graph that never gets there is answered at MOST s.
 
 from __future__ import annotations
 
-import os
 from collections.abc import Hashable, Iterator
 from typing import TYPE_CHECKING, Any
 
-from owl_common.ros_domain import domain_id
+from owl_common.ros_env import discovery_range, domain_id, static_peers
 
 if TYPE_CHECKING:
     from ros2cli.node.graph import Graph
@@ -97,7 +96,7 @@ def bound_discovery_ports(domain_id: int, proc_net_udp: str) -> int:
 
 def local_participants() -> int | None:
     """Participants of this shell's domain on this machine, or None when others can take part."""
-    if os.environ.get('ROS_AUTOMATIC_DISCOVERY_RANGE') != 'LOCALHOST' or os.environ.get('ROS_STATIC_PEERS'):
+    if discovery_range() != 'LOCALHOST' or static_peers():
         return None
     try:
         domain = domain_id()

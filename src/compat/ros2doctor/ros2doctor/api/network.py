@@ -10,7 +10,7 @@ import struct
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from owl_common.ros_domain import DomainIdError, domain_id
+from owl_common.ros_env import DomainIdError, domain_id
 
 from ros2doctor.api import DoctorCheck, DoctorReport, Report, Result
 from ros2doctor.api.format import doctor_error, doctor_warn
