@@ -91,7 +91,10 @@ Destroyable because destruction was requested" (seen at the end of `ros2 topic e
 Executor.__del__ now leaves a guard condition that is already gone alone, as the guard's own
 __del__ does, and one that was never made: a Ctrl-C in Executor.__init__ (rclpy.spin makes an
 executor; seen once in 20 Ctrl-C of a listing) printed "... AttributeError: 'SingleThreadedExecutor'
-object has no attribute '_sigint_gc'".
+object has no attribute '_sigint_gc'". The SIGINT guard condition's own __del__ likewise skips a
+guard whose __init__ a Ctrl-C cut short before its handle was made (that executor's guard: "...
+AttributeError: 'SignalHandlerGuardCondition' object has no attribute '_GuardCondition__gc'", seen
+once in a suite run, at control_servo's Ctrl-C just as it had enabled the torque).
 
 A Ctrl-C that lands after the executor filed a timer's handler and before it ran leaves that
 handler in the executor's list, and rclpy runs it at the next spin. A clean-up that cancels the
@@ -331,7 +334,7 @@ def in_threading_shutdown(frame: FrameType | None) -> bool:
 def patch_signals(signals: Any) -> None:
     """Patch rclpy.signals: every SIGINT guard condition made is tracked, for wake_executors to trigger.
 
-    Its handler options are kept for rclpy_handles_ctrl_c.
+    Its handler options are kept for rclpy_handles_ctrl_c; a guard left half built is deleted quietly.
     """
     guard_init = signals.SignalHandlerGuardCondition.__init__
 
@@ -341,6 +344,14 @@ def patch_signals(signals: Any) -> None:
         CtrlCAsOnHumble.sigint_guards.add(self)
 
     signals.SignalHandlerGuardCondition.__init__ = init_and_track
+    guard_del = signals.SignalHandlerGuardCondition.__del__
+
+    @wraps(guard_del)
+    def __del__(self: Any) -> None:  # named so that in_code_that_loses_exceptions knows it
+        if '_GuardCondition__gc' in vars(self):  # else a Ctrl-C cut __init__ short: nothing was made
+            guard_del(self)
+
+    signals.SignalHandlerGuardCondition.__del__ = __del__
     RclpyHandlerOptions.current = signals.get_current_signal_handlers_options
     options = signals.SignalHandlerOptions
     RclpyHandlerOptions.with_sigint = frozenset({options.ALL.value, options.SIGINT.value})
