@@ -89,12 +89,19 @@ class Probe(owl_common.probe.Probe):
         return [parameter_value_to_python(v) for v in response.values]
 
 
-def wait_until(condition: Callable[[], object], timeout: float, what: str) -> None:
+def holds_within(condition: Callable[[], object], timeout: float) -> bool:
+    """Whether condition holds within timeout s (looked at every 20 ms)."""
     deadline = time.monotonic() + timeout
     while not condition():
         if time.monotonic() > deadline:
-            raise AssertionError(f'timed out after {timeout} s waiting for {what}')
+            return False
         time.sleep(0.02)
+    return True
+
+
+def wait_until(condition: Callable[[], object], timeout: float, what: str) -> None:
+    if not holds_within(condition, timeout):
+        raise AssertionError(f'timed out after {timeout} s waiting for {what}')
 
 
 class RosHarness(RosSandbox):

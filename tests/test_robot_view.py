@@ -16,12 +16,13 @@ from typing import Any
 import pytest
 from geometry_msgs.msg import Quaternion
 from olive_kit.description import IMU_NAMESPACE
-from ros_harness import wait_until
+from ros_harness import holds_within, wait_until
 from web_harness import PageSocket, free_port
 
 URL_LINE = r'robot_view: open (http://127\.0\.0\.1:\d+/) in a browser \(Ctrl-C to quit\)'
 TRUE_ORIENTATION = f'/olive_imu_{IMU_NAMESPACE}_dcm_srv/true_orientation'
 CAMERA_NODE = '/olive_camera_eye_dcm_srv'
+GOOD_TRIES, GOOD_WAIT = 5, 2.0  # a good command sent until one arrives: times, s for each
 
 
 def start_kit_and_view(ros: Any) -> str:
@@ -77,13 +78,19 @@ def test_bad_websocket_input_gets_one_line_and_nothing_reaches_the_imu(ros):
             assert answer['type'] == 'error', answer
             assert answer['error'].startswith(error), answer
             assert '\n' not in answer['error']
-        # robot_view kept serving: a good command reaches the IMU. Nothing else did: it is robot_view's
-        # first publication there (its publisher numbers them), whether or not the probe got a bad one.
+        # robot_view kept serving: a good command reaches the IMU. Nothing else did: robot_view's
+        # publisher numbers what it publishes there, and every number is one of the good commands.
+        # The probe seeing that publisher does not mean the publisher has matched the probe yet (seen
+        # under load: the one good command was lost to it), so it is sent again until one arrives.
         turn = {'x': 0.0, 'y': 0.0, 'z': math.sin(0.05), 'w': math.cos(0.05)}
-        page_socket.send({'type': 'command', 'id': 'ok', 'name': 'hold_imu', 'orientation': turn})
-        assert page_socket.receive() == {'type': 'done', 'id': 'ok'}
-        wait_until(lambda: any(abs(q.z - turn['z']) < 1e-9 for _, q in held), 10, 'the good one published')
-    assert [number for number, _ in held] == [1], held
+        good_sent = 0
+        while not any(abs(q.z - turn['z']) < 1e-9 for _, q in held) and good_sent < GOOD_TRIES:
+            good_sent += 1
+            page_socket.send({'type': 'command', 'id': good_sent, 'name': 'hold_imu', 'orientation': turn})
+            assert page_socket.receive() == {'type': 'done', 'id': good_sent}
+            holds_within(lambda: bool(held), GOOD_WAIT)
+    assert held
+    assert all(0 < number <= good_sent and abs(q.z - turn['z']) < 1e-9 for number, q in held), held
 
 
 def test_a_busy_port_and_a_bad_port_get_one_line(ros):
