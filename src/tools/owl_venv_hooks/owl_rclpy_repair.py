@@ -82,7 +82,10 @@ The same Ctrl-C can land inside the constructor of one of the Tasks the executor
 callback, before the attribute its __del__ reads is set: the node still stops as it should, but
 Python prints "Exception ignored in: <function Future.__del__ ...> ... AttributeError: 'Task'
 object has no attribute '_exception'" on the way out. Future.__del__ is made to skip a future
-whose construction was interrupted (it has no exception to report).
+whose construction was interrupted (it has no exception to report). A Task the executor had made
+for a handler that never ran before the program ended printed "sys:1: RuntimeWarning: coroutine
+'Executor._make_handler.<locals>.handler' was never awaited" at exit (seen once in a suite run, at
+display_camera's Ctrl-C); Future.__del__ now closes such a Task's coroutine, quietly.
 
 An executor still alive when the interpreter exits (kept by a reference cycle with its node) may be
 finalised after its SIGINT guard condition, which destroys itself first: Executor.__del__ then
@@ -544,9 +547,15 @@ def drop_stale_wakers(spin: Callable[..., Any], executors_file: str) -> Callable
 
 
 def skip_half_built(delete: Callable[[Any], None]) -> Callable[[Any], None]:
-    """Future.__del__, doing nothing for a future whose __init__ a Ctrl-C cut short."""
+    """Future.__del__, doing nothing for a future whose __init__ a Ctrl-C cut short.
+
+    A Task dropped before its handler ran has its coroutine closed: nothing can resume it now.
+    """
     @wraps(delete)
     def __del__(future: Any) -> None:  # named so that in_code_that_loses_exceptions knows it
+        handler = vars(future).get('_handler')
+        if getattr(handler, 'cr_frame', None) is not None:  # a coroutine not yet finished
+            handler.close()
         if hasattr(future, '_exception_fetched'):  # set after _exception: __init__ got past both
             delete(future)
 
