@@ -373,20 +373,23 @@ def test_a_ctrl_c_that_lands_where_python_cannot_raise_it_stops_the_node(ros, tm
     assert 'stopped by Ctrl-C' in ticker.output, ticker.output
 
 
+def assert_deleted_quietly(code: str, env: dict[str, str] | None = None) -> None:
+    """Run code (which drops an rclpy object) in a fresh interpreter: it prints nothing but its own end."""
+    deleted = subprocess.run([sys.executable, '-c', code + 'print("deleted")'], env=env,
+                             capture_output=True, text=True, timeout=60)
+    assert (deleted.returncode, deleted.stdout, deleted.stderr) == (0, 'deleted\n', '')
+
+
 def test_a_task_whose_construction_ctrl_c_cut_short_is_deleted_quietly():
     """A Ctrl-C inside a Task's constructor (before its attributes are set) stops the node quietly.
 
     The Task's __del__ must not then print "Exception ignored ... has no attribute '_exception'".
     """
-    deleted = subprocess.run(
-        [sys.executable, '-c', 'import gc, rclpy.executors\n'
-         'from rclpy.task import Task\n'
-         'half_built = Task.__new__(Task)\n'
-         'del half_built\n'
-         'gc.collect()\n'
-         'print("deleted")'],
-        capture_output=True, text=True, timeout=60)
-    assert (deleted.returncode, deleted.stdout, deleted.stderr) == (0, 'deleted\n', '')
+    assert_deleted_quietly('import gc, rclpy.executors\n'
+                           'from rclpy.task import Task\n'
+                           'half_built = Task.__new__(Task)\n'
+                           'del half_built\n'
+                           'gc.collect()\n')
 
 
 def test_a_task_dropped_before_its_handler_ran_is_deleted_quietly():
@@ -395,17 +398,13 @@ def test_a_task_dropped_before_its_handler_ran_is_deleted_quietly():
     Seen once in a suite run at display_camera's exit: "sys:1: RuntimeWarning: coroutine
     'Executor._make_handler.<locals>.handler' was never awaited".
     """
-    deleted = subprocess.run(
-        [sys.executable, '-c', 'import gc, rclpy.executors\n'
-         'from rclpy.task import Task\n'
-         'async def handler():\n'
-         '    pass\n'
-         'unrun = Task(handler)\n'
-         'del unrun\n'
-         'gc.collect()\n'
-         'print("deleted")'],
-        capture_output=True, text=True, timeout=60)
-    assert (deleted.returncode, deleted.stdout, deleted.stderr) == (0, 'deleted\n', '')
+    assert_deleted_quietly('import gc, rclpy.executors\n'
+                           'from rclpy.task import Task\n'
+                           'async def handler():\n'
+                           '    pass\n'
+                           'unrun = Task(handler)\n'
+                           'del unrun\n'
+                           'gc.collect()\n')
 
 
 def test_an_executor_whose_construction_ctrl_c_cut_short_is_deleted_quietly():
@@ -414,15 +413,11 @@ def test_an_executor_whose_construction_ctrl_c_cut_short_is_deleted_quietly():
     Its __del__ must not then print "Exception ignored ... has no attribute '_sigint_gc'": seen once
     in 20 Ctrl-C of the parameter tutorial's node in a run of test_course_listings.
     """
-    deleted = subprocess.run(
-        [sys.executable, '-c', 'import gc\n'
-         'from rclpy.executors import SingleThreadedExecutor\n'
-         'half_built = SingleThreadedExecutor.__new__(SingleThreadedExecutor)\n'
-         'del half_built\n'
-         'gc.collect()\n'
-         'print("deleted")'],
-        capture_output=True, text=True, timeout=60)
-    assert (deleted.returncode, deleted.stdout, deleted.stderr) == (0, 'deleted\n', '')
+    assert_deleted_quietly('import gc\n'
+                           'from rclpy.executors import SingleThreadedExecutor\n'
+                           'half_built = SingleThreadedExecutor.__new__(SingleThreadedExecutor)\n'
+                           'del half_built\n'
+                           'gc.collect()\n')
 
 
 def test_a_sigint_guard_condition_whose_construction_ctrl_c_cut_short_is_deleted_quietly():
@@ -431,15 +426,11 @@ def test_a_sigint_guard_condition_whose_construction_ctrl_c_cut_short_is_deleted
     Seen once in a suite run, at control_servo's Ctrl-C: "Exception ignored in: <function
     SignalHandlerGuardCondition.__del__ ...> AttributeError: ... no attribute '_GuardCondition__gc'".
     """
-    deleted = subprocess.run(
-        [sys.executable, '-c', 'import gc\n'
-         'from rclpy.signals import SignalHandlerGuardCondition\n'
-         'half_built = SignalHandlerGuardCondition.__new__(SignalHandlerGuardCondition)\n'
-         'del half_built\n'
-         'gc.collect()\n'
-         'print("deleted")'],
-        capture_output=True, text=True, timeout=60)
-    assert (deleted.returncode, deleted.stdout, deleted.stderr) == (0, 'deleted\n', '')
+    assert_deleted_quietly('import gc\n'
+                           'from rclpy.signals import SignalHandlerGuardCondition\n'
+                           'half_built = SignalHandlerGuardCondition.__new__(SignalHandlerGuardCondition)\n'
+                           'del half_built\n'
+                           'gc.collect()\n')
 
 
 def test_an_executor_outliving_its_guard_condition_is_deleted_quietly(ros):
@@ -448,17 +439,13 @@ def test_an_executor_outliving_its_guard_condition_is_deleted_quietly(ros):
     Seen at the end of `ros2 topic echo --once`: "Exception ignored in: <function Executor.__del__
     ...> InvalidHandle: cannot use Destroyable because destruction was requested".
     """
-    deleted = subprocess.run(
-        [sys.executable, '-c', 'import rclpy\n'
-         'from rclpy.executors import SingleThreadedExecutor\n'
-         'rclpy.init()\n'
-         'executor = SingleThreadedExecutor()\n'
-         'executor._sigint_gc.destroy()  # what the guard does when it is finalised first\n'
-         'del executor\n'
-         'rclpy.shutdown()\n'
-         'print("deleted")'],
-        env=ros.env, capture_output=True, text=True, timeout=60)
-    assert (deleted.returncode, deleted.stdout, deleted.stderr) == (0, 'deleted\n', '')
+    assert_deleted_quietly('import rclpy\n'
+                           'from rclpy.executors import SingleThreadedExecutor\n'
+                           'rclpy.init()\n'
+                           'executor = SingleThreadedExecutor()\n'
+                           'executor._sigint_gc.destroy()  # what the guard does when it is finalised first\n'
+                           'del executor\n'
+                           'rclpy.shutdown()\n', ros.env)
 
 
 # A client that calls a plain rclpy echo service many times, awaiting each response the three
