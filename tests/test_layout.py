@@ -272,3 +272,37 @@ def test_the_ros_environment_is_read_in_one_place():
     assert readers <= ROS_ENV_READERS, readers - ROS_ENV_READERS  # use owl_common.ros_env instead
     bounds = {relative for relative, text in product_modules() if re.search(r'\b232\b', text)}
     assert bounds == {'common/owl_common/owl_common/ros_env.py'}, bounds  # MAX_DOMAIN_ID's one home
+
+
+ARCHITECTURE = SRC.parent / 'docs' / 'architecture.md'
+
+
+def architecture_packages(text: str) -> dict[str, set[str]]:
+    """group -> the packages docs/architecture.md lists under its '### group/' heading.
+
+    A package is a bullet's leading backticked names, before its colon: "- `a`, `b` (how): what".
+    """
+    listed: dict[str, set[str]] = {}
+    group = None
+    for line in text.splitlines():
+        heading = re.fullmatch(r'### (\w+)/', line)
+        if heading:
+            group = heading.group(1)
+            listed[group] = set()
+        elif line.startswith('## '):
+            group = None
+        elif group and line.startswith('- '):
+            listed[group] |= set(re.findall(r'`(\w+)`', line[2:].split(':', 1)[0]))
+    return listed
+
+
+def test_the_architecture_page_lists_every_package_in_its_group():
+    on_disk = {group: {folder.name for folder in (SRC / group).iterdir()
+                       if folder.is_dir() and not folder.name.startswith(('_', '.'))}
+               for group in MAY_IMPORT}
+    assert architecture_packages(ARCHITECTURE.read_text()) == on_disk
+
+
+def test_a_package_missing_from_the_architecture_page_is_seen():
+    page = '## The packages\n\n### kit/\n\n- `olive_kit`: data\n- `a`, `b` (both): c `not_this`\n\n## Outside\n- `x`: y\n'
+    assert architecture_packages(page) == {'kit': {'olive_kit', 'a', 'b'}}

@@ -1,7 +1,7 @@
 """Section 4.5 project "Display Camera": the Olive camera's images in an OpenCV window.
 
 Without a display the venv's start-up hook keeps the window functions working and says so in one
-line (README "Without a display"); the node is the same either way.
+line (docs/without-a-display.md); the node is the same either way.
 """
 
 import signal

@@ -423,6 +423,22 @@ def test_held_keys_stop_when_each_servos_goals_stood_or_both_their_verdicts_are_
     assert not beyond_and_swung([], [0.0, 5.0], -1.5708, 1.5708)
 
 
+def test_a_held_keys_speed_is_measured_from_its_first_moving_goal():
+    from types import SimpleNamespace
+
+    from owl_cli.exercises.section_4_4_1 import held_long_enough, moving_goals
+
+    # The key reached the node 0.4 s late, then the goal turned at 2 rad/s: the still goals before
+    # must not dilute the slope (over a fixed window they halved it).
+    goals = [(t / 50, SimpleNamespace(data=0.3 if t < 20 else 0.3 + 2.0 * (t - 19) / 50)) for t in range(50)]
+    moving = moving_goals(goals, 0.3)
+    assert moving[0][0] == pytest.approx(0.4)
+    assert judge.slope(moving) == pytest.approx(2.0)
+    assert held_long_enough(moving)
+    assert not held_long_enough(moving[:10])  # 0.18 s of goals
+    assert moving_goals(goals[:20], 0.3) == []  # the key not seen yet
+
+
 def test_currency_and_factorial_answers():
     good = judge.currency_answers([116.0, 88.0, 93.0], [290.0, 220.0, 232.5])
     assert all(c.passed for c in good)

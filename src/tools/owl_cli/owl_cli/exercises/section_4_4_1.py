@@ -44,6 +44,22 @@ STEADY_FOR, GOAL_STEADY, HELD_AT_LEAST = 0.5, 1e-3, 1.0  # s, rad, s
 KEY_SWING = 0.3  # rad the goal must swing across a pair of keys (Left and Right, Up and Down)
 
 
+# A held key's speed is the slope of at least SPEED_GOALS goals over at least SPEED_FOR s, counted from
+# the first goal that moved: however late a loaded machine delivers the key, no still goal dilutes it.
+SPEED_GOALS, SPEED_FOR = 8, 0.5  # goals, s
+
+
+def moving_goals(goals: list, still: float) -> list[tuple[float, float]]:
+    """(time, value) of a servo's goals (Session.collect pairs) from the first that left the value still."""
+    values = [(t, m.data) for t, m in goals]
+    first = next((i for i, (_, v) in enumerate(values) if abs(v - still) > GOAL_STEADY), len(values))
+    return values[first:]
+
+
+def held_long_enough(samples: list[tuple[float, float]]) -> bool:
+    return len(samples) >= SPEED_GOALS and samples[-1][0] - samples[0][0] >= SPEED_FOR
+
+
 def goals_stopped(goals: list, now: float) -> bool:
     """Whether a servo's goals (Session.collect pairs) of the last STEADY_FOR s stayed one value.
 
@@ -240,12 +256,11 @@ def check_keyboard_servos_speed(s: Session) -> None:
     keys = itertools.cycle(('left', 'right'))
 
     def speed() -> float:
-        key = next(keys)
-        start = time.monotonic()
+        key, seen, still = next(keys), len(pan), pan[-1][1].data
         press(s, process, f'down {key}')
-        s.wait(lambda: time.monotonic() > start + 0.7, 1.0)
+        s.wait(lambda: held_long_enough(moving_goals(pan[seen:], still)), START_TIMEOUT)
         press(s, process, f'up {key}')
-        samples = [(t, m.data) for t, m in pan if start + 0.2 <= t <= start + 0.7]
+        samples = moving_goals(pan[seen:], still)
         return judge.slope([(t, v) for t, v in samples if PAN_RANGE[0] + 0.01 < v < PAN_RANGE[1] - 0.01])
 
     before = speed()
