@@ -29,7 +29,7 @@ import time
 from pathlib import Path
 
 from measure import cpu_seconds
-from owl_cli.check_session import CAMERA_TOPIC, IMU_TOPIC
+from olive_kit.description import CAMERA_TOPIC, IMU_TOPIC
 from owl_common.processes import RosSandbox
 
 TESTS = Path(__file__).resolve().parents[1] / 'tests'

@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING
 
 import rclpy
 from measure import cpu_seconds
-from olive_kit.description import OWL_KIT, KitModule, page_host
+from olive_kit.description import CAMERA_TOPIC, OWL_KIT, KitModule, page_host
 from olive_sim.camera_render import CameraRenderer
 from olive_sim.servo_model import PidGains, ServoSim
 from owl_common.processes import RosProcess, RosSandbox
@@ -206,7 +206,7 @@ def camera_delivered_rate(seconds: float) -> float:
         try:
             node = Node('bench_camera_viewer', context=context)
             stamps: list[float] = []
-            node.create_subscription(CompressedImage, '/olive/camera/eye/image/compressed',
+            node.create_subscription(CompressedImage, CAMERA_TOPIC,
                                      lambda m: stamps.append(time.monotonic()), qos_profile_sensor_data)
             executor.add_node(node)
             deadline = time.monotonic() + 30

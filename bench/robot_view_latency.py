@@ -34,6 +34,7 @@ from pathlib import Path
 
 from geometry_msgs.msg import Quaternion
 from measure import percentile
+from olive_kit.description import IMU_NAMESPACE, IMU_TOPIC, joint_topic, node_name
 from owl_common.probe import Probe
 from owl_common.processes import RosProcess, RosSandbox
 from sensor_msgs.msg import Imu, JointState
@@ -42,9 +43,8 @@ TESTS = Path(__file__).resolve().parents[1] / 'tests'
 sys.path.insert(0, str(TESTS))  # the browser tests' Chromium set-up: one piece of code for it
 from web_harness import Browser, chromium_missing, free_port  # noqa: E402
 
-TRUE_ORIENTATION = '/olive_imu_x1684267976913_dcm_srv/true_orientation'
-IMU_TOPIC = '/olive/imu/x1684267976913/imu'
-PAN_JOINT = '/olive/servo/pan/joint'
+TRUE_ORIENTATION = f"/{node_name('imu', IMU_NAMESPACE)}/true_orientation"
+PAN_JOINT = joint_topic('pan')
 URL_LINE = r'robot_view: open (http://127\.0\.0\.1:\d+/) in a browser'
 PIXELS = 20  # one drag; the page turns the IMU 0.01 rad a pixel
 TURN = PIXELS * 0.01

@@ -28,6 +28,14 @@ from functools import partial
 
 import cv2
 import numpy as np
+from olive_kit.description import (
+    CAMERA_TOPIC,
+    IMU_TOPIC,
+    ROBOT_VIEW_PORT,
+    WINDOWS_PORT,
+    goal_topic,
+    joint_topic,
+)
 from olive_sim.camera_render import find_colour
 from olive_sim.scene_draw import BALL_COLOUR
 from owl_common import quaternion
@@ -38,14 +46,10 @@ from sensor_msgs.msg import CompressedImage, Imu, JointState
 from std_msgs.msg import Float32
 from turtlesim.msg import Pose
 
-IMU_TOPIC = '/olive/imu/x1684267976913/imu'
-CAMERA_TOPIC = '/olive/camera/eye/image/compressed'
 SERVOS = ('pan', 'tilt')
 STARTUP_TIMEOUT = 60.0  # s for every node to say it is working, on a loaded 2-core machine
-ROBOT_VIEW_PORT = 8091  # robot_view's own default; another free port when it is taken
 # The page's address: under the front door (its root, then the page's mount), or its own.
 ROBOT_VIEW_LINE = r'robot_view: open (http://127\.0\.0\.1:\d+/)(robot-view/)? in a browser'
-WINDOWS_PORT = 8092  # owl windows' own default, likewise
 WINDOWS_LINE = r'owl windows: open (http://127\.0\.0\.1:\d+/)(windows/)? in a browser'
 PROJECTS = ('imu', 'tracking')
 # The tracking project's ball swings to and fro in front of the robot, BALL_SWING rad to either side
@@ -97,8 +101,8 @@ def watch(probe: Probe) -> RobotState:
     node.create_subscription(CompressedImage, CAMERA_TOPIC, on_frame, qos_profile_sensor_data)
     node.create_subscription(Pose, '/turtle1/pose', on_pose, 10)
     for servo in SERVOS:
-        node.create_subscription(Float32, f'/olive/servo/{servo}/goal/position', partial(on_goal, servo), 10)
-        node.create_subscription(JointState, f'/olive/servo/{servo}/joint', partial(on_joint, servo), 10)
+        node.create_subscription(Float32, goal_topic(servo), partial(on_goal, servo), 10)
+        node.create_subscription(JointState, joint_topic(servo), partial(on_joint, servo), 10)
     return state
 
 

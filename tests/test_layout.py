@@ -9,8 +9,10 @@ on a normal ROS 2 install with `src/compat/` left out (the README's recipe).
 from __future__ import annotations
 
 import ast
+import io
 import re
 import sys
+import tokenize
 import xml.etree.ElementTree as ET
 from collections.abc import Iterable
 from functools import cache
@@ -278,7 +280,7 @@ ARCHITECTURE = SRC.parent / 'docs' / 'architecture.md'
 
 
 def architecture_packages(text: str) -> dict[str, set[str]]:
-    """group -> the packages docs/architecture.md lists under its '### group/' heading.
+    """Group -> the packages docs/architecture.md lists under its '### group/' heading.
 
     A package is a bullet's leading backticked names, before its colon: "- `a`, `b` (how): what".
     """
@@ -304,5 +306,60 @@ def test_the_architecture_page_lists_every_package_in_its_group():
 
 
 def test_a_package_missing_from_the_architecture_page_is_seen():
-    page = '## The packages\n\n### kit/\n\n- `olive_kit`: data\n- `a`, `b` (both): c `not_this`\n\n## Outside\n- `x`: y\n'
+    page = ('## The packages\n\n### kit/\n\n- `olive_kit`: data\n- `a`, `b` (both): c `not_this`\n\n'
+            '## Outside\n- `x`: y\n')
     assert architecture_packages(page) == {'kit': {'olive_kit', 'a', 'b'}}
+
+
+# The kit's topic names and the pages' ports have one home each: olive_kit.description (topic(),
+# goal_topic(), IMU_TOPIC, ROBOT_VIEW_PORT, ...) and owl_web.pages (the front door's port).
+# Written as a literal anywhere else outside the course's packages and the tests (which state the
+# contract independently, so that a wrong description fails them), they are a second home. Except:
+FACT_HOMES = {
+    'src/kit/olive_kit/olive_kit/description.py',
+    'src/web/owl_web/owl_web/pages.py',  # FRONT_DOOR_PORT: the web layer sits below the kit
+    # Runs at the interpreter's start, before any workspace is importable: its hint names the topics.
+    'src/tools/owl_venv_hooks/owl_gui_hook.py',
+    # A Humble module on the wire, in common/, which sits below the kit and cannot import it.
+    'src/common/owl_humble/owl_humble/twin.py',
+}
+KIT_TOPIC = re.compile(r'/olive/(imu/|servo/|camera/|\{|\$\{)(?!<)')
+PAGE_PORTS = {8042, 8090, 8091, 8092, 8093}
+
+
+def fact_literals(path: Path, text: str) -> list[int]:
+    """Lines of a Python module, page script or page where a kit topic name or a page's port is written.
+
+    In Python, strings (docstrings too) and numbers count; a comment may name one.
+    """
+    if path.suffix != '.py':
+        return [n for n, line in enumerate(text.splitlines(), 1) if KIT_TOPIC.search(line)]
+    found = []
+    for token in tokenize.generate_tokens(io.StringIO(text).readline):
+        if token.type in (tokenize.STRING, getattr(tokenize, 'FSTRING_MIDDLE', tokenize.STRING)):
+            if KIT_TOPIC.search(token.string):
+                found.append(token.start[0])
+        elif token.type == tokenize.NUMBER and token.string.isdigit() and int(token.string) in PAGE_PORTS:
+            found.append(token.start[0])
+    return found
+
+
+def test_kit_topic_names_and_page_ports_are_written_in_one_place():
+    root = SRC.parent
+    found = []
+    for base in ('src', 'scripts', 'bench'):
+        for path in sorted((root / base).rglob('*')):
+            relative = path.relative_to(root)
+            elsewhere = bool({'test', 'node_modules'} & set(relative.parts))
+            elsewhere = elsewhere or relative.parts[:2] == ('src', 'course')
+            if path.suffix not in ('.py', '.js', '.html') or relative.as_posix() in FACT_HOMES or elsewhere:
+                continue
+            found += [f'{relative}:{line}' for line in fact_literals(path, path.read_text())]
+    assert found == []  # use olive_kit.description (topic(), goal_topic(), ...) or owl_web.pages
+
+
+def test_a_second_home_of_a_kit_fact_is_seen():
+    code = ("'''Goals on /olive/servo/pan/goal/position.'''\n"
+            "X = f'/olive/servo/{s}/joint'  # /olive/imu/\nPORT = 8091\n")
+    assert fact_literals(Path('a.py'), code) == [1, 2, 3]
+    assert fact_literals(Path('a.js'), 'const a = 1;\nb.title = `/olive/servo/${servo}/goal`;\n') == [2]

@@ -283,7 +283,7 @@ class TurtlesimNode(Node):
             if self.window is not None:
                 self.get_logger().info(
                     f"No display{f' ({problem})' if problem else ''}: the TurtleSim window is shown in a "
-                    "browser instead. Run 'owl windows' and open its page (http://127.0.0.1:8092/); "
+                    "browser instead. Run 'owl windows' and open the page it prints; "
                     'arrow keys pressed there drive turtle1.')
             elif problem:
                 self.get_logger().warning(f'No window ({problem}); running headless')

@@ -34,6 +34,30 @@ def page_host(address: str) -> str:
     return f'127.{b}.{c}.{d}'
 
 
+def topic(module_type: str, namespace: str, name: str) -> str:
+    """The absolute name of a module's topic or service: /olive/<type>/<namespace>/<name>, as the course's."""
+    return f'/olive/{module_type}/{namespace}/{name}'
+
+
+def servo_topic(servo: str, name: str) -> str:
+    """A servo's topic or service by its namespace ('pan', 'tilt'), e.g. 'joint', 'setTorqueEnable'."""
+    return topic('servo', servo, name)
+
+
+def goal_topic(servo: str) -> str:
+    """The topic that takes a servo's position goals (std_msgs/msg/Float32, rad)."""
+    return servo_topic(servo, 'goal/position')
+
+
+def joint_topic(servo: str) -> str:
+    """The servo's JointState topic."""
+    return servo_topic(servo, 'joint')
+
+
+IMU_TOPIC = topic('imu', IMU_NAMESPACE, 'imu')
+CAMERA_TOPIC = topic('camera', CAMERA_NAMESPACE, 'image/compressed')
+GESTURE_TOPIC = topic('camera', CAMERA_NAMESPACE, 'tpu/gesture')  # the camera's gesture app (section 4.7)
+
 COMMON_TOPICS = ('led', 'status', 'switch', 'temperature')
 # Topic names and types per module type, as `ros2 topic list -t` shows them in the course.
 MODULE_TOPICS = {
@@ -78,9 +102,8 @@ class KitModule:
 
     def topics(self) -> dict[str, str]:
         """Absolute topic name -> type of everything the module offers (position mode for servos)."""
-        prefix = f'/olive/{self.module_type}/{self.namespace}/'
         names = {**MODULE_TOPICS[self.module_type], **COMMON_TYPES}
-        return {prefix + name: names[name] for name in sorted(names)}
+        return {topic(self.module_type, self.namespace, name): names[name] for name in sorted(names)}
 
 
 # The tilt servo carries the camera (about 80 g plus the L-bracket) 4 cm off its axis, and its

@@ -6,6 +6,7 @@ import json
 import math
 import time
 
+from olive_kit.description import joint_topic
 from owl_common import quaternion as quat
 from owl_common.quaternion import Quaternion
 from rcl_interfaces.msg import FloatingPointRange, IntegerRange, SetParametersResult
@@ -62,9 +63,9 @@ class CameraModule(OliveModule):
             'Reliability of image/compressed and image/camera_info: best_effort (as the course shows) '
             'or reliable.', True))
         self.declare_parameter('frame_id', 'olive', describe('header.frame_id of the images.', True))
-        self.declare_parameter('pan_joint_topic', '/olive/servo/pan/joint', describe(
+        self.declare_parameter('pan_joint_topic', joint_topic('pan'), describe(
             'JointState topic of the pan servo the camera sits on.', True))
-        self.declare_parameter('tilt_joint_topic', '/olive/servo/tilt/joint', describe(
+        self.declare_parameter('tilt_joint_topic', joint_topic('tilt'), describe(
             'JointState topic of the tilt servo the camera sits on.', True))
         self._declare_scene_parameters()
         value = self.get_parameter

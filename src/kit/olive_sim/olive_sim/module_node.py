@@ -1,7 +1,7 @@
 """What every simulated Olive module shares: names, status, temperature, button, LED.
 
-A module of type T with namespace N publishes under /olive/T/N/ (the course's naming) from a
-node named olive_T_N_dcm_srv (like the course's /olive_servo_pan_dcm_srv).
+A module of type T with namespace N publishes under olive_kit.description.topic(T, N, ...) (the
+course's naming) from a node named olive_T_N_dcm_srv (like the course's /olive_servo_pan_dcm_srv).
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from typing import Any, ClassVar
 
 import yaml
 from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
-from olive_kit.description import WEB_PORT, node_name
+from olive_kit.description import WEB_PORT, node_name, topic
 from owl_common.periodic import PeriodicThread, wall_time_ns
 from owl_common.polled_subscription import PolledSubscription
 from owl_common.quaternion import Quaternion
@@ -113,9 +113,8 @@ class OliveModule(Node):
         self.module_type = module_type
         self.namespace_name = namespace
         self.serial = serial
-        self.prefix = f'/olive/{module_type}/{namespace}/'
         self.declare_parameter('namespace', namespace, describe(
-            f'Module namespace: topics are /olive/{module_type}/<namespace>/...', read_only=True))
+            f"Module namespace: topics are {topic(module_type, '<namespace>', '...')}", read_only=True))
         self.declare_parameter('button_pressed', False, describe(
             'Simulated state of the module button, published on switch.'))
         self.declare_parameter('address', network_settings.FACTORY_ADDRESS, describe(
@@ -137,8 +136,8 @@ class OliveModule(Node):
         self.status_timer = self.create_timer(STATUS_PERIOD, self._publish_status)
 
     def topic(self, name: str) -> str:
-        """The absolute name of the module's topic `name`: /olive/<type>/<namespace>/<name>."""
-        return self.prefix + name
+        """The absolute name of the module's topic `name` (olive_kit.description.topic)."""
+        return topic(self.module_type, self.namespace_name, name)
 
     def get_logger(self) -> Any:
         """The node's logger; what it logs also goes to the page's Log Monitor."""
@@ -295,7 +294,7 @@ class OliveModule(Node):
             **self.status_values(),
         }
         self.status_publisher.publish(DiagnosticStatus(
-            level=level, name=self.prefix.rstrip('/'), message=message, hardware_id=self.serial,
+            level=level, name=self.topic('').rstrip('/'), message=message, hardware_id=self.serial,
             values=[KeyValue(key=k, value=v) for k, v in values.items()]))
         temperature = Temperature(temperature=self.temperature(), variance=0.25)
         temperature.header.stamp = stamp

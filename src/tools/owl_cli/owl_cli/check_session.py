@@ -34,13 +34,10 @@ if TYPE_CHECKING:
     from rclpy.qos import QoSProfile
     from rclpy.topic_endpoint_info import TopicEndpointInfo
 
-IMU_TOPIC = f'/olive/imu/{IMU_NAMESPACE}/imu'
 IMU_COMMAND_TOPIC = f"/{node_name('imu', IMU_NAMESPACE)}/true_orientation"  # imu_sim's motion:=command
 CMD_VEL = '/turtle1/cmd_vel'
 COURSE_CMD_VEL = '/turtle/cmd_vel'  # section 4.3.2's text; turtlesim's turtle is turtle1
-CAMERA_TOPIC = f'/olive/camera/{CAMERA_NAMESPACE}/image/compressed'
 CAMERA_NODE = node_name('camera', CAMERA_NAMESPACE)
-GESTURE_TOPIC = f'/olive/camera/{CAMERA_NAMESPACE}/tpu/gesture'  # the camera's gesture app (section 4.7)
 PAN_RANGE = SERVO_RANGES['pan']
 TILT_RANGE = SERVO_RANGES['tilt']  # the camera bracket's
 START_TIMEOUT = 15.0  # s for a student's endpoint or behaviour, from its node being up
@@ -61,11 +58,6 @@ def headless(windows: Path) -> dict[str, str | None]:
 
 
 STANDARD_PARAMETERS = ('use_sim_time', 'qos_overrides.', 'start_type_description_service')
-
-
-def goal_topic(servo: str) -> str:
-    """The topic that takes the position goals of a servo ('pan' or 'tilt')."""
-    return f'/olive/servo/{servo}/goal/position'
 
 
 class Failed(Exception):

@@ -15,6 +15,8 @@ import time
 from dataclasses import dataclass
 from typing import Any
 
+from olive_kit.description import topic as module_topic
+
 NODE_PATTERN = re.compile(r'olive_(imu|servo|camera)_([A-Za-z0-9_]+?)_dcm_srv')
 MAIN_TOPICS = {'imu': ('imu', 'sensor_msgs/msg/Imu'), 'servo': ('joint', 'sensor_msgs/msg/JointState'),
                'camera': ('image/compressed', 'sensor_msgs/msg/CompressedImage')}
@@ -34,10 +36,9 @@ class ModuleReport:
     received: str | None = None  # what came from the module
     sent: str | None = None      # what the module acknowledged
 
-    @property
-    def prefix(self) -> str:
-        """The start of the module's topic names, /olive/<type>/<namespace>/ (with the last slash)."""
-        return f'/olive/{self.module_type}/{self.namespace}/'
+    def topic(self, name: str) -> str:
+        """The absolute name of the module's topic name (olive_kit.description.topic)."""
+        return module_topic(self.module_type, self.namespace, name)
 
 
 def parse_module(node: str) -> tuple[str, str] | None:
@@ -141,7 +142,7 @@ def check_kit(domain_id: int, seconds: float, expected: dict[str, str]) -> list[
         received: dict[str, list[Any]] = {report.node: [] for report in reports}
         for report in reports:
             topic, type_name = MAIN_TOPICS[report.module_type]
-            node.create_subscription(types[type_name], report.prefix + topic, received[report.node].append,
+            node.create_subscription(types[type_name], report.topic(topic), received[report.node].append,
                                      qos_profile_sensor_data)
         spin_until(lambda: all(received.values()), time.monotonic() + seconds)
         # To each module: one message, acknowledged by its reader. Fast DDS asks for
@@ -151,13 +152,13 @@ def check_kit(domain_id: int, seconds: float, expected: dict[str, str]) -> list[
             messages = received[report.node]
             topic, type_name = MAIN_TOPICS[report.module_type]
             if messages:
-                report.received = f'one {type_name.rsplit("/", 1)[-1]} on {report.prefix + topic}'
+                report.received = f'one {type_name.rsplit("/", 1)[-1]} on {report.topic(topic)}'
             message: Any
             if report.module_type != 'servo':
-                message, topic, what = Bool(data=True), report.prefix + 'led', 'one Bool (LED on)'
+                message, topic, what = Bool(data=True), report.topic('led'), 'one Bool (LED on)'
             elif messages and messages[-1].position:
                 position = float(messages[-1].position[0])
-                message, topic = Float32(data=position), report.prefix + 'goal/position'
+                message, topic = Float32(data=position), report.topic('goal/position')
                 what = f'one goal of {position:+.3f} rad (its position)'
             else:
                 continue

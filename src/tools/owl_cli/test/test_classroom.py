@@ -3,6 +3,7 @@
 import json
 import re
 import subprocess
+import sys
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -103,7 +104,48 @@ def test_the_hub_configuration_lets_the_class_log_in_with_the_teacher_as_admin(t
     assert c['JupyterHub']['service_check_interval'] == 0
 
 
-def test_a_students_server_opens_terminals_in_the_lab_and_a_tile_for_their_front_door(monkeypatch):
+class WebSocketClosedError(Exception):
+    """tornado.websocket's, in the stand-ins below."""
+
+
+class WebSocketHandler:
+    """tornado's WebSocketHandler as jupyter-server-proxy uses it: a write to a closed socket raises."""
+
+    def __init__(self) -> None:
+        self.sent: list[str] = []
+        self.closed = False
+
+    def write_message(self, message: str, binary: bool = False) -> None:
+        if self.closed:
+            raise WebSocketClosedError()
+        self.sent.append(message)
+
+
+class ProxyHandler(WebSocketHandler):
+    """jupyter_server_proxy.handlers.ProxyHandler's stand-in."""
+
+
+@pytest.fixture
+def server_modules(monkeypatch):
+    """Stand-ins for the servers' venv's tornado and jupyter-server-proxy (this venv has neither)."""
+    for name, module in (('tornado.websocket', SimpleNamespace(WebSocketClosedError=WebSocketClosedError,
+                                                               WebSocketHandler=WebSocketHandler)),
+                         ('jupyter_server_proxy.handlers', SimpleNamespace(ProxyHandler=ProxyHandler))):
+        monkeypatch.setitem(sys.modules, name, module)
+    monkeypatch.setattr(ProxyHandler, 'write_message', WebSocketHandler.write_message)
+
+
+def test_a_pages_message_after_the_browser_closed_its_socket_is_dropped_quietly(server_modules):
+    read_config(server_config_text(Path('/srv/lab'), Path('/rc')))
+    handler = ProxyHandler()
+    handler.write_message('first')
+    handler.closed = True
+    assert handler.write_message('late') is None  # upstream: WebSocketClosedError, a logged traceback
+    assert handler.sent == ['first']
+
+
+def test_a_students_server_opens_terminals_in_the_lab_and_a_tile_for_their_front_door(
+        monkeypatch, server_modules):
     monkeypatch.delenv('OWL_FRONT_DOOR_PORT', raising=False)
     assert read_config(server_config_text(Path('/srv/lab'), Path('/rc')))['ServerProxy']['servers'][
         'owl-kit-lab']['port'] == 8090  # a pod of its own (Kubernetes): the front door's own port

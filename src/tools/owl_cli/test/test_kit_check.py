@@ -49,7 +49,7 @@ def test_a_module_passes_with_a_message_each_way_and_fails_naming_the_missing_wa
     assert 'nothing came from it and nothing sent to it was acknowledged' in mute_text
     assert not bad2
     assert 'nothing sent to it was acknowledged; fix:' in deaf_text
-    assert good.prefix == '/olive/imu/h/'
+    assert good.topic('imu') == '/olive/imu/h/imu'
     [(none_ok, none_text)] = kit_verdicts([])
     assert not none_ok
     assert 'no Olive module node found' in none_text

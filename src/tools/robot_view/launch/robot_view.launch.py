@@ -8,7 +8,7 @@ from launch import LaunchDescription
 from launch.actions import DeclareLaunchArgument
 from launch.substitutions import LaunchConfiguration
 from launch_ros.actions import Node
-from olive_kit.description import OWL_KIT, WEB_PORT
+from olive_kit.description import OWL_KIT, ROBOT_VIEW_PORT, WEB_PORT
 
 
 def generate_launch_description() -> LaunchDescription:
@@ -23,7 +23,7 @@ def generate_launch_description() -> LaunchDescription:
         modules.append(Node(package='olive_sim', executable=module.executable, output='screen',
                             parameters=[parameters] if parameters else []))
     return LaunchDescription([
-        DeclareLaunchArgument('port', default_value='8091', description='robot_view HTTP port'),
+        DeclareLaunchArgument('port', default_value=str(ROBOT_VIEW_PORT), description='robot_view HTTP port'),
         DeclareLaunchArgument('web_port', default_value=str(WEB_PORT),
                               description="TCP port of every module's own web page (0: no pages)"),
         DeclareLaunchArgument('scene', default_value='landmarks',

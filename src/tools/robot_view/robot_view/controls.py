@@ -13,7 +13,7 @@ import json
 import math
 from typing import Any
 
-from olive_kit.description import GAIN_LIMITS, SERVO_RANGES, node_name
+from olive_kit.description import GAIN_LIMITS, SERVO_RANGES, goal_topic, node_name, servo_topic
 from owl_web import codec
 from owl_web.codec import ApiError
 
@@ -102,7 +102,13 @@ def appendix_goals(servo: str) -> list[float]:
 
 
 def control_limits() -> dict[str, Any]:
-    """What the page's controls offer: the gains' ranges, and each servo's range and goal buttons."""
+    """What the page's controls offer: the gains' ranges, and each servo's range, goal buttons and names.
+
+    The names (its goal topic, its torque services) are the kit's, for the controls' tooltips.
+    """
     return {'gains': dict(GAIN_LIMITS),
-            'servos': {servo: {'range': list(SERVO_RANGES[servo]), 'goals': appendix_goals(servo)}
+            'servos': {servo: {'range': list(SERVO_RANGES[servo]), 'goals': appendix_goals(servo),
+                               'goal_topic': goal_topic(servo),
+                               'torque_services': [servo_topic(servo, name)
+                                                   for name in ('setTorqueEnable', 'setTorqueDisable')]}
                        for servo in SERVOS}}

@@ -8,15 +8,13 @@ from __future__ import annotations
 
 from typing import Any
 
-from olive_kit.description import CAMERA_NAMESPACE, IMU_NAMESPACE, node_name
+from olive_kit.description import CAMERA_TOPIC, IMU_NAMESPACE, IMU_TOPIC, joint_topic, node_name, servo_topic
 from owl_web import codec
 
 from robot_view.controls import SERVOS
 
-IMU_TOPIC = f'/olive/imu/{IMU_NAMESPACE}/imu'
 # The simulated IMU listens here only with motion:=command (robot_view.launch.py starts it so).
 TRUE_ORIENTATION_TOPIC = f"/{node_name('imu', IMU_NAMESPACE)}/true_orientation"
-CAMERA_TOPIC = f'/olive/camera/{CAMERA_NAMESPACE}/image/compressed'
 
 LEVEL = (0.0, 0.0, 0.0, 1.0)  # x, y, z, w: the IMU lying flat, pointing along base_link's x
 # s after robot_view starts during which a module not seen yet is not said to be missing: the
@@ -48,16 +46,6 @@ def joint_position(names: list[str], positions: list[float], joint: str) -> floa
         if name == joint:
             return float(position)
     return None
-
-
-def joint_topic(servo: str) -> str:
-    """The servo's JointState topic."""
-    return f'/olive/servo/{servo}/joint'
-
-
-def goal_topic(servo: str) -> str:
-    """The servo's position goal topic (Float32, rad)."""
-    return f'/olive/servo/{servo}/goal/position'
 
 
 def kit_presence(publishers: dict[str, int], subscribers: dict[str, int],
@@ -111,7 +99,7 @@ def goal_outcome(servo: str, torque: bool | None, steered_by: list[str] | None =
     if torque is False:
         return {'outcome': 'ignored',
                 'reason': f"the {servo} servo's torque is off, so it ignores goals: switch it on "
-                          f'(torque column, or /olive/servo/{servo}/setTorqueEnable) first'}
+                          f"(torque column, or {servo_topic(servo, 'setTorqueEnable')}) first"}
     if steered_by:
         nodes = ' and '.join(steered_by)
         return {'outcome': 'overridden', 'by': list(steered_by),

@@ -18,7 +18,15 @@ from typing import Any
 
 from diagnostic_msgs.msg import DiagnosticStatus
 from geometry_msgs.msg import Quaternion
-from olive_kit.description import CAMERA_NAMESPACE, node_name
+from olive_kit.description import (
+    CAMERA_NAMESPACE,
+    CAMERA_TOPIC,
+    IMU_TOPIC,
+    goal_topic,
+    joint_topic,
+    node_name,
+    servo_topic,
+)
 from owl_common import quaternion
 from owl_common.graph import full_node_name
 from owl_common.polled_subscription import PolledSubscription
@@ -45,15 +53,11 @@ from robot_view.controls import (
     torque_request,
 )
 from robot_view.kit_state import (
-    CAMERA_TOPIC,
-    IMU_TOPIC,
     TRUE_ORIENTATION_TOPIC,
     first_presence_due,
     goal_outcome,
-    goal_topic,
     hold_imu_orientation,
     joint_position,
-    joint_topic,
     kit_presence,
     level_orientation,
     servo_unavailable,
@@ -115,12 +119,12 @@ class RobotViewNode(Node):
             # (10 ms) late in the plot, within its 20 ms bucket.
             self._goals[servo] = PolledSubscription(
                 self, Float32, goal_topic(servo), partial(self._on_goal, servo), 10, info=True)
-            self.create_subscription(DiagnosticStatus, f'/olive/servo/{servo}/joint/diagnostics',
+            self.create_subscription(DiagnosticStatus, servo_topic(servo, 'joint/diagnostics'),
                                      partial(self._on_diagnostics, servo), 10)
             self._goal_publishers[servo] = self.create_publisher(Float32, goal_topic(servo), 10)
             for enabled, service in ((True, 'setTorqueEnable'), (False, 'setTorqueDisable')):
                 self._torque_clients[servo, enabled] = self.create_client(
-                    Trigger, f'/olive/servo/{servo}/{service}')
+                    Trigger, servo_topic(servo, service))
             node = servo_node(servo)
             self._set_parameters[servo] = self.create_client(SetParameters, f'{node}/set_parameters')
             self._get_parameters[servo] = self.create_client(GetParameters, f'{node}/get_parameters')

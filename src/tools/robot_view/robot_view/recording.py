@@ -15,12 +15,12 @@ from pathlib import Path
 from typing import Any
 
 import yaml
+from olive_kit.description import IMU_TOPIC, goal_topic, joint_topic
 from owl_common.processes import RosProcess
 from owl_web import codec
 from owl_web.codec import ApiError
 
 from robot_view.controls import SERVOS
-from robot_view.kit_state import IMU_TOPIC, goal_topic, joint_topic
 
 # What the plots show: each servo's joint and goals, and the IMU (no camera: 30 images a second
 # would make a minute's bag hundreds of megabytes).

@@ -80,7 +80,9 @@ def test_the_pages_goal_buttons_are_the_appendixs_within_each_range():
     assert appendix_goals('tilt') == [0.0, 0.9]
     limits = control_limits()
     assert limits['gains'] == {'kp': 100.0, 'ki': 1000.0, 'kd': 10.0}
-    assert limits['servos']['tilt'] == {'range': [-1.3, 0.9], 'goals': [0.0, 0.9]}
+    assert limits['servos']['tilt'] == {
+        'range': [-1.3, 0.9], 'goals': [0.0, 0.9], 'goal_topic': '/olive/servo/tilt/goal/position',
+        'torque_services': ['/olive/servo/tilt/setTorqueEnable', '/olive/servo/tilt/setTorqueDisable']}
 
 
 def test_a_ball_place_is_two_finite_numbers_with_the_azimuth_taken_round():

@@ -1,19 +1,16 @@
 """The robot view's commands and joint lookup, without a node."""
 
 import pytest
+from olive_kit.description import CAMERA_TOPIC, IMU_TOPIC, goal_topic, joint_topic
 from owl_web.codec import ApiError
 from robot_view.kit_state import (
-    CAMERA_TOPIC,
-    IMU_TOPIC,
     LEVEL,
     STARTUP_GRACE,
     TRUE_ORIENTATION_TOPIC,
     first_presence_due,
     goal_outcome,
-    goal_topic,
     hold_imu_orientation,
     joint_position,
-    joint_topic,
     kit_presence,
     level_orientation,
     servo_unavailable,

@@ -234,7 +234,25 @@ def server_config_text(lab: Path, terminal_rc: Path) -> str:
         f'front_door = {front_door!r}',
         f"front_door['port'] = int(os.environ.get('OWL_FRONT_DOOR_PORT', '{FRONT_DOOR_PORT}'))",
         "c.ServerProxy.servers = {'owl-kit-lab': front_door}",
+        *PROXY_REPAIR,
     ]) + '\n'
+
+
+# jupyter-server-proxy 4.6.0 passes on a page's WebSocket message that arrives after the browser
+# closed its end (a student leaves the robot view while it streams), and tornado raises
+# WebSocketClosedError from its callback: a traceback in the class server's log each time, for a
+# message that has nowhere to go. The servers' configuration drops such a message quietly.
+PROXY_REPAIR = (
+    '# A page\'s message that arrives after the browser closed its WebSocket is dropped, not a traceback.',
+    'from jupyter_server_proxy.handlers import ProxyHandler',
+    'from tornado.websocket import WebSocketClosedError, WebSocketHandler',
+    'def write_message_while_open(self, message, binary=False):',
+    '    try:',
+    '        return WebSocketHandler.write_message(self, message, binary)',
+    '    except WebSocketClosedError:',
+    '        return None',
+    'ProxyHandler.write_message = write_message_while_open',
+)
 
 
 def terminal_rc_text(lab: Path) -> str:

@@ -7,6 +7,8 @@ import time
 from collections.abc import Callable
 from typing import Any
 
+from olive_kit.description import IMU_TOPIC
+
 from owl_cli import check_criteria as judge
 from owl_cli.check_catalogue import Section
 from owl_cli.check_report import Criterion
@@ -14,7 +16,6 @@ from owl_cli.check_session import (
     CMD_VEL,
     COURSE_CMD_VEL,
     IMU_COMMAND_TOPIC,
-    IMU_TOPIC,
     START_TIMEOUT,
     Session,
     launch_files,

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import time
 
+from olive_kit.description import goal_topic, joint_topic, servo_topic
+
 from owl_cli import check_criteria as judge
 from owl_cli.check_catalogue import TERMINAL, Section
 from owl_cli.check_report import Criterion
@@ -11,7 +13,6 @@ from owl_cli.check_session import (
     PAN_RANGE,
     START_TIMEOUT,
     Session,
-    goal_topic,
 )
 
 SECTION = Section()
@@ -40,7 +41,7 @@ def torque_criterion(s: Session, servo: str, goals: list) -> None:
     if not enabled:
         hint = (
             f'the {servo} servo ignores every goal while its torque is off: call '
-            f'/olive/servo/{servo}/setTorqueEnable (std_srvs/srv/Trigger) before the first goal'
+            f"{servo_topic(servo, 'setTorqueEnable')} (std_srvs/srv/Trigger) before the first goal"
         )
     else:
         hint = (
@@ -61,7 +62,7 @@ def joint_positions(s: Session, servo: str) -> list:
     """The servo's JointState messages from now on, as (monotonic time, message) pairs (Session.collect)."""
     from sensor_msgs.msg import JointState
 
-    return s.collect(JointState, f'/olive/servo/{servo}/joint')
+    return s.collect(JointState, joint_topic(servo))
 
 
 def moved(joints: list, since: float = 0.0) -> float:
@@ -190,7 +191,7 @@ def check_control_servo(s: Session, torque_off_only: bool = False) -> None:
         Criterion(
             text,
             disabled,
-            'catch KeyboardInterrupt and call /olive/servo/pan/setTorqueDisable (on a ROS 2 '
+            f"catch KeyboardInterrupt and call {servo_topic('pan', 'setTorqueDisable')} (on a ROS 2 "
             "install of your own, Jazzy's Ctrl-C handler shuts ROS down first: there use "
             'rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO))',
         )

@@ -7,18 +7,17 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
+from olive_kit.description import IMU_TOPIC, goal_topic, servo_topic
 from owl_common.processes import RosProcess
 
 from owl_cli import check_criteria as judge
 from owl_cli.check_catalogue import Section
 from owl_cli.check_report import Criterion
 from owl_cli.check_session import (
-    IMU_TOPIC,
     PAN_RANGE,
     START_TIMEOUT,
     TILT_RANGE,
     Session,
-    goal_topic,
 )
 from owl_cli.exercises.section_4_3 import hold_imu, settle
 from owl_cli.exercises.section_4_4 import joint_positions, moved, numeric_parameters, scaled, torque_criterion
@@ -57,6 +56,7 @@ def moving_goals(goals: list, still: float) -> list[tuple[float, float]]:
 
 
 def held_long_enough(samples: list[tuple[float, float]]) -> bool:
+    """Whether a held key's moving goals are enough to measure its speed on (SPEED_GOALS, SPEED_FOR)."""
     return len(samples) >= SPEED_GOALS and samples[-1][0] - samples[0][0] >= SPEED_FOR
 
 
@@ -216,8 +216,8 @@ def check_keyboard_servos_torque(s: Session) -> None:
         Criterion(
             'Ctrl-C disables the pan and tilt torque (setTorqueDisable) before the node ends',
             disabled,
-            'after rclpy.spin, call /olive/servo/pan/setTorqueDisable and '
-            '/olive/servo/tilt/setTorqueDisable; '
+            f"after rclpy.spin, call {servo_topic('pan', 'setTorqueDisable')} and "
+            f"{servo_topic('tilt', 'setTorqueDisable')}; "
             "(on a ROS 2 install of your own, Jazzy's Ctrl-C handler shuts ROS down first: there use "
             'rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO))',
             ', '.join(v for v in ('pan', 'tilt') if 'torque disabled' in s.helpers[v].output),

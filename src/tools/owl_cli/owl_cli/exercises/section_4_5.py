@@ -4,12 +4,12 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from olive_kit.description import CAMERA_TOPIC, goal_topic
+
 from owl_cli.check_catalogue import Section
 from owl_cli.check_report import Criterion
 from owl_cli.check_session import (
-    CAMERA_TOPIC,
     Session,
-    goal_topic,
     headless,
     launch_files,
 )

@@ -6,14 +6,14 @@ import time
 from pathlib import Path
 from typing import Any
 
+from olive_kit.description import CAMERA_TOPIC, goal_topic
+
 from owl_cli import check_criteria as judge
 from owl_cli.check_catalogue import Section
 from owl_cli.check_report import Criterion
 from owl_cli.check_session import (
     CAMERA_NODE,
-    CAMERA_TOPIC,
     Session,
-    goal_topic,
     headless,
     launch_files,
 )

@@ -5,13 +5,13 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
+from olive_kit.description import GESTURE_TOPIC, goal_topic
+
 from owl_cli.check_catalogue import Section
 from owl_cli.check_report import Criterion
 from owl_cli.check_session import (
     CAMERA_NODE,
-    GESTURE_TOPIC,
     Session,
-    goal_topic,
     headless,
     launch_files,
 )

@@ -117,7 +117,7 @@ export function startControls(socket, view) {
     torque.type = 'checkbox';
     torque.setAttribute('role', 'switch');
     torque.className = 'torque';
-    torque.title = `/olive/servo/${servo}/setTorqueEnable, setTorqueDisable`;
+    torque.title = limits.servos[servo].torque_services.join(', ');
     torque.addEventListener('change', () => send('torque', { servo, enabled: torque.checked },
                                                  `${servo}: torque ${torque.checked ? 'enabled' : 'disabled'}`));
     cells.push(torque);
@@ -169,7 +169,7 @@ export function startControls(socket, view) {
       button.className = 'goal';
       button.dataset.goal = String(goal);
       button.textContent = goalLabel(goal);
-      button.title = `publish ${goal} on /olive/servo/${servo}/goal/position`;
+      button.title = `publish ${goal} on ${limits.servos[servo].goal_topic}`;
       button.addEventListener('click', () => sendGoal(servo, goal));
       goalCell.append(button, ' ');
     }
