@@ -155,16 +155,28 @@ if [ -d install ] && [ "$(cat "$LAYOUT_STAMP" 2>/dev/null)" != "$layout_hash" ];
   echo "setup: the interface generators or the workspace's packages changed; removing the old build"
   rm -rf build install
 fi
-src_hash="$( (find src -type f -not -path '*/__pycache__/*' -printf '%p %T@\n' | sort; cat requirements.txt) | sha256sum | cut -d' ' -f1)"
+# A --symlink-install build links every file it installs from src/, so an edit of one reaches the
+# workspace at once (a course node, a check, a page's script: the inner loop of `make test-fast`).
+# colcon runs again only when a file appears or goes, or one of the files a build reads changes.
+BUILD_INPUTS=(-name setup.py -o -name setup.cfg -o -name package.xml -o -name CMakeLists.txt -o -name '*.cmake'
+  -o -name '*.msg' -o -name '*.srv' -o -name '*.action' -o -name '*.idl' -o -name '*.[ch]' -o -name '*.[ch]pp')
+src_hash="$( (find src -type f -not -path '*/__pycache__/*' | sort
+  find src -type f \( "${BUILD_INPUTS[@]}" \) -printf '%p %T@\n' | sort; cat requirements.txt) \
+  | sha256sum | cut -d' ' -f1)"
 if [ "$(cat "$BUILD_STAMP" 2>/dev/null)" != "$src_hash" ]; then
   echo "setup: building the workspace (colcon build --symlink-install) ..."
   run_logged colcon colcon build --symlink-install --event-handlers console_direct- \
     --cmake-args -DBUILD_TESTING=OFF -DPython3_EXECUTABLE="$VENV/bin/python" \
     -DCMAKE_PROJECT_INCLUDE="$INTERFACE_GENERATORS"
-  # The workspace's modules compiled once, for the same reason as the wheels' (--compile-bytecode).
-  run_logged bytecode python -m compileall -q -j 0 src install
   echo "$src_hash" >"$BUILD_STAMP"
   echo "$layout_hash" >"$LAYOUT_STAMP"
+fi
+# The workspace's modules compiled, as the wheels' are (--compile-bytecode), and again once edited.
+BYTECODE_STAMP="$ROOT/install/.owl-bytecode.sha256"
+py_hash="$(find src -name '*.py' -not -path '*/__pycache__/*' -printf '%p %T@\n' | sort | sha256sum | cut -d' ' -f1)"
+if [ "$(cat "$BYTECODE_STAMP" 2>/dev/null)" != "$py_hash" ]; then
+  run_logged bytecode python -m compileall -q -j 0 src install
+  echo "$py_hash" >"$BYTECODE_STAMP"
 fi
 
 # --- CONTRIBUTING.md's commit subjects (at most 72 characters): its commit-msg hook, in a git checkout
