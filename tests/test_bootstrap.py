@@ -88,3 +88,15 @@ def test_interface_packages_are_built_for_python_only(package):
         'generator_py')} <= libraries, libraries
     assert not [name for name in libraries if name.endswith('_cpp.so')], libraries
     assert not list((ROOT / 'install' / package / 'include').rglob('*.hpp'))
+
+
+def test_an_edited_module_needs_no_colcon_build_only_its_bytecode():
+    # --symlink-install links the installed files to src/: an edit is in the workspace at once. The
+    # module's time is left a second later, as an edit leaves it (its bytecode is then up to date).
+    module = ROOT / 'src' / 'course' / 'olive_srvcli' / 'olive_srvcli' / 'client_temperature.py'
+    stat = module.stat()
+    os.utime(module, ns=(stat.st_atime_ns, stat.st_mtime_ns + 1_000_000_000))
+    result = subprocess.run(['bash', str(BOOTSTRAP)], capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    [line] = result.stdout.splitlines()
+    assert re.fullmatch(r"setup: ready in \d+ s \(bytecode \d+ s\)\. Next: .*", line), line
