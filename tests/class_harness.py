@@ -39,18 +39,11 @@ START_TIMEOUT = 300.0  # s: the first start installs JupyterHub and builds the s
 CHECKOUT = Path(__file__).resolve().parents[1]
 LAB = Path(tempfile.gettempdir()) / f'owl-class-lab-{hashlib.sha256(bytes(CHECKOUT)).hexdigest()[:8]}'
 Result = TypeVar('Result')
-# The lab's build as `owl class serve` makes it (ensure_lab, the same Python, so the same stamp), at
-# the lowest CPU priority: it runs on the cores the tests leave idle, not in a test's slots.
-LAB_BUILD = ['nice', '-n', '19', sys.executable, '-c',
+# The lab's build as `owl class serve` makes it (ensure_lab, the same Python, so the same stamp).
+LAB_BUILD = [sys.executable, '-c',
              'import sys; from pathlib import Path; from owl_cli.classroom.hub import SYSTEM_PYTHON; '
              'from owl_cli.classroom.lab import ensure_lab; ensure_lab(Path(sys.argv[1]), Path(sys.argv[2]), '
              'SYSTEM_PYTHON)', str(LAB), str(CHECKOUT)]
-
-
-def start_lab_build() -> subprocess.Popen:
-    """Begin building the lab in the background (it ends with this process); see LAB_BUILD."""
-    return subprocess.Popen(LAB_BUILD, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                            preexec_fn=dies_with_this_process())
 
 
 def wait_for_lab() -> None:
@@ -60,6 +53,8 @@ def wait_for_lab() -> None:
     """
     subprocess.run(LAB_BUILD, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=False,
                    preexec_fn=dies_with_this_process())
+
+
 TEACHER_PASSWORD = 'teacher-secret-1'
 
 

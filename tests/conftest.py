@@ -4,7 +4,6 @@ import gc
 import os
 import re
 import shutil
-import subprocess
 import sys
 import tempfile
 import threading
@@ -109,11 +108,12 @@ SYSTEM_TESTS = Path(__file__).parent
 SYSTEM_TEST_RERUNS = 1
 
 
-# The class server's tests and bench need the students' lab, a build of this checkout (a minute of
-# both cores): one worker starts it at the lowest priority as the run begins, and a test marked
-# class_lab waits for it before it takes its slots (make test runs a worker more than there are slots).
+# The class server's tests and bench need the students' lab, a build of this checkout (a minute or
+# two of both cores): one worker builds it as the run begins, holding two slots as a whole_kit test
+# does, and a test marked class_lab waits for it before it takes its slots (make test runs a worker
+# more than there are slots). At the lowest priority instead, on a slow machine the build got no CPU
+# until the other tests were nearly done (900 s into a 1400 s run), and the class tests ran last, alone.
 CLASS_LAB = 'class_lab'
-LAB_BUILD: list[subprocess.Popen] = []
 
 
 def needs_class_lab(item: pytest.Item) -> bool:
@@ -123,9 +123,7 @@ def needs_class_lab(item: pytest.Item) -> bool:
 
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
     if os.environ.get('PYTEST_XDIST_WORKER', 'gw0') == 'gw0' and any(map(needs_class_lab, items)):
-        import class_harness
-
-        LAB_BUILD.append(class_harness.start_lab_build())
+        threading.Thread(target=build_lab_in_slots, name='class lab build', daemon=True).start()
     if config.getoption('usepdb'):
         return  # a failure should stop in the debugger, and the plugin refuses reruns with --pdb
     for item in items:
@@ -154,6 +152,22 @@ def wait_for_lock(directory: Path, ids: range) -> IO[str]:
     return held[1]
 
 
+def take_slots(held: ExitStack, count: int) -> None:
+    """Wait for count of SYSTEM_TEST_SLOTS, taken one test at a time; held keeps them till it closes."""
+    with wait_for_lock(TAKING_SLOTS_DIR, range(1)):
+        for _ in range(count):
+            held.enter_context(wait_for_lock(SLOT_DIR, SYSTEM_TEST_SLOTS))
+
+
+def build_lab_in_slots() -> None:
+    """Build the class's lab (CLASS_LAB) while holding a whole_kit test's share of the slots."""
+    import class_harness
+
+    with ExitStack() as held:
+        take_slots(held, min(2, len(SYSTEM_TEST_SLOTS)))
+        class_harness.wait_for_lab()
+
+
 def slots_needed(item: pytest.Item) -> int:
     """How many of SYSTEM_TEST_SLOTS a system test holds while it runs: its share of the machine."""
     if item.get_closest_marker(WHOLE_KIT):
@@ -176,9 +190,7 @@ def pytest_runtest_protocol(item: pytest.Item,
 
         class_harness.wait_for_lab()
     with ExitStack() as held:
-        with wait_for_lock(TAKING_SLOTS_DIR, range(1)):
-            for _ in range(slots_needed(item)):
-                held.enter_context(wait_for_lock(SLOT_DIR, SYSTEM_TEST_SLOTS))
+        take_slots(held, slots_needed(item))
         return (yield)
 
 

@@ -13,6 +13,7 @@ import subprocess
 import tempfile
 from pathlib import Path
 
+import pytest
 from class_harness import CHECKOUT, LAB
 from gates import prerequisite_missing
 from owl_cli.classroom.hub import SYSTEM_PYTHON
@@ -21,6 +22,7 @@ from owl_cli.classroom.lab import bootstrap_environment, ensure_lab
 AS_NOBODY = ['setpriv', '--reuid=nobody', '--regid=nogroup', '--clear-groups']
 
 
+@pytest.mark.class_lab  # it takes the students' lab as built for the run (conftest.py)
 def test_the_image_recipe_gives_a_lab_and_servers_another_account_runs():
     if os.geteuid() != 0:
         prerequisite_missing('the image is built as root, and checked as another account')
