@@ -14,8 +14,13 @@ from owl_common import ros_env
 from owl_humble.graph_partition import profile_in_effect, profile_protects
 from owl_web.origins import port_number
 
-from owl_cli import check, classroom, kit_check, network_check, pages_command, wsl_check
+from owl_cli import classroom
+from owl_cli.check import command as check
 from owl_cli.classroom import image, serve
+from owl_cli.network import checks as network_check
+from owl_cli.network import kit as kit_check
+from owl_cli.network import wsl as wsl_check
+from owl_cli.pages import command as pages_command
 
 
 def positive_seconds(text: str) -> float:
@@ -81,8 +86,8 @@ def windows(args: argparse.Namespace) -> int:
     # Imported here: only this command needs the venv's start-up hook (the windows' folder).
     from owl_web.server import WebServer
 
-    from owl_cli.windows_folder import default_windows_dir, private_root
-    from owl_cli.windows_page import STATIC_DIR, WindowsPage
+    from owl_cli.windows.folder import default_windows_dir, private_root
+    from owl_cli.windows.page import STATIC_DIR, WindowsPage
 
     folder = Path(args.folder or os.environ.get('OWL_WINDOWS_DIR') or default_windows_dir())
     try:

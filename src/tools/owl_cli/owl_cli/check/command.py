@@ -23,10 +23,10 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
-from owl_cli import check_catalogue as catalogue
-from owl_cli import check_workspace as ws
-from owl_cli.check_catalogue import Exercise
-from owl_cli.check_report import (
+from owl_cli.check import catalogue
+from owl_cli.check import workspace as ws
+from owl_cli.check.catalogue import Exercise
+from owl_cli.check.report import (
     CHECK_DONE,
     RESULT_PREFIX,
     WORKSPACE_VARIABLE,
@@ -84,7 +84,7 @@ def build(workspace: Path, names: list[str], quiet: bool) -> str | None:
 
 
 class CheckRun:
-    """One exercise's check in a process of its own (owl_cli.check_ros), started before its turn.
+    """One exercise's check in a process of its own (owl_cli.check.ros), started before its turn.
 
     The process imports, leases its ROS domain and starts its probe node while the check before it
     runs; begin() starts the check. Once every criterion is out (CHECK_DONE) owl check goes on to
@@ -191,7 +191,7 @@ def start_check(exercise: Exercise, workspace: Path) -> CheckRun:
     """The exercise's CheckRun, in a shell that sourced the workspace (it waits for begin())."""
     setup = workspace / 'install' / 'local_setup.bash'
     python = shlex.quote(sys.executable)
-    script = f'source {shlex.quote(str(setup))} && exec {python} -m owl_cli.check_ros --wait {exercise.id}'
+    script = f'source {shlex.quote(str(setup))} && exec {python} -m owl_cli.check.ros --wait {exercise.id}'
     return CheckRun(exercise.id, ['bash', '-c', script], {**os.environ, WORKSPACE_VARIABLE: str(workspace)})
 
 
