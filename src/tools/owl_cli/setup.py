@@ -25,6 +25,14 @@ setup(
         'console_scripts': [
             'owl = owl_cli.main:main',
         ],
+        # owl's commands, as ros2cli's are (owl_cli/command/__init__.py): owl_cli.main lists them.
+        'owl_cli.command': [
+            'check = owl_cli.check.command:CheckCommand',
+            'class = owl_cli.classroom.command:ClassCommand',
+            'network = owl_cli.network.command:NetworkCommand',
+            'pages = owl_cli.pages.command:PagesCommand',
+            'windows = owl_cli.windows.command:WindowsCommand',
+        ],
         # owl check's exercises, one plug-in per course section (owl_cli/check/catalogue.py).
         'owl_cli.exercises': [
             '3.4 = owl_cli.check.exercises.section_3_4:SECTION',

@@ -40,6 +40,7 @@ from owl_cli.check.report import (
     summary_table,
     to_json,
 )
+from owl_cli.command import Command
 
 # s: the most one check may take from its begin to its last criterion. Each check aims at well under
 # 30 s and each of its waits ends by itself: this is a backstop, wide enough for a machine eight times
@@ -47,22 +48,6 @@ from owl_cli.check.report import (
 HARD_LIMIT = 150.0
 CLEANUP_LIMIT = 30.0  # s for a check's clean-up after its last criterion (it stops its nodes)
 BUILD_LIMIT = 900.0
-
-
-def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """Add owl check's arguments (ids, --workspace, --list, --all, --json) to its sub-command's parser."""
-    parser.add_argument('exercises', nargs='*', metavar='ID', help='exercise ids (see --list)')
-    parser.add_argument(
-        '--workspace',
-        type=Path,
-        metavar='DIR',
-        help='the colcon workspace (default: the current folder or the one above it)',
-    )
-    parser.add_argument('--list', action='store_true', help='list the exercises and projects and exit')
-    parser.add_argument(
-        '--all', action='store_true', help='check every exercise whose package is in the workspace'
-    )
-    parser.add_argument('--json', action='store_true', help='print the results as JSON (for teachers)')
 
 
 def build(workspace: Path, names: list[str], quiet: bool) -> str | None:
@@ -328,3 +313,30 @@ def check(args: argparse.Namespace) -> int:
         print()
         print('\n'.join(summary_table(results)))
     return exit_code(results)
+
+
+class CheckCommand(Command):
+    """`owl check ID... | --all | --list`."""
+
+    help = 'check a course exercise in your workspace (owl check --list)'
+    description = sys.modules[__name__].__doc__  # the module's (in here __doc__ is the class's)
+    formatter_class = argparse.RawDescriptionHelpFormatter
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """The exercise ids, --workspace, --list, --all, --json."""
+        parser.add_argument('exercises', nargs='*', metavar='ID', help='exercise ids (see --list)')
+        parser.add_argument(
+            '--workspace',
+            type=Path,
+            metavar='DIR',
+            help='the colcon workspace (default: the current folder or the one above it)',
+        )
+        parser.add_argument('--list', action='store_true', help='list the exercises and projects and exit')
+        parser.add_argument(
+            '--all', action='store_true', help='check every exercise whose package is in the workspace'
+        )
+        parser.add_argument('--json', action='store_true', help='print the results as JSON (for teachers)')
+
+    def main(self, *, parser: argparse.ArgumentParser, args: argparse.Namespace) -> int:
+        """Run `owl check`."""
+        return check(args)
