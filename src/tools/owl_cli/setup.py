@@ -17,8 +17,8 @@ setup(
     zip_safe=False,
     maintainer='Owl Kit Lab',
     maintainer_email='team@owlkitlab.invalid',
-    description=('The owl command: owl network checks the way to the Olive modules; owl windows '
-                 'shows the windows of programs without a display.'),
+    description=('The owl command: owl check, owl network, owl windows, owl pages, owl class and '
+                 'owl demo (the chapter 4 robot live).'),
     license='Apache-2.0',
     tests_require=['pytest'],
     entry_points={
@@ -29,6 +29,7 @@ setup(
         'owl_cli.command': [
             'check = owl_cli.check.command:CheckCommand',
             'class = owl_cli.classroom.command:ClassCommand',
+            'demo = owl_cli.demo.command:DemoCommand',
             'network = owl_cli.network.command:NetworkCommand',
             'pages = owl_cli.pages.command:PagesCommand',
             'windows = owl_cli.windows.command:WindowsCommand',

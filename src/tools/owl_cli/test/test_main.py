@@ -9,7 +9,7 @@ from owl_cli.command import Command
 
 def test_every_command_is_found_through_its_entry_point():
     found = owl.commands()
-    assert list(found) == ['check', 'class', 'network', 'pages', 'windows']
+    assert list(found) == ['check', 'class', 'demo', 'network', 'pages', 'windows']
     for name, command in found.items():
         assert isinstance(command, Command), name
         assert type(command).__module__ == f"owl_cli.{'classroom' if name == 'class' else name}.command"
