@@ -10,7 +10,7 @@ setup:
 	@bash scripts/bootstrap.sh
 
 demo: setup
-	@$(ENV) python scripts/demo.py
+	@$(ENV) owl demo
 
 # The system tests mostly wait on processes, discovery and timers: pytest-xdist runs them in this many
 # workers; `make test TEST_WORKERS=0` runs them in one. worksteal: each worker starts on a run of

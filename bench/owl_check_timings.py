@@ -20,7 +20,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from owl_cli.check_session import Session
+from owl_cli.check.session import Session
 
 ROOT = Path(__file__).resolve().parents[1]
 BUDGET = 30.0  # s per check, the owl check issue's target

@@ -1,19 +1,16 @@
-"""`make demo`: the chapter 4 robot live over real DDS, reported in readable lines, stopped cleanly."""
+"""`owl demo` (make demo): the chapter 4 robot live over real DDS, in readable lines, stopped cleanly."""
 
-import importlib.util
 import os
 import re
 import subprocess
-import sys
 from pathlib import Path
-from types import ModuleType
 
 import pytest
 from olive_kit.description import SERVO_RANGES
 from olive_sim.scene_model import BALL_START, BallPath
+from owl_cli.demo import robot as demo
 from owl_web.pages import stop_front_door
 
-DEMO = Path(__file__).parents[1] / 'scripts' / 'demo.py'
 STATUS = re.compile(
     r'IMU roll +[+-]\d+° pitch +[+-]\d+° yaw +[+-]\d+° \| pan goal ([+-]\d\.\d\d) at ([+-]\d\.\d\d) rad \| '
     r'tilt goal ([+-]\d\.\d\d) at ([+-]\d\.\d\d) rad \| camera +(\d+\.\d) fps \| turtle \(')
@@ -29,8 +26,8 @@ def run_demo(*args: str, timeout: float = 150,
     if pages_dir is not None:
         env.update({'OWL_PAGES_DIR': str(pages_dir), 'OWL_FRONT_DOOR_PORT': '0', 'OWL_FRONT_DOOR': 'on'})
     try:
-        return subprocess.run([sys.executable, str(DEMO), *args], capture_output=True, text=True,
-                              timeout=timeout, env=env, check=False)
+        return subprocess.run(['owl', 'demo', *args], capture_output=True, text=True, timeout=timeout,
+                              env=env, check=False)
     finally:
         if pages_dir is not None:
             stop_front_door(pages_dir)
@@ -62,18 +59,7 @@ def test_demo_runs_the_robot_reports_it_and_stops_every_node_cleanly(tmp_path):
     assert 'Traceback' not in result.stdout + result.stderr
 
 
-def demo_module() -> ModuleType:
-    spec = importlib.util.spec_from_file_location('owl_demo_script', DEMO)
-    assert spec is not None
-    assert spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module  # its dataclasses look their module up there
-    spec.loader.exec_module(module)
-    return module
-
-
 def test_the_tracking_demos_ball_stays_where_the_pan_servo_can_centre_it():
-    demo = demo_module()
     assert f'ball_swing:={demo.BALL_SWING}' in demo.KIT_WITH_BALL
     assert f'ball_speed:={demo.BALL_SPEED}' in demo.KIT_WITH_BALL
     path = BallPath(*BALL_START, speed=demo.BALL_SPEED, swing=demo.BALL_SWING)

@@ -216,7 +216,7 @@ def test_owl_network_refuses_a_domain_no_node_can_use_in_one_line():
 @pytest.mark.parametrize(('args', 'message'), [
     (['network', '--what'], 'owl: error: unrecognized arguments: --what'),
     (['netwerk'], "owl: error: argument COMMAND: invalid choice: 'netwerk' "
-                  "(choose from 'network', 'windows', 'check', 'pages', 'class')"),
+                  "(choose from 'check', 'class', 'demo', 'network', 'pages', 'windows')"),
     (['class', 'serv'], "owl class: error: argument COMMAND: invalid choice: 'serv' "
                         "(choose from 'serve', 'image')"),
 ])

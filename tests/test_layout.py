@@ -232,6 +232,32 @@ def test_no_module_imports_itself_back():
         pytest.fail(f'modules import each other in a cycle: {cycle.args[1]}')
 
 
+
+# owl check's plug-ins, one per course section: what two sections share lives in owl_cli.check
+# (kit_helpers, session, ...), so a section's module stands alone and can move to another package.
+EXERCISES = 'owl_cli.check.exercises.'
+
+
+def exercise_cross_imports(modules: dict[str, Path]) -> dict[str, list[str]]:
+    """Exercise module -> the other exercise modules it imports, for those that import any."""
+    exercises = {name for name in modules if name.startswith(EXERCISES)}
+    found = {name: sorted(runtime_imports(name, modules[name], modules) & exercises) for name in exercises}
+    return {name: others for name, others in found.items() if others}
+
+
+def test_no_exercise_module_imports_another():
+    modules = python_modules()
+    assert len([name for name in modules if name.startswith(EXERCISES)]) >= 12
+    assert exercise_cross_imports(modules) == {}
+
+
+def test_an_exercise_module_importing_another_is_seen(tmp_path):
+    first, second = tmp_path / 'section_1.py', tmp_path / 'section_2.py'
+    first.write_text('X = 1\n')
+    second.write_text('def check():\n    from owl_cli.check.exercises.section_1 import X\n')
+    modules = {f'{EXERCISES}section_1': first, f'{EXERCISES}section_2': second}
+    assert exercise_cross_imports(modules) == {f'{EXERCISES}section_2': [f'{EXERCISES}section_1']}
+
 # A page's own address, the front door's /<mount>/, and a proxy's /user/NAME/proxy/PORT/ are all the
 # same page: it must name its files, API and WebSocket relative to itself. What an absolute reference
 # looks like in our pages' HTML, CSS and JavaScript (a root-relative path or this machine's address).

@@ -12,7 +12,8 @@ import cv2
 import numpy as np
 import pytest
 from desktop import NO_DISPLAY, REAL_WINDOWS
-from olive_sim.camera_render import LANDMARKS, find_colour
+from olive_sim.camera_render import LANDMARKS
+from owl_common.images import find_colour
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from ros_harness import endpoints, wait_for_messages, wait_until
 from sensor_msgs.msg import CompressedImage

@@ -7,7 +7,8 @@ import statistics
 
 import numpy as np
 import pytest
-from olive_sim.camera_render import LANDMARKS, find_colour
+from olive_sim.camera_render import LANDMARKS
+from owl_common.images import find_colour
 from PIL import Image
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy, qos_profile_sensor_data
 from ros_harness import endpoints, list_parameter_names, wait_for_messages, wait_until

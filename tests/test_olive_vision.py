@@ -10,8 +10,8 @@ import time
 import cv2
 import numpy as np
 import pytest
-from olive_sim.camera_render import find_colour
-from olive_sim.scene_draw import BALL_COLOUR
+from olive_kit.description import BALL_COLOUR
+from owl_common.images import find_colour
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from ros_harness import wait_for_messages, wait_until
 from sensor_msgs.msg import CompressedImage

@@ -16,9 +16,9 @@ import tempfile
 from pathlib import Path
 
 import pytest
-from owl_cli.check_catalogue import EXERCISES
-from owl_cli.check_report import read_latest, results_file
-from owl_cli.check_session import Session
+from owl_cli.check.catalogue import EXERCISES
+from owl_cli.check.report import read_latest, results_file
+from owl_cli.check.session import Session
 from owl_common.processes import dies_with_this_process
 from student_workspace import build_from, shell
 

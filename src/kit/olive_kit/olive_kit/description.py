@@ -120,6 +120,9 @@ OWL_KIT = (
 # Each servo's goal range in the kit (its min_position, max_position), by namespace: pan, tilt.
 SERVO_RANGES = {m.namespace: (m.own_parameters['min_position'], m.own_parameters['max_position'])
                 for m in OWL_KIT if m.module_type == 'servo'}
+# The red ball of the simulated scene (olive_sim's scene:=ball, section 4.6), in the camera's RGB: the
+# simulator draws it, and the demo and the tests look for it in the camera's pictures.
+BALL_COLOUR = (215, 20, 28)  # clearly red: hue ~358 deg, saturation 0.91, value 0.84
 # The modules' subnet (a module's factory address is 10.42.0.7) and the student's PC on it.
 KIT_SUBNET = '10.42.0.0/24'
 STUDENT_ADDRESS = '10.42.0.1'

@@ -11,11 +11,11 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
+from olive_kit.description import BALL_COLOUR
 
 from olive_sim.scene_model import BONES, KEYPOINTS
 
-BALL_COLOUR = (215, 20, 28)      # clearly red: hue ~358 deg, saturation 0.91, value 0.84
-BALL_HIGHLIGHT = (245, 70, 75)   # its lit top left, still red (saturation 0.71, value 0.96)
+BALL_HIGHLIGHT = (245, 70, 75)  # BALL_COLOUR's lit top left, still red (saturation 0.71, value 0.96)
 SHIRT, TROUSERS, SKIN = (40, 90, 170), (45, 45, 60), (225, 185, 150)
 KEYPOINT_COLOUR, BONE_COLOUR = (0, 0, 255), (255, 255, 0)  # as the camera's gesture app draws them
 

@@ -19,13 +19,13 @@ from olive_sim.camera_render import (
     _font,
     build_panorama,
     encode_jpeg,
-    find_colour,
     focal_length,
     join_jpeg,
     packed_panorama,
     scene_pixels,
     split_jpeg,
 )
+from owl_common.images import find_colour
 from PIL import Image
 
 RED = LANDMARKS[0][1]  # the tower straight ahead at pan 0

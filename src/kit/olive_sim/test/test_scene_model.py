@@ -4,8 +4,9 @@ import math
 
 import numpy as np
 import pytest
-from olive_sim.camera_render import NO_RED_LANDMARKS, CameraRenderer, build_panorama, find_colour
-from olive_sim.scene_draw import BALL_COLOUR, SceneView, fill_disc, fill_segment, packed
+from olive_kit.description import BALL_COLOUR
+from olive_sim.camera_render import NO_RED_LANDMARKS, CameraRenderer, build_panorama
+from olive_sim.scene_draw import SceneView, fill_disc, fill_segment, packed
 from olive_sim.scene_model import (
     BALL_BOB,
     BALL_ELEVATION_RANGE,
@@ -19,6 +20,7 @@ from olive_sim.scene_model import (
     person_pose,
     wrap,
 )
+from owl_common.images import find_colour
 
 PINHOLE = Pinhole(706.0, 706.0, 319.5, 239.5)
 

@@ -1,1 +1,1 @@
-"""owl_cli: the `owl` command (owl network, owl windows, owl check) and owl check's exercises."""
+"""owl_cli: the `owl` command, one subpackage per command (check, network, windows, pages, classroom)."""

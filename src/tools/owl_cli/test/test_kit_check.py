@@ -1,6 +1,6 @@
 """owl network --kit's pure parts: module names, distributions, verdicts."""
 
-from owl_cli.kit_check import (
+from owl_cli.network.kit import (
     HUMBLE,
     NEWER,
     ModuleReport,

@@ -1,6 +1,6 @@
 """owl network's verdicts from facts: the good set-up and each broken one, with its fix."""
 
-from owl_cli.network_check import FACTORY_ADDRESS, Interface, NetworkFacts, verdict
+from owl_cli.network.checks import FACTORY_ADDRESS, Interface, NetworkFacts, verdict
 
 ON_SUBNET = [Interface('lo', '127.0.0.1', 8), Interface('enx0', '10.42.0.1', 24)]
 ALL_ANSWER = {'10.42.0.20': True, '10.42.0.8': True, '10.42.0.9': True, '10.42.0.10': True,

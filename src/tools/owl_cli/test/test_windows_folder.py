@@ -5,7 +5,7 @@ import subprocess
 import sys
 
 import pytest
-from owl_cli.windows_folder import append_key_event, key_event_line, read_frame, scan
+from owl_cli.windows.folder import append_key_event, key_event_line, read_frame, scan
 
 
 def ended_pid() -> int:

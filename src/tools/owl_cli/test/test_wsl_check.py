@@ -1,8 +1,8 @@
 """owl network on Windows' WSL: WSL told from /proc/version and the environment, and each mode's verdict."""
 
 import pytest
-from owl_cli.network_check import Interface, NetworkFacts, verdict
-from owl_cli.wsl_check import HYPER_V_ALLOW, WslFacts, wsl_facts, wsl_verdicts
+from owl_cli.network.checks import Interface, NetworkFacts, verdict
+from owl_cli.network.wsl import HYPER_V_ALLOW, WslFacts, wsl_facts, wsl_verdicts
 
 # /proc/version as each kind of machine writes it
 WSL2 = ('Linux version 5.15.167.4-microsoft-standard-WSL2 (root@f9c826d3017f) (gcc (GCC) 11.2.0, GNU ld '

@@ -21,7 +21,7 @@ from pathlib import Path
 
 from owl_web.pages import FRONT_DOOR_PORT
 
-from owl_cli import check_report
+from owl_cli.check.report import CLASS_RESULTS_VARIABLE
 from owl_cli.classroom import (
     ClassError,
     files_digest,
@@ -199,7 +199,7 @@ def config_text(settings: HubSettings) -> str:
              'ROS_AUTOMATIC_DISCOVERY_RANGE': 'LOCALHOST', 'OWL_TRUSTED_ORIGINS': ' '.join(settings.origins),
              'OWL_PAGE_PORT_FALLBACK': '1',  # classmates' pages hold the default ports: take a free one
              'OWL_PAGES_OWNER_ONLY': '1',  # and may not be reached by a classmate (owl_web.owner_only)
-             check_report.CLASS_RESULTS_VARIABLE:  # each owl check's results to the teacher's page
+             CLASS_RESULTS_VARIABLE:  # each owl check's results to the teacher's page
                  f'http://127.0.0.1:{settings.teacher_page_port}/services/{teacher_page.SERVICE_NAME}/api/results'}
     lines += [
         '# Each account\'s own ROS domain and front door port (owl_cli.classroom.worlds).',

@@ -21,7 +21,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from owl_cli import check_catalogue as catalogue
+from owl_cli.check import catalogue
 from owl_cli.classroom import ClassError, accounts, closed_parent, hub, teacher_page, worlds
 from owl_cli.classroom.lab import ensure_lab
 from owl_cli.classroom.students import StudentsError, name_problem, parse_students

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from owl_cli.check_report import read_latest
+from owl_cli.check.report import read_latest
 
 ROLL = 'class-roll.json'
 RESULTS = 'check-results'  # in the state folder: one file per student, as the page received it
@@ -85,7 +85,7 @@ def table_html(roll: Roll, results: dict[str, dict[str, dict[str, Any]]], activi
                now: float) -> str:
     """The page's table: a row per student, a column per section, each exercise passed, failed or not run.
 
-    results: each student's latest result per exercise (owl_cli.check_report.read_latest); activity:
+    results: each student's latest result per exercise (owl_cli.check.report.read_latest); activity:
     when each student's server last saw them (seconds since the epoch), if it did.
     """
     head = ''.join(f'<th scope="col">{html.escape(section)}</th>' for section, _ in roll.sections)

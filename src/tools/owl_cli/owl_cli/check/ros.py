@@ -1,9 +1,9 @@
 """The part of `owl check` that drives ROS: one exercise's check in a private ROS domain.
 
-Runs as its own process (`python -m owl_cli.check_ros [--wait] EXERCISE`), started by `owl check`
+Runs as its own process (`python -m owl_cli.check.ros [--wait] EXERCISE`), started by `owl check`
 in a shell that has sourced the student's workspace, so `ros2 run` finds the student's executables and
 this process imports the student's interface types. The check itself is the exercise's plug-in
-(owl_cli/exercises/), run on a check_session.Session that stops everything it started.
+(owl_cli/check/exercises/), run on a session.Session that stops everything it started.
 """
 
 from __future__ import annotations
@@ -15,9 +15,9 @@ import sys
 # Discovery stays on this machine whatever the student's shell says (set before rclpy starts).
 os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
 
-from owl_cli import check_catalogue as catalogue
-from owl_cli.check_report import CHECK_DONE
-from owl_cli.check_session import Failed, Session
+from owl_cli.check import catalogue
+from owl_cli.check.report import CHECK_DONE
+from owl_cli.check.session import Failed, Session
 
 WAIT = '--wait'
 
@@ -67,7 +67,7 @@ def main() -> int:
     if wait:
         args = args[1:]
     if len(args) != 1 or args[0] not in ids:
-        print(f'usage: python -m owl_cli.check_ros [{WAIT}] {{{",".join(ids)}}}', file=sys.stderr)
+        print(f'usage: python -m owl_cli.check.ros [{WAIT}] {{{",".join(ids)}}}', file=sys.stderr)
         return 2
     return run(args[0], wait)
 

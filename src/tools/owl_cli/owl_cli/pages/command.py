@@ -8,16 +8,13 @@ that starts it.
 from __future__ import annotations
 
 import argparse
+import sys
 
 from olive_kit.description import page_catalogue
 from owl_web import pages
 from owl_web.origins import TrustedOrigins
 
-
-def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """`owl pages`' options."""
-    parser.add_argument('--stop', action='store_true', help='stop the front door (the pages keep their own '
-                                                            'addresses)')
+from owl_cli.command import Command
 
 
 def table(states: list[pages.PageState], front_door: str | None) -> str:
@@ -57,3 +54,20 @@ def run(args: argparse.Namespace) -> int:
         print('owl pages: no front door (OWL_FRONT_DOOR=off): each page is at its own address')
     print(table(pages.page_states(folder), front_door))
     return 0
+
+
+class PagesCommand(Command):
+    """`owl pages [--stop]`."""
+
+    help = 'the front door (one address for every page) and every page, running or not'
+    description = sys.modules[__name__].__doc__  # the module's (in here __doc__ is the class's)
+    formatter_class = argparse.RawDescriptionHelpFormatter
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """`owl pages`' option, --stop."""
+        parser.add_argument('--stop', action='store_true',
+                            help='stop the front door (the pages keep their own addresses)')
+
+    def main(self, *, parser: argparse.ArgumentParser, args: argparse.Namespace) -> int:
+        """Run `owl pages`."""
+        return run(args)

@@ -12,7 +12,7 @@ from collections.abc import Mapping
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
-# How the check's ROS process (check_ros.py) hands each decided criterion to `owl check`: one line.
+# How the check's ROS process (check/ros.py) hands each decided criterion to `owl check`: one line.
 RESULT_PREFIX = 'owl-check-criterion '
 # ... and that every criterion is out: what follows is the check's clean-up, which owl check lets run
 # beside the next exercise's check.
@@ -32,7 +32,7 @@ class Criterion:
 
     @classmethod
     def from_dict(cls, values: dict[str, object]) -> Criterion:
-        """The criterion from its JSON object, as check_ros.py prints it after RESULT_PREFIX."""
+        """The criterion from its JSON object, as check/ros.py prints it after RESULT_PREFIX."""
         return cls(
             str(values['text']),
             bool(values['passed']),

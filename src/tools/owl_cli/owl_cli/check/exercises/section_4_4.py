@@ -4,12 +4,13 @@ from __future__ import annotations
 
 import time
 
-from olive_kit.description import goal_topic, joint_topic, servo_topic
+from olive_kit.description import goal_topic, servo_topic
 
-from owl_cli import check_criteria as judge
-from owl_cli.check_catalogue import TERMINAL, Section
-from owl_cli.check_report import Criterion
-from owl_cli.check_session import (
+from owl_cli.check import criteria as judge
+from owl_cli.check.catalogue import TERMINAL, Section
+from owl_cli.check.kit_helpers import joint_positions, moved, numeric_parameters, scaled, torque_criterion
+from owl_cli.check.report import Criterion
+from owl_cli.check.session import (
     PAN_RANGE,
     START_TIMEOUT,
     Session,
@@ -25,50 +26,6 @@ SECTION.by_hand(
     "tune the pan servo's Kp, Ki, Kd with ros2 param set and watch the overshoot",
     TERMINAL,
 )
-
-
-TORQUE_OFF_WARNING = 'ignored, torque is disabled'
-
-
-def torque_criterion(s: Session, servo: str, goals: list) -> None:
-    """Add the criterion that the node enabled the servo's torque before its first goal.
-
-    Read from the simulated servo's log: 'torque enabled', and no goal ignored while it was off.
-    """
-    log = s.helpers[servo].output
-    enabled = 'torque enabled' in log
-    early = TORQUE_OFF_WARNING in log
-    if not enabled:
-        hint = (
-            f'the {servo} servo ignores every goal while its torque is off: call '
-            f"{servo_topic(servo, 'setTorqueEnable')} (std_srvs/srv/Trigger) before the first goal"
-        )
-    else:
-        hint = (
-            f'goals reached the {servo} servo before its torque was on and were ignored: call '
-            'setTorqueEnable and wait for its answer before publishing goals'
-        )
-    s.add(
-        Criterion(
-            f'enables the {servo} torque (setTorqueEnable) before sending goals',
-            enabled and not early,
-            hint,
-            f'{len(goals)} goals',
-        )
-    )
-
-
-def joint_positions(s: Session, servo: str) -> list:
-    """The servo's JointState messages from now on, as (monotonic time, message) pairs (Session.collect)."""
-    from sensor_msgs.msg import JointState
-
-    return s.collect(JointState, joint_topic(servo))
-
-
-def moved(joints: list, since: float = 0.0) -> float:
-    """How far (rad) the servo's position spanned in the joint states from monotonic time since on."""
-    values = [m.position[0] for t, m in joints if t >= since and m.position]
-    return max(values) - min(values) if values else 0.0
 
 
 @SECTION.check(
@@ -208,23 +165,6 @@ def check_control_servo(s: Session, torque_off_only: bool = False) -> None:
 def check_control_servo_torque_off(s: Session) -> None:
     """Run control_servo and stop it with Ctrl-C: it must disable the pan servo's torque first."""
     check_control_servo(s, torque_off_only=True)
-
-
-def numeric_parameters(s: Session, node: str, preferred: tuple[str, ...]) -> list[tuple[str, float]]:
-    """(name, value) of a node's own numeric parameters, those naming a preferred word first."""
-    found = [
-        (name, value)
-        for name, value in s.own_parameters(node).items()
-        if isinstance(value, (int, float)) and not isinstance(value, bool)
-    ]
-    return sorted(found, key=lambda item: not any(word in item[0].lower() for word in preferred))
-
-
-def scaled(value: float, factor: float) -> float:
-    """The parameter value times factor, an int staying an int of at least 1; 1 for a value of 0."""
-    if isinstance(value, int):
-        return max(1, round(value * factor)) if value else 1
-    return value * factor if value else 1.0
 
 
 @SECTION.check(

@@ -4,18 +4,17 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable
 from typing import Any
 
 from olive_kit.description import IMU_TOPIC
 
-from owl_cli import check_criteria as judge
-from owl_cli.check_catalogue import Section
-from owl_cli.check_report import Criterion
-from owl_cli.check_session import (
+from owl_cli.check import criteria as judge
+from owl_cli.check.catalogue import Section
+from owl_cli.check.kit_helpers import hold_imu, settle
+from owl_cli.check.report import Criterion
+from owl_cli.check.session import (
     CMD_VEL,
     COURSE_CMD_VEL,
-    IMU_COMMAND_TOPIC,
     START_TIMEOUT,
     Session,
     launch_files,
@@ -31,36 +30,6 @@ SECTION.by_hand(
     "the IMU's debug web GUI: watch roll, pitch and yaw while turning the IMU by hand",
     "done by hand on the IMU's web page (the module's or olive_sim's); nothing is left",
 )
-
-
-def hold_imu(s: Session, roll: float, pitch: float, yaw: float) -> None:
-    """Turn the simulated IMU (motion:=command) to roll, pitch and yaw in rad: one message to imu_sim."""
-    from geometry_msgs.msg import Quaternion
-    from owl_common.quaternion import from_euler
-
-    x, y, z, w = from_euler(roll, pitch, yaw)
-    publisher = s.imu_command_publisher
-    if publisher is None:
-        publisher = s.imu_command_publisher = s.node.create_publisher(Quaternion, IMU_COMMAND_TOPIC, 10)
-    publisher.publish(Quaternion(x=x, y=y, z=z, w=w))
-
-
-def settle(
-    s: Session,
-    received: list,
-    roll: float,
-    pitch: float,
-    yaw: float,
-    value: Callable[[Any], tuple[float, ...]],
-    seconds: float = 1.0,
-) -> list[tuple[float, ...]]:
-    """Hold the IMU there (sent again each 0.2 s), and return what the node sent in the last half."""
-    start = time.monotonic()
-    while time.monotonic() - start < seconds:
-        hold_imu(s, roll, pitch, yaw)
-        time.sleep(0.2)
-    since = start + seconds / 2
-    return [value(m) for t, m in received if t >= since]
 
 
 @SECTION.check(

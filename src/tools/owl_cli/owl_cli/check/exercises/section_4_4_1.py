@@ -10,17 +10,24 @@ from pathlib import Path
 from olive_kit.description import IMU_TOPIC, goal_topic, servo_topic
 from owl_common.processes import RosProcess
 
-from owl_cli import check_criteria as judge
-from owl_cli.check_catalogue import Section
-from owl_cli.check_report import Criterion
-from owl_cli.check_session import (
+from owl_cli.check import criteria as judge
+from owl_cli.check.catalogue import Section
+from owl_cli.check.kit_helpers import (
+    hold_imu,
+    joint_positions,
+    moved,
+    numeric_parameters,
+    scaled,
+    settle,
+    torque_criterion,
+)
+from owl_cli.check.report import Criterion
+from owl_cli.check.session import (
     PAN_RANGE,
     START_TIMEOUT,
     TILT_RANGE,
     Session,
 )
-from owl_cli.exercises.section_4_3 import hold_imu, settle
-from owl_cli.exercises.section_4_4 import joint_positions, moved, numeric_parameters, scaled, torque_criterion
 
 SECTION = Section()
 

@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from owl_cli.check_catalogue import Section
-from owl_cli.check_report import Criterion
-from owl_cli.check_session import (
+from owl_cli.check.catalogue import Section
+from owl_cli.check.report import Criterion
+from owl_cli.check.session import (
     Session,
     launch_files,
 )

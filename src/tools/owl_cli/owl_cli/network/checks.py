@@ -18,8 +18,8 @@ from dataclasses import dataclass, field
 from olive_kit.description import KIT_SUBNET, OWL_KIT
 from owl_humble.launcher import ensure_discovery_bridge
 
-from owl_cli.kit_check import node_distribution
-from owl_cli.wsl_check import HYPER_V_ALLOW, WslFacts, wsl_verdicts
+from owl_cli.network.kit import node_distribution
+from owl_cli.network.wsl import HYPER_V_ALLOW, WslFacts, wsl_verdicts
 
 FACTORY_ADDRESS = '10.42.0.7'  # every module's address out of the box (section 4.3.2)
 # The addresses the course gives the modules, and what it calls them.
@@ -170,7 +170,7 @@ def answers(address: str, timeout: float) -> bool:
 def olive_nodes(domain_id: int, seconds: float) -> dict[str, str]:
     """The Olive module nodes (olive_*) DDS discovers in a domain within seconds, by name.
 
-    Each maps to its ROS 2 distribution (kit_check.node_distribution).
+    Each maps to its ROS 2 distribution (kit.node_distribution).
     """
     import time
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from owl_cli.check_catalogue import TERMINAL, Section
+from owl_cli.check.catalogue import TERMINAL, Section
 
 SECTION = Section()
 

@@ -7,11 +7,11 @@ from typing import Any
 
 from rosidl_runtime_py.utilities import get_service
 
-from owl_cli import check_criteria as judge
-from owl_cli import check_workspace as ws
-from owl_cli.check_catalogue import TERMINAL, Section
-from owl_cli.check_report import Criterion
-from owl_cli.check_session import (
+from owl_cli.check import criteria as judge
+from owl_cli.check import workspace as ws
+from owl_cli.check.catalogue import TERMINAL, Section
+from owl_cli.check.report import Criterion
+from owl_cli.check.session import (
     PROBE_NODE,
     START_TIMEOUT,
     Session,

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from owl_cli import check_workspace as ws
-from owl_cli.check_catalogue import Section
-from owl_cli.check_report import Criterion
-from owl_cli.check_session import (
+from owl_cli.check import workspace as ws
+from owl_cli.check.catalogue import Section
+from owl_cli.check.report import Criterion
+from owl_cli.check.session import (
     Session,
     workspace,
 )

@@ -5,11 +5,11 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
-from owl_cli import check_criteria as judge
-from owl_cli import check_workspace as ws
-from owl_cli.check_catalogue import TERMINAL, Section
-from owl_cli.check_report import Criterion
-from owl_cli.check_session import (
+from owl_cli.check import criteria as judge
+from owl_cli.check import workspace as ws
+from owl_cli.check.catalogue import TERMINAL, Section
+from owl_cli.check.report import Criterion
+from owl_cli.check.session import (
     START_TIMEOUT,
     Session,
     values_since,

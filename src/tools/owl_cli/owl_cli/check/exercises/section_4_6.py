@@ -8,16 +8,16 @@ from typing import Any
 
 from olive_kit.description import CAMERA_TOPIC, goal_topic
 
-from owl_cli import check_criteria as judge
-from owl_cli.check_catalogue import Section
-from owl_cli.check_report import Criterion
-from owl_cli.check_session import (
+from owl_cli.check import criteria as judge
+from owl_cli.check.catalogue import Section
+from owl_cli.check.kit_helpers import joint_positions, torque_criterion
+from owl_cli.check.report import Criterion
+from owl_cli.check.session import (
     CAMERA_NODE,
     Session,
     headless,
     launch_files,
 )
-from owl_cli.exercises.section_4_4 import joint_positions, torque_criterion
 
 SECTION = Section()
 

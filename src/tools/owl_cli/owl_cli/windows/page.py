@@ -16,10 +16,10 @@ from typing import Any
 from owl_web.codec import ApiError, check_keys
 from owl_web.server import Subscription, WebServer
 
-from owl_cli.windows_folder import Window, append_key_event, read_frame, scan
+from owl_cli.windows.folder import Window, append_key_event, read_frame, scan
 
 POLL_PERIOD = 0.015  # s: under turtlesim's 30 ms between frames, so none waits long
-STATIC_DIR = Path(__file__).parent / 'windows_static'
+STATIC_DIR = Path(__file__).parent / 'static'
 
 
 class WindowsPage:

@@ -6,9 +6,9 @@ from pathlib import Path
 
 from olive_kit.description import CAMERA_TOPIC, goal_topic
 
-from owl_cli.check_catalogue import Section
-from owl_cli.check_report import Criterion
-from owl_cli.check_session import (
+from owl_cli.check.catalogue import Section
+from owl_cli.check.report import Criterion
+from owl_cli.check.session import (
     Session,
     headless,
     launch_files,

@@ -6,7 +6,7 @@ or on the hardware (3.6.1's service calls, 3.7.1's colour changes, 3.8's action 
 GUI, 4.4's PID tuning) leave nothing behind to check: they are listed with the reason
 (`not_checked`).
 
-The exercises come from plug-ins, one module per course section (owl_cli/exercises/), each
+The exercises come from plug-ins, one module per course section (owl_cli/check/exercises/), each
 declaring its exercises beside their checks; setup.py lists them in the `owl_cli.exercises`
 entry-point group, named by section, so another package can add a section's checks the same way.
 """
@@ -20,7 +20,7 @@ from importlib.metadata import entry_points
 from typing import TYPE_CHECKING, TypeVar
 
 if TYPE_CHECKING:
-    from owl_cli.check_session import Session
+    from owl_cli.check.session import Session
 
     Check = Callable[[Session], None]
 

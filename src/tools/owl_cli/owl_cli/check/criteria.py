@@ -1,6 +1,6 @@
 """The judgements of `owl check`, from measured values to a passed or failed criterion with a hint.
 
-No ROS here: check_ros.py measures, these functions decide, so each decision is unit-tested.
+No ROS here: ros.py measures, these functions decide, so each decision is unit-tested.
 """
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ import math
 import re
 from collections.abc import Sequence
 
-from owl_cli.check_report import Criterion
+from owl_cli.check.report import Criterion
 
 # Velocities or goals smaller than this count as "nothing" (the IMU's own noise stays far below).
 STILL = 0.05

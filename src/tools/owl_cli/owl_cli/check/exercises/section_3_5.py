@@ -6,10 +6,10 @@ import itertools
 import math
 import time
 
-from owl_cli import check_criteria as judge
-from owl_cli.check_catalogue import Section
-from owl_cli.check_report import Criterion
-from owl_cli.check_session import (
+from owl_cli.check import criteria as judge
+from owl_cli.check.catalogue import Section
+from owl_cli.check.report import Criterion
+from owl_cli.check.session import (
     CMD_VEL,
     Session,
 )

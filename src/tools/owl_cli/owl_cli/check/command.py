@@ -23,10 +23,10 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
-from owl_cli import check_catalogue as catalogue
-from owl_cli import check_workspace as ws
-from owl_cli.check_catalogue import Exercise
-from owl_cli.check_report import (
+from owl_cli.check import catalogue
+from owl_cli.check import workspace as ws
+from owl_cli.check.catalogue import Exercise
+from owl_cli.check.report import (
     CHECK_DONE,
     RESULT_PREFIX,
     WORKSPACE_VARIABLE,
@@ -40,6 +40,7 @@ from owl_cli.check_report import (
     summary_table,
     to_json,
 )
+from owl_cli.command import Command
 
 # s: the most one check may take from its begin to its last criterion. Each check aims at well under
 # 30 s and each of its waits ends by itself: this is a backstop, wide enough for a machine eight times
@@ -47,22 +48,6 @@ from owl_cli.check_report import (
 HARD_LIMIT = 150.0
 CLEANUP_LIMIT = 30.0  # s for a check's clean-up after its last criterion (it stops its nodes)
 BUILD_LIMIT = 900.0
-
-
-def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """Add owl check's arguments (ids, --workspace, --list, --all, --json) to its sub-command's parser."""
-    parser.add_argument('exercises', nargs='*', metavar='ID', help='exercise ids (see --list)')
-    parser.add_argument(
-        '--workspace',
-        type=Path,
-        metavar='DIR',
-        help='the colcon workspace (default: the current folder or the one above it)',
-    )
-    parser.add_argument('--list', action='store_true', help='list the exercises and projects and exit')
-    parser.add_argument(
-        '--all', action='store_true', help='check every exercise whose package is in the workspace'
-    )
-    parser.add_argument('--json', action='store_true', help='print the results as JSON (for teachers)')
 
 
 def build(workspace: Path, names: list[str], quiet: bool) -> str | None:
@@ -84,7 +69,7 @@ def build(workspace: Path, names: list[str], quiet: bool) -> str | None:
 
 
 class CheckRun:
-    """One exercise's check in a process of its own (owl_cli.check_ros), started before its turn.
+    """One exercise's check in a process of its own (owl_cli.check.ros), started before its turn.
 
     The process imports, leases its ROS domain and starts its probe node while the check before it
     runs; begin() starts the check. Once every criterion is out (CHECK_DONE) owl check goes on to
@@ -191,7 +176,7 @@ def start_check(exercise: Exercise, workspace: Path) -> CheckRun:
     """The exercise's CheckRun, in a shell that sourced the workspace (it waits for begin())."""
     setup = workspace / 'install' / 'local_setup.bash'
     python = shlex.quote(sys.executable)
-    script = f'source {shlex.quote(str(setup))} && exec {python} -m owl_cli.check_ros --wait {exercise.id}'
+    script = f'source {shlex.quote(str(setup))} && exec {python} -m owl_cli.check.ros --wait {exercise.id}'
     return CheckRun(exercise.id, ['bash', '-c', script], {**os.environ, WORKSPACE_VARIABLE: str(workspace)})
 
 
@@ -328,3 +313,30 @@ def check(args: argparse.Namespace) -> int:
         print()
         print('\n'.join(summary_table(results)))
     return exit_code(results)
+
+
+class CheckCommand(Command):
+    """`owl check ID... | --all | --list`."""
+
+    help = 'check a course exercise in your workspace (owl check --list)'
+    description = sys.modules[__name__].__doc__  # the module's (in here __doc__ is the class's)
+    formatter_class = argparse.RawDescriptionHelpFormatter
+
+    def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
+        """The exercise ids, --workspace, --list, --all, --json."""
+        parser.add_argument('exercises', nargs='*', metavar='ID', help='exercise ids (see --list)')
+        parser.add_argument(
+            '--workspace',
+            type=Path,
+            metavar='DIR',
+            help='the colcon workspace (default: the current folder or the one above it)',
+        )
+        parser.add_argument('--list', action='store_true', help='list the exercises and projects and exit')
+        parser.add_argument(
+            '--all', action='store_true', help='check every exercise whose package is in the workspace'
+        )
+        parser.add_argument('--json', action='store_true', help='print the results as JSON (for teachers)')
+
+    def main(self, *, parser: argparse.ArgumentParser, args: argparse.Namespace) -> int:
+        """Run `owl check`."""
+        return check(args)

@@ -26,8 +26,8 @@ from owl_common.processes import RosProcess, RosSandbox
 from rcl_interfaces.srv import GetParameters, ListParameters, SetParameters
 from rclpy.parameter import Parameter, parameter_value_to_python
 
-from owl_cli import check_criteria as judge
-from owl_cli.check_report import RESULT_PREFIX, WORKSPACE_VARIABLE, Criterion
+from owl_cli.check import criteria as judge
+from owl_cli.check.report import RESULT_PREFIX, WORKSPACE_VARIABLE, Criterion
 
 if TYPE_CHECKING:
     from rclpy.publisher import Publisher

@@ -1,22 +1,11 @@
-"""make demo: the course's robot (chapter 4) live on real ROS 2 for about 20 seconds.
+"""The robot of `owl demo`: started in a sandbox, reported in readable lines, stopped with Ctrl-C's signal.
 
-Starts the simulated Owl Kit (IMU, pan and tilt servos, camera), the course's projects on it
-(imu_control_robot points the head where the IMU points, display_camera shows the camera,
-imu_turtle drives turtlesim's turtle with the IMU) and robot_view (the kit live in a browser, with
-its plots and the camera), prints the front door's address (one address for every page) and a few
-readable lines of what happens, then stops everything with Ctrl-C's signal, as a user at a terminal
-would.
-
-With --project tracking it is section 4.6's robot instead: a red ball swings to and fro in front of
-the robot and track_object keeps it in the middle of the camera's picture; each line says how far off
-it is.
+The command's options and its description are owl_cli/demo/command.py's.
 """
 
 from __future__ import annotations
 
-import argparse
 import math
-import os
 import socket
 import sys
 import time
@@ -29,6 +18,7 @@ from functools import partial
 import cv2
 import numpy as np
 from olive_kit.description import (
+    BALL_COLOUR,
     CAMERA_TOPIC,
     IMU_TOPIC,
     ROBOT_VIEW_PORT,
@@ -36,9 +26,8 @@ from olive_kit.description import (
     goal_topic,
     joint_topic,
 )
-from olive_sim.camera_render import find_colour
-from olive_sim.scene_draw import BALL_COLOUR
-from owl_common import quaternion
+from owl_common import quaternion, ros_env
+from owl_common.images import find_colour
 from owl_common.probe import Probe
 from owl_common.processes import RosProcess, RosSandbox
 from rclpy.qos import qos_profile_sensor_data
@@ -51,7 +40,6 @@ STARTUP_TIMEOUT = 60.0  # s for every node to say it is working, on a loaded 2-c
 # The page's address: under the front door (its root, then the page's mount), or its own.
 ROBOT_VIEW_LINE = r'robot_view: open (http://127\.0\.0\.1:\d+/)(robot-view/)? in a browser'
 WINDOWS_LINE = r'owl windows: open (http://127\.0\.0\.1:\d+/)(windows/)? in a browser'
-PROJECTS = ('imu', 'tracking')
 # The tracking project's ball swings to and fro in front of the robot, BALL_SWING rad to either side
 # of where the kit puts it (0.25 rad left), passing the middle at BALL_SPEED rad/s: the pan servo
 # (+-1.57 rad) can follow it the whole time. (Going round, it passed the pan's limit after 9 s.)
@@ -276,8 +264,7 @@ def run_demo(seconds: float, report_every: float, project: str = 'imu') -> int:
     """
     # env.sh's network mode: private (LOCALHOST) unless the user opened it with OWL_NETWORK=open.
     # The user's pages folder: the demo's pages join the user's front door (it stays when the demo ends).
-    with RosSandbox(discovery_range=os.environ.get('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST'),
-                    private_pages=False) as sandbox:
+    with RosSandbox(discovery_range=ros_env.discovery_range(), private_pages=False) as sandbox:
         print(f'== Owl Kit Lab demo: the simulated Owl Kit and the course\'s chapter 4 projects, '
               f'ROS 2 domain {sandbox.domain_id}, {seconds:.0f} s', flush=True)
         if project == 'tracking':
@@ -326,29 +313,3 @@ def run_demo(seconds: float, report_every: float, project: str = 'imu') -> int:
         return 1
     print('== demo finished: every node stopped cleanly', flush=True)
     return 0
-
-
-def main() -> int:
-    """The demo from its command line (`make demo`); the exit code: 130 after Ctrl-C, 1 if it cannot start."""
-    parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument('--seconds', type=float, default=20.0, help='how long to run (default 20)')
-    parser.add_argument('--report-every', type=float, default=4.0, metavar='SECONDS',
-                        help='seconds between two status lines (default 4)')
-    parser.add_argument('--project', choices=PROJECTS, default='imu',
-                        help="the chapter 4 robot to run: 'imu' (4.4-4.5, the IMU steers) or 'tracking' "
-                             '(4.6, the camera follows a red ball)')
-    args = parser.parse_args()
-    if not args.seconds > 0 or not args.report_every > 0:
-        parser.error('--seconds and --report-every must be positive numbers')
-    try:
-        return run_demo(args.seconds, args.report_every, args.project)
-    except KeyboardInterrupt:
-        print('== interrupted; every node was stopped', file=sys.stderr)
-        return 130
-    except (AssertionError, FileNotFoundError) as error:  # a node did not come up, or is not built
-        print(f'== demo failed to start: {error}', file=sys.stderr)
-        return 1
-
-
-if __name__ == '__main__':
-    sys.exit(main())

@@ -7,15 +7,15 @@ from pathlib import Path
 
 from olive_kit.description import GESTURE_TOPIC, goal_topic
 
-from owl_cli.check_catalogue import Section
-from owl_cli.check_report import Criterion
-from owl_cli.check_session import (
+from owl_cli.check.catalogue import Section
+from owl_cli.check.kit_helpers import joint_positions, torque_criterion
+from owl_cli.check.report import Criterion
+from owl_cli.check.session import (
     CAMERA_NODE,
     Session,
     headless,
     launch_files,
 )
-from owl_cli.exercises.section_4_4 import joint_positions, torque_criterion
 
 SECTION = Section()
 

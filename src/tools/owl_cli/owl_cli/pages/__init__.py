@@ -1,0 +1,1 @@
+"""`owl pages`: the front door and every page of the kit."""
