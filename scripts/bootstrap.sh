@@ -88,7 +88,9 @@ CV_STAMP="$VENV/.owl-opencv-headless.sha256"
 cv_version="$(sed -n 's/^opencv-python==\([^ ;]*\).*/\1/p' requirements.txt)"
 [ -n "$cv_version" ] || die "requirements.txt pins no opencv-python."
 HOOKS=src/tools/owl_venv_hooks
-cv_hash="$( (echo "$cv_version"; cat "$HOOKS/owl_gui_hook.py" "$HOOKS/owl_rclpy_repair.py") | sha256sum | cut -d' ' -f1)"
+WINDOWS_FOLDER=src/common/owl_windows/owl_windows  # the hook's windows folder code, a package of src/
+cv_hash="$( (echo "$cv_version"; cat "$HOOKS/owl_gui_hook.py" "$HOOKS/owl_rclpy_repair.py" "$WINDOWS_FOLDER"/*.py) \
+  | sha256sum | cut -d' ' -f1)"
 if [ "$(cat "$CV_STAMP" 2>/dev/null)" != "$cv_hash" ]; then
   site_packages="$(env _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/python" -c \
     'import sysconfig; print(sysconfig.get_path("purelib"))')"
@@ -100,9 +102,13 @@ if [ "$(cat "$CV_STAMP" 2>/dev/null)" != "$cv_hash" ]; then
   fi
   rm -f "$site_packages/owl_cv2_fallback.py" "$site_packages/owl_cv2_fallback.pth"  # its old name
   cp "$HOOKS/owl_gui_hook.py" "$site_packages/"
-  # Every start of the venv's Python imports it: compiled once here, as PYTHONDONTWRITEBYTECODE
-  # would otherwise have each start compile it again (about 20 ms).
-  env _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/python" -m py_compile "$site_packages/owl_gui_hook.py"
+  # The hook loads the windows folder's package before any workspace is sourced: a copy beside it.
+  rm -rf "$site_packages/owl_windows" && cp -r "$WINDOWS_FOLDER" "$site_packages/owl_windows"
+  rm -rf "$site_packages/owl_windows/__pycache__"
+  # Every start of the venv's Python imports them: compiled once here, as PYTHONDONTWRITEBYTECODE
+  # would otherwise have each start compile them again (about 20 ms).
+  env _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/python" -m py_compile "$site_packages/owl_gui_hook.py" \
+    "$site_packages"/owl_windows/*.py
   echo 'import owl_gui_hook; owl_gui_hook.install()' >"$site_packages/owl_gui_hook.pth"
   # The rclpy wheel's Ctrl-C defect (a traceback when it lands while rclpy builds a message): the
   # same kind of hook, acting at the first import of rclpy. See $HOOKS/owl_rclpy_repair.py.

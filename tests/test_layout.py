@@ -35,8 +35,9 @@ MAY_IMPORT = {
 # Our stand-ins for upstream tools (rqt, rosdep): left out on a real install, like compat, so they
 # may use compat's own additions (the type lookup with reasons, FieldError).
 STAND_INS = {'rqt_web', 'owl_rosdep'}
-# The kit's description is data that the simulator and the tools share: the standard library only.
-STDLIB_ONLY = {'olive_kit'}
+# The kit's description is data that the simulator and the tools share, and the windows folder is
+# loaded by the venv's start-up hook before any workspace: the standard library only.
+STDLIB_ONLY = {'olive_kit', 'owl_windows'}
 
 # What the packages outside compat import from compat's packages: all of it is upstream Jazzy's
 # public surface (ros2/launch, ros2/launch_ros, ros2/rosidl_runtime_py, ros-perception/vision_opencv,

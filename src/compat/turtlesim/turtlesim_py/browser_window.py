@@ -1,11 +1,10 @@
-"""The TurtleSim window without a display: its frames and keys go through the venv's windows seam.
+"""The TurtleSim window without a display: its frames and keys go through the windows folder.
 
 Where no display can be used, turtlesim_node writes what its window would show to
-<windows folder>/turtlesim_node-<pid>/tk-TurtleSim.jpg, the seam that the venv's start-up hook
-(owl_gui_hook.py) defines for OpenCV and pygame windows, and `owl windows` shows it in a browser,
-live. Keys pressed on that page come back through the folder's keys file; held arrow keys drive
-turtle1 as turtle_teleop_key's do. On a ROS 2 install without our venv the hook is missing and
-there is no browser window, only the headless simulator.
+<windows folder>/turtlesim_node-<pid>/tk-TurtleSim.jpg (owl_windows.folder, the seam that OpenCV's
+and pygame's headless windows use too), and `owl windows` shows it in a browser, live. Keys pressed
+on that page come back through the folder's keys file; held arrow keys drive turtle1 as
+turtle_teleop_key's do.
 """
 
 from __future__ import annotations
@@ -13,14 +12,11 @@ from __future__ import annotations
 import io
 import os
 import sys
-from typing import TYPE_CHECKING
 
+from owl_windows.folder import KeyReader, WindowsFolder, program_name, window_file, windows_root
 from PIL import Image
 
-if TYPE_CHECKING:
-    from owl_gui_hook import KeyReader, WindowsFolder
-
-FILE_NAME = 'tk-TurtleSim.jpg'  # owl_gui_hook.window_file('tk', 'TurtleSim')
+FILE_NAME = window_file('tk', 'TurtleSim')
 JPEG_QUALITY = 95  # trails stay crisp; 1-3 ms a frame, where PNG took about 10 ms
 FOLDER_FPS = 60.0  # the node already paces its frames (WINDOW_PERIOD); the folder must not hold them back
 
@@ -42,22 +38,18 @@ class BrowserWindow:
 
     @classmethod
     def open(cls) -> BrowserWindow | None:
-        """The window in this user's windows folder; None without the venv's hook or a usable folder.
+        """The window in this user's windows folder; None without a usable folder.
 
         OWL_WINDOWS_DIR chooses the folder as for every headless window; set and empty, there is none.
-        A folder that cannot be made is said in one line on stderr (by the hook).
+        A folder that cannot be made is said in one line on stderr.
         """
-        try:
-            import owl_gui_hook
-        except ImportError:
-            return None
-        root = owl_gui_hook.windows_root(dict(os.environ))
+        root = windows_root(dict(os.environ))
         if root is None:
             return None
-        folder = owl_gui_hook.WindowsFolder(root, owl_gui_hook.program_name(sys.argv), FOLDER_FPS)
+        folder = WindowsFolder(root, program_name(sys.argv), FOLDER_FPS)
         if not folder.make():
             return None
-        return cls(folder, owl_gui_hook.KeyReader(folder.keys_path, known=lambda key: True))
+        return cls(folder, KeyReader(folder.keys_path, known=lambda key: True))
 
     @property
     def path(self) -> str:

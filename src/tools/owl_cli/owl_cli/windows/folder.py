@@ -1,7 +1,7 @@
 """The headless windows' folder as `owl windows` reads it (node-free).
 
-Each running program with headless windows has a folder <root>/<program>-<pid>/ (written by the
-venv's start-up hook, owl_venv_hooks/owl_gui_hook.py, which documents it): cv2-<window>.jpg per
+Each running program with headless windows has a folder <root>/<program>-<pid>/ (owl_windows.folder
+documents and writes it): cv2-<window>.jpg per
 OpenCV window, pygame.png for a pygame display, tk-<window>.jpg for a window a program draws itself
 (turtlesim's TurtleSim), and a `keys` file that the program reads key events from.
 """
@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from urllib.parse import unquote
 
-from owl_gui_hook import cv2_key_code, default_windows_dir, parse_key_event, private_root
+from owl_windows.folder import cv2_key_code, default_windows_dir, parse_key_event, private_root
 
 __all__ = ['Window', 'append_key_event', 'default_windows_dir', 'private_root', 'scan']
 

@@ -1,0 +1,1 @@
+"""The windows folder of programs without a display (owl_windows.folder)."""
