@@ -128,6 +128,7 @@ class OliveModule(Node):
         self._wrong_led_types: set[str] = set()
         self._last_warning: dict[str, float] = {}
         self._periodic: list[PeriodicThread] = []
+        self._polled: list[PolledSubscription] = []
         self.status_publisher = self.create_publisher(DiagnosticStatus, self.topic('status'), 10)
         self.temperature_publisher = self.create_publisher(Temperature, self.topic('temperature'), 10)
         self.switch_publisher = self.create_publisher(Bool, self.topic('switch'), 10)
@@ -209,7 +210,9 @@ class OliveModule(Node):
     def create_polled_subscription(self, msg_type: type, topic: str, callback: Callable[[Any], None],
                                    qos: QoSProfile | int, raw: bool = False) -> PolledSubscription:
         """A subscription the executor never wakes up for: see PolledSubscription."""
-        return PolledSubscription(self, msg_type, topic, callback, qos, raw)
+        subscription = PolledSubscription(self, msg_type, topic, callback, qos, raw)
+        self._polled.append(subscription)
+        return subscription
 
     def create_periodic(self, rate: float, callback: Callable[[], None], name: str,
                         catch_up: float = 0.0) -> PeriodicThread:
@@ -234,6 +237,8 @@ class OliveModule(Node):
             self.page.stop()
         for periodic in self._periodic:
             periodic.stop()
+        for subscription in self._polled:
+            subscription.destroy()
         super().destroy_node()
 
     # -- to be refined by each module -------------------------------------------------------
@@ -324,7 +329,7 @@ def run_module(make_node: Any, default_namespace: str, args: list[str] | None = 
             raise
         return node
 
-    spin_node(build, args)
+    spin_node(build, args, events=True)
     if built and built[0].restart_delay is not None:
         start_again(built[0].handover_state(), built[0].restart_delay)
 

@@ -56,7 +56,7 @@ def main(argv: list[str] | None = None) -> None:
         return node
 
     try:
-        spin_node(start, argv)
+        spin_node(start, argv, events=True)
     finally:
         server.stop()
 

@@ -198,6 +198,8 @@ class RobotViewNode(Node):
             if self._recording is not None:
                 self._recording.process.stop()
                 self._recording = None
+        for goals in self._goals.values():
+            goals.destroy()
         super().destroy_node()
 
     def _require_running(self, servo: str) -> None:

@@ -13,7 +13,7 @@ import pytest
 from owl_web import codec
 from owl_web.codec import ApiError
 from owl_web.origins import foreign_request
-from owl_web.server import WebServer
+from owl_web.server import Connection, Subscription, WebServer
 
 
 @pytest.fixture
@@ -397,3 +397,57 @@ def test_only_this_machines_pages_may_use_the_server(web):
     connection.request('POST', '/api/echo/imu', body=b'{}', headers={'Origin': server.url.rstrip('/')})
     assert connection.getresponse().status == 201
     connection.close()
+
+
+def test_pages_get_no_compression_even_when_they_ask_for_it(web):
+    server, _, _ = web
+
+    async def negotiated():
+        async with aiohttp.ClientSession() as session, \
+                session.ws_connect(server.url + 'ws', compress=15) as socket_:
+            return socket_.compress, socket_._response.headers.get('Sec-WebSocket-Extensions')
+
+    compress, extensions = run(negotiated())
+    assert compress == 0
+    assert extensions is None
+
+
+class CountingLoop:
+    """Stands in for the event loop: counts the wake-ups a connection asks for."""
+
+    def __init__(self):
+        self.wakeups = 0
+
+    def call_soon_threadsafe(self, callback):
+        self.wakeups += 1
+
+
+def test_a_burst_of_updates_wakes_the_sender_once_and_the_next_burst_once_more():
+    async def burst_then_send():
+        connection = Connection(None, asyncio.get_running_loop())
+        loop = CountingLoop()
+        connection.loop = loop
+        subscription = Subscription(connection, 1, 'kit', {})
+        connection.subscriptions[1] = subscription
+        for number in range(100):
+            connection.offer(subscription, f'state {number}')
+        connection.error(1, 'one error line')
+        first = loop.wakeups
+        sent = []
+
+        class Page:
+            async def send_str(self, message):
+                sent.append(message)
+                if len(sent) == 2:  # all that was queued went in one batch
+                    raise ConnectionError
+
+        connection.websocket = Page()
+        connection._wake.set()  # the wake-up the counting loop swallowed
+        await connection.send_pending()
+        connection.offer(subscription, 'state 100')
+        return first, loop.wakeups, sent
+
+    first, after_next, sent = run(burst_then_send())
+    assert first == 1
+    assert after_next == 2
+    assert sent[1] == 'state 99'
