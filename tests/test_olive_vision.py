@@ -102,6 +102,7 @@ BALL_SETS_OFF_AT = -0.35  # rad of azimuth: in sight of the camera at rest (half
 JUDGED_FROM, JUDGED_UNTIL = 2.0, 8.0  # s after the ball set off
 
 
+@pytest.mark.whole_kit
 def test_the_tracker_follows_a_moving_ball_within_5_percent_of_the_width(ros):
     servos, images, tracker, _ = start_tracking(ros, ball_speed=0.0, ball_azimuth=BALL_SETS_OFF_AT)
     tracker.wait_for(r'ball [-+]\d\.\d % of the width right', timeout=10)  # within 10 % of the middle
