@@ -1,0 +1,662 @@
+// humble_fastdds_twin: one Olive servo as a ROS 2 Humble module (rmw_fastrtps_cpp) is on the wire.
+//
+// What it has of Humble: its graph message on ros_discovery_info has 24-byte gids; its endpoints
+// carry no type hash (no USER_DATA) and no XTypes type information; its services are the
+// request/reply topic pairs of rmw_fastrtps (rq/<service>Request, rr/<service>Reply), and a reply
+// carries the request's sample identity as its related sample identity, the client's reply reader
+// in place of the request writer when the request names it. That is how a Fast DDS client (Humble's
+// or Jazzy's) pairs a reply with its request; without it the client drops the reply.
+#include "twin.hpp"
+
+#include <chrono>
+#include <cinttypes>
+#include <cmath>
+#include <condition_variable>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <functional>
+#include <iomanip>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <thread>
+#include <vector>
+
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
+#include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/publisher/DataWriterListener.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
+#include <fastdds/dds/topic/Topic.hpp>
+#include <fastdds/dds/topic/TopicDataType.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+#include <fastdds/rtps/common/WriteParams.h>
+#include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
+#include <fastrtps/config.h>
+#include <fastrtps/utils/IPLocator.h>
+
+#include "cdr.hpp"
+
+namespace owl
+{
+namespace
+{
+
+namespace dds = eprosima::fastdds::dds;
+namespace rtps = eprosima::fastrtps::rtps;
+using Clock = std::chrono::steady_clock;
+
+const char * const kPrefix = "humble_fastdds_twin";
+const char * const kDiscoveryTopic = "ros_discovery_info";
+const char * const kDiscoveryType = "rmw_dds_common::msg::dds_::ParticipantEntitiesInfo_";
+constexpr double kServoSpeed = 3.0;  // rad/s towards the goal, as humble_twin's servo
+constexpr int kMaxDomainId = 232;    // as owl_common.ros_env: the largest id whose ports fit
+
+void say(const std::string & text)
+{
+  std::printf("%s: %s\n", kPrefix, text.c_str());
+  std::fflush(stdout);
+}
+
+// A sample handled as its serialized bytes: the payload, encapsulation header included.
+struct RawSample
+{
+  Bytes bytes;
+};
+
+// One DDS type name, samples as bytes (cdr.hpp writes and reads them). No type object and no type
+// information is announced: rmw_fastrtps on Humble sends none.
+class RawType : public dds::TopicDataType
+{
+public:
+  explicit RawType(const std::string & name)
+  {
+    setName(name.c_str());
+    m_typeSize = 512;  // the first guess of a payload's size; larger ones are grown
+    m_isGetKeyDefined = false;
+    auto_fill_type_object(false);
+    auto_fill_type_information(false);
+  }
+
+  using dds::TopicDataType::serialize;
+  using dds::TopicDataType::getSerializedSizeProvider;
+
+  bool serialize(void * data, rtps::SerializedPayload_t * payload) override
+  {
+    const Bytes & bytes = static_cast<RawSample *>(data)->bytes;
+    if (payload->max_size < bytes.size()) {
+      payload->reserve(static_cast<uint32_t>(bytes.size()));
+    }
+    std::memcpy(payload->data, bytes.data(), bytes.size());
+    payload->length = static_cast<uint32_t>(bytes.size());
+    payload->encapsulation = bytes.size() > 1 && bytes[1] == 1 ? CDR_LE : CDR_BE;
+    return true;
+  }
+
+  bool deserialize(rtps::SerializedPayload_t * payload, void * data) override
+  {
+    static_cast<RawSample *>(data)->bytes.assign(payload->data, payload->data + payload->length);
+    return true;
+  }
+
+  std::function<uint32_t()> getSerializedSizeProvider(void * data) override
+  {
+    const auto size = static_cast<uint32_t>(static_cast<RawSample *>(data)->bytes.size());
+    return [size]() {return size;};
+  }
+
+  void * createData() override {return new RawSample();}
+  void deleteData(void * data) override {delete static_cast<RawSample *>(data);}
+  bool getKey(void *, rtps::InstanceHandle_t *, bool) override {return false;}
+};
+
+std::string ros_type(const std::string & package, const std::string & kind, const std::string & name)
+{
+  return package + "::" + kind + "::dds_::" + name + "_";
+}
+
+std::string hex(const uint8_t * data, size_t size)
+{
+  std::ostringstream out;
+  for (size_t i = 0; i < size; ++i) {
+    out << std::hex << std::setw(2) << std::setfill('0') << int(data[i]);
+  }
+  return out.str();
+}
+
+HumbleGid humble_gid(const rtps::GUID_t & guid)
+{
+  HumbleGid gid{};  // a GUID is 16 bytes; Humble pads the gid with zeros
+  std::memcpy(gid.data(), guid.guidPrefix.value, 12);
+  std::memcpy(gid.data() + 12, guid.entityId.value, 4);
+  return gid;
+}
+
+std::string guid_text(const rtps::GUID_t & guid)
+{
+  HumbleGid gid = humble_gid(guid);
+  return hex(gid.data(), 16);
+}
+
+// Wakes the main loop when a reader has data.
+class Wakeup : public dds::DataReaderListener
+{
+public:
+  void on_data_available(dds::DataReader *) override
+  {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      pending_ = true;
+    }
+    changed_.notify_all();
+  }
+
+  void wait_until(Clock::time_point deadline)
+  {
+    std::unique_lock<std::mutex> lock(mutex_);
+    changed_.wait_until(lock, deadline, [this] {return pending_;});
+    pending_ = false;
+  }
+
+private:
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  bool pending_ = false;
+};
+
+// The readers a reply writer has matched, so a reply can wait for a brand-new client's reader as
+// rmw_fastrtps on Humble does (rmw_send_response: up to the writer's max_blocking_time).
+class MatchedReaders : public dds::DataWriterListener
+{
+public:
+  void on_publication_matched(dds::DataWriter *, const dds::PublicationMatchedStatus & status) override
+  {
+    const rtps::GUID_t guid = rtps::iHandle2GUID(status.last_subscription_handle);
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (status.current_count_change > 0) {
+        readers_.insert(guid);
+      } else if (status.current_count_change < 0) {
+        readers_.erase(guid);
+      }
+    }
+    changed_.notify_all();
+  }
+
+  bool wait_for(const rtps::GUID_t & reader, std::chrono::duration<double> timeout)
+  {
+    std::unique_lock<std::mutex> lock(mutex_);
+    return changed_.wait_for(lock, timeout, [&] {return readers_.count(reader) > 0;});
+  }
+
+private:
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::set<rtps::GUID_t> readers_;
+};
+
+struct Service
+{
+  std::string name;
+  bool torque;  // the torque state a call sets
+  dds::DataReader * requests = nullptr;
+  dds::DataWriter * replies = nullptr;
+  std::unique_ptr<MatchedReaders> matched;
+};
+
+struct DiscoverySettings
+{
+  int domain_id = 0;
+  std::string range = "SUBNET";
+  std::vector<std::string> peers;
+};
+
+// ROS_DOMAIN_ID, ROS_AUTOMATIC_DISCOVERY_RANGE and ROS_STATIC_PEERS as rcl (Jazzy) reads them: the
+// twin joins our Jazzy processes in the discovery range they use.
+bool read_discovery_settings(DiscoverySettings & settings, std::string & error)
+{
+  const char * domain = std::getenv("ROS_DOMAIN_ID");
+  if (domain != nullptr && *domain != '\0') {
+    char * end = nullptr;
+    long value = std::strtol(domain, &end, 10);
+    if (*end != '\0' || value < 0 || value > kMaxDomainId) {
+      error = std::string("ROS_DOMAIN_ID '") + domain + "' is not a ROS domain (0 to " +
+        std::to_string(kMaxDomainId) + ")";
+      return false;
+    }
+    settings.domain_id = static_cast<int>(value);
+  }
+  const char * range = std::getenv("ROS_AUTOMATIC_DISCOVERY_RANGE");
+  if (range != nullptr && *range != '\0') {
+    settings.range = range;
+  }
+  if (settings.range == "SYSTEM_DEFAULT") {
+    settings.range = "SUBNET";
+  }
+  if (settings.range != "LOCALHOST" && settings.range != "SUBNET") {
+    error = "ROS_AUTOMATIC_DISCOVERY_RANGE '" + settings.range +
+      "' is not one the twin joins (LOCALHOST or SUBNET)";
+    return false;
+  }
+  if (const char * peers = std::getenv("ROS_STATIC_PEERS")) {
+    std::stringstream list(peers);
+    for (std::string peer; std::getline(list, peer, ';'); ) {
+      if (!peer.empty()) {
+        settings.peers.push_back(peer);
+      }
+    }
+  }
+  return true;
+}
+
+bool configure_discovery(
+  dds::DomainParticipantQos & qos, const DiscoverySettings & settings, std::string & error)
+{
+  auto & builtin = qos.wire_protocol().builtin;
+  // UDP only, as between a module and the student's machine (no shared memory between two hosts).
+  qos.transport().use_builtin_transports = false;
+  auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
+  if (settings.range == "LOCALHOST") {
+    // As rmw_fastrtps (Jazzy) in LOCALHOST: no multicast, unicast announcements to this host's
+    // well-known ports of the first 32 participants.
+    builtin.metatrafficMulticastLocatorList.clear();
+    builtin.metatrafficUnicastLocatorList.push_back(rtps::Locator_t());
+    udp->maxInitialPeersRange = 32;
+  }
+  qos.transport().user_transports.push_back(udp);
+  for (const std::string & peer : settings.peers) {
+    auto addresses = rtps::IPLocator::resolveNameDNS(peer);
+    if (addresses.first.empty()) {
+      error = "ROS_STATIC_PEERS: cannot resolve '" + peer + "' to an IPv4 address";
+      return false;
+    }
+    rtps::Locator_t locator;
+    rtps::IPLocator::setIPv4(locator, *addresses.first.begin());
+    builtin.initialPeersList.push_back(locator);
+  }
+  if (settings.range == "LOCALHOST") {
+    rtps::Locator_t localhost;
+    rtps::IPLocator::setIPv4(localhost, "127.0.0.1");
+    builtin.initialPeersList.push_back(localhost);
+  } else if (!builtin.initialPeersList.empty()) {
+    rtps::Locator_t multicast;  // static peers replace the default; keep announcing on multicast
+    rtps::IPLocator::setIPv4(multicast, 239, 255, 0, 1);
+    builtin.initialPeersList.push_back(multicast);
+  }
+  return true;
+}
+
+class Twin
+{
+public:
+  explicit Twin(const TwinOptions & options)
+  : options_(options),
+    prefix_("/olive/servo/" + options.name_space + "/"),
+    node_name_("olive_servo_" + options.name_space + "_dcm_srv"),
+    period_(1.0 / options.rate)
+  {}
+
+  ~Twin()
+  {
+    if (participant_ != nullptr) {
+      // Deleting the participant says goodbye on DDS: our tools drop the node at once.
+      participant_->delete_contained_entities();
+      dds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
+    }
+  }
+
+  bool start(std::string & error)
+  {
+    DiscoverySettings settings;
+    if (!read_discovery_settings(settings, error)) {
+      return false;
+    }
+    domain_id_ = settings.domain_id;
+    auto * factory = dds::DomainParticipantFactory::get_instance();
+    dds::DomainParticipantQos qos = factory->get_default_participant_qos();
+    if (!configure_discovery(qos, settings, error)) {
+      return false;
+    }
+    const std::string enclave = "enclave=/;";  // rmw_fastrtps's participant USER_DATA
+    qos.user_data().data_vec(std::vector<rtps::octet>(enclave.begin(), enclave.end()));
+    participant_ = factory->create_participant(settings.domain_id, qos);
+    if (participant_ == nullptr) {
+      error = "Fast DDS could not create a participant in domain " + std::to_string(settings.domain_id);
+      return false;
+    }
+    publisher_ = participant_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
+    subscriber_ = participant_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
+
+    discovery_reader_ = reader(kDiscoveryTopic, kDiscoveryType, discovery_reader_qos());
+    discovery_writer_ = writer(kDiscoveryTopic, kDiscoveryType, discovery_writer_qos());
+    goal_reader_ = reader("rt" + prefix_ + "goal/position", ros_type("std_msgs", "msg", "Float32"),
+        topic_reader_qos());
+    joint_writer_ = writer("rt" + prefix_ + "joint", ros_type("sensor_msgs", "msg", "JointState"),
+        topic_writer_qos());
+    NodeEntities node{"/", node_name_, {humble_gid(goal_reader_->guid())},
+      {humble_gid(joint_writer_->guid())}};
+    for (const auto & [name, torque] : {std::pair{"setTorqueEnable", true}, {"setTorqueDisable", false}}) {
+      Service service;
+      service.name = name;
+      service.torque = torque;
+      const std::string service_name = prefix_ + name;
+      service.requests = reader("rq" + service_name + "Request",
+          ros_type("std_srvs", "srv", "Trigger_Request"), topic_reader_qos());
+      service.matched = std::make_unique<MatchedReaders>();
+      service.replies = writer("rr" + service_name + "Reply",
+          ros_type("std_srvs", "srv", "Trigger_Response"), topic_writer_qos(), service.matched.get());
+      node.reader_gids.push_back(humble_gid(service.requests->guid()));
+      node.writer_gids.push_back(humble_gid(service.replies->guid()));
+      services_.push_back(std::move(service));
+    }
+    for (dds::DataReader * each : readers_) {
+      if (each == nullptr) {
+        error = "Fast DDS could not create a reader";
+        return false;
+      }
+    }
+    for (dds::DataWriter * each : writers_) {
+      if (each == nullptr) {
+        error = "Fast DDS could not create a writer";
+        return false;
+      }
+    }
+    ParticipantEntities info{humble_gid(participant_->guid()), {node}};
+    own_gid_ = info.gid;
+    RawSample graph{encode_participant_entities(info)};
+    discovery_writer_->write(&graph);
+    return true;
+  }
+
+  std::string ready_line() const
+  {
+    return "ready: node /" + node_name_ + " (servo, ROS 2 Humble on Fast DDS " + FASTRTPS_VERSION_STR +
+           ", replies " + (options_.reply_identity ? "with" : "WITHOUT") +
+           " the request's identity), participant " + guid_text(participant_->guid()) +
+           " in domain " + std::to_string(domain_id_);
+  }
+
+  void run(const std::atomic<bool> & stop)
+  {
+    auto next_tick = Clock::now();
+    while (!stop) {
+      take_graph_messages();
+      answer_requests();
+      take_goals();
+      if (Clock::now() >= next_tick) {
+        publish_joint();
+        next_tick += std::chrono::duration_cast<Clock::duration>(period_);
+      }
+      // A request is answered as it comes; at most 100 ms between looks at the stop flag.
+      wakeup_.wait_until(std::min(next_tick, Clock::now() + std::chrono::milliseconds(100)));
+    }
+  }
+
+  std::string summary() const
+  {
+    return "discovery samples received: " + std::to_string(received_) +
+           ", malformed in Humble's layout: " + std::to_string(malformed_) +
+           "; replies sent: " + std::to_string(replies_);
+  }
+
+private:
+  static dds::DataWriterQos topic_writer_qos()
+  {
+    // rclpy's QoSProfile(depth=10) and rmw's services default: reliable, volatile, keep last 10.
+    dds::DataWriterQos qos = dds::DATAWRITER_QOS_DEFAULT;
+    qos.reliability().kind = dds::RELIABLE_RELIABILITY_QOS;
+    qos.durability().kind = dds::VOLATILE_DURABILITY_QOS;
+    qos.history().kind = dds::KEEP_LAST_HISTORY_QOS;
+    qos.history().depth = 10;
+    qos.endpoint().history_memory_policy = rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
+    qos.data_sharing().off();
+    return qos;
+  }
+
+  static dds::DataReaderQos topic_reader_qos()
+  {
+    dds::DataReaderQos qos = dds::DATAREADER_QOS_DEFAULT;
+    qos.reliability().kind = dds::RELIABLE_RELIABILITY_QOS;
+    qos.durability().kind = dds::VOLATILE_DURABILITY_QOS;
+    qos.history().kind = dds::KEEP_LAST_HISTORY_QOS;
+    qos.history().depth = 10;
+    qos.endpoint().history_memory_policy = rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
+    qos.data_sharing().off();
+    return qos;
+  }
+
+  static dds::DataWriterQos discovery_writer_qos()
+  {
+    dds::DataWriterQos qos = topic_writer_qos();  // reliable, transient local, the last sample only
+    qos.durability().kind = dds::TRANSIENT_LOCAL_DURABILITY_QOS;
+    qos.history().depth = 1;
+    return qos;
+  }
+
+  static dds::DataReaderQos discovery_reader_qos()
+  {
+    dds::DataReaderQos qos = topic_reader_qos();  // reliable, transient local, every sample kept
+    qos.durability().kind = dds::TRANSIENT_LOCAL_DURABILITY_QOS;
+    qos.history().kind = dds::KEEP_ALL_HISTORY_QOS;
+    return qos;
+  }
+
+  dds::Topic * topic(const std::string & name, const std::string & type_name)
+  {
+    if (participant_->find_type(type_name).empty()) {
+      dds::TypeSupport type(new RawType(type_name));
+      type.register_type(participant_);
+    }
+    if (dds::TopicDescription * existing = participant_->lookup_topicdescription(name)) {
+      return static_cast<dds::Topic *>(existing);
+    }
+    return participant_->create_topic(name, type_name, dds::TOPIC_QOS_DEFAULT);
+  }
+
+  dds::DataReader * reader(const std::string & name, const std::string & type_name,
+    const dds::DataReaderQos & qos)
+  {
+    dds::DataReader * created = subscriber_->create_datareader(topic(name, type_name), qos, &wakeup_);
+    readers_.push_back(created);
+    return created;
+  }
+
+  dds::DataWriter * writer(const std::string & name, const std::string & type_name,
+    const dds::DataWriterQos & qos, dds::DataWriterListener * listener = nullptr)
+  {
+    dds::DataWriter * created = publisher_->create_datawriter(topic(name, type_name), qos, listener);
+    writers_.push_back(created);
+    return created;
+  }
+
+  void take_graph_messages()
+  {
+    RawSample sample;
+    dds::SampleInfo info;
+    while (discovery_reader_->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
+      if (!info.valid_data) {
+        continue;
+      }
+      try {
+        if (decode_participant_entities(sample.bytes).gid != own_gid_) {
+          ++received_;
+        }
+      } catch (const Malformed & error) {
+        ++received_;
+        ++malformed_;
+        const std::string sender = sample.bytes.size() >= 20 ? hex(sample.bytes.data() + 4, 16) : "?";
+        say("malformed discovery sample #" + std::to_string(malformed_) + " (from participant " +
+          sender + "): " + error.what());
+      }
+    }
+  }
+
+  void answer_requests()
+  {
+    for (Service & service : services_) {
+      RawSample sample;
+      dds::SampleInfo info;
+      while (service.requests->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
+        if (info.valid_data) {
+          answer(service, sample, info);
+        }
+      }
+    }
+  }
+
+  void answer(Service & service, const RawSample & request, const dds::SampleInfo & info)
+  {
+    const auto received = Clock::now();
+    const int64_t sequence = info.sample_identity.sequence_number().to64long();
+    const std::string from = guid_text(info.sample_identity.writer_guid());
+    try {
+      check_trigger_request(request.bytes);
+    } catch (const Malformed & error) {
+      say(service.name + ": request #" + std::to_string(sequence) + " from " + from +
+        " is no Trigger request (" + error.what() + "): not answered");
+      return;
+    }
+    // The identity the reply carries, as rmw_fastrtps on Humble makes it: the request's sequence
+    // number, with the client's reply reader when the request names it (its related sample
+    // identity), else the request's writer.
+    rtps::SampleIdentity related = info.sample_identity;
+    const rtps::GUID_t & reply_reader = info.related_sample_identity.writer_guid();
+    if (reply_reader != rtps::GUID_t::unknown()) {
+      related.writer_guid() = reply_reader;
+    }
+    const bool already = torque_ == service.torque;
+    torque_ = service.torque;
+    const std::string state = service.torque ? "enabled" : "disabled";
+    const std::string message = already ? "torque already " + state : "torque " + state;
+    // A brand-new client's reply reader may not be matched yet: wait for it as Humble does (an
+    // entity id whose kind has the reader bit 0x04 names a reader).
+    if ((related.writer_guid().entityId.value[3] & 0x04) != 0 &&
+      !service.matched->wait_for(related.writer_guid(), std::chrono::duration<double>(options_.reply_wait)))
+    {
+      say(service.name + ": " + message + "; the client's reply reader " + guid_text(related.writer_guid()) +
+        " was not matched within " + std::to_string(options_.reply_wait) +
+        " s: no reply (rmw_fastrtps on Humble gives up the same way)");
+      return;
+    }
+    RawSample reply{encode_trigger_response(true, message)};
+    bool written = false;
+    if (options_.reply_identity) {
+      rtps::WriteParams params;
+      params.related_sample_identity(related);
+      written = service.replies->write(&reply, params);
+    } else {
+      written = service.replies->write(&reply);
+    }
+    const double waited_ms = std::chrono::duration<double, std::milli>(Clock::now() - received).count();
+    if (!written) {
+      say(service.name + ": " + message + "; the reply could not be written");
+      return;
+    }
+    ++replies_;
+    std::ostringstream line;
+    line << service.name << ": " << message << " (request #" << sequence << " from " << from
+         << "; reply " << (options_.reply_identity ? "with" : "WITHOUT") << " the request's identity, "
+         << std::fixed << std::setprecision(1) << waited_ms << " ms after the request)";
+    say(line.str());
+    say(std::string("torque ") + (torque_ ? "on" : "off"));
+  }
+
+  void take_goals()
+  {
+    RawSample sample;
+    dds::SampleInfo info;
+    while (goal_reader_->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
+      if (!info.valid_data) {
+        continue;
+      }
+      float goal = 0;
+      try {
+        goal = decode_float32(sample.bytes);
+      } catch (const Malformed & error) {
+        say(std::string("a goal that is no Float32: ") + error.what());
+        continue;
+      }
+      char text[128];
+      std::snprintf(text, sizeof(text), "goal %+.3f rad on %sgoal/position%s", goal, prefix_.c_str(),
+        torque_ ? "" : " (torque off: held until setTorqueEnable)");
+      say(text);
+      if (std::isfinite(goal)) {
+        goal_ = goal;
+        has_goal_ = true;
+      }
+    }
+  }
+
+  void publish_joint()
+  {
+    if (torque_ && has_goal_) {
+      const double step = kServoSpeed * period_.count();
+      position_ += std::max(-step, std::min(step, goal_ - position_));
+    }
+    const auto now = std::chrono::system_clock::now().time_since_epoch();
+    const auto nanoseconds = std::chrono::duration_cast<std::chrono::nanoseconds>(now).count();
+    RawSample joint{encode_joint_state(
+        static_cast<int32_t>(nanoseconds / 1000000000), static_cast<uint32_t>(nanoseconds % 1000000000),
+        options_.name_space + "_base_link", node_name_, position_)};
+    joint_writer_->write(&joint);
+  }
+
+  TwinOptions options_;
+  std::string prefix_;
+  std::string node_name_;
+  std::chrono::duration<double> period_;
+  int domain_id_ = 0;
+  dds::DomainParticipant * participant_ = nullptr;
+  dds::Publisher * publisher_ = nullptr;
+  dds::Subscriber * subscriber_ = nullptr;
+  std::vector<dds::DataReader *> readers_;
+  std::vector<dds::DataWriter *> writers_;
+  dds::DataReader * discovery_reader_ = nullptr;
+  dds::DataWriter * discovery_writer_ = nullptr;
+  dds::DataReader * goal_reader_ = nullptr;
+  dds::DataWriter * joint_writer_ = nullptr;
+  std::vector<Service> services_;
+  Wakeup wakeup_;
+  HumbleGid own_gid_{};
+  uint64_t received_ = 0;
+  uint64_t malformed_ = 0;
+  uint64_t replies_ = 0;
+  bool torque_ = false;  // off at boot, as the simulated servo: goals wait for setTorqueEnable
+  bool has_goal_ = false;
+  double goal_ = 0.0;
+  double position_ = 0.0;
+};
+
+}  // namespace
+
+int run_twin(const TwinOptions & options, const std::atomic<bool> & stop)
+{
+  // A Humble module does not read our Fast DDS profile (config/fastdds.xml, set by env.sh): its
+  // graph endpoints would land in our partition and its timing would be ours.
+  unsetenv("FASTRTPS_DEFAULT_PROFILES_FILE");
+  unsetenv("FASTDDS_DEFAULT_PROFILES_FILE");
+  setenv("SKIP_DEFAULT_XML", "1", 1);
+  std::string error;
+  {
+    Twin twin(options);
+    if (!twin.start(error)) {
+      std::fprintf(stderr, "%s: error: %s\n", kPrefix, error.c_str());
+      return 1;
+    }
+    say(twin.ready_line());
+    twin.run(stop);
+    say(twin.summary());
+  }
+  return 0;
+}
+
+}  // namespace owl
