@@ -52,7 +52,7 @@ def service_call(sandbox, service, timeout=20.0, env=None):
                             timeout=timeout, check=False)
     assert result.returncode == 0, result.stdout + result.stderr
     assert 'Traceback' not in result.stderr, result.stderr
-    return result.stdout, time.monotonic() - started
+    return result.stdout + result.stderr, time.monotonic() - started
 
 
 def round_trip(probe, client):
@@ -65,14 +65,21 @@ def round_trip(probe, client):
     return future.result(), time.monotonic() - started
 
 
-def node_list(sandbox):
-    result = subprocess.run(['ros2', 'node', 'list'], env=sandbox.env, capture_output=True, text=True,
-                            timeout=30, check=False)
+def ros2(sandbox, *args):
+    """A `ros2` command's output (it must not fail; stdout, then stderr), and the seconds it took."""
+    started = time.monotonic()
+    result = subprocess.run(['ros2', *args], env=sandbox.env, capture_output=True, text=True, timeout=30,
+                            check=False)
+    assert result.returncode == 0, result.stdout + result.stderr
     assert 'Traceback' not in result.stderr, result.stderr
-    return set(result.stdout.split())
+    return result.stdout + result.stderr, time.monotonic() - started
 
 
-def test_our_ros2_service_call_switches_the_humble_servos_torque_on_and_off():
+def node_list(sandbox):
+    return set(ros2(sandbox, 'node', 'list')[0].split())
+
+
+def test_our_service_and_param_calls_switch_the_humble_servos_torque_and_gains():
     with RosSandbox() as sandbox:
         twin = start_twin(sandbox)
         # In private mode nothing of ours starts the discovery bridge (no real module is there); it
@@ -88,6 +95,22 @@ def test_our_ros2_service_call_switches_the_humble_servos_torque_on_and_off():
         out, disable_took = service_call(sandbox, SERVICES + 'setTorqueDisable')
         assert "Trigger_Response(success=True, message='torque disabled')" in out, out
         twin.wait_for('^humble_fastdds_twin: torque off$', timeout=5)
+
+        # The node's parameter services, as Humble's rclcpp answers: our ros2 param finds the node
+        # through the bridge, then calls list/get/set_parameters.
+        wait_until(lambda: SERVO_NODE in node_list(sandbox), 20, f'{SERVO_NODE} in ros2 node list')
+        took = {}
+        out, took['list'] = ros2(sandbox, 'param', 'list', SERVO_NODE)
+        assert out.split() == ['kd', 'ki', 'kp', 'use_sim_time'], out
+        out, took['get'] = ros2(sandbox, 'param', 'get', SERVO_NODE, 'kp')
+        assert out.strip() == 'Double value is: 5.0', out
+        out, took['set'] = ros2(sandbox, 'param', 'set', SERVO_NODE, 'kp', '2.5')
+        assert out.strip() == 'Set parameter successful', out
+        twin.wait_for('^humble_fastdds_twin: parameter kp = 2.5$', timeout=5)
+        assert ros2(sandbox, 'param', 'get', SERVO_NODE, 'kp')[0].strip() == 'Double value is: 2.5'
+        out, _ = ros2(sandbox, 'param', 'set', SERVO_NODE, 'kp', 'fast')
+        assert ('Setting parameter failed: Wrong parameter type, parameter {kp} is of type {double}, '
+                'setting it to {string} is not allowed.') in out, out
 
         # The round trip itself, once the client has found the service (rclpy, our Jazzy rmw).
         probe = Probe(sandbox.domain_id)
@@ -105,12 +128,12 @@ def test_our_ros2_service_call_switches_the_humble_servos_torque_on_and_off():
               f'{disable_took:.2f} s (the whole command); round trip of an rclpy client: ' +
               ', '.join(f'{name} {seconds * 1000:.1f} ms' for name, seconds in rtts.items()) +
               '; the twin sent each reply after (ms): ' +
-              ', '.join(re.findall(r'([\d.]+) ms after', twin.output)))
+              ', '.join(re.findall(r'([\d.]+) ms after', twin.output)) +
+              '; ros2 param ' + ', '.join(f'{verb} {seconds:.2f} s' for verb, seconds in took.items()))
 
-        wait_until(lambda: SERVO_NODE in node_list(sandbox), 20, f'{SERVO_NODE} in ros2 node list')
         _, malformed, replies = stop_twin(twin)
         assert malformed == 0, twin.output
-        assert replies == 4, twin.output
+        assert replies == 9, twin.output
 
 
 def test_without_the_requests_identity_on_the_reply_the_call_is_never_answered():

@@ -212,4 +212,135 @@ Bytes encode_trigger_response(bool success, const std::string & message)
   return encode([&](Cdr & cdr) {cdr << success << message;});
 }
 
+namespace
+{
+
+void put(Cdr & cdr, const ParameterValue & value)
+{
+  cdr << value.type << value.bool_value << value.integer_value << value.double_value << value.string_value;
+  for (int array = 0; array < 5; ++array) {
+    cdr << uint32_t{0};  // byte, bool, integer, double and string arrays: empty
+  }
+}
+
+ParameterValue take_value(Cdr & cdr)
+{
+  ParameterValue value;
+  cdr >> value.type >> value.bool_value >> value.integer_value >> value.double_value >> value.string_value;
+  std::vector<uint8_t> bytes;
+  std::vector<bool> bools;
+  std::vector<int64_t> integers;
+  std::vector<double> doubles;
+  std::vector<std::string> strings;
+  cdr >> bytes >> bools >> integers >> doubles >> strings;
+  return value;
+}
+
+void put_strings(Cdr & cdr, const std::vector<std::string> & strings)
+{
+  cdr << static_cast<uint32_t>(strings.size());
+  for (const auto & text : strings) {
+    cdr << text;
+  }
+}
+
+void put_result(Cdr & cdr, const SetResult & result)
+{
+  cdr << result.successful << result.reason;
+}
+
+}  // namespace
+
+std::vector<std::string> decode_names_request(const Bytes & data)
+{
+  return decode<std::vector<std::string>>(data, [](Cdr & cdr) {
+             std::vector<std::string> names;
+             cdr >> names;
+             return names;
+           });
+}
+
+std::vector<std::string> decode_list_request(const Bytes & data, uint64_t & depth)
+{
+  return decode<std::vector<std::string>>(data, [&depth](Cdr & cdr) {
+             std::vector<std::string> prefixes;
+             cdr >> prefixes >> depth;
+             return prefixes;
+           });
+}
+
+std::vector<Parameter> decode_parameters_request(const Bytes & data)
+{
+  return decode<std::vector<Parameter>>(data, [&data](Cdr & cdr) {
+             uint32_t count = 0;
+             cdr >> count;
+             if (count > data.size()) {
+               throw Malformed("a sequence of " + std::to_string(count) + " parameters in " +
+               std::to_string(data.size()) + " bytes");
+             }
+             std::vector<Parameter> parameters(count);
+             for (auto & parameter : parameters) {
+               cdr >> parameter.name;
+               parameter.value = take_value(cdr);
+             }
+             return parameters;
+           });
+}
+
+Bytes encode_list_parameters_response(
+  const std::vector<std::string> & names, const std::vector<std::string> & prefixes)
+{
+  return encode([&](Cdr & cdr) {
+             put_strings(cdr, names);
+             put_strings(cdr, prefixes);
+           });
+}
+
+Bytes encode_get_parameters_response(const std::vector<ParameterValue> & values)
+{
+  return encode([&](Cdr & cdr) {
+             cdr << static_cast<uint32_t>(values.size());
+             for (const auto & value : values) {
+               put(cdr, value);
+             }
+           });
+}
+
+Bytes encode_get_parameter_types_response(const std::vector<uint8_t> & types)
+{
+  return encode([&](Cdr & cdr) {
+             cdr << static_cast<uint32_t>(types.size());
+             for (uint8_t type : types) {
+               cdr << type;
+             }
+           });
+}
+
+Bytes encode_describe_parameters_response(const std::vector<ParameterDescriptor> & descriptors)
+{
+  return encode([&](Cdr & cdr) {
+             cdr << static_cast<uint32_t>(descriptors.size());
+             for (const auto & d : descriptors) {
+               cdr << d.name << d.type << d.description << std::string() << d.read_only;
+               cdr << false;  // dynamic_typing
+               cdr << uint32_t{0} << uint32_t{0};  // floating_point_range, integer_range: none
+             }
+           });
+}
+
+Bytes encode_set_parameters_response(const std::vector<SetResult> & results)
+{
+  return encode([&](Cdr & cdr) {
+             cdr << static_cast<uint32_t>(results.size());
+             for (const auto & result : results) {
+               put_result(cdr, result);
+             }
+           });
+}
+
+Bytes encode_set_parameters_atomically_response(const SetResult & result)
+{
+  return encode([&](Cdr & cdr) {put_result(cdr, result);});
+}
+
 }  // namespace owl

@@ -53,4 +53,57 @@ Bytes encode_joint_state(
 void check_trigger_request(const Bytes & data);
 Bytes encode_trigger_response(bool success, const std::string & message);
 
+// rcl_interfaces: the parameter services of a node.
+enum ParameterType : uint8_t
+{
+  kNotSet = 0, kBool = 1, kInteger = 2, kDouble = 3, kString = 4, kByteArray = 5, kBoolArray = 6,
+  kIntegerArray = 7, kDoubleArray = 8, kStringArray = 9,
+};
+
+// rcl_interfaces/msg/ParameterValue: the scalar members kept, the arrays read and left out (the
+// twin's parameters are scalars; a request with an array is answered as a type mismatch).
+struct ParameterValue
+{
+  uint8_t type = kNotSet;
+  bool bool_value = false;
+  int64_t integer_value = 0;
+  double double_value = 0.0;
+  std::string string_value;
+};
+
+struct Parameter
+{
+  std::string name;
+  ParameterValue value;
+};
+
+struct ParameterDescriptor
+{
+  std::string name;
+  uint8_t type = kNotSet;
+  std::string description;
+  bool read_only = false;
+};
+
+struct SetResult
+{
+  bool successful = false;
+  std::string reason;
+};
+
+// GetParameters, GetParameterTypes, DescribeParameters: the request is `string[] names`.
+std::vector<std::string> decode_names_request(const Bytes & data);
+// ListParameters: `string[] prefixes`, `uint64 depth`.
+std::vector<std::string> decode_list_request(const Bytes & data, uint64_t & depth);
+// SetParameters, SetParametersAtomically: `Parameter[] parameters`.
+std::vector<Parameter> decode_parameters_request(const Bytes & data);
+
+Bytes encode_list_parameters_response(
+  const std::vector<std::string> & names, const std::vector<std::string> & prefixes);
+Bytes encode_get_parameters_response(const std::vector<ParameterValue> & values);
+Bytes encode_get_parameter_types_response(const std::vector<uint8_t> & types);
+Bytes encode_describe_parameters_response(const std::vector<ParameterDescriptor> & descriptors);
+Bytes encode_set_parameters_response(const std::vector<SetResult> & results);
+Bytes encode_set_parameters_atomically_response(const SetResult & result);
+
 }  // namespace owl

@@ -20,7 +20,8 @@ const char * const kUsage =
 const char * const kHelp =
   "\nOne Olive servo as a ROS 2 Humble module (rmw_fastrtps, Fast DDS) is on the wire: its graph message\n"
   "in Humble's layout, /olive/servo/NAME/goal/position (Float32) in, /olive/servo/NAME/joint\n"
-  "(JointState) out, and the services setTorqueEnable and setTorqueDisable (std_srvs/srv/Trigger).\n"
+  "(JointState) out, the services setTorqueEnable and setTorqueDisable (std_srvs/srv/Trigger) and\n"
+  "its node's parameter services (kp, ki, kd, use_sim_time).\n"
   "Torque is off at start; goals move the servo once it is on. Ctrl-C stops it.\n\n"
   "options:\n"
   "  -h, --help            show this help and exit\n"

@@ -9,6 +9,7 @@
 #include "twin.hpp"
 
 #include <chrono>
+#include <cctype>
 #include <cinttypes>
 #include <cmath>
 #include <condition_variable>
@@ -17,6 +18,7 @@
 #include <cstring>
 #include <functional>
 #include <iomanip>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <set>
@@ -204,10 +206,13 @@ private:
   std::set<rtps::GUID_t> readers_;
 };
 
+// A request's bytes -> the reply's bytes, and what the twin's line about the call says.
+using Handler = std::function<Bytes(const Bytes & request, std::string & note)>;
+
 struct Service
 {
-  std::string name;
-  bool torque;  // the torque state a call sets
+  std::string name;  // as the twin's lines name it: setTorqueEnable, get_parameters, ...
+  Handler handle;
   dds::DataReader * requests = nullptr;
   dds::DataWriter * replies = nullptr;
   std::unique_ptr<MatchedReaders> matched;
@@ -344,19 +349,35 @@ public:
         topic_writer_qos());
     NodeEntities node{"/", node_name_, {humble_gid(goal_reader_->guid())},
       {humble_gid(joint_writer_->guid())}};
-    for (const auto & [name, torque] : {std::pair{"setTorqueEnable", true}, {"setTorqueDisable", false}}) {
-      Service service;
-      service.name = name;
-      service.torque = torque;
-      const std::string service_name = prefix_ + name;
-      service.requests = reader("rq" + service_name + "Request",
-          ros_type("std_srvs", "srv", "Trigger_Request"), topic_reader_qos());
-      service.matched = std::make_unique<MatchedReaders>();
-      service.replies = writer("rr" + service_name + "Reply",
-          ros_type("std_srvs", "srv", "Trigger_Response"), topic_writer_qos(), service.matched.get());
-      node.reader_gids.push_back(humble_gid(service.requests->guid()));
-      node.writer_gids.push_back(humble_gid(service.replies->guid()));
-      services_.push_back(std::move(service));
+    for (bool torque : {true, false}) {
+      add_service(node, prefix_, torque ? "setTorqueEnable" : "setTorqueDisable", "std_srvs", "Trigger",
+        [this, torque](const Bytes & request, std::string & note) {
+          return switch_torque(request, torque, note);
+        });
+    }
+    // The parameter services every Humble node has (Jazzy's nodes add get_type_description).
+    const std::string node_prefix = "/" + node_name_ + "/";
+    const std::pair<const char *, Handler> parameter_services[] = {
+      {"describe_parameters", [this](const Bytes & r, std::string & n) {return describe_parameters(r, n);}},
+      {"get_parameter_types", [this](const Bytes & r, std::string & n) {return get_parameter_types(r, n);}},
+      {"get_parameters", [this](const Bytes & r, std::string & n) {return get_parameters(r, n);}},
+      {"list_parameters", [this](const Bytes & r, std::string & n) {return list_parameters(r, n);}},
+      {"set_parameters", [this](const Bytes & r, std::string & n) {return set_parameters(r, false, n);}},
+      {"set_parameters_atomically",
+        [this](const Bytes & r, std::string & n) {return set_parameters(r, true, n);}},
+    };
+    for (const auto & [name, handler] : parameter_services) {
+      std::string type;  // describe_parameters -> DescribeParameters
+      bool upper = true;
+      for (const char * c = name; *c != '\0'; ++c) {
+        if (*c == '_') {
+          upper = true;
+        } else {
+          type += upper ? static_cast<char>(std::toupper(*c)) : *c;
+          upper = false;
+        }
+      }
+      add_service(node, node_prefix, name, "rcl_interfaces", type, handler);
     }
     for (dds::DataReader * each : readers_) {
       if (each == nullptr) {
@@ -478,6 +499,153 @@ private:
     return created;
   }
 
+  void add_service(NodeEntities & node, const std::string & prefix, const std::string & name,
+    const std::string & package, const std::string & type, Handler handler)
+  {
+    Service service;
+    service.name = name;
+    service.handle = std::move(handler);
+    service.requests = reader("rq" + prefix + name + "Request", ros_type(package, "srv", type + "_Request"),
+        topic_reader_qos());
+    service.matched = std::make_unique<MatchedReaders>();
+    service.replies = writer("rr" + prefix + name + "Reply", ros_type(package, "srv", type + "_Response"),
+        topic_writer_qos(), service.matched.get());
+    if (service.requests != nullptr && service.replies != nullptr) {
+      node.reader_gids.push_back(humble_gid(service.requests->guid()));
+      node.writer_gids.push_back(humble_gid(service.replies->guid()));
+    }
+    services_.push_back(std::move(service));
+  }
+
+  Bytes switch_torque(const Bytes & request, bool torque, std::string & note)
+  {
+    check_trigger_request(request);
+    const bool already = torque_ == torque;
+    torque_ = torque;
+    const std::string state = torque ? "enabled" : "disabled";
+    note = already ? "torque already " + state : "torque " + state;
+    say(std::string("torque ") + (torque_ ? "on" : "off"));
+    return encode_trigger_response(true, note);
+  }
+
+  static std::string value_text(const ParameterValue & value)
+  {
+    std::ostringstream out;
+    switch (value.type) {
+      case kBool: out << (value.bool_value ? "true" : "false"); break;
+      case kInteger: out << value.integer_value; break;
+      case kDouble: out << value.double_value; break;
+      case kString: out << "'" << value.string_value << "'"; break;
+      default: out << "(" << type_name(value.type) << ")";
+    }
+    return out.str();
+  }
+
+  static std::string type_name(uint8_t type)
+  {
+    // rclcpp's names of the types, as its messages use them
+    static const char * const names[] = {"not set", "bool", "integer", "double", "string", "byte_array",
+      "bool_array", "integer_array", "double_array", "string_array"};
+    return type < 10 ? names[type] : "unknown type " + std::to_string(type);
+  }
+
+  Bytes list_parameters(const Bytes & request, std::string & note)
+  {
+    uint64_t depth = 0;
+    const std::vector<std::string> prefixes = decode_list_request(request, depth);
+    std::vector<std::string> names;
+    for (const auto & [name, value] : parameters_) {
+      bool wanted = prefixes.empty();
+      for (const auto & prefix : prefixes) {
+        wanted = wanted || name == prefix || name.rfind(prefix + ".", 0) == 0;
+      }
+      if (wanted) {
+        names.push_back(name);
+      }
+    }
+    note = std::to_string(names.size()) + " names";
+    return encode_list_parameters_response(names, {});
+  }
+
+  Bytes get_parameters(const Bytes & request, std::string & note)
+  {
+    std::vector<ParameterValue> values;
+    for (const auto & name : decode_names_request(request)) {
+      auto found = parameters_.find(name);
+      values.push_back(found == parameters_.end() ? ParameterValue() : found->second.value);
+      note += (note.empty() ? "" : ", ") + name + " = " + value_text(values.back());
+    }
+    return encode_get_parameters_response(values);
+  }
+
+  Bytes get_parameter_types(const Bytes & request, std::string & note)
+  {
+    std::vector<uint8_t> types;
+    for (const auto & name : decode_names_request(request)) {
+      auto found = parameters_.find(name);
+      types.push_back(found == parameters_.end() ? uint8_t{kNotSet} : found->second.value.type);
+      note += (note.empty() ? "" : ", ") + name + ": " + type_name(types.back());
+    }
+    return encode_get_parameter_types_response(types);
+  }
+
+  Bytes describe_parameters(const Bytes & request, std::string & note)
+  {
+    std::vector<ParameterDescriptor> descriptors;
+    for (const auto & name : decode_names_request(request)) {
+      auto found = parameters_.find(name);
+      if (found == parameters_.end()) {
+        // rclcpp's parameter service answers with no descriptors when one is not declared.
+        note = name + " is not declared: no descriptors";
+        return encode_describe_parameters_response({});
+      }
+      descriptors.push_back({name, found->second.value.type, found->second.description, false});
+      note += (note.empty() ? "" : ", ") + name;
+    }
+    return encode_describe_parameters_response(descriptors);
+  }
+
+  // What setting the parameter would do: rclcpp's checks for declared, statically typed parameters.
+  SetResult check(const Parameter & parameter) const
+  {
+    auto found = parameters_.find(parameter.name);
+    if (found == parameters_.end()) {
+      return {false, "One or more parameters were not declared before setting"};
+    }
+    const uint8_t type = found->second.value.type;
+    if (parameter.value.type == kNotSet) {
+      return {false, "Static parameter cannot be undeclared"};
+    }
+    if (parameter.value.type != type) {
+      return {false, "Wrong parameter type, parameter {" + parameter.name + "} is of type {" + type_name(type) +
+              "}, setting it to {" + type_name(parameter.value.type) + "} is not allowed."};
+    }
+    return {true, ""};
+  }
+
+  Bytes set_parameters(const Bytes & request, bool atomically, std::string & note)
+  {
+    const std::vector<Parameter> parameters = decode_parameters_request(request);
+    std::vector<SetResult> results;
+    SetResult all{true, ""};
+    for (const auto & parameter : parameters) {
+      results.push_back(check(parameter));
+      if (!results.back().successful && all.successful) {
+        all = results.back();
+      }
+    }
+    for (size_t i = 0; i < parameters.size(); ++i) {
+      const bool applied = atomically ? all.successful : results[i].successful;
+      if (applied) {
+        parameters_[parameters[i].name].value = parameters[i].value;
+        say("parameter " + parameters[i].name + " = " + value_text(parameters[i].value));
+      }
+      note += (note.empty() ? "" : ", ") + parameters[i].name + " = " + value_text(parameters[i].value) +
+        (applied ? "" : " refused (" + (atomically ? all : results[i]).reason + ")");
+    }
+    return atomically ? encode_set_parameters_atomically_response(all) : encode_set_parameters_response(results);
+  }
+
   void take_graph_messages()
   {
     RawSample sample;
@@ -518,11 +686,13 @@ private:
     const auto received = Clock::now();
     const int64_t sequence = info.sample_identity.sequence_number().to64long();
     const std::string from = guid_text(info.sample_identity.writer_guid());
+    std::string message;
+    RawSample reply;
     try {
-      check_trigger_request(request.bytes);
+      reply.bytes = service.handle(request.bytes, message);
     } catch (const Malformed & error) {
       say(service.name + ": request #" + std::to_string(sequence) + " from " + from +
-        " is no Trigger request (" + error.what() + "): not answered");
+        " does not parse (" + error.what() + "): not answered");
       return;
     }
     // The identity the reply carries, as rmw_fastrtps on Humble makes it: the request's sequence
@@ -533,10 +703,6 @@ private:
     if (reply_reader != rtps::GUID_t::unknown()) {
       related.writer_guid() = reply_reader;
     }
-    const bool already = torque_ == service.torque;
-    torque_ = service.torque;
-    const std::string state = service.torque ? "enabled" : "disabled";
-    const std::string message = already ? "torque already " + state : "torque " + state;
     // A brand-new client's reply reader may not be matched yet: wait for it as Humble does (an
     // entity id whose kind has the reader bit 0x04 names a reader).
     if ((related.writer_guid().entityId.value[3] & 0x04) != 0 &&
@@ -547,7 +713,6 @@ private:
         " s: no reply (rmw_fastrtps on Humble gives up the same way)");
       return;
     }
-    RawSample reply{encode_trigger_response(true, message)};
     bool written = false;
     if (options_.reply_identity) {
       rtps::WriteParams params;
@@ -567,7 +732,6 @@ private:
          << "; reply " << (options_.reply_identity ? "with" : "WITHOUT") << " the request's identity, "
          << std::fixed << std::setprecision(1) << waited_ms << " ms after the request)";
     say(line.str());
-    say(std::string("torque ") + (torque_ ? "on" : "off"));
   }
 
   void take_goals()
@@ -630,6 +794,26 @@ private:
   uint64_t received_ = 0;
   uint64_t malformed_ = 0;
   uint64_t replies_ = 0;
+  struct Declared
+  {
+    ParameterValue value;
+    std::string description;
+  };
+  static ParameterValue double_value(double value)
+  {
+    ParameterValue parameter;
+    parameter.type = kDouble;
+    parameter.double_value = value;
+    return parameter;
+  }
+  // The servo node's parameters: the position controller's gains (the course's kp, ki, kd; the
+  // simulated servo's defaults) and the use_sim_time every node has.
+  std::map<std::string, Declared> parameters_{
+    {"kd", {double_value(0.3), "PID gain kd of the position controller"}},
+    {"ki", {double_value(10.0), "PID gain ki of the position controller"}},
+    {"kp", {double_value(5.0), "PID gain kp of the position controller"}},
+    {"use_sim_time", {ParameterValue{kBool, false, 0, 0.0, ""}, ""}},
+  };
   bool torque_ = false;  // off at boot, as the simulated servo: goals wait for setTorqueEnable
   bool has_goal_ = false;
   double goal_ = 0.0;
