@@ -5,7 +5,8 @@ as rmw_fastrtps on Humble is on the wire: graph message with 24-byte gids, endpo
 hashes, and the services setTorqueEnable/setTorqueDisable as request/reply topics whose replies
 carry the request's sample identity. Fast DDS clients (our Jazzy `ros2 service call`, rclpy) take a
 reply only with that identity: with the twin's --no-reply-identity the same call goes unanswered,
-so the tests below can fail.
+so the tests below can fail. Its node's parameter services answer `ros2 param`, and its --call is a
+Humble client of a service of ours.
 """
 
 import re
@@ -136,6 +137,30 @@ def test_our_service_and_param_calls_switch_the_humble_servos_torque_and_gains()
         assert replies == 9, twin.output
 
 
+def test_a_humble_client_calls_a_service_of_ours_and_takes_its_answer():
+    """The other way: the twin's --call is a client as rclcpp's on Humble, our rclpy node the server."""
+    service = '/olive/servo/jazzy/setTorqueEnable'
+    with RosSandbox() as sandbox:
+        probe = Probe(sandbox.domain_id)
+        try:
+            calls = []
+
+            def answer(request, response):
+                calls.append(request)
+                response.success, response.message = True, 'torque enabled (Jazzy)'
+                return response
+
+            probe.node.create_service(Trigger, service, answer)
+            twin = start_twin(sandbox, '--call', service)
+            took = twin.wait_for(rf"call {service}: success=true message='torque enabled \(Jazzy\)' "
+                                 r'\(request #1, round trip ([\d.]+) ms\)', timeout=30)[0].group(1)
+            print(f'a Humble client called {service} of ours: round trip {took} ms')
+            assert len(calls) == 1
+            assert stop_twin(twin)[1] == 0, twin.output
+        finally:
+            probe.close()
+
+
 def test_without_the_requests_identity_on_the_reply_the_call_is_never_answered():
     with RosSandbox() as sandbox:
         twin = start_twin(sandbox, '--no-reply-identity')
@@ -172,6 +197,7 @@ def test_without_our_graph_partition_the_fastdds_twin_counts_the_messages_it_wou
     (['--namespace', '9lives'], "--namespace '9lives' is not a ROS name"),
     (['--reply-wait'], 'argument --reply-wait: expected one value'),
     (['--module', 'imu'], "unrecognized argument '--module'"),
+    (['--call', 'setTorqueEnable'], "--call 'setTorqueEnable' is not an absolute service name"),
 ])
 def test_a_bad_command_line_gets_one_error_line_and_exit_code_2(args, error):
     twin = installed_executable('owl_humble_fastdds', 'humble_fastdds_twin')

@@ -212,6 +212,20 @@ Bytes encode_trigger_response(bool success, const std::string & message)
   return encode([&](Cdr & cdr) {cdr << success << message;});
 }
 
+Bytes encode_trigger_request()
+{
+  return encode([](Cdr & cdr) {cdr << uint8_t{0};});
+}
+
+bool decode_trigger_response(const Bytes & data, std::string & message)
+{
+  return decode<bool>(data, [&message](Cdr & cdr) {
+             bool success = false;
+             cdr >> success >> message;
+             return success;
+           });
+}
+
 namespace
 {
 

@@ -52,6 +52,8 @@ Bytes encode_joint_state(
 // std_srvs/srv/Trigger: the request has one placeholder octet; the response a bool and a string.
 void check_trigger_request(const Bytes & data);
 Bytes encode_trigger_response(bool success, const std::string & message);
+Bytes encode_trigger_request();
+bool decode_trigger_response(const Bytes & data, std::string & message);
 
 // rcl_interfaces: the parameter services of a node.
 enum ParameterType : uint8_t

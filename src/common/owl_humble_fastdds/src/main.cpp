@@ -15,7 +15,8 @@ namespace
 {
 
 const char * const kUsage =
-  "usage: humble_fastdds_twin [-h] [--namespace NAME] [--rate HZ] [--reply-wait S] [--no-reply-identity]\n";
+  "usage: humble_fastdds_twin [-h] [--namespace NAME] [--rate HZ] [--reply-wait S] [--no-reply-identity]\n"
+  "                           [--call SERVICE]\n";
 
 const char * const kHelp =
   "\nOne Olive servo as a ROS 2 Humble module (rmw_fastrtps, Fast DDS) is on the wire: its graph message\n"
@@ -30,7 +31,10 @@ const char * const kHelp =
   "  --reply-wait S        how long a reply waits for a new client's reader to be matched\n"
   "                        (default 0.1 s, Fast DDS's max_blocking_time on a Humble module)\n"
   "  --no-reply-identity   send replies without the request's sample identity (a broken server:\n"
-  "                        Fast DDS clients then never take the reply)\n";
+  "                        Fast DDS clients then never take the reply)\n"
+  "  --call SERVICE        once ready, call this std_srvs/srv/Trigger service (e.g. a servo's\n"
+  "                        /olive/servo/pan/setTorqueEnable) as a Humble client does, print the\n"
+  "                        answer and its round trip, and go on as the servo\n";
 
 std::atomic<bool> g_stop{false};
 
@@ -75,7 +79,8 @@ owl::TwinOptions parse(int argc, char ** argv)
   for (int i = 1; i < argc; ++i) {
     std::string arg = argv[i];
     std::string value;
-    const bool takes_value = arg == "--namespace" || arg == "--rate" || arg == "--reply-wait";
+    const bool takes_value = arg == "--namespace" || arg == "--rate" || arg == "--reply-wait" ||
+    arg == "--call";
     const auto equals = arg.find('=');
     if (arg.rfind("--", 0) == 0 && equals != std::string::npos) {
       value = arg.substr(equals + 1);
@@ -98,6 +103,13 @@ owl::TwinOptions parse(int argc, char ** argv)
       options.rate = number(arg, value, 0, 1000, "between 0 and 1000 messages per second");
     } else if (arg == "--reply-wait") {
       options.reply_wait = number(arg, value, 0, 60, "a time between 0 and 60 s");
+    } else if (arg == "--call") {
+      if (value.size() < 2 || value[0] != '/' || value.back() == '/' ||
+        value.find("//") != std::string::npos || !is_ros_name(value.substr(value.rfind('/') + 1)))
+      {
+        fail("--call '" + value + "' is not an absolute service name (e.g. /olive/servo/pan/setTorqueEnable)");
+      }
+      options.call = value;
     } else if (arg == "--no-reply-identity" && equals == std::string::npos) {
       options.reply_identity = false;
     } else {

@@ -379,6 +379,17 @@ public:
       }
       add_service(node, node_prefix, name, "rcl_interfaces", type, handler);
     }
+    if (!options_.call.empty()) {
+      // A client of a Trigger service, as rclcpp's on Humble: its request writer and reply reader.
+      call_requests_ = writer("rq" + options_.call + "Request", ros_type("std_srvs", "srv", "Trigger_Request"),
+          topic_writer_qos());
+      call_replies_ = reader("rr" + options_.call + "Reply", ros_type("std_srvs", "srv", "Trigger_Response"),
+          topic_reader_qos());
+      if (call_requests_ != nullptr && call_replies_ != nullptr) {
+        node.writer_gids.push_back(humble_gid(call_requests_->guid()));
+        node.reader_gids.push_back(humble_gid(call_replies_->guid()));
+      }
+    }
     for (dds::DataReader * each : readers_) {
       if (each == nullptr) {
         error = "Fast DDS could not create a reader";
@@ -404,6 +415,78 @@ public:
            ", replies " + (options_.reply_identity ? "with" : "WITHOUT") +
            " the request's identity), participant " + guid_text(participant_->guid()) +
            " in domain " + std::to_string(domain_id_);
+  }
+
+  // The --call: wait for the service (its request reader and reply writer matched, as a client's
+  // wait_for_service), send one request naming this client's reply reader in its related sample
+  // identity, and take the reply whose related sample identity is the request's.
+  void call_once(const std::atomic<bool> & stop)
+  {
+    const std::string & service = options_.call;
+    const auto found_by = Clock::now() + std::chrono::seconds(20);
+    dds::PublicationMatchedStatus requests;
+    dds::SubscriptionMatchedStatus replies;
+    while (!stop) {
+      call_requests_->get_publication_matched_status(requests);
+      call_replies_->get_subscription_matched_status(replies);
+      if (requests.current_count > 0 && replies.current_count > 0) {
+        break;
+      }
+      if (Clock::now() > found_by) {
+        say("call " + service + ": no server of it within 20 s");
+        return;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    if (stop) {
+      return;
+    }
+    RawSample request{encode_trigger_request()};
+    rtps::WriteParams params;
+    params.related_sample_identity().writer_guid() = call_replies_->guid();
+    const auto sent = Clock::now();
+    if (!call_requests_->write(&request, params)) {
+      say("call " + service + ": the request could not be written");
+      return;
+    }
+    const rtps::SequenceNumber_t sequence = params.sample_identity().sequence_number();
+    const auto answered_by = sent + std::chrono::seconds(10);
+    while (!stop && Clock::now() < answered_by) {
+      RawSample reply;
+      dds::SampleInfo info;
+      while (call_replies_->take_next_sample(&reply, &info) == ReturnCode_t::RETCODE_OK) {
+        if (!info.valid_data) {
+          continue;
+        }
+        const rtps::SampleIdentity & related = info.related_sample_identity;
+        const bool ours = related.writer_guid() == call_replies_->guid() ||
+          related.writer_guid() == call_requests_->guid();
+        if (!ours || related.sequence_number() != sequence) {
+          say("call " + service + ": a reply for another request (" + guid_text(related.writer_guid()) +
+            " #" + std::to_string(related.sequence_number().to64long()) + "), left alone");
+          continue;
+        }
+        const double took_ms = std::chrono::duration<double, std::milli>(Clock::now() - sent).count();
+        std::string message;
+        bool success = false;
+        try {
+          success = decode_trigger_response(reply.bytes, message);
+        } catch (const Malformed & error) {
+          say("call " + service + ": the reply does not parse (" + error.what() + ")");
+          return;
+        }
+        std::ostringstream line;
+        line << "call " << service << ": success=" << (success ? "true" : "false") << " message='" << message
+             << "' (request #" << sequence.to64long() << ", round trip " << std::fixed << std::setprecision(1)
+             << took_ms << " ms)";
+        say(line.str());
+        return;
+      }
+      wakeup_.wait_until(std::min(answered_by, Clock::now() + std::chrono::milliseconds(100)));
+    }
+    if (!stop) {
+      say("call " + service + ": no reply within 10 s");
+    }
   }
 
   void run(const std::atomic<bool> & stop)
@@ -787,6 +870,8 @@ private:
   dds::DataReader * discovery_reader_ = nullptr;
   dds::DataWriter * discovery_writer_ = nullptr;
   dds::DataReader * goal_reader_ = nullptr;
+  dds::DataWriter * call_requests_ = nullptr;
+  dds::DataReader * call_replies_ = nullptr;
   dds::DataWriter * joint_writer_ = nullptr;
   std::vector<Service> services_;
   Wakeup wakeup_;
@@ -837,6 +922,9 @@ int run_twin(const TwinOptions & options, const std::atomic<bool> & stop)
       return 1;
     }
     say(twin.ready_line());
+    if (!options.call.empty()) {
+      twin.call_once(stop);
+    }
     twin.run(stop);
     say(twin.summary());
   }
