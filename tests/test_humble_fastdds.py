@@ -32,9 +32,9 @@ TWIN_ARGS = ('--reply-wait', '2')
 SUMMARY = r"discovery samples received: (\d+), malformed in Humble's layout: (\d+); replies sent: (\d+)"
 
 
-def start_twin(sandbox, *args):
+def start_twin(sandbox, *args, node=SERVO_NODE):
     twin = sandbox.run('owl_humble_fastdds', 'humble_fastdds_twin', *TWIN_ARGS, *args, label='fastdds twin')
-    twin.wait_for('ready: node ' + SERVO_NODE, timeout=20)
+    twin.wait_for('ready: node ' + node, timeout=20)
     return twin
 
 
@@ -135,6 +135,24 @@ def test_our_service_and_param_calls_switch_the_humble_servos_torque_and_gains()
         _, malformed, replies = stop_twin(twin)
         assert malformed == 0, twin.output
         assert replies == 9, twin.output
+
+
+def test_the_courses_servo_programs_switch_a_humble_servos_torque_on_at_start_and_off_at_ctrl_c():
+    """Section 4.4's control_servo and appendix 5.3's listing (pid_testing), both on the pan servo."""
+    with RosSandbox() as sandbox:
+        twin = start_twin(sandbox, '--namespace', 'pan', node='/olive_servo_pan_dcm_srv')
+        for turn, program in enumerate(('control_servo', 'pid_testing'), start=1):
+            node = sandbox.run('olive_servo', program)
+            twin.wait_for(r'setTorqueEnable: torque enabled \(', timeout=20, count=turn)
+            if program == 'control_servo':  # its goals once the torque is on (pid_testing's come after 3 s)
+                node.wait_for('torque enabled: pan', timeout=10)
+                twin.wait_for(r'goal [+-]\d\.\d{3} rad on /olive/servo/pan/goal/position$', timeout=10)
+            node.send_signal(signal.SIGINT)
+            assert node.wait(15) == 0, node.tail()
+            twin.wait_for(r'setTorqueDisable: torque disabled \(', timeout=5, count=turn)
+        _, malformed, replies = stop_twin(twin)
+        assert malformed == 0, twin.output
+        assert replies == 4, twin.output
 
 
 def test_a_humble_client_calls_a_service_of_ours_and_takes_its_answer():
