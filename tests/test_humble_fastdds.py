@@ -9,6 +9,7 @@ so the tests below can fail. Its node's parameter services answer `ros2 param`, 
 Humble client of a service of ours.
 """
 
+import math
 import re
 import signal
 import subprocess
@@ -20,6 +21,8 @@ import pytest
 from owl_common.processes import RosSandbox, installed_executable
 from owl_humble.launcher import ensure_discovery_bridge
 from ros_harness import Probe, wait_until
+from sensor_msgs.msg import Imu
+from std_msgs.msg import Bool
 from std_srvs.srv import Trigger
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -155,6 +158,29 @@ def test_the_courses_servo_programs_switch_a_humble_servos_torque_on_at_start_an
         assert replies == 4, twin.output
 
 
+def test_a_humble_imu_sends_its_tilt_answers_its_services_and_takes_its_led():
+    with RosSandbox() as sandbox:
+        twin = start_twin(sandbox, '--module', 'imu', node='/olive_imu_humble_dcm_srv')
+        probe = Probe(sandbox.domain_id)
+        try:
+            readings = probe.collect(Imu, '/olive/imu/humble/imu')
+            led = probe.node.create_publisher(Bool, '/olive/imu/humble/led', 10)
+            out, _ = service_call(sandbox, '/olive/imu/humble/setZeroQuaternion')
+            assert "Trigger_Response(success=True, message='orientation zeroed')" in out, out
+            wait_until(lambda: readings, 10, 'an Imu from the twin')
+            reading = readings[-1]
+            assert reading.header.frame_id == 'humble_base_link'
+            assert reading.orientation.y == pytest.approx(math.sin(0.15))
+            assert reading.orientation.w == pytest.approx(math.cos(0.15))
+            assert reading.linear_acceleration.z == pytest.approx(9.81 * math.cos(0.3))
+            wait_until(lambda: led.get_subscription_count() > 0, 10, "the twin's led reader")
+            led.publish(Bool(data=True))
+            twin.wait_for('^humble_fastdds_twin: LED on$', timeout=5)
+        finally:
+            probe.close()
+        assert stop_twin(twin)[1] == 0, twin.output
+
+
 def test_a_humble_client_calls_a_service_of_ours_and_takes_its_answer():
     """The other way: the twin's --call is a client as rclcpp's on Humble, our rclpy node the server."""
     service = '/olive/servo/jazzy/setTorqueEnable'
@@ -214,7 +240,8 @@ def test_without_our_graph_partition_the_fastdds_twin_counts_the_messages_it_wou
     (['--rate', 'fast'], "--rate 'fast' is not between 0 and 1000 messages per second"),
     (['--namespace', '9lives'], "--namespace '9lives' is not a ROS name"),
     (['--reply-wait'], 'argument --reply-wait: expected one value'),
-    (['--module', 'imu'], "unrecognized argument '--module'"),
+    (['--module', 'camera'], "argument --module: invalid choice: 'camera' (choose from 'servo', 'imu')"),
+    (['--led'], "unrecognized argument '--led'"),
     (['--call', 'setTorqueEnable'], "--call 'setTorqueEnable' is not an absolute service name"),
 ])
 def test_a_bad_command_line_gets_one_error_line_and_exit_code_2(args, error):

@@ -198,6 +198,35 @@ Bytes encode_joint_state(
            });
 }
 
+Bytes encode_imu(
+  int32_t sec, uint32_t nanosec, const std::string & frame_id, const double (&orientation)[4],
+  const double (&linear_acceleration)[3])
+{
+  return encode([&](Cdr & cdr) {
+             cdr << sec << nanosec << frame_id;
+             const double none[9] = {};
+             for (double q : orientation) {
+               cdr << q;
+             }
+             cdr.serialize_array(none, 9);  // orientation_covariance
+             cdr.serialize_array(none, 3);  // angular_velocity
+             cdr.serialize_array(none, 9);
+             for (double a : linear_acceleration) {
+               cdr << a;
+             }
+             cdr.serialize_array(none, 9);
+           });
+}
+
+bool decode_bool(const Bytes & data)
+{
+  return decode<bool>(data, [](Cdr & cdr) {
+             bool value = false;
+             cdr >> value;
+             return value;
+           });
+}
+
 void check_trigger_request(const Bytes & data)
 {
   decode<int>(data, [](Cdr & cdr) {

@@ -49,6 +49,13 @@ Bytes encode_joint_state(
   int32_t sec, uint32_t nanosec, const std::string & frame_id,
   const std::string & joint, double position);
 
+// sensor_msgs/msg/Imu: orientation (x, y, z, w) and linear acceleration; no angular velocity, all
+// covariances 0 ("unknown").
+Bytes encode_imu(
+  int32_t sec, uint32_t nanosec, const std::string & frame_id, const double (&orientation)[4],
+  const double (&linear_acceleration)[3]);
+bool decode_bool(const Bytes & data);
+
 // std_srvs/srv/Trigger: the request has one placeholder octet; the response a bool and a string.
 void check_trigger_request(const Bytes & data);
 Bytes encode_trigger_response(bool success, const std::string & message);

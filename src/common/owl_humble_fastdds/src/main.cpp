@@ -15,19 +15,23 @@ namespace
 {
 
 const char * const kUsage =
-  "usage: humble_fastdds_twin [-h] [--namespace NAME] [--rate HZ] [--reply-wait S] [--no-reply-identity]\n"
-  "                           [--call SERVICE]\n";
+  "usage: humble_fastdds_twin [-h] [--module {servo,imu}] [--namespace NAME] [--rate HZ] [--reply-wait S]\n"
+  "                           [--no-reply-identity] [--call SERVICE]\n";
 
 const char * const kHelp =
-  "\nOne Olive servo as a ROS 2 Humble module (rmw_fastrtps, Fast DDS) is on the wire: its graph message\n"
-  "in Humble's layout, /olive/servo/NAME/goal/position (Float32) in, /olive/servo/NAME/joint\n"
-  "(JointState) out, the services setTorqueEnable and setTorqueDisable (std_srvs/srv/Trigger) and\n"
-  "its node's parameter services (kp, ki, kd, use_sim_time).\n"
-  "Torque is off at start; goals move the servo once it is on. Ctrl-C stops it.\n\n"
+  "\nOne Olive module as a ROS 2 Humble module (rmw_fastrtps, Fast DDS) is on the wire: its graph\n"
+  "message in Humble's layout, its node's parameter services, led (Bool) in, and\n"
+  "  servo: /olive/servo/NAME/goal/position (Float32) in, /olive/servo/NAME/joint (JointState) out,\n"
+  "         setTorqueEnable and setTorqueDisable (std_srvs/srv/Trigger); parameters kp, ki, kd;\n"
+  "         torque is off at start, goals move the servo once it is on;\n"
+  "  imu:   /olive/imu/NAME/imu (Imu, a fixed 0.3 rad pitch) out, setBias, setZeroQuaternion and\n"
+  "         setZeroPose (std_srvs/srv/Trigger, answered only).\n"
+  "Ctrl-C stops it.\n\n"
   "options:\n"
   "  -h, --help            show this help and exit\n"
-  "  --namespace NAME      the servo's namespace (default humble)\n"
-  "  --rate HZ             joint states per second (default 50)\n"
+  "  --module {servo,imu}  the module type (default servo)\n"
+  "  --namespace NAME      the module's namespace (default humble)\n"
+  "  --rate HZ             joint states or IMU readings per second (default 50)\n"
   "  --reply-wait S        how long a reply waits for a new client's reader to be matched\n"
   "                        (default 0.1 s, Fast DDS's max_blocking_time on a Humble module)\n"
   "  --no-reply-identity   send replies without the request's sample identity (a broken server:\n"
@@ -79,7 +83,7 @@ owl::TwinOptions parse(int argc, char ** argv)
   for (int i = 1; i < argc; ++i) {
     std::string arg = argv[i];
     std::string value;
-    const bool takes_value = arg == "--namespace" || arg == "--rate" || arg == "--reply-wait" ||
+    const bool takes_value = arg == "--namespace" || arg == "--rate" || arg == "--reply-wait" || arg == "--module" ||
     arg == "--call";
     const auto equals = arg.find('=');
     if (arg.rfind("--", 0) == 0 && equals != std::string::npos) {
@@ -94,6 +98,11 @@ owl::TwinOptions parse(int argc, char ** argv)
     if (arg == "-h" || arg == "--help") {
       std::printf("%s%s", kUsage, kHelp);
       std::exit(0);
+    } else if (arg == "--module") {
+      if (value != "servo" && value != "imu") {
+        fail("argument --module: invalid choice: '" + value + "' (choose from 'servo', 'imu')");
+      }
+      options.module = value;
     } else if (arg == "--namespace") {
       if (!is_ros_name(value)) {
         fail("--namespace '" + value + "' is not a ROS name (letters, digits, _; a letter first)");

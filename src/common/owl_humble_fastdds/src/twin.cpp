@@ -1,4 +1,4 @@
-// humble_fastdds_twin: one Olive servo as a ROS 2 Humble module (rmw_fastrtps_cpp) is on the wire.
+// humble_fastdds_twin: one Olive servo or IMU as a ROS 2 Humble module (rmw_fastrtps_cpp) is on the wire.
 //
 // What it has of Humble: its graph message on ros_discovery_info has 24-byte gids; its endpoints
 // carry no type hash (no USER_DATA) and no XTypes type information; its services are the
@@ -61,6 +61,7 @@ const char * const kPrefix = "humble_fastdds_twin";
 const char * const kDiscoveryTopic = "ros_discovery_info";
 const char * const kDiscoveryType = "rmw_dds_common::msg::dds_::ParticipantEntitiesInfo_";
 constexpr double kServoSpeed = 3.0;  // rad/s towards the goal, as humble_twin's servo
+constexpr double kPitch = 0.3;       // rad, the IMU's fixed tilt, as humble_twin's
 constexpr int kMaxDomainId = 232;    // as owl_common.ros_env: the largest id whose ports fit
 
 void say(const std::string & text)
@@ -305,8 +306,8 @@ class Twin
 public:
   explicit Twin(const TwinOptions & options)
   : options_(options),
-    prefix_("/olive/servo/" + options.name_space + "/"),
-    node_name_("olive_servo_" + options.name_space + "_dcm_srv"),
+    prefix_("/olive/" + options.module + "/" + options.name_space + "/"),
+    node_name_("olive_" + options.module + "_" + options.name_space + "_dcm_srv"),
     period_(1.0 / options.rate)
   {}
 
@@ -321,6 +322,11 @@ public:
 
   bool start(std::string & error)
   {
+    if (options_.module == "servo") {
+      parameters_["kd"] = {double_value(0.3), "PID gain kd of the position controller"};
+      parameters_["ki"] = {double_value(10.0), "PID gain ki of the position controller"};
+      parameters_["kp"] = {double_value(5.0), "PID gain kp of the position controller"};
+    }
     DiscoverySettings settings;
     if (!read_discovery_settings(settings, error)) {
       return false;
@@ -343,17 +349,36 @@ public:
 
     discovery_reader_ = reader(kDiscoveryTopic, kDiscoveryType, discovery_reader_qos());
     discovery_writer_ = writer(kDiscoveryTopic, kDiscoveryType, discovery_writer_qos());
-    goal_reader_ = reader("rt" + prefix_ + "goal/position", ros_type("std_msgs", "msg", "Float32"),
-        topic_reader_qos());
-    joint_writer_ = writer("rt" + prefix_ + "joint", ros_type("sensor_msgs", "msg", "JointState"),
-        topic_writer_qos());
-    NodeEntities node{"/", node_name_, {humble_gid(goal_reader_->guid())},
-      {humble_gid(joint_writer_->guid())}};
-    for (bool torque : {true, false}) {
-      add_service(node, prefix_, torque ? "setTorqueEnable" : "setTorqueDisable", "std_srvs", "Trigger",
-        [this, torque](const Bytes & request, std::string & note) {
-          return switch_torque(request, torque, note);
-        });
+    led_reader_ = reader("rt" + prefix_ + "led", ros_type("std_msgs", "msg", "Bool"), topic_reader_qos());
+    NodeEntities node{"/", node_name_, {humble_gid(led_reader_->guid())}, {}};
+    if (options_.module == "imu") {
+      imu_writer_ = writer("rt" + prefix_ + "imu", ros_type("sensor_msgs", "msg", "Imu"), topic_writer_qos());
+      node.writer_gids.push_back(humble_gid(imu_writer_->guid()));
+      // The IMU's services (specs: olive_hardware.md 2.3); what they do is not known, so they only answer.
+      for (const auto & [name, done] : {std::pair{"setBias", "bias set"},
+          {"setZeroQuaternion", "orientation zeroed"}, {"setZeroPose", "pose zeroed"}})
+      {
+        const std::string answer = done;
+        add_service(node, prefix_, name, "std_srvs", "Trigger",
+          [answer](const Bytes & request, std::string & note) {
+            check_trigger_request(request);
+            note = answer;
+            return encode_trigger_response(true, answer);
+          });
+      }
+    } else {
+      goal_reader_ = reader("rt" + prefix_ + "goal/position", ros_type("std_msgs", "msg", "Float32"),
+          topic_reader_qos());
+      joint_writer_ = writer("rt" + prefix_ + "joint", ros_type("sensor_msgs", "msg", "JointState"),
+          topic_writer_qos());
+      node.reader_gids.push_back(humble_gid(goal_reader_->guid()));
+      node.writer_gids.push_back(humble_gid(joint_writer_->guid()));
+      for (bool torque : {true, false}) {
+        add_service(node, prefix_, torque ? "setTorqueEnable" : "setTorqueDisable", "std_srvs", "Trigger",
+          [this, torque](const Bytes & request, std::string & note) {
+            return switch_torque(request, torque, note);
+          });
+      }
     }
     // The parameter services every Humble node has (Jazzy's nodes add get_type_description).
     const std::string node_prefix = "/" + node_name_ + "/";
@@ -411,7 +436,7 @@ public:
 
   std::string ready_line() const
   {
-    return "ready: node /" + node_name_ + " (servo, ROS 2 Humble on Fast DDS " + FASTRTPS_VERSION_STR +
+    return "ready: node /" + node_name_ + " (" + options_.module + ", ROS 2 Humble on Fast DDS " + FASTRTPS_VERSION_STR +
            ", replies " + (options_.reply_identity ? "with" : "WITHOUT") +
            " the request's identity), participant " + guid_text(participant_->guid()) +
            " in domain " + std::to_string(domain_id_);
@@ -495,9 +520,16 @@ public:
     while (!stop) {
       take_graph_messages();
       answer_requests();
-      take_goals();
+      take_led();
+      if (goal_reader_ != nullptr) {
+        take_goals();
+      }
       if (Clock::now() >= next_tick) {
-        publish_joint();
+        if (imu_writer_ != nullptr) {
+          publish_imu();
+        } else {
+          publish_joint();
+        }
         next_tick += std::chrono::duration_cast<Clock::duration>(period_);
       }
       // A request is answered as it comes; at most 100 ms between looks at the stop flag.
@@ -843,6 +875,39 @@ private:
     }
   }
 
+  void take_led()
+  {
+    RawSample sample;
+    dds::SampleInfo info;
+    while (led_reader_->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
+      if (!info.valid_data) {
+        continue;
+      }
+      try {
+        const bool on = decode_bool(sample.bytes);
+        if (on != led_on_) {
+          led_on_ = on;
+          say(std::string("LED ") + (on ? "on" : "off"));
+        }
+      } catch (const Malformed & error) {
+        say(std::string("an led message that is no Bool: ") + error.what());
+      }
+    }
+  }
+
+  void publish_imu()
+  {
+    // A fixed tilt, as humble_twin's IMU: pitched by kPitch about y, gravity measured accordingly.
+    const double orientation[4] = {0.0, std::sin(kPitch / 2), 0.0, std::cos(kPitch / 2)};
+    const double acceleration[3] = {-9.81 * std::sin(kPitch), 0.0, 9.81 * std::cos(kPitch)};
+    const auto now = std::chrono::system_clock::now().time_since_epoch();
+    const auto nanoseconds = std::chrono::duration_cast<std::chrono::nanoseconds>(now).count();
+    RawSample imu{encode_imu(
+        static_cast<int32_t>(nanoseconds / 1000000000), static_cast<uint32_t>(nanoseconds % 1000000000),
+        options_.name_space + "_base_link", orientation, acceleration)};
+    imu_writer_->write(&imu);
+  }
+
   void publish_joint()
   {
     if (torque_ && has_goal_) {
@@ -870,6 +935,9 @@ private:
   dds::DataReader * discovery_reader_ = nullptr;
   dds::DataWriter * discovery_writer_ = nullptr;
   dds::DataReader * goal_reader_ = nullptr;
+  dds::DataReader * led_reader_ = nullptr;
+  dds::DataWriter * imu_writer_ = nullptr;
+  bool led_on_ = false;
   dds::DataWriter * call_requests_ = nullptr;
   dds::DataReader * call_replies_ = nullptr;
   dds::DataWriter * joint_writer_ = nullptr;
@@ -894,9 +962,6 @@ private:
   // The servo node's parameters: the position controller's gains (the course's kp, ki, kd; the
   // simulated servo's defaults) and the use_sim_time every node has.
   std::map<std::string, Declared> parameters_{
-    {"kd", {double_value(0.3), "PID gain kd of the position controller"}},
-    {"ki", {double_value(10.0), "PID gain ki of the position controller"}},
-    {"kp", {double_value(5.0), "PID gain kp of the position controller"}},
     {"use_sim_time", {ParameterValue{kBool, false, 0, 0.0, ""}, ""}},
   };
   bool torque_ = false;  // off at boot, as the simulated servo: goals wait for setTorqueEnable

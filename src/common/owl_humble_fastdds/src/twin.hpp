@@ -1,4 +1,4 @@
-// One Olive servo as a ROS 2 Humble module is on the wire, on Fast DDS.
+// One Olive servo or IMU as a ROS 2 Humble module is on the wire, on Fast DDS.
 #pragma once
 
 #include <atomic>
@@ -9,6 +9,7 @@ namespace owl
 
 struct TwinOptions
 {
+  std::string module = "servo";     // servo or imu
   std::string name_space = "humble";
   double rate = 50.0;              // joint states per second
   bool reply_identity = true;      // false: replies leave out the request's sample identity
