@@ -24,6 +24,7 @@ from ros_harness import Probe, wait_until
 from sensor_msgs.msg import Imu
 from std_msgs.msg import Bool
 from std_srvs.srv import Trigger
+from web_harness import Rqt
 
 ROOT = Path(__file__).resolve().parent.parent
 PROFILE = ROOT / 'config' / 'fastdds.xml'
@@ -96,9 +97,16 @@ def test_our_service_and_param_calls_switch_the_humble_servos_torque_and_gains()
                       timeout=5)
         twin.wait_for('^humble_fastdds_twin: torque on$', timeout=5)
 
-        out, disable_took = service_call(sandbox, SERVICES + 'setTorqueDisable')
-        assert "Trigger_Response(success=True, message='torque disabled')" in out, out
+        # The appendix's clean-up, through rqt's Service Caller (the page's own API), as section 4.4 does it.
+        rqt = Rqt(sandbox)
+        disable = SERVICES + 'setTorqueDisable'
+        rqt.wait_for(lambda: disable in {s['name'] for s in rqt.ok('GET', '/api/services')}, disable)
+        started = time.monotonic()
+        answer = rqt.ok('POST', '/api/call', {'service': disable})
+        disable_took = time.monotonic() - started
+        assert answer['response'] == {'success': True, 'message': 'torque disabled'}, answer
         twin.wait_for('^humble_fastdds_twin: torque off$', timeout=5)
+        rqt.process.send_signal(signal.SIGINT)
 
         # The node's parameter services, as Humble's rclcpp answers: our ros2 param finds the node
         # through the bridge, then calls list/get/set_parameters.
@@ -128,8 +136,9 @@ def test_our_service_and_param_calls_switch_the_humble_servos_torque_and_gains()
                 assert (response.success, response.message) == (True, expected), response
         finally:
             probe.close()
-        print(f'ros2 service call: setTorqueEnable {enable_took:.2f} s, setTorqueDisable '
-              f'{disable_took:.2f} s (the whole command); round trip of an rclpy client: ' +
+        print(f'ros2 service call setTorqueEnable {enable_took:.2f} s (the whole command), rqt Service '
+              f'Caller setTorqueDisable {disable_took:.2f} s (the HTTP call); round trip of an rclpy '
+              'client: ' +
               ', '.join(f'{name} {seconds * 1000:.1f} ms' for name, seconds in rtts.items()) +
               '; the twin sent each reply after (ms): ' +
               ', '.join(re.findall(r'([\d.]+) ms after', twin.output)) +
