@@ -140,8 +140,10 @@ def test_our_service_and_param_calls_switch_the_humble_servos_torque_and_gains()
               f'Caller setTorqueDisable {disable_took:.2f} s (the HTTP call); round trip of an rclpy '
               'client: ' +
               ', '.join(f'{name} {seconds * 1000:.1f} ms' for name, seconds in rtts.items()) +
-              '; the twin sent each reply after (ms): ' +
-              ', '.join(re.findall(r'([\d.]+) ms after', twin.output)) +
+              '; requests arrived after (ms): ' +
+              ', '.join(re.findall(r'arrived ([\d.-]+) ms after', twin.output)) +
+              '; the twin replied after (ms): ' +
+              ', '.join(re.findall(r'([\d.]+) ms after the request', twin.output)) +
               '; ros2 param ' + ', '.join(f'{verb} {seconds:.2f} s' for verb, seconds in took.items()))
 
         _, malformed, replies = stop_twin(twin)

@@ -843,9 +843,12 @@ private:
     }
     ++replies_;
     std::ostringstream line;
+    // On one machine both clocks are one: how long the request took to arrive after it was written.
+    const double in_transit_ms = (info.reception_timestamp.to_ns() - info.source_timestamp.to_ns()) / 1e6;
     line << service.name << ": " << message << " (request #" << sequence << " from " << from
+         << ", arrived " << std::fixed << std::setprecision(1) << in_transit_ms << " ms after it was sent"
          << "; reply " << (options_.reply_identity ? "with" : "WITHOUT") << " the request's identity, "
-         << std::fixed << std::setprecision(1) << waited_ms << " ms after the request)";
+         << waited_ms << " ms after the request)";
     say(line.str());
   }
 
