@@ -165,7 +165,8 @@ fi
 # workspace at once (a course node, a check, a page's script: the inner loop of `make test-fast`).
 # colcon runs again only when a file appears or goes, or one of the files a build reads changes.
 BUILD_INPUTS=(-name setup.py -o -name setup.cfg -o -name package.xml -o -name CMakeLists.txt -o -name '*.cmake'
-  -o -name '*.msg' -o -name '*.srv' -o -name '*.action' -o -name '*.idl' -o -name '*.[ch]' -o -name '*.[ch]pp')
+  -o -name '*.msg' -o -name '*.srv' -o -name '*.action' -o -name '*.idl' -o -name '*.[ch]' -o -name '*.[ch]pp'
+  -o -name colcon.pkg)
 src_hash="$( (find src -type f -not -path '*/__pycache__/*' | sort
   find src -type f \( "${BUILD_INPUTS[@]}" \) -printf '%p %T@\n' | sort; cat requirements.txt) \
   | sha256sum | cut -d' ' -f1)"

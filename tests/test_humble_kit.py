@@ -1,10 +1,12 @@
 """A ROS 2 Humble module beside our Jazzy processes, on the wire.
 
-humble_twin (src/common/owl_humble) is what a Humble Olive module sends: graph messages with 24-byte
-gids, endpoints without type hashes. Beside it run the simulated kit, the course's chapter 4 nodes
-and the `ros2` command, in each network mode. The twin counts every graph message it receives that
-a Humble module would misread; with our Fast DDS profile there is none, and without the profile's
-ros_discovery_info partition there are many (so the count can fail the test).
+humble_twin (src/common/owl_humble, the IMU here) and humble_fastdds_twin
+(src/common/owl_humble_fastdds, the servo, on real Fast DDS with its torque services) are what a
+Humble Olive module sends: graph messages with 24-byte gids, endpoints without type hashes. Beside
+them run the simulated kit, the course's chapter 4 nodes and the `ros2` command, in each network
+mode. A twin counts every graph message it receives that a Humble module would misread; with our
+Fast DDS profile there is none, and without the profile's ros_discovery_info partition there are
+many (so the count can fail the test).
 """
 
 import re
@@ -94,13 +96,19 @@ def test_a_humble_module_beside_the_kit_and_chapter_4_nodes_is_safe_listed_and_t
         wait_until(lambda: set(KIT_NODES) <= node_list(sandbox), 30, 'the kit in ros2 node list')
 
         imu = sandbox.run('owl_humble', 'humble_twin', '--module', 'imu', label='humble imu')
-        servo = sandbox.run('owl_humble', 'humble_twin', '--module', 'servo', label='humble servo')
+        # The servo on real Fast DDS, so that owl network --kit's setTorqueEnable call is answered as a
+        # real module answers it (2 s for a new client's reader, as our own servers: see test_humble_fastdds).
+        servo = sandbox.run('owl_humble_fastdds', 'humble_fastdds_twin', '--reply-wait', '2',
+                            label='humble servo')
         imu.wait_for('ready: node ' + IMU_NODE, timeout=20)
         servo.wait_for('ready: node ' + SERVO_NODE, timeout=20)
         # Goals -> the twin's servo, which follows them in its joint state. The goal goes out while the
         # twins are listed; not before the twin is ready: a goal sent while it still starts can be lost.
         goal = sandbox.command(['ros2', 'topic', 'pub', '-1', '-w', '1', '/olive/servo/humble/goal/position',
                                 'std_msgs/msg/Float32', '{data: 0.5}'], label='ros2 topic pub')
+        # Section 4.4: nothing moves before setTorqueEnable (the twin holds the goal until then).
+        enable = sandbox.command(['ros2', 'service', 'call', '/olive/servo/humble/setTorqueEnable',
+                                  'std_srvs/srv/Trigger'], label='ros2 service call')
         listed_after, _ = seconds_until_listing(sandbox, lambda names: {IMU_NODE, SERVO_NODE} <= names)
         assert listed_after <= 2.0, f'the first call to list the Humble nodes began {listed_after:.2f} s ' \
                                     'after they started'
@@ -111,6 +119,8 @@ def test_a_humble_module_beside_the_kit_and_chapter_4_nodes_is_safe_listed_and_t
                                  '-p', 'imu_topic:=/olive/imu/humble/imu')
         goal.wait(30)
         assert 'Traceback' not in goal.output, goal.output
+        enable.wait(30)
+        assert "Trigger_Response(success=True, message='torque enabled')" in enable.output, enable.output
         servo.wait_for(r'goal \+0\.500 rad on /olive/servo/humble/goal/position', timeout=10)
         # owl network --kit: every module with its distribution, one message each way. It mostly waits
         # (discovery, acknowledgements: about 10 s), so the `ros2` checks below run meanwhile; it starts
@@ -143,7 +153,8 @@ def test_a_humble_module_beside_the_kit_and_chapter_4_nodes_is_safe_listed_and_t
                 'one Bool (LED on) on /olive/imu/humble/led to it') in lines, lines
         assert re.search(rf'ok: servo humble \({SERVO_NODE}, ROS 2 Humble\): one JointState on '
                          r'/olive/servo/humble/joint from it, one goal of \+0\.500 rad \(its position\) on '
-                         '/olive/servo/humble/goal/position to it', lines), lines
+                         r"/olive/servo/humble/goal/position to it; setTorqueEnable answered in \d+ ms "
+                         r"\('torque already enabled'\), torque left on", lines), lines
         assert 'ok: servo pan (/olive_servo_pan_dcm_srv, ROS 2 Iron or newer): one JointState' in lines, lines
         assert ('ok: camera eye (/olive_camera_eye_dcm_srv, ROS 2 Iron or newer): one CompressedImage'
                 in lines), lines

@@ -10,8 +10,8 @@ module would misread it).
 
 Services are left out: Fast DDS pairs a reply with its request through an inline QoS field of the
 DDS sample (related sample identity), which the Cyclone DDS Python API can neither read nor
-write, so the twin's servo has no setTorqueEnable/Disable (a real module's works as any Fast DDS
-service does).
+write, so the twin's servo has no setTorqueEnable/Disable: owl_humble_fastdds's
+humble_fastdds_twin, on Fast DDS itself, has them.
 """
 
 from __future__ import annotations

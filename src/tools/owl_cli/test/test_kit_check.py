@@ -8,6 +8,7 @@ from owl_cli.network.kit import (
     kit_verdicts,
     not_yet_seen,
     parse_module,
+    torque_outcome,
 )
 
 
@@ -41,15 +42,34 @@ def test_a_module_passes_with_a_message_each_way_and_fails_naming_the_missing_wa
     good = ModuleReport('olive_imu_h_dcm_srv', 'imu', 'h', HUMBLE, 'one Imu on /olive/imu/h/imu',
                         'LED on on /olive/imu/h/led')
     mute = ModuleReport('olive_servo_pan_dcm_srv', 'servo', 'pan', NEWER, None, None)
-    deaf = ModuleReport('olive_servo_tilt_dcm_srv', 'servo', 'tilt', NEWER, 'a JointState', None)
+    deaf = ModuleReport('olive_servo_tilt_dcm_srv', 'servo', 'tilt', NEWER, 'a JointState', None,
+                        "setTorqueEnable answered in 3 ms ('torque already enabled'), torque left on", True)
     (ok, text), (bad, mute_text), (bad2, deaf_text) = kit_verdicts([good, mute, deaf])
     assert ok
     assert text.startswith('imu h (/olive_imu_h_dcm_srv, ROS 2 Humble): one Imu on')
     assert not bad
-    assert 'nothing came from it and nothing sent to it was acknowledged' in mute_text
+    assert 'nothing came from it and nothing sent to it was acknowledged and setTorqueEnable was not ' \
+        'answered within 2 s' in mute_text
     assert not bad2
     assert 'nothing sent to it was acknowledged; fix:' in deaf_text
     assert good.topic('imu') == '/olive/imu/h/imu'
     [(none_ok, none_text)] = kit_verdicts([])
     assert not none_ok
     assert 'no Olive module node found' in none_text
+
+
+def test_a_servo_passes_when_set_torque_enable_answers_and_its_torque_is_put_back():
+    servo = ModuleReport('olive_servo_pan_dcm_srv', 'servo', 'pan', HUMBLE, 'one JointState', 'one goal')
+    servo.torque_ok, servo.torque = torque_outcome((True, 'torque enabled', 0.004), (True, 'torque disabled'))
+    [(ok, text)] = kit_verdicts([servo])
+    assert ok
+    assert text.endswith("one goal to it; setTorqueEnable answered in 4 ms ('torque enabled'), "
+                         'torque switched off again')
+    assert torque_outcome((True, 'Torque already enabled', 0.01), None) == (
+        True, "setTorqueEnable answered in 10 ms ('Torque already enabled'), torque left on")
+    # Switched on by us and not off again: a problem, said so.
+    assert torque_outcome((True, 'torque enabled', 0.01), None) == (
+        False, "setTorqueEnable answered in 10 ms ('torque enabled'), and setTorqueDisable did not answer "
+               'within 2 s: its torque is ON')
+    assert torque_outcome((False, 'driver fault', 0.01), None)[0] is False
+    assert torque_outcome(None, None)[1].startswith('setTorqueEnable was not answered within 2 s')

@@ -6,6 +6,8 @@ From the module: one message on its main topic (the IMU's `imu`, a servo's `join
 `image/compressed`). To the module: a servo gets a goal equal to the position it reported (so
 nothing moves), the IMU and the camera an `led` message switching their LED on; either counts once
 the module's reader has acknowledged it (reliable DDS delivery), which shows the way in works.
+A servo's `setTorqueEnable` must answer within 2 s (section 4.4 moves nothing without it); its
+torque is then put back as it was: switched off again unless the answer says it was already on.
 """
 
 from __future__ import annotations
@@ -23,6 +25,7 @@ MAIN_TOPICS = {'imu': ('imu', 'sensor_msgs/msg/Imu'), 'servo': ('joint', 'sensor
 HUMBLE = 'ROS 2 Humble'
 NEWER = 'ROS 2 Iron or newer'
 ACK_TIMEOUT = 5.0  # seconds for the acknowledgements (Fast DDS asks for them every 3 s)
+TORQUE_TIMEOUT = 2.0  # seconds for a servo's setTorqueEnable (and setTorqueDisable) to answer
 
 
 @dataclass
@@ -35,6 +38,8 @@ class ModuleReport:
     distribution: str           # HUMBLE, NEWER, or 'unknown' (no endpoint seen)
     received: str | None = None  # what came from the module
     sent: str | None = None      # what the module acknowledged
+    torque: str | None = None    # a servo: how its setTorqueEnable call went
+    torque_ok: bool = False      # a servo: setTorqueEnable answered and the torque put back as it was
 
     def topic(self, name: str) -> str:
         """The absolute name of the module's topic name (olive_kit.description.topic)."""
@@ -70,6 +75,38 @@ def node_distribution(node: Any, name: str, namespace: str) -> str:
                          if info.node_name == name and info.node_namespace == namespace])
 
 
+def torque_was_on(message: str) -> bool:
+    """Whether a servo's answer to setTorqueEnable says its torque was on already.
+
+    The simulated servo and the twins answer 'torque already enabled'; a real module's wording is not
+    known, and an answer without 'already' counts as "was off", so the check switches it off again.
+    """
+    return 'already' in message.lower()
+
+
+def torque_outcome(enabled: tuple[bool, str, float] | None, disabled: tuple[bool, str] | None,
+                   timeout: float = TORQUE_TIMEOUT) -> tuple[bool, str]:
+    """(ok, text) of a servo's torque check from its answers.
+
+    enabled is setTorqueEnable's (success, message, seconds it took) or None (no answer); disabled is
+    setTorqueDisable's (success, message), None when it was not called or did not answer.
+    """
+    if enabled is None:
+        return False, (f'setTorqueEnable was not answered within {timeout:.0f} s (call it again: a Humble '
+                       "module gives a new client's answer up after 0.1 s under load)")
+    success, message, seconds = enabled
+    text = f"setTorqueEnable answered in {seconds * 1000:.0f} ms ('{message}')"
+    if not success:
+        return False, f'{text} but failed'
+    if torque_was_on(message):
+        return True, f'{text}, torque left on'
+    if disabled is None:
+        return False, f'{text}, and setTorqueDisable did not answer within {timeout:.0f} s: its torque is ON'
+    if not disabled[0]:
+        return False, f"{text}, and setTorqueDisable failed ('{disabled[1]}'): its torque is ON"
+    return True, f'{text}, torque switched off again'
+
+
 def kit_verdicts(reports: list[ModuleReport]) -> list[tuple[bool, str]]:
     """(ok, text) per module, then a problem line when no module was found."""
     if not reports:
@@ -80,11 +117,16 @@ def kit_verdicts(reports: list[ModuleReport]) -> list[tuple[bool, str]]:
         where = f'{report.module_type} {report.namespace} (/{report.node}, {report.distribution})'
         missing = [way for way, done in (('nothing came from it', report.received),
                                          ('nothing sent to it was acknowledged', report.sent)) if not done]
+        torque = ''
+        if report.module_type == 'servo':
+            if not report.torque_ok:
+                missing.append(report.torque or torque_outcome(None, None)[1])
+            torque = f'; {report.torque}'
         if missing:
             verdicts.append((False, f"{where}: {' and '.join(missing)}; fix: check the module's page "
                                     '(Log Monitor) and that no firewall blocks UDP 7400-7700'))
         else:
-            verdicts.append((True, f'{where}: {report.received} from it, {report.sent} to it'))
+            verdicts.append((True, f'{where}: {report.received} from it, {report.sent} to it{torque}'))
     return verdicts
 
 
@@ -178,7 +220,53 @@ def check_kit(domain_id: int, seconds: float, expected: dict[str, str]) -> list[
                     and entry[1].wait_for_all_acked(Duration(seconds=max(0.0, deadline - time.monotonic())))]
         for report, _, _, what in sent:
             report.sent = what
+        check_torque(node, [report for report in reports if report.module_type == 'servo'], seconds,
+                     spin_until)
         node.destroy_node()
         return reports
     finally:
         rclpy.try_shutdown(context=context)
+
+
+def check_torque(node: Any, servos: list[ModuleReport], seconds: float, spin_until: Any) -> None:
+    """Call each servo's setTorqueEnable (all at once), then setTorqueDisable where the torque was off.
+
+    Waits up to seconds for the services, TORQUE_TIMEOUT for each round of answers; fills the reports.
+    """
+    from std_srvs.srv import Trigger
+
+    clients = {report.node: (node.create_client(Trigger, report.topic('setTorqueEnable')),
+                             node.create_client(Trigger, report.topic('setTorqueDisable')))
+               for report in servos}
+    spin_until(lambda: all(enable.service_is_ready() and disable.service_is_ready()
+                           for enable, disable in clients.values()), time.monotonic() + seconds)
+    answered_at: dict[str, float] = {}
+    calls: dict[str, tuple[float, Any]] = {}
+    for report in servos:
+        enable = clients[report.node][0]
+        if enable.service_is_ready():
+            future = enable.call_async(Trigger.Request())
+            future.add_done_callback(
+                lambda _, name=report.node: answered_at.setdefault(name, time.monotonic()))
+            calls[report.node] = (time.monotonic(), future)
+    spin_until(lambda: all(future.done() for _, future in calls.values()), time.monotonic() + TORQUE_TIMEOUT)
+    enabled: dict[str, tuple[bool, str, float]] = {}
+    restores: dict[str, Any] = {}
+    for name, (started, future) in calls.items():
+        if not future.done() or future.result() is None:
+            continue
+        response = future.result()
+        took = answered_at.get(name, time.monotonic()) - started
+        enabled[name] = (response.success, response.message, took)
+        if response.success and not torque_was_on(response.message):
+            restores[name] = clients[name][1].call_async(Trigger.Request())
+    spin_until(lambda: all(future.done() for future in restores.values()), time.monotonic() + TORQUE_TIMEOUT)
+    for report in servos:
+        restore = restores.get(report.node)
+        disabled = None
+        if restore is not None and restore.done() and restore.result() is not None:
+            disabled = (restore.result().success, restore.result().message)
+        report.torque_ok, report.torque = torque_outcome(enabled.get(report.node), disabled)
+    for enable, disable in clients.values():
+        node.destroy_client(enable)
+        node.destroy_client(disable)
