@@ -27,6 +27,13 @@ SERVO_NODE = '/olive_servo_humble_dcm_srv'
 KIT_NODES = ('/olive_imu_x1684267976913_dcm_srv', '/olive_servo_pan_dcm_srv', '/olive_servo_tilt_dcm_srv',
              '/olive_camera_eye_dcm_srv')
 RANGES = {'private': 'LOCALHOST', 'open': 'SUBNET'}
+# s from the twins' "ready" to the first `ros2 node list` naming both. In private mode the IMU twin is
+# ready once the bridge it starts has forwarded it. In open mode our tools' bridge (Cyclone DDS) learns
+# of a Fast DDS participant that came up after it only from that participant's next periodic
+# announcement (every 3 s on Fast DDS's defaults, a real module's too), not from its first ones:
+# the Fast DDS servo was named 2.9-3.8 s after it was ready on a quiet machine, the Cyclone twin at once.
+FASTDDS_ANNOUNCEMENT_PERIOD = 3.0
+LISTED_WITHIN = {'private': 2.0, 'open': 2.0 + FASTDDS_ANNOUNCEMENT_PERIOD}
 NO_DISPLAY = {'DISPLAY': None, 'WAYLAND_DISPLAY': None, 'OWL_HEADLESS': '1'}
 SUMMARY = r"discovery samples received: (\d+), malformed in Humble's layout: (\d+)"
 
@@ -110,8 +117,8 @@ def test_a_humble_module_beside_the_kit_and_chapter_4_nodes_is_safe_listed_and_t
         enable = sandbox.command(['ros2', 'service', 'call', '/olive/servo/humble/setTorqueEnable',
                                   'std_srvs/srv/Trigger'], label='ros2 service call')
         listed_after, _ = seconds_until_listing(sandbox, lambda names: {IMU_NODE, SERVO_NODE} <= names)
-        assert listed_after <= 2.0, f'the first call to list the Humble nodes began {listed_after:.2f} s ' \
-                                    'after they started'
+        assert listed_after <= LISTED_WITHIN[network], \
+            f'the first call to list the Humble nodes began {listed_after:.2f} s after they started'
 
         # IMU -> the course's imu_turtle: the twin's fixed 0.3 rad pitch drives the turtle forward. Started
         # now, it comes up while the servo gets its goal.
