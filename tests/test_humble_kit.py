@@ -33,7 +33,7 @@ RANGES = {'private': 'LOCALHOST', 'open': 'SUBNET'}
 # announcement (every 3 s on Fast DDS's defaults, a real module's too), not from its first ones:
 # the Fast DDS servo was named 2.9-3.8 s after it was ready on a quiet machine, the Cyclone twin at once.
 FASTDDS_ANNOUNCEMENT_PERIOD = 3.0
-LISTED_WITHIN = {'private': 2.0, 'open': 2.0 + FASTDDS_ANNOUNCEMENT_PERIOD}
+LISTED_WITHIN = {'private': 2.0, 'open': 2 * FASTDDS_ANNOUNCEMENT_PERIOD}  # a listing call takes 1 s too
 NO_DISPLAY = {'DISPLAY': None, 'WAYLAND_DISPLAY': None, 'OWL_HEADLESS': '1'}
 SUMMARY = r"discovery samples received: (\d+), malformed in Humble's layout: (\d+)"
 
