@@ -471,6 +471,41 @@ def test_gains_set_elsewhere_show_on_the_page(ros, kit_and_view, page):
     assert page.input_value(f'{servo_row("pan")} input.kp') == '7.5'
 
 
+# Over the next 50 kit states: how often a readout's text was set to the text it already had.
+READOUTS_REWRITTEN = """() => new Promise((done) => {
+  let unchanged = 0;
+  let states = 0;
+  const observer = new MutationObserver((mutations) => {
+    for (const mutation of mutations) {
+      const [before] = mutation.removedNodes;
+      const [after] = mutation.addedNodes;
+      if (before && after && before.textContent === after.textContent) unchanged += 1;
+    }
+  });
+  for (const id of ['pan', 'tilt', 'roll', 'pitch', 'yaw']) {
+    observer.observe(document.getElementById(id), { childList: true, characterData: true, subtree: true });
+  }
+  const view = window.robotView;
+  let imu = view.imu;
+  Object.defineProperty(view, 'imu', {
+    configurable: true,
+    get: () => imu,
+    set: (value) => {
+      imu = value;
+      states += 1;
+      if (states === 50) setTimeout(() => { observer.disconnect(); done(unchanged); });
+    },
+  });
+})"""
+
+
+def test_readouts_are_rewritten_only_when_their_text_changes(ros, kit_and_view, page):
+    # 100 kit states a second each set five readouts: a readout set to the text it has is laid out and
+    # painted again (bench/robot_view_latency.py's round trip, p95: 105 -> 85 ms in one A/B run).
+    open_page(kit_and_view, page)
+    assert page.evaluate(READOUTS_REWRITTEN) == 0
+
+
 def test_record_makes_a_bag_of_the_plotted_topics_and_draws_it_under_the_live_plots(ros, kit_and_view, page):
     open_page(kit_and_view, page)
     row = servo_row('pan')
