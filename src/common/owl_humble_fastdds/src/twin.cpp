@@ -545,10 +545,10 @@ public:
   }
 
 private:
-  static dds::DataWriterQos topic_writer_qos()
+  // rclpy's QoSProfile(depth=10) and rmw's services default: reliable, volatile, keep last 10.
+  template<typename Qos>
+  static Qos topic_qos(Qos qos)
   {
-    // rclpy's QoSProfile(depth=10) and rmw's services default: reliable, volatile, keep last 10.
-    dds::DataWriterQos qos = dds::DATAWRITER_QOS_DEFAULT;
     qos.reliability().kind = dds::RELIABLE_RELIABILITY_QOS;
     qos.durability().kind = dds::VOLATILE_DURABILITY_QOS;
     qos.history().kind = dds::KEEP_LAST_HISTORY_QOS;
@@ -558,17 +558,9 @@ private:
     return qos;
   }
 
-  static dds::DataReaderQos topic_reader_qos()
-  {
-    dds::DataReaderQos qos = dds::DATAREADER_QOS_DEFAULT;
-    qos.reliability().kind = dds::RELIABLE_RELIABILITY_QOS;
-    qos.durability().kind = dds::VOLATILE_DURABILITY_QOS;
-    qos.history().kind = dds::KEEP_LAST_HISTORY_QOS;
-    qos.history().depth = 10;
-    qos.endpoint().history_memory_policy = rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
-    qos.data_sharing().off();
-    return qos;
-  }
+  static dds::DataWriterQos topic_writer_qos() {return topic_qos(dds::DATAWRITER_QOS_DEFAULT);}
+
+  static dds::DataReaderQos topic_reader_qos() {return topic_qos(dds::DATAREADER_QOS_DEFAULT);}
 
   static dds::DataWriterQos discovery_writer_qos()
   {
