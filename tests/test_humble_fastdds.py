@@ -84,7 +84,7 @@ def node_list(sandbox):
     return set(ros2(sandbox, 'node', 'list')[0].split())
 
 
-def test_our_service_and_param_calls_switch_the_humble_servos_torque_and_gains():
+def test_our_service_and_param_calls_switch_the_humble_servos_torque_and_gains(page):
     with RosSandbox() as sandbox:
         twin = start_twin(sandbox)
         # In private mode nothing of ours starts the discovery bridge (no real module is there); it
@@ -97,14 +97,23 @@ def test_our_service_and_param_calls_switch_the_humble_servos_torque_and_gains()
                       timeout=5)
         twin.wait_for('^humble_fastdds_twin: torque on$', timeout=5)
 
-        # The appendix's clean-up, through rqt's Service Caller (the page's own API), as section 4.4 does it.
+        # The appendix's clean-up, through rqt's Service Caller in a browser, as section 4.4 does it.
         rqt = Rqt(sandbox)
         disable = SERVICES + 'setTorqueDisable'
-        rqt.wait_for(lambda: disable in {s['name'] for s in rqt.ok('GET', '/api/services')}, disable)
+        page.goto(rqt.base + '#service-caller')
+        page.wait_for_selector(f'#srv-names option[value="{disable}"]', state='attached', timeout=20_000)
+        page.fill('#srv-name', disable)
+        page.click('#srv-timeout')  # leaving the name's box chooses the service, as a student's click does
+        page.wait_for_function('document.getElementById("srv-type").textContent === "std_srvs/srv/Trigger"')
         started = time.monotonic()
-        answer = rqt.ok('POST', '/api/call', {'service': disable})
+        page.click('#srv-call')
+        page.wait_for_function('document.getElementById("srv-response").textContent'
+                               '.includes("torque disabled")', timeout=10_000)
         disable_took = time.monotonic() - started
-        assert answer['response'] == {'success': True, 'message': 'torque disabled'}, answer
+        assert page.inner_text('#srv-error') == ''
+        response = page.inner_text('#srv-response')
+        assert re.search(r'success\s+boolean\s+true', response), response
+        page.screenshot_to('rqt_service_caller_humble_servo')
         twin.wait_for('^humble_fastdds_twin: torque off$', timeout=5)
         rqt.process.send_signal(signal.SIGINT)
 
@@ -137,7 +146,7 @@ def test_our_service_and_param_calls_switch_the_humble_servos_torque_and_gains()
         finally:
             probe.close()
         print(f'ros2 service call setTorqueEnable {enable_took:.2f} s (the whole command), rqt Service '
-              f'Caller setTorqueDisable {disable_took:.2f} s (the HTTP call); round trip of an rclpy '
+              f'Caller setTorqueDisable {disable_took:.2f} s (click to answer shown); round trip of an rclpy '
               'client: ' +
               ', '.join(f'{name} {seconds * 1000:.1f} ms' for name, seconds in rtts.items()) +
               '; requests arrived after (ms): ' +
