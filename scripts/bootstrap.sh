@@ -89,7 +89,7 @@ cv_version="$(sed -n 's/^opencv-python==\([^ ;]*\).*/\1/p' requirements.txt)"
 [ -n "$cv_version" ] || die "requirements.txt pins no opencv-python."
 HOOKS=src/tools/owl_venv_hooks
 WINDOWS_FOLDER=src/common/owl_windows/owl_windows  # the hook's windows folder code, a package of src/
-cv_hash="$( (echo "$cv_version"; cat "$HOOKS/owl_gui_hook.py" "$HOOKS/owl_rclpy_repair.py" "$WINDOWS_FOLDER"/*.py) \
+cv_hash="$( (echo "$cv_version"; cat "$HOOKS"/owl_{gui_hook,rclpy_repair,path_index}.py "$WINDOWS_FOLDER"/*.py) \
   | sha256sum | cut -d' ' -f1)"
 if [ "$(cat "$CV_STAMP" 2>/dev/null)" != "$cv_hash" ]; then
   site_packages="$(env _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/python" -c \
@@ -115,6 +115,11 @@ if [ "$(cat "$CV_STAMP" 2>/dev/null)" != "$cv_hash" ]; then
   cp "$HOOKS/owl_rclpy_repair.py" "$site_packages/"
   env _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/python" -m py_compile "$site_packages/owl_rclpy_repair.py"
   echo 'import owl_rclpy_repair; owl_rclpy_repair.install()' >"$site_packages/owl_rclpy_repair.pth"
+  # Top-level imports ask only the folders of sys.path that hold the name (see $HOOKS/owl_path_index.py).
+  # Its .pth sorts first, so the other hooks' imports are found that way too.
+  cp "$HOOKS/owl_path_index.py" "$site_packages/"
+  env _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/python" -m py_compile "$site_packages/owl_path_index.py"
+  echo 'import owl_path_index; owl_path_index.install()' >"$site_packages/00_owl_path_index.pth"
   cv_notice="$(env _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/python" -m owl_gui_hook)"
   [ -z "$cv_notice" ] || echo "setup: $cv_notice"
   echo "$cv_hash" >"$CV_STAMP"
@@ -170,11 +175,27 @@ BUILD_INPUTS=(-name setup.py -o -name setup.cfg -o -name package.xml -o -name CM
 src_hash="$( (find src -type f -not -path '*/__pycache__/*' | sort
   find src -type f \( "${BUILD_INPUTS[@]}" \) -printf '%p %T@\n' | sort; cat requirements.txt) \
   | sha256sum | cut -d' ' -f1)"
+CMAKE_ARGS=(-DBUILD_TESTING=OFF -DPython3_EXECUTABLE="$VENV/bin/python" -DCMAKE_PROJECT_INCLUDE="$INTERFACE_GENERATORS")
+# The message packages and the C++ twin: most of a build's time, and rarely changed. Each is built
+# once per machine and content, without --symlink-install, and copied from ~/.cache/owl-kit-lab/builds
+# after that (a new clone, the class server's lab, after `make clean`); see scripts/prebuilt_packages.py.
+PREBUILT=(src/compat/example_interfaces src/course/olive_interfaces src/compat/ros2cli_test_fixtures
+  src/common/owl_humble_fastdds)
+PREBUILT_NAMES=("${PREBUILT[@]##*/}")
+PREBUILT_RECIPE="colcon build ${CMAKE_ARGS[*]//$ROOT/}"
+to_build="$(python scripts/prebuilt_packages.py restore "$ROOT" "$PREBUILT_RECIPE" "${PREBUILT[@]}")" \
+  || die "copying the prebuilt packages from ~/.cache/owl-kit-lab/builds failed (see above)."
+if [ -n "$to_build" ]; then
+  mapfile -t to_build <<<"$to_build"
+  echo "setup: building ${to_build[*]##*/} (once on this machine) ..."
+  run_logged prebuilt colcon build --event-handlers console_direct- --packages-select "${to_build[@]##*/}" \
+    --cmake-args "${CMAKE_ARGS[@]}"
+  python scripts/prebuilt_packages.py store "$ROOT" "$PREBUILT_RECIPE" "${to_build[@]}"
+fi
 if [ "$(cat "$BUILD_STAMP" 2>/dev/null)" != "$src_hash" ]; then
   echo "setup: building the workspace (colcon build --symlink-install) ..."
   run_logged colcon colcon build --symlink-install --event-handlers console_direct- \
-    --cmake-args -DBUILD_TESTING=OFF -DPython3_EXECUTABLE="$VENV/bin/python" \
-    -DCMAKE_PROJECT_INCLUDE="$INTERFACE_GENERATORS"
+    --packages-skip "${PREBUILT_NAMES[@]}" --cmake-args "${CMAKE_ARGS[@]}"
   echo "$src_hash" >"$BUILD_STAMP"
   echo "$layout_hash" >"$LAYOUT_STAMP"
 fi
