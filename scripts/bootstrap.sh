@@ -179,8 +179,8 @@ CMAKE_ARGS=(-DBUILD_TESTING=OFF -DPython3_EXECUTABLE="$VENV/bin/python" -DCMAKE_
 # The message packages and the C++ twin: most of a build's time, and rarely changed. Each is built
 # once per machine and content, without --symlink-install, and copied from ~/.cache/owl-kit-lab/builds
 # after that (a new clone, the class server's lab, after `make clean`); see scripts/prebuilt_packages.py.
-PREBUILT=(src/compat/example_interfaces src/course/olive_interfaces src/compat/ros2cli_test_fixtures
-  src/common/owl_humble_fastdds)
+# (Only packages that need no other package of the workspace: colcon will not build one without them.)
+PREBUILT=(src/compat/example_interfaces src/course/olive_interfaces src/common/owl_humble_fastdds)
 PREBUILT_NAMES=("${PREBUILT[@]##*/}")
 PREBUILT_RECIPE="colcon build ${CMAKE_ARGS[*]//$ROOT/}"
 to_build="$(python scripts/prebuilt_packages.py restore "$ROOT" "$PREBUILT_RECIPE" "${PREBUILT[@]}")" \
