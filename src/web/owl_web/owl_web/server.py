@@ -1,6 +1,9 @@
 """The server of our pages: static files, the pages' npm libraries, a JSON API and one WebSocket.
 
 It listens on a loopback address only and runs aiohttp in a thread of its own beside an rclpy node.
+The socket listens from the start; aiohttp is imported and set up when the first connection arrives
+(its import is 0.2 s of CPU, a quarter of a simulated module's start-up, and most modules' pages are
+never opened), and that connection waits in the socket's queue meanwhile.
 
     server = WebServer('rqt', STATIC_DIR, port=8093)        # binds now: a busy port is an OSError here
     server.route('GET', '/api/topics', list_topics)          # handler(Request) -> data or (status, data)
@@ -32,6 +35,7 @@ import json
 import logging
 import os
 import re
+import selectors
 import socket
 import sys
 import threading
@@ -39,9 +43,8 @@ from collections import deque
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from aiohttp import WSCloseCode, WSMsgType, web
 from owl_common.hints import did_you_mean
 
 from owl_web import codec, pages
@@ -49,6 +52,9 @@ from owl_web.codec import ApiError
 from owl_web.origins import TrustedOrigins, request_refusal
 from owl_web.owner_only import OwnerOnly
 from owl_web.pages import Page
+
+if TYPE_CHECKING:
+    from aiohttp import web
 
 OWL_STATIC = Path(__file__).parent / 'static'
 CONTENT_TYPES = {
@@ -317,6 +323,9 @@ class WebServer:
         self._runner: web.AppRunner | None = None
         self._thread: threading.Thread | None = None
         self._stopping = threading.Lock()
+        self._stopped = False
+        # stop() wakes a server still waiting for its first connection through this pipe
+        self._wake_reader, self._wake_writer = os.pipe()
         self._page: Page | None = None  # as join_front_door() gave it
         self._catalogue: list[Page] = []
         self._registered: Page | None = None  # the entry in the pages folder while serving
@@ -411,38 +420,47 @@ class WebServer:
     # ---- running ---------------------------------------------------------------------------
 
     def start(self) -> None:
-        """Serve in a background thread; returns once the server answers."""
-        ready = threading.Event()
-        failure: list[BaseException] = []
-
-        def run() -> None:
-            loop = asyncio.new_event_loop()
-            self._loop = loop
-            try:
-                loop.run_until_complete(self._start_site())
-            except BaseException as error:  # handed to start()'s caller
-                failure.append(error)
-                ready.set()
-                return
-            ready.set()
-            loop.run_forever()
-            loop.close()
-
-        self._thread = threading.Thread(target=run, name=f'{self.name} web', daemon=True)
+        """Serve in a background thread, from the first connection on (the socket already queues it)."""
+        self._thread = threading.Thread(target=self._serve, name=f'{self.name} web', daemon=True)
         self._thread.start()
-        ready.wait()
-        if failure:
-            raise failure[0]
         self._join()
+
+    def _serve(self) -> None:
+        """Wait for the first connection (or stop()), then set aiohttp up and serve until stop()."""
+        with selectors.DefaultSelector() as waiting:
+            waiting.register(self._socket, selectors.EVENT_READ)
+            waiting.register(self._wake_reader, selectors.EVENT_READ)
+            while not any(key.fileobj is self._socket for key, _ in waiting.select()):
+                if self._stopped:
+                    return
+        loop = asyncio.new_event_loop()
+        with self._stopping:
+            if self._stopped:
+                loop.close()
+                return
+            self._loop = loop
+        try:
+            loop.run_until_complete(self._start_site())
+        except Exception as error:  # no page then: say why, once
+            if not self._stopped:
+                self.log(f'cannot serve: {codec.one_line(error)}')
+            loop.close()
+            return
+        loop.run_forever()
+        loop.close()
 
     def stop(self) -> None:
         """Close every page's WebSocket (going away) and stop serving; a second call does nothing."""
         with self._stopping:
+            if self._stopped:
+                return
             loop, thread = self._loop, self._thread
             self._loop = self._thread = None
+            self._stopped = True
             registered, self._registered = self._registered, None
         if registered is not None:
             pages.unregister(registered, pages.pages_dir())
+        os.write(self._wake_writer, b'.')  # a server still waiting for its first connection
         if loop is not None and thread is not None:
             try:
                 asyncio.run_coroutine_threadsafe(self._shutdown(), loop).result(STOP_TIMEOUT)
@@ -452,17 +470,29 @@ class WebServer:
                 loop.call_soon_threadsafe(loop.stop)
             except RuntimeError:  # already stopped
                 pass
+        if thread is not None:
             thread.join(STOP_TIMEOUT)
         self._socket.close()
+        os.close(self._wake_reader)
+        os.close(self._wake_writer)
 
     async def _start_site(self) -> None:
+        from aiohttp import web
+
+        @web.middleware
+        async def own_pages_only(request: web.Request, handler: Callable[..., Any]) -> web.StreamResponse:
+            refusal = request_refusal(request.headers, request.transport, self.trusted, self.owner_only)
+            if refusal is not None:
+                return json_response(403, {'error': refusal})
+            return await handler(request)
+
         logger = one_line_logger(self.name, self.log)
         asyncio.get_running_loop().set_exception_handler(
             lambda loop, context: self.log(f"{context.get('message', 'event loop error')}"
                                            + (f": {codec.one_line(context['exception'])}"
                                               if context.get('exception') else '')))
         app = web.Application(client_max_size=codec.MAX_BODY, logger=logger,
-                              middlewares=[self._own_pages_only])
+                              middlewares=[own_pages_only])
         app.router.add_get('/ws', self._websocket)
         app.router.add_route('*', '/{path:.*}', self._http)
         self._runner = web.AppRunner(app, handle_signals=False, access_log=None, shutdown_timeout=0.5,
@@ -471,6 +501,8 @@ class WebServer:
         await web.SockSite(self._runner, self._socket).start()
 
     async def _shutdown(self) -> None:
+        from aiohttp import WSCloseCode
+
         for connection in list(self._connections):
             await connection.websocket.close(code=WSCloseCode.GOING_AWAY, message=b'server stopped')
         if self._runner is not None:
@@ -504,13 +536,6 @@ class WebServer:
 
     # ---- HTTP ------------------------------------------------------------------------------
 
-    @web.middleware
-    async def _own_pages_only(self, request: web.Request, handler: Callable[..., Any]) -> web.StreamResponse:
-        refusal = request_refusal(request.headers, request.transport, self.trusted, self.owner_only)
-        if refusal is not None:
-            return json_response(403, {'error': refusal})
-        return await handler(request)
-
     async def _http(self, request: web.Request) -> web.StreamResponse:
         try:
             if request.method == 'GET' and not request.path.startswith('/api/'):
@@ -542,6 +567,8 @@ class WebServer:
 
     @staticmethod
     async def _read_body(request: web.Request) -> bytes:
+        from aiohttp import web
+
         if request.content_length is not None and request.content_length > codec.MAX_BODY:
             raise ApiError(413, f'request body of {request.content_length} bytes is over the limit '
                                 f'of {codec.MAX_BODY}')
@@ -563,6 +590,8 @@ class WebServer:
             file = self._library_file(path.removeprefix('/lib/'))
         if file is None or file.suffix not in CONTENT_TYPES or not file.is_file():
             raise ApiError(404, f"no page '{path}'")
+        from aiohttp import web
+
         return web.Response(body=file.read_bytes(), headers={
             'Content-Type': CONTENT_TYPES[file.suffix], 'Cache-Control': 'no-cache'})
 
@@ -583,6 +612,8 @@ class WebServer:
         # No permessage-deflate: on 127.0.0.1 it only costs CPU at both ends, and most of the bytes
         # are camera frames (JPEG or PNG, compressed already), which aiohttp deflated in a worker
         # thread, one more hand-over of the GIL between a frame and the page.
+        from aiohttp import WSMsgType, web
+
         websocket = web.WebSocketResponse(max_msg_size=codec.MAX_BODY, compress=False)
         await websocket.prepare(request)
         connection = Connection(websocket, asyncio.get_running_loop())
@@ -681,5 +712,7 @@ def _flat_file(folder: Path, name: str) -> Path | None:
 
 def json_response(status: int, data: Any) -> web.Response:
     """An HTTP answer of JSON data with the status, never cached."""
+    from aiohttp import web
+
     return web.Response(status=status, text=json.dumps(data), content_type='application/json',
                         headers={'Cache-Control': 'no-store'})

@@ -451,3 +451,42 @@ def test_a_burst_of_updates_wakes_the_sender_once_and_the_next_burst_once_more()
     assert first == 1
     assert after_next == 2
     assert sent[1] == 'state 99'
+
+
+# Run in a process of its own: this one has imported aiohttp already.
+LAZY_START = """
+import sys, time, urllib.request
+from pathlib import Path
+from owl_web.server import WebServer
+
+folder = Path(sys.argv[1])
+(folder / 'index.html').write_text('<!DOCTYPE html><title>lazy</title>')
+server = WebServer('lazy', folder)
+server.start()
+time.sleep(0.3)  # a page nobody opens: the server's thread only waits
+print('aiohttp before the first request:', 'aiohttp' in sys.modules)
+with urllib.request.urlopen(server.url, timeout=10) as answer:
+    print('first request:', answer.status, b'<title>lazy</title>' in answer.read())
+print('aiohttp after it:', 'aiohttp' in sys.modules)
+server.stop()
+unopened = WebServer('unopened', folder)
+unopened.start()
+started = time.monotonic()
+unopened.stop()
+print('a stop before any request in under a second:', time.monotonic() - started < 1.0)
+"""
+
+
+def test_aiohttp_is_set_up_at_the_first_request_and_a_page_never_opened_stops_at_once(tmp_path):
+    import subprocess
+    import sys
+
+    done = subprocess.run([sys.executable, '-c', LAZY_START, str(tmp_path)], capture_output=True, text=True,
+                          timeout=60, check=False)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.splitlines() == [
+        'aiohttp before the first request: False',
+        'first request: 200 True',
+        'aiohttp after it: True',
+        'a stop before any request in under a second: True',
+    ], done.stderr
