@@ -32,7 +32,7 @@ def test_the_first_node_list_names_both_turtles(turtles: RosHarness, how: str):
     ros = turtles
     partial = []
     for _ in range(TRIES):
-        stop_ros2_daemon(ros.domain_id, ros.env)
+        stop_ros2_daemon(ros.domain_id)
         if how == 'daemon just started':
             assert ros.command(['ros2', 'daemon', 'start'], label='daemon start').wait(30) == 0
         listing = ros.command(['ros2', 'node', 'list', *(['--no-daemon'] if how == 'no daemon' else [])],

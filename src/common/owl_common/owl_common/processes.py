@@ -19,6 +19,7 @@ import subprocess
 import tempfile
 import threading
 import time
+import xmlrpc.client
 from collections.abc import Callable, Iterable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
@@ -26,6 +27,7 @@ from typing import IO
 
 # `ros2` verbs start a graph daemon per domain that outlives them, listening on this port + N.
 ROS2_DAEMON_BASE_PORT = 11511
+DAEMON_STOP_TIMEOUT = 10.0  # s: as `ros2 daemon stop` waits for the port
 # Fast DDS maps domain N to UDP ports 7400 + 250 N and up; up to 101 stays clear of the
 # Linux ephemeral range. 0 is left to the user's own shell.
 DOMAIN_IDS = range(1, 102)
@@ -301,7 +303,7 @@ class RosSandbox:
         """
         first, others = self.processes[:1], self.processes[1:]
         with ThreadPoolExecutor(len(others) + 1) as pool:
-            daemon = pool.submit(stop_ros2_daemon, self.domain_id, self.env)
+            daemon = pool.submit(stop_ros2_daemon, self.domain_id)
             for stop in [pool.submit(process.stop, 3.0) for process in others if process.running()]:
                 stop.result()
             daemon.result()
@@ -320,17 +322,29 @@ class RosSandbox:
         self.close()
 
 
-def stop_ros2_daemon(domain_id: int, env: dict[str, str]) -> None:
-    """Stop the `ros2` daemon of a domain, if one runs.
+def stop_ros2_daemon(domain_id: int) -> None:
+    """Stop the `ros2` daemon of a domain, if one runs, and wait until its port is free.
 
     The next user of the domain then starts with an empty graph cache instead of one remembering
-    this sandbox's nodes.
+    this sandbox's nodes. Asked over its XML-RPC interface (upstream's system.shutdown at /ros2cli/),
+    as `ros2 daemon stop` asks it, without a process of its own (0.15 s of CPU each time).
     """
+    port = ROS2_DAEMON_BASE_PORT + domain_id
     try:
-        with socket.create_connection(('127.0.0.1', ROS2_DAEMON_BASE_PORT + domain_id), timeout=0.2):
+        with socket.create_connection(('127.0.0.1', port), timeout=0.2):
             pass
     except OSError:
         return
-    ros2 = shutil.which('ros2', path=env.get('PATH'))
-    if ros2 is not None:
-        subprocess.run([ros2, 'daemon', 'stop'], env=env, capture_output=True, timeout=15, check=False)
+    try:
+        with xmlrpc.client.ServerProxy(f'http://127.0.0.1:{port}/ros2cli/') as daemon:
+            daemon.system.shutdown()
+    except (OSError, xmlrpc.client.Error):
+        return  # not a daemon of ours, or gone meanwhile
+    deadline = time.monotonic() + DAEMON_STOP_TIMEOUT
+    while time.monotonic() < deadline:
+        try:
+            with socket.create_connection(('127.0.0.1', port), timeout=0.2):
+                pass
+        except OSError:
+            return
+        time.sleep(0.05)
