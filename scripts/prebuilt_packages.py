@@ -150,7 +150,9 @@ def restore(root: Path, cache: Path, package_dir: Path, digest: str) -> bool:
     (root / 'install').mkdir(exist_ok=True)
     staging = Path(tempfile.mkdtemp(prefix=f'.{name}-', dir=root / 'install'))
     copy = staging / name
-    shutil.copytree(source, copy, symlinks=True)
+    # Copied with the current time, as a build made now would leave them: what compares a package's
+    # sources with its install (owl check, colcon's users) must not take a fresh clone's sources as newer.
+    shutil.copytree(source, copy, symlinks=True, copy_function=shutil.copy)
     relocate(copy, (copy / RELOCATED).read_text().splitlines(), PLACEHOLDER, bytes(root))
     (copy / RELOCATED).unlink()
     compileall.compile_dir(copy, quiet=2, workers=0)  # quiet: stdout names what to build

@@ -4,6 +4,7 @@ import importlib.util
 import os
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -52,6 +53,9 @@ def test_a_build_stored_from_one_workspace_is_restored_into_another_naming_it(tm
             if path.is_file():
                 path.write_text('older build')
     assert digest_of(two, other_package) == digest  # the workspace's path is not in the digest
+    for path in cache.rglob('*'):  # kept long ago
+        os.utime(path, (1e9, 1e9))
+    restoring = time.time()
     assert prebuilt.restore(two, cache, other_package, digest)
 
     installed = two / 'install' / 'olive_interfaces'
@@ -62,6 +66,8 @@ def test_a_build_stored_from_one_workspace_is_restored_into_another_naming_it(tm
     assert library == LIBRARY.replace(b'/work/one', bytes(one))
     assert not (installed / 'lib' / '__pycache__' / 'stale.pyc').exists()  # bytecode is compiled anew
     assert not (installed / prebuilt.RELOCATED).exists()
+    # As new as a build made now: owl check takes an install older than its sources for a stale one.
+    assert min(path.stat().st_mtime for path in installed.rglob('*') if path.is_file()) >= restoring - 1
     assert prebuilt.stamp(two, 'olive_interfaces').read_text().strip() == digest
     # The cache holds no workspace's path.
     assert not any(bytes(one) in path.read_bytes() and prebuilt.is_text(path.read_bytes())
