@@ -107,14 +107,30 @@ def texts_naming(folder: Path, root: bytes) -> list[str]:
 
 
 def store(root: Path, cache: Path, package_dir: Path, digest: str) -> None:
-    """Keep install/<name> of a build just made in the cache (placed whole, by one rename)."""
+    """Keep install/<name> of a build just made in the cache (placed whole, by one rename).
+
+    Where the cache cannot be written (a read-only home), one line says so and the build is simply
+    not kept: the workspace's own install is complete either way.
+    """
     name = package_dir.name
-    installed = root / 'install' / name
+    stamp(root, name).write_text(digest + '\n')
     target = entry(cache, name, digest)
-    cache.mkdir(parents=True, exist_ok=True)
-    if not target.is_dir():
-        staging = Path(tempfile.mkdtemp(prefix=f'.{name}-', dir=cache))
-        copy = staging / name
+    try:
+        cache.mkdir(parents=True, exist_ok=True)
+        if not target.is_dir():
+            keep(root, root / 'install' / name, cache, target)
+        forget_unused(cache, name)
+    except OSError as error:
+        reason = error.strerror or str(error)
+        print(f'setup: {name} is built but not kept for other workspaces ({cache}: {reason})',
+              file=sys.stderr)
+
+
+def keep(root: Path, installed: Path, cache: Path, target: Path) -> None:
+    """Copy installed into the cache as target, the workspace's path in its texts replaced by PLACEHOLDER."""
+    staging = Path(tempfile.mkdtemp(prefix=f'.{installed.name}-', dir=cache))
+    try:
+        copy = staging / installed.name
         shutil.copytree(installed, copy, symlinks=True, ignore=shutil.ignore_patterns('__pycache__'))
         relocated = texts_naming(copy, bytes(root))
         relocate(copy, relocated, bytes(root), PLACEHOLDER)
@@ -122,10 +138,11 @@ def store(root: Path, cache: Path, package_dir: Path, digest: str) -> None:
         try:
             copy.rename(target)
         except OSError:
-            pass  # another setup stored the same build meanwhile
+            if not target.is_dir():
+                raise
+            # another setup stored the same build meanwhile
+    finally:
         shutil.rmtree(staging, ignore_errors=True)
-    stamp(root, name).write_text(digest + '\n')
-    forget_unused(cache, name)
 
 
 def forget_unused(cache: Path, name: str) -> None:

@@ -119,3 +119,15 @@ def test_the_command_names_what_to_build_and_refuses_bad_input_in_one_line(tmp_p
     assert wrong.returncode == 2
     assert 'Traceback' not in wrong.stderr
     assert 'prebuilt_packages.py restore ROOT RECIPE PACKAGE_DIR' in wrong.stderr
+
+
+def test_a_cache_that_cannot_be_written_keeps_nothing_and_says_so_in_one_line(tmp_path, capsys):
+    package = workspace(tmp_path)
+    digest = digest_of(tmp_path, package)
+    not_a_folder = tmp_path / 'cache'
+    not_a_folder.write_text('a file where the cache would be')
+    prebuilt.store(tmp_path, not_a_folder, package, digest)
+    [line] = capsys.readouterr().err.splitlines()
+    assert line.startswith('setup: olive_interfaces is built but not kept for other workspaces'), line
+    # The workspace's install stands: the next setup finds it built.
+    assert prebuilt.restore(tmp_path, not_a_folder, package, digest)
