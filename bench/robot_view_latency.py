@@ -28,6 +28,7 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
@@ -55,48 +56,65 @@ SAMPLE_TIMEOUT = 10.0
 
 
 class Timings:
-    """Arrival times (time.monotonic) of the pan joint's positions and of true_orientation messages."""
+    """Arrival times (time.monotonic) of the pan joint's positions and of true_orientation messages.
+
+    Waits are woken by the arrivals (no polling): the bench's own CPU is the kit's and Chromium's
+    to lose on a 2-core machine.
+    """
 
     def __init__(self, probe: Probe) -> None:
         self.joints: list[tuple[float, float]] = []
         self.commands: list[float] = []
         self.yaws: list[tuple[float, float]] = []  # the IMU's (arrival, yaw)
+        self._arrived = threading.Condition()
         probe.node.create_subscription(JointState, PAN_JOINT, self._on_joint, 10)
         probe.node.create_subscription(Imu, IMU_TOPIC, self._on_imu, 10)
         probe.node.create_subscription(
             Quaternion, TRUE_ORIENTATION, lambda _: self.commands.append(time.monotonic()), 10)
 
     def _on_joint(self, joint: JointState) -> None:
-        self.joints.append((time.monotonic(), joint.position[0]))
+        with self._arrived:
+            self.joints.append((time.monotonic(), joint.position[0]))
+            self._arrived.notify_all()
 
     def _on_imu(self, imu: Imu) -> None:
         q = imu.orientation
         yaw = math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y ** 2 + q.z ** 2))
-        self.yaws.append((time.monotonic(), yaw))
+        with self._arrived:
+            self.yaws.append((time.monotonic(), yaw))
+            self._arrived.notify_all()
+
+    def _first(self, arrivals: list[tuple[float, float]], started: float, since: int,
+               away_from: float, by: float, what: str) -> float:
+        """Time of the first of arrivals[since:] after `started` whose value is `by` away from `away_from`."""
+        index = since
+        found: list[float] = []
+
+        def arrived() -> bool:
+            nonlocal index
+            while index < len(arrivals):
+                when, value = arrivals[index]
+                index += 1
+                if when > started and abs(value - away_from) > by:
+                    found.append(when)
+                    return True
+            return False
+
+        with self._arrived:
+            if not self._arrived.wait_for(arrived, SAMPLE_TIMEOUT):
+                raise SystemExit(f'{what} within {SAMPLE_TIMEOUT} s')
+        return found[0]
 
     def wait_for_yaw(self, started: float, from_yaw: float) -> float:
         """Time of the first IMU message after `started` whose yaw turned SHOWN rad from `from_yaw`."""
-        deadline = time.monotonic() + SAMPLE_TIMEOUT
-        while time.monotonic() < deadline:
-            turned = [arrived for arrived, yaw in self.yaws[-50:]
-                      if arrived > started and abs(yaw - from_yaw) > SHOWN]
-            if turned:
-                return turned[0]
-            time.sleep(0.001)
-        raise SystemExit(f'the IMU did not turn within {SAMPLE_TIMEOUT} s')
+        return self._first(self.yaws, started, max(0, len(self.yaws) - 50), from_yaw, SHOWN,
+                           'the IMU did not turn')
 
     def wait_for_move(self, started: float, from_position: float) -> float:
         """Time of the first joint message after `started` MOVED away from `from_position`."""
-        deadline = time.monotonic() + SAMPLE_TIMEOUT
-        index = max(0, len(self.joints) - 5)  # the list only grows; what came before is older
-        while time.monotonic() < deadline:
-            while index < len(self.joints):
-                arrived, position = self.joints[index]
-                index += 1
-                if arrived > started and abs(position - from_position) > MOVED:
-                    return arrived
-            time.sleep(0.002)
-        raise SystemExit(f'the pan servo did not move within {SAMPLE_TIMEOUT} s')
+        # the list only grows; what came before is older
+        return self._first(self.joints, started, max(0, len(self.joints) - 5), from_position, MOVED,
+                           'the pan servo did not move')
 
     def settle(self, seconds: float) -> float:
         """Wait, then the pan's latest position."""

@@ -706,6 +706,21 @@ def test_the_view_fills_the_window_turns_and_zooms_and_works_on_a_phone_with_tou
     drag(page, 80)
     wait_until(lambda: len(held) >= 3, 10, 'the held IMU orientations')
     assert page.evaluate('window.robotView.cameraPosition()') == turned
+    # The mouse's raw updates hold the IMU as they come (Chromium gives pointermove only at the next
+    # animation frame): one raw update sends its command before the event's dispatch returns. (The
+    # page sends at most one command per 20 ms: the first waits that out.)
+    grip = page.evaluate('window.robotView.imuOnPage()')
+    page.mouse.move(grip['x'], grip['y'])
+    page.mouse.down()
+    sent_at_once = page.evaluate('''async ([x, y]) => {
+      await new Promise((resolve) => setTimeout(resolve, 25));
+      const before = window.robotView.commandsSent;
+      document.querySelector('#model canvas').dispatchEvent(
+        new PointerEvent('pointerrawupdate', { clientX: x + 5, clientY: y, bubbles: true }));
+      return window.robotView.commandsSent - before;
+    }''', [grip['x'], grip['y']])
+    page.mouse.up()
+    assert sent_at_once == 1
 
     # A phone: one column, nothing wider than the screen, and a finger holds the IMU without the
     # browser taking the gesture over (no pointercancel after a few moves).

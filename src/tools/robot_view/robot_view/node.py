@@ -146,8 +146,10 @@ class RobotViewNode(Node):
         server.channel('camera', self._watch_camera, self._camera_watchers.discard)
         server.channel('plots', self._watch_plots, self._forget_plot_watcher)
         server.channel('servos', self._watch_servos, self._servo_watchers.discard)
-        server.command('hold_imu', lambda arguments: self._publish(hold_imu_orientation(arguments)))
-        server.command('level', lambda arguments: self._publish(level_orientation(arguments)))
+        # a drag sends 50 of these a second, and a student sees each one's way to the IMU and back
+        server.command('hold_imu', lambda arguments: self._publish(hold_imu_orientation(arguments)),
+                       at_once=True)
+        server.command('level', lambda arguments: self._publish(level_orientation(arguments)), at_once=True)
         server.command('set_gains', self._set_gains)
         server.command('torque', self._torque)
         server.command('goal', self._goal)

@@ -304,6 +304,7 @@ class WebServer:
         self._routes: list[Route] = []
         self._channels: dict[str, Channel] = {}
         self._commands: dict[str, Callable[[dict[str, Any]], dict[str, Any] | None]] = {}
+        self._commands_at_once: set[str] = set()  # see command()
         self._connections: set[Connection] = set()
         self._socket = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
         try:
@@ -407,15 +408,20 @@ class WebServer:
         """
         self._channels[name] = Channel(name, open, close)
 
-    def command(self, name: str, handler: Callable[[dict[str, Any]], dict[str, Any] | None]) -> None:
+    def command(self, name: str, handler: Callable[[dict[str, Any]], dict[str, Any] | None],
+                at_once: bool = False) -> None:
         """Add a command: handler(arguments) carries out a page's {"type": "command", "name": name, ...}.
 
         The arguments are the message without type, id and name; the handler raises ApiError to refuse,
         before anything reaches ROS. Runs in a worker thread; the page gets {"type": "done"} (with
         "result": what the handler returned, when it returns a dict: what came of the command) or
-        the error line.
+        the error line. A handler that never waits (one that only publishes) may run at_once, in the
+        server's own thread: a drag's commands then reach ROS without two hand-overs between threads,
+        each of which waits for Python's lock on a busy machine.
         """
         self._commands[name] = handler
+        if at_once:
+            self._commands_at_once.add(name)
 
     # ---- running ---------------------------------------------------------------------------
 
@@ -692,7 +698,10 @@ class WebServer:
             raise ApiError(404, f'unknown command {json.dumps(name)[:80]}{hint}; '
                                 f"known: {', '.join(sorted(self._commands)) or 'none'}")
         arguments = {k: v for k, v in message.items() if k not in ('type', 'id', 'name')}
-        result = await self._in_thread(handler, arguments)
+        if name in self._commands_at_once:
+            result = handler(arguments)
+        else:
+            result = await self._in_thread(handler, arguments)
         connection.done(message.get('id'), result if isinstance(result, dict) else None)
 
     async def _unsubscribe(self, connection: Connection, subscription: Subscription) -> None:

@@ -61,6 +61,9 @@ def web(tmp_path, monkeypatch):
         commands.append(codec.unit_quaternion(arguments['orientation']))
 
     server.command('turn', turn)
+    # the thread each runs in: where_turn's a handler thread, where_nudge's (at_once) the server's
+    server.command('where_turn', lambda _: {'thread': threading.current_thread().name})
+    server.command('where_nudge', lambda _: {'thread': threading.current_thread().name}, at_once=True)
     server.route('POST', '/api/echo/{name}', echo)
     server.route('GET', '/api/broken', broken)
     server.route('GET', '/api/refuse', refuse)
@@ -249,7 +252,7 @@ def test_unsubscribe_stops_the_channel(web):
                                     'expected: subscribe, unsubscribe, command'),
     ({'type': 'command', 'id': 2}, "missing key 'name' in the command message"),
     ({'type': 'command', 'id': 2, 'name': 'trun'},
-     'unknown command "trun" (did you mean \'turn\'?); known: turn'),
+     'unknown command "trun" (did you mean \'turn\'?); known: turn, where_nudge, where_turn'),
     ({'type': 'command', 'id': 2, 'name': 'turn', 'orientation': {'x': 0, 'y': 0, 'z': 0, 'w': 'nan'}},
      'the orientation: "w" must be a number, got "nan"'),
     ('{"type": "command", "id": 2, "name": "turn", "orientation": {"x": NaN, "y": 0, "z": 0, "w": 1}}',
@@ -289,6 +292,14 @@ def test_commands_are_carried_out_and_answered(web):
     received, _ = run(exchange(server, command, receive=1))
     assert received == [{'type': 'done', 'id': 'c1'}]
     assert server.commands_run == [(0.0, 0.0, 1.0, 0.0)]
+
+
+def test_a_command_at_once_runs_in_the_servers_thread_the_others_in_their_own(web):
+    server, _, _ = web
+    received, _ = run(exchange(server, {'type': 'command', 'id': 1, 'name': 'where_nudge'},
+                               {'type': 'command', 'id': 2, 'name': 'where_turn'}, receive=2))
+    assert received == [{'type': 'done', 'id': 1, 'result': {'thread': 'test web'}},
+                        {'type': 'done', 'id': 2, 'result': {'thread': 'test handler'}}]
 
 
 def test_a_bad_command_reaches_no_handler(web):

@@ -356,10 +356,15 @@ renderer.domElement.addEventListener('pointerdown', (event) => {
   renderer.domElement.setPointerCapture(event.pointerId);
   container.style.cursor = 'grabbing';
 });
-renderer.domElement.addEventListener('pointermove', (event) => {
+// Chromium holds pointermove events back to the next animation frame; pointerrawupdate (Chromium,
+// secure pages such as 127.0.0.1) comes as the mouse moves, so a held IMU's command leaves up to a
+// frame sooner. pointermove still serves the rest (touch, other browsers): a move the raw update
+// already took comes again with no distance, and does nothing.
+function dragImu(event) {
   if (!dragging) return;
   const dx = event.clientX - dragging.x;
   const dy = event.clientY - dragging.y;
+  if (dx === 0 && dy === 0) return;
   dragging = { x: event.clientX, y: event.clientY };
   // left/right turns about the world's vertical (yaw), up/down about the world's y (pitch)
   const turn = new THREE.Quaternion().setFromAxisAngle(WORLD_Z, dx * DRAG_RADIANS_PER_PIXEL)
@@ -368,7 +373,9 @@ renderer.domElement.addEventListener('pointermove', (event) => {
   held.copy(imuBlock.quaternion);
   render();
   sendHold();
-});
+}
+renderer.domElement.addEventListener('pointerrawupdate', dragImu);
+renderer.domElement.addEventListener('pointermove', dragImu);
 function release(event) {
   if (!dragging) return;
   dragging = null;
