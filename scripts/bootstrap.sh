@@ -176,11 +176,13 @@ src_hash="$( (find src -type f -not -path '*/__pycache__/*' | sort
   find src -type f \( "${BUILD_INPUTS[@]}" \) -printf '%p %T@\n' | sort; cat requirements.txt) \
   | sha256sum | cut -d' ' -f1)"
 CMAKE_ARGS=(-DBUILD_TESTING=OFF -DPython3_EXECUTABLE="$VENV/bin/python" -DCMAKE_PROJECT_INCLUDE="$INTERFACE_GENERATORS")
-# The message packages and the C++ twin: most of a build's time, and rarely changed. Each is built
+# The message packages (turtlesim's with its launchers; its nodes are turtlesim_py) and the C++ twin:
+# most of a build's time, and rarely changed. Each is built
 # once per machine and content, without --symlink-install, and copied from ~/.cache/owl-kit-lab/builds
 # after that (a new clone, the class server's lab, after `make clean`); see scripts/prebuilt_packages.py.
 # (Only packages that need no other package of the workspace: colcon will not build one without them.)
-PREBUILT=(src/compat/example_interfaces src/course/olive_interfaces src/common/owl_humble_fastdds)
+PREBUILT=(src/compat/example_interfaces src/course/olive_interfaces src/compat/turtlesim
+  src/common/owl_humble_fastdds)
 PREBUILT_NAMES=("${PREBUILT[@]##*/}")
 PREBUILT_RECIPE="colcon build ${CMAKE_ARGS[*]//$ROOT/}"
 to_build="$(python scripts/prebuilt_packages.py restore "$ROOT" "$PREBUILT_RECIPE" "${PREBUILT[@]}")" \
