@@ -16,6 +16,9 @@ import sys
 from itertools import permutations
 from pathlib import Path
 
+import pytest
+import spare_cpu
+
 SLOTS = (os.cpu_count() or 1) + 1  # as conftest's SYSTEM_TEST_SLOTS
 REPOSITORY = Path(__file__).resolve().parent.parent
 
@@ -63,12 +66,15 @@ def lay_out(root: Path, system_tests: str) -> None:
     (root / 'src' / 'pkg' / 'test' / 'test_unit.py').write_text(UNIT_TEST)
 
 
-def start_session(root: Path, slots: Path, *args: str) -> subprocess.Popen:
+def start_session(root: Path, slots: Path, *args: str, spare_idle: float | None = None) -> subprocess.Popen:
+    """A pytest session of root's tests in slots; with no spare slot unless spare_idle is given."""
+    spare = {'OWL_TEST_SPARE_SLOTS': '0'} if spare_idle is None else {'OWL_TEST_SPARE_SLOTS': '1',
+                                                                      'OWL_TEST_SPARE_IDLE': str(spare_idle)}
     return subprocess.Popen(
         [sys.executable, '-m', 'pytest', '-c', str(REPOSITORY / 'pyproject.toml'), '--rootdir', str(root),
          '--confcutdir', str(root), *args],
         cwd=root, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-        env={**os.environ, 'OWL_TEST_SLOT_DIR': str(slots)})
+        env={**os.environ, 'OWL_TEST_SLOT_DIR': str(slots), **spare})
 
 
 def run_session(root: Path, *args: str) -> subprocess.CompletedProcess:
@@ -173,9 +179,14 @@ def run_for_a_while(*name):
 '''
 
 
-def timed_module(workers: int, tests: str) -> str:
-    """TIMED_MODULE for a run of that many workers in all, then the tests."""
-    return TIMED_MODULE + f'\nWORKER_COUNT = {workers}\nRUN_FOR = {RUN_FOR}\n\n' + tests
+def timed_module(workers: int, tests: str, run_for: float = RUN_FOR) -> str:
+    """TIMED_MODULE for a run of that many workers in all, each test run_for s long, then the tests."""
+    return TIMED_MODULE + f'\nWORKER_COUNT = {workers}\nRUN_FOR = {run_for}\n\n' + tests
+
+
+def most_at_once(runs: list[list[float]]) -> int:
+    """The most of runs ([start, end] each) under way at one moment."""
+    return max(sum(start <= moment < end for start, end in runs) for moment, _ in runs)
 
 
 def test_suites_side_by_side_run_no_more_system_tests_at_once_than_the_machine_has_slots(tmp_path):
@@ -191,8 +202,51 @@ def test_suites_side_by_side_run_no_more_system_tests_at_once_than_the_machine_h
     runs = [json.loads(line) for suite in range(2)
             for line in (tmp_path / f'suite{suite}' / 'ran.jsonl').read_text().splitlines()]
     assert len(runs) == 2 * SLOTS
-    at_once = max(sum(start <= moment < end for start, end in runs) for moment, _ in runs)
-    assert at_once <= SLOTS, runs  # without slots, up to twice as many
+    assert most_at_once(runs) <= SLOTS, runs  # without slots, up to twice as many
+
+
+def test_a_spare_slot_lets_one_more_test_run_while_the_machine_idles(tmp_path):
+    """With any idle share enough (0), the spare slot is taken: SLOTS + 1 tests at once, no more.
+
+    The tests outlast spare_cpu.WINDOW, which a test waits before it takes the spare slot.
+    """
+    workers = SLOTS + 2
+    tests = ''.join(f'\ndef test_{n}():\n    run_for_a_while()\n' for n in range(workers))
+    lay_out(tmp_path, timed_module(workers, tests, run_for=spare_cpu.WINDOW + 2))
+    session = start_session(tmp_path, tmp_path / 'slots', '-n', str(workers), 'tests', spare_idle=0.0)
+    stdout, _ = session.communicate(timeout=120)
+    assert session.returncode == 0, stdout
+    runs = [json.loads(line) for line in (tmp_path / 'ran.jsonl').read_text().splitlines()]
+    assert most_at_once(runs) == SLOTS + 1, runs
+
+
+PROC_STAT = 'cpu  {user} 0 {system} {idle} {iowait} 0 0 0 0 0\ncpu0 1 2 3 4 5 6 7 8 9 10\nintr 1\n'
+
+
+def proc_stat(user: int, system: int, idle: int, iowait: int = 0) -> str:
+    return PROC_STAT.format(user=user, system=system, idle=idle, iowait=iowait)
+
+
+def test_cpu_times_are_the_idle_and_all_ticks_of_proc_stats_first_line():
+    assert spare_cpu.cpu_times(proc_stat(user=100, system=50, idle=800, iowait=20)) == (820, 970)
+    with pytest.raises(ValueError, match="not /proc/stat: its first line is 'intr 1'"):
+        spare_cpu.cpu_times('intr 1\n')
+
+
+def test_the_idle_share_is_over_the_last_window_and_unknown_before_a_window_has_passed():
+    now = [0.0]
+    stats = iter([proc_stat(0, 0, 0), proc_stat(50, 0, 50), proc_stat(100, 0, 100),
+                  proc_stat(200, 0, 100), proc_stat(200, 0, 300)])
+    watch = spare_cpu.IdleWatch(read=lambda: next(stats), clock=lambda: now[0])
+    assert watch.idle_share() is None  # the first sample
+    now[0] = spare_cpu.WINDOW / 2
+    assert watch.idle_share() is None  # none a window old yet
+    now[0] = spare_cpu.WINDOW
+    assert watch.idle_share() == 0.5  # since t=0: 100 of 200 ticks idle
+    now[0] = spare_cpu.WINDOW * 1.5
+    assert watch.idle_share() == 0.25  # since t=WINDOW/2, the newest sample a window old: 50 of 200
+    now[0] = spare_cpu.WINDOW * 2.5
+    assert watch.idle_share() == 1.0  # since t=1.5 WINDOW: 200 of 200, the machine idle lately
 
 
 # Two tests marked whole_kit and four unmarked; each appends its name and when it ran.
