@@ -46,18 +46,24 @@ def shared_folder(directory: Path) -> None:
         directory.chmod(0o1777)  # also one made before leases were shared
 
 
-def try_lock_file(directory: Path, ids: Sequence[int], start: int = 0) -> tuple[int, IO[str]] | None:
+def try_lock_file(directory: Path, ids: Sequence[int], start: int = 0,
+                  rested: float = 0.0) -> tuple[int, IO[str]] | None:
     """The first free one of ids, with its lock file's handle; None when every one is held.
 
     The search counts from index start and wraps; an id is free when no process holds its lock file
     in directory, and it stays locked until the returned handle is closed (or the process ends). How
-    concurrent runs on one machine share domains and test slots.
+    concurrent runs on one machine share domains and test slots. With rested, an id whose lock file
+    was touched (given_back) less than that many seconds ago is not free either.
     """
     shared_folder(directory)
+    now = time.time()
     for offset in range(len(ids)):
         chosen = ids[(start + offset) % len(ids)]
+        path = directory / f'{chosen}.lock'
+        if rested and _modified_within(path, rested, now):
+            continue
         # Read-only: a lock file another account made (a class server's, a classmate's) locks as well.
-        handle = os.fdopen(os.open(directory / f'{chosen}.lock', os.O_RDONLY | os.O_CREAT, 0o644))
+        handle = os.fdopen(os.open(path, os.O_RDONLY | os.O_CREAT, 0o644))
         try:
             fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
@@ -66,6 +72,32 @@ def try_lock_file(directory: Path, ids: Sequence[int], start: int = 0) -> tuple[
         return chosen, handle
     return None
 
+
+def _modified_within(path: Path, seconds: float, now: float) -> bool:
+    try:
+        return now - path.stat().st_mtime < seconds
+    except FileNotFoundError:
+        return False
+
+
+def given_back(handle: IO[str], path: Path) -> None:
+    """Close a lock file's handle from try_lock_file, its time of modification now (see rested).
+
+    A lock file another account made keeps its time: this account may not change it.
+    """
+    try:
+        os.utime(path)
+    except OSError:
+        pass
+    handle.close()
+
+
+# A domain given back rests this long before it is leased again while another one is free: a
+# stopped test's nodes stay in the domain's discovery data for seconds (a killed process's participant
+# until its DDS lease runs out, a discovery bridge 10 s); `ros2 doctor` in a test once counted the
+# turtle_teleop_key of the test before it in that domain. (One worker's next lease also moves on,
+# below, but several workers' lease counters start close together and cross each other's domains.)
+DOMAIN_REST = 15.0  # s
 
 # Where this process's next lease starts looking: one domain further each time. A domain just given
 # back may still hold what its last user left for seconds (a discovery bridge lingers 10 s, a killed
@@ -78,16 +110,19 @@ class DomainLease:
     """Exclusive use of one ROS_DOMAIN_ID on this machine until release()."""
 
     def __init__(self) -> None:
-        leased = try_lock_file(LEASE_DIR, DOMAIN_IDS, next(LEASE_STARTS) % len(DOMAIN_IDS))
+        start = next(LEASE_STARTS) % len(DOMAIN_IDS)
+        # a domain that has rested, else (every free one given back lately) any free one
+        leased = (try_lock_file(LEASE_DIR, DOMAIN_IDS, start, rested=DOMAIN_REST)
+                  or try_lock_file(LEASE_DIR, DOMAIN_IDS, start))
         if leased is None:
             raise RuntimeError(f'all ROS domains {DOMAIN_IDS.start}..{DOMAIN_IDS.stop - 1} are in use')
         self.domain_id, handle = leased
         self._handle: IO[str] | None = handle
 
     def release(self) -> None:
-        """Give the domain back (close the lock file); a second call does nothing."""
+        """Give the domain back (close the lock file, marked given back); a second call does nothing."""
         if self._handle is not None:
-            self._handle.close()
+            given_back(self._handle, LEASE_DIR / f'{self.domain_id}.lock')
             self._handle = None
 
 

@@ -1,5 +1,6 @@
 """Domain leases: exclusive on the machine, and a process's next lease moves on to another domain."""
 
+import itertools
 import os
 import shutil
 import subprocess
@@ -22,6 +23,19 @@ def test_a_lease_given_back_is_not_the_next_one_and_a_held_one_is_never_shared(t
     assert third.domain_id not in (first_domain, second.domain_id)
     second.release()
     third.release()
+
+
+def test_a_domain_given_back_rests_while_another_is_free(tmp_path, monkeypatch):
+    monkeypatch.setattr(processes, 'LEASE_DIR', tmp_path)
+    monkeypatch.setattr(processes, 'DOMAIN_IDS', range(1, 3))
+    monkeypatch.setattr(processes, 'LEASE_STARTS', itertools.repeat(0))  # every lease looks at 1 first
+    leased = []
+    for _ in range(3):
+        lease = DomainLease()
+        leased.append(lease.domain_id)
+        lease.release()
+    # 1 rests after its first lease, so 2; then both rest, and a free one is better than none
+    assert leased == [1, 2, 1]
 
 
 def test_every_account_leases_from_one_folder_and_a_lock_another_account_made_still_locks():
