@@ -566,7 +566,7 @@ def test_the_model_follows_the_kit_and_the_mouse_turns_the_head(ros, kit_and_vie
     # Each servo's row names the other node that steers it, and a goal sent meanwhile is said to be
     # overridden by it (it was "sent, moving", then "not reached after 5 s").
     for servo in SERVOS:
-        page.wait_for_function(f"() => document.querySelector('{servo_row(servo)} .steering').textContent "
+        page.wait_for_function(f"() => document.querySelector('{servo_row(servo)} .steering')?.textContent "
                                "=== 'goals also from /imu_control_robot'", timeout=10_000)
     # (the servo's diagnostics tell robot_view its torque is on about once a second)
     page.wait_for_function('() => window.robotView.servos.pan.torque === true', timeout=10_000)
