@@ -7,12 +7,19 @@ wall time, which is printed beside them).
 
 Groups: style (ruff, mypy, the layout), browser (a test with a Chromium page), system (tests/),
 unit (src/<group>/<package>/test/). Every test's time, slowest first, is also written to
-log/test-durations.txt (one line a test: seconds, group, when it started and ended in seconds from
-the first test's start, node id), for finding where the time goes: which tests run at the end, alone.
+log/test-durations.txt (one line a test: seconds, group, CPU seconds, when it started and ended in
+seconds from the first test's start, node id), for finding where the time goes: which tests run at
+the end, alone, and which keep the machine busy.
+
+A test's CPU is its worker's own and that of the processes the worker waited for, from the test's
+set-up to the end of its tear-down: what its processes used, as the harness stops and waits for every
+process it starts (a module's Chromium counts in the module's last test; a daemon that detaches from
+its parent is not counted).
 """
 
 from __future__ import annotations
 
+import resource
 import time
 from collections import defaultdict
 from pathlib import Path
@@ -28,6 +35,8 @@ GROUPS = ('system', 'browser', 'unit', 'style')
 durations: dict[str, float] = defaultdict(float)
 groups: dict[str, str] = {}
 spans: dict[str, tuple[float, float]] = {}  # node id -> (first phase's start, last phase's end), epoch s
+cpu_used: dict[str, float] = defaultdict(float)  # node id -> CPU seconds, its reruns' too
+cpu_at_setup: dict[str, float] = {}  # in a worker: node id -> cpu_seconds() as its set-up began
 started = time.monotonic()
 
 
@@ -41,14 +50,36 @@ def group_of(item: pytest.Item) -> str:
     return 'browser' if 'page' in fixtures or 'browser' in fixtures else 'system'
 
 
+def cpu_seconds() -> float:
+    """User and system CPU of this process and of the children it has waited for, in seconds."""
+    own = resource.getrusage(resource.RUSAGE_SELF)
+    children = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
+
+
 @pytest.hookimpl(tryfirst=True)
 def pytest_runtest_setup(item: pytest.Item) -> None:
     # user_properties travel with the reports from a pytest-xdist worker to the controller
     item.user_properties.append(('group', group_of(item)))
+    cpu_at_setup[item.nodeid] = cpu_seconds()
+
+
+@pytest.hookimpl(wrapper=True)
+def pytest_runtest_teardown(item: pytest.Item) -> object:
+    try:
+        return (yield)
+    finally:  # before the tear-down's report is made, which carries the property
+        started_at = cpu_at_setup.pop(item.nodeid, None)
+        if started_at is not None:
+            item.user_properties.append(('cpu', cpu_seconds() - started_at))
 
 
 def pytest_runtest_logreport(report: pytest.TestReport) -> None:
     durations[report.nodeid] += report.duration
+    if report.when == 'teardown':
+        cpu = [value for name, value in report.user_properties if name == 'cpu']
+        if cpu and isinstance(cpu[-1], float):  # the last: a rerun's item keeps its first run's too
+            cpu_used[report.nodeid] += cpu[-1]
     first, last = spans.get(report.nodeid, (report.start, report.stop))
     spans[report.nodeid] = (min(first, report.start), max(last, report.stop))
     group = dict(report.user_properties).get('group')
@@ -71,17 +102,22 @@ def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:
         start, stop = spans.get(nodeid, (origin, origin))
         return f'{start - origin:7.1f} {stop - origin:7.1f}'
 
-    DURATIONS_FILE.write_text(''.join(f'{seconds:8.2f} {group_name(nodeid):8} {span(nodeid)} {nodeid}\n'
-                                      for nodeid, seconds in slowest))
+    DURATIONS_FILE.write_text(''.join(
+        f'{seconds:8.2f} {group_name(nodeid):8} {cpu_used[nodeid]:8.2f} {span(nodeid)} {nodeid}\n'
+        for nodeid, seconds in slowest))
     write(f'slowest {SLOWEST} tests (set-up, call and tear-down; all of them: '
           f'{DURATIONS_FILE.relative_to(TESTS.parent)}):')
     for nodeid, seconds in slowest[:SLOWEST]:
         write(f'  {seconds:7.1f} s  {nodeid}')
     totals = dict.fromkeys(GROUPS, 0.0)
+    cpu_totals = dict.fromkeys(GROUPS, 0.0)
     counts = dict.fromkeys(GROUPS, 0)
     for nodeid, seconds in durations.items():
         group = groups.get(nodeid, 'unit')
         totals[group] += seconds
+        cpu_totals[group] += cpu_used[nodeid]
         counts[group] += 1
     parts = ', '.join(f'{group} {totals[group]:.0f} s ({counts[group]} tests)' for group in GROUPS)
     write(f'time per group, summed over tests: {parts}; the run took {time.monotonic() - started:.0f} s')
+    parts = ', '.join(f'{group} {cpu_totals[group]:.0f} s' for group in GROUPS)
+    write(f'CPU per group (its tests and their processes): {parts}')

@@ -35,7 +35,8 @@ def test_control_servo_waits_for_the_servo_enables_its_torque_before_any_goal_an
     control_servo.wait_for(r'waiting for service /olive/servo/pan/setTorqueEnable', timeout=30)
     # Numbered by control_servo's publisher: the probe subscribes 0.5 s before the first goal, and
     # discovery can match it a goal or more late (a run saw the sine start at 0.01).
-    goals = ros.probe.collect_numbered(Float32, '/olive/servo/pan/goal/position', COLLECT_DEPTH)
+    goals = ros.probe.collect_with_info(Float32, '/olive/servo/pan/goal/position',
+                                         'publication_sequence_number', COLLECT_DEPTH)
     joints = collect(ros, 'pan', 'joint')
     diagnostics = collect(ros, 'pan', 'joint/diagnostics')
     servo = start_servo(ros, 'pan')
@@ -97,24 +98,29 @@ def test_a_servo_that_answers_late_is_asked_again_until_it_answers(ros):
 
 
 def goal_rate(goals, count):
-    """Goals per second as they were sent: count more of (sent, goal) goals, from their send times."""
-    start = len(goals)
-    wait_for_messages(goals, start + count + 1, timeout=20, what='goals')
-    return count / (goals[start + count][0] - goals[start][0])
+    """Goals per second as control_servo sent them, from the send times of (sent ns, goal) goals.
+
+    Timed over the first count + 1 goals sent from now on: one sent before a parameter change that has
+    just been answered may still be on its way, and one the probe takes late is still timed when sent.
+    """
+    now = time.time_ns()
+    wait_until(lambda: sum(sent > now for sent, _ in goals) > count, 20, f'{count + 1} goals')
+    sent_times = [sent for sent, _ in goals if sent > now][:count + 1]
+    return count / ((sent_times[-1] - sent_times[0]) / 1e9)
 
 
 def test_control_servo_frequency_and_amplitude_change_at_runtime_and_bad_values_are_refused(ros):
     servo = start_servo(ros, 'pan')
     control_servo = ros.run('olive_servo', 'control_servo', '--ros-args', '-p', 'amplitude:=0.5')
     control_servo.wait_for(r'torque enabled: pan', timeout=30)
-    goals = ros.probe.collect_sent(Float32, '/olive/servo/pan/goal/position', COLLECT_DEPTH)
+    goals = ros.probe.collect_with_info(Float32, '/olive/servo/pan/goal/position', 'source_timestamp',
+                                         COLLECT_DEPTH)
     wait_for_messages(goals, 1, timeout=20, what='the first goal')  # timed from there, not from discovery
     # 200 goals: the sine's input goes 2 rad on, so at amplitude 1 at least one would be above 0.84.
     assert goal_rate(goals, 200) > 60  # 100 asked for; the machine may be busy
     assert max(abs(goal.data) for _, goal in goals) <= 0.5
     probe = ros.probe
     assert all(r.successful for r in probe.set_parameters('/control_servo', frequency=10.0, amplitude=1.5))
-    time.sleep(0.5)  # goals sent at 100 Hz before the change may still be on their way
     assert 5 <= goal_rate(goals, 10) <= 13
     for name, value, reason in (('frequency', 0.5, 'out of range'), ('frequency', 1000.0, 'out of range'),
                                 ('amplitude', 1.6, 'out of range'), ('amplitude', -0.1, 'out of range'),

@@ -43,7 +43,7 @@ def drag(page: Any, dx: float, dy: float = 0.0, steps: int = 10) -> None:
 
 def test_bad_websocket_input_gets_one_line_and_nothing_reaches_the_imu(ros):
     base = start_kit_and_view(ros)
-    held = ros.probe.collect_numbered(Quaternion, TRUE_ORIENTATION)
+    held = ros.probe.collect_with_info(Quaternion, TRUE_ORIENTATION, 'publication_sequence_number')
     # robot_view publishes each command once, on a volatile topic: until the probe knows its
     # publisher, the good command below would be lost to it.
     wait_until(lambda: ros.probe.node.count_publishers(TRUE_ORIENTATION) > 0, 20,

@@ -46,32 +46,21 @@ class Probe:
         self.node.create_subscription(msg_type, topic, received.append, qos)
         return received
 
-    def collect_numbered(self, msg_type: Any, topic: str,
-                         qos: QoSProfile | int = 10) -> list[tuple[int, Any]]:
-        """As collect, each message with its publisher's sequence number (its first message is 1).
+    def collect_with_info(self, msg_type: Any, topic: str, field: str,
+                          qos: QoSProfile | int = 10) -> list[tuple[int, Any]]:
+        """As collect, each message with one field of the message info DDS gave with it.
 
-        The number tells which of the publisher's messages this is, even when the probe missed the
-        first ones: a subscription made just before a publisher starts may match it late.
+        'publication_sequence_number' tells which of the publisher's messages this is (its first is 1),
+        even when the probe missed the first ones: a subscription made just before a publisher starts
+        may match it late. 'source_timestamp' is when the publisher sent it (ns since the epoch): a rate
+        measured from these is the publisher's, however late a busy machine lets the probe take the
+        messages (a backlog taken at once made a 10 Hz publisher look 13.6 Hz).
         """
         received: list[tuple[int, Any]] = []
 
-        def numbered(msg: Any, info: dict[str, Any]) -> None:
-            received.append((info['publication_sequence_number'], msg))
+        def with_info(msg: Any, info: dict[str, Any]) -> None:
+            received.append((info[field], msg))
 
         # rclpy passes the message info to a two-argument callback; its annotation names only one.
-        self.node.create_subscription(msg_type, topic, numbered, qos)  # type: ignore[arg-type]
-        return received
-
-    def collect_sent(self, msg_type: Any, topic: str, qos: QoSProfile | int = 10) -> list[tuple[float, Any]]:
-        """As collect, each message with when its publisher sent it (s since the epoch, from DDS).
-
-        A rate measured from these is the publisher's, however late a busy machine lets the probe
-        take the messages (a backlog taken at once made a 10 Hz publisher look 13.6 Hz).
-        """
-        received: list[tuple[float, Any]] = []
-
-        def stamped(msg: Any, info: dict[str, Any]) -> None:
-            received.append((info['source_timestamp'] / 1e9, msg))
-
-        self.node.create_subscription(msg_type, topic, stamped, qos)  # type: ignore[arg-type]
+        self.node.create_subscription(msg_type, topic, with_info, qos)  # type: ignore[arg-type]
         return received
