@@ -1,14 +1,19 @@
 """A student's own colcon workspace next to Owl Kit Lab's: commands run in it, packages built in it.
 
-Shared by tests/test_chapter4_walkthrough.py (packages written as the course says) and
-tests/test_owl_check.py (the broken variants of tests/owl_check_variants/).
+Shared by tests/test_chapter4_walkthrough.py (packages written as the course says),
+tests/test_owl_check.py (the broken variants of tests/owl_check_variants/) and
+tests/test_ros2cli_extensions.py (a third party's ros2 commands).
 """
 
 from __future__ import annotations
 
+import fcntl
+import hashlib
 import shutil
 import subprocess
 from pathlib import Path
+
+import pytest
 
 
 def shell(
@@ -35,4 +40,39 @@ def build_from(workspace: Path, packages: list[Path]) -> Path:
         shutil.copytree(package, workspace / 'src' / package.name)
     build = shell(workspace, 'colcon build --symlink-install')
     assert build.returncode == 0, build.stdout + build.stderr
+    return workspace
+
+
+BUILT = '.built'  # in a shared workspace: written once its build succeeded
+
+
+def packages_digest(packages: list[Path]) -> str:
+    """A digest of the package folders: each one's name, files' paths and contents."""
+    digest = hashlib.sha256()
+    for package in packages:
+        digest.update(package.name.encode() + b'\0')
+        for path in sorted(package.rglob('*')):
+            if path.is_file() and '__pycache__' not in path.parts:
+                digest.update(str(path.relative_to(package)).encode() + b'\0' + path.read_bytes() + b'\0')
+    return digest.hexdigest()[:16]
+
+
+def shared_build(tmp_path_factory: pytest.TempPathFactory, packages: list[Path]) -> Path:
+    """A workspace of the package folders built once for the whole run, for tests that only read it.
+
+    With pytest-xdist a module-scoped fixture is made once per worker, and the tests of a module spread
+    over the workers: the same six packages were built three times in a run (12 s of CPU each).
+    The workers of one run share their base folder's parent; the first to ask builds under a lock,
+    the others wait for it and use its workspace. A build that failed is tried again by the next.
+    """
+    base = tmp_path_factory.getbasetemp()
+    run_folder = base.parent if base.name.startswith('popen-gw') else base
+    workspace = run_folder / 'shared-workspaces' / packages_digest(packages)
+    workspace.parent.mkdir(parents=True, exist_ok=True)
+    with open(workspace.with_suffix('.lock'), 'w') as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)  # released when the file closes
+        if not (workspace / BUILT).exists():
+            shutil.rmtree(workspace, ignore_errors=True)
+            build_from(workspace, packages)
+            (workspace / BUILT).touch()
     return workspace

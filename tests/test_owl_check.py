@@ -20,7 +20,7 @@ from owl_cli.check.catalogue import EXERCISES
 from owl_cli.check.report import read_latest, results_file
 from owl_cli.check.session import Session
 from owl_common.processes import dies_with_this_process
-from student_workspace import build_from, shell
+from student_workspace import shared_build, shell
 
 ROOT = Path(__file__).resolve().parents[1]
 VARIANTS = Path(__file__).parent / 'owl_check_variants'
@@ -59,8 +59,8 @@ def results(done: subprocess.CompletedProcess) -> dict[str, dict]:
 @pytest.fixture(scope='module')
 def broken(tmp_path_factory) -> Path:
     """A student workspace with one mistake in each package (the course's package names)."""
-    return build_from(
-        tmp_path_factory.mktemp('broken_ws'),
+    return shared_build(
+        tmp_path_factory,
         [
             VARIANTS / 'imu_swapped' / 'olive_imu',
             VARIANTS / 'fahrenheit_9_2' / 'olive_srvcli',
@@ -75,8 +75,8 @@ def broken(tmp_path_factory) -> Path:
 @pytest.fixture(scope='module')
 def broken_too(tmp_path_factory) -> Path:
     """The mistakes that share a package name with one above, and no olive_camera at all."""
-    return build_from(
-        tmp_path_factory.mktemp('broken_too_ws'),
+    return shared_build(
+        tmp_path_factory,
         [
             VARIANTS / 'imu_sign' / 'olive_imu',
             VARIANTS / 'crashing_publisher' / 'random_number_ps',
@@ -89,16 +89,16 @@ def broken_too(tmp_path_factory) -> Path:
 @pytest.fixture(scope='module')
 def broken_tracker(tmp_path_factory) -> Path:
     """The third tracker's mistake, in a workspace of its own (one olive_vision per workspace)."""
-    return build_from(
-        tmp_path_factory.mktemp('broken_tracker_ws'), [VARIANTS / 'track_ignores_tilt' / 'olive_vision']
+    return shared_build(
+        tmp_path_factory, [VARIANTS / 'track_ignores_tilt' / 'olive_vision']
     )
 
 
 @pytest.fixture(scope='module')
 def slow_tracker(tmp_path_factory) -> Path:
     """A tracker that centres a still ball but sends goals too seldom to follow a moving one."""
-    return build_from(
-        tmp_path_factory.mktemp('slow_tracker_ws'), [VARIANTS / 'track_slow_goals' / 'olive_vision']
+    return shared_build(
+        tmp_path_factory, [VARIANTS / 'track_slow_goals' / 'olive_vision']
     )
 
 

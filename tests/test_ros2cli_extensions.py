@@ -12,7 +12,7 @@ import re
 from pathlib import Path
 
 import pytest
-from student_workspace import build_from, shell
+from student_workspace import shared_build, shell
 
 EXTENSIONS = Path(__file__).resolve().parent / 'ros2_extensions'
 
@@ -20,8 +20,7 @@ EXTENSIONS = Path(__file__).resolve().parent / 'ros2_extensions'
 @pytest.fixture(scope='module')
 def workspace(tmp_path_factory):
     """A workspace with ros2hello and ros2broken in src/, built as a student builds one."""
-    return build_from(tmp_path_factory.mktemp('extension_ws'),
-                      [EXTENSIONS / 'ros2hello', EXTENSIONS / 'ros2broken'])
+    return shared_build(tmp_path_factory, [EXTENSIONS / 'ros2hello', EXTENSIONS / 'ros2broken'])
 
 
 def warnings(result):
