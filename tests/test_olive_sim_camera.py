@@ -4,10 +4,12 @@ import io
 import itertools
 import math
 import statistics
+import time
 
 import numpy as np
 import pytest
 from olive_sim.camera_render import LANDMARKS
+from owl_common import quaternion as quat
 from owl_common.images import find_colour
 from PIL import Image
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy, qos_profile_sensor_data
@@ -93,18 +95,40 @@ def test_the_view_follows_pan_and_tilt(ros):
     ros.run('olive_sim', 'camera_sim', '--ros-args', '-p', 'fps:=10.0')
     probe = ros.probe
     images = probe.collect(CompressedImage, PREFIX + 'image/compressed', qos_profile_sensor_data)
-    camera_imu = probe.collect(Imu, PREFIX + 'imu')
+    camera_imu = probe.collect_with_info(Imu, PREFIX + 'imu', 'source_timestamp')
     pan = probe.node.create_publisher(JointState, '/olive/servo/pan/joint', 10)
     tilt = probe.node.create_publisher(JointState, '/olive/servo/tilt/joint', 10)
     wait_until(lambda: pan.get_subscription_count() and tilt.get_subscription_count(), 20,
                'joint subscribers')
 
     def look(pan_angle, tilt_angle):
+        """Where the red tower is in the first frame the camera rendered after taking both joints.
+
+        The camera takes the joints when it renders or samples its IMU: once its IMU shows them, a
+        frame rendered after that IMU message was sent shows them too. Counting frames instead, a
+        busy machine delivered frames rendered before the joints arrived (a run saw the old view).
+        """
+        published = time.time_ns()
         pan.publish(JointState(name=['pan_joint'], position=[pan_angle]))
         tilt.publish(JointState(name=['tilt_joint'], position=[tilt_angle]))
-        count = len(images)
-        wait_for_messages(images, count + 3)  # frames rendered after the joints moved
-        return find_colour(decode(images[-1]), RED)
+        expected = quat.from_euler(0.0, tilt_angle, pan_angle)
+
+        def sent_showing_the_joints():
+            for sent, imu in reversed(camera_imu):
+                shown = (imu.orientation.x, imu.orientation.y, imu.orientation.z, imu.orientation.w)
+                if sent > published and quat.angle_between(shown, expected) < 0.02:
+                    return sent
+            return None
+        wait_until(lambda: sent_showing_the_joints() is not None, 10, 'the camera IMU to show the joints')
+        taken = sent_showing_the_joints()
+
+        def rendered_after():
+            for image in images:
+                if image.header.stamp.sec * 1_000_000_000 + image.header.stamp.nanosec > taken:
+                    return image
+            return None
+        wait_until(lambda: rendered_after() is not None, 10, 'a frame rendered after the joints were taken')
+        return find_colour(decode(rendered_after()), RED)
 
     x0, y0 = look(0.0, 0.0)
     x1, y1 = look(0.1, 0.0)
@@ -114,8 +138,6 @@ def test_the_view_follows_pan_and_tilt(ros):
     assert y2 < y0 - 30                             # tilt down: the tower moves up
     assert abs(x2 - x0) < 3
     assert look(math.pi, 0.0) is None               # behind: out of view
-    wait_until(lambda: camera_imu and abs(camera_imu[-1].orientation.z) > 0.99, 5,
-               'the camera IMU to show the head turned by pi')
 
 
 # A camera in a process of its own whose renderer counts its frames: one second with nobody
