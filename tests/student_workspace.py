@@ -8,12 +8,13 @@ tests/test_ros2cli_extensions.py (a third party's ros2 commands).
 from __future__ import annotations
 
 import fcntl
-import hashlib
+import os
 import shutil
 import subprocess
 from pathlib import Path
 
 import pytest
+from owl_cli.classroom import files_digest
 
 
 def shell(
@@ -47,14 +48,11 @@ BUILT = '.built'  # in a shared workspace: written once its build succeeded
 
 
 def packages_digest(packages: list[Path]) -> str:
-    """A digest of the package folders: each one's name, files' paths and contents."""
-    digest = hashlib.sha256()
-    for package in packages:
-        digest.update(package.name.encode() + b'\0')
-        for path in sorted(package.rglob('*')):
-            if path.is_file() and '__pycache__' not in path.parts:
-                digest.update(str(path.relative_to(package)).encode() + b'\0' + path.read_bytes() + b'\0')
-    return digest.hexdigest()[:16]
+    """A digest of the package folders' files: their paths (below the folders' common parent) and contents."""
+    root = Path(os.path.commonpath(packages)).parent
+    names = [str(path.relative_to(root)) for package in packages for path in sorted(package.rglob('*'))
+             if path.is_file() and '__pycache__' not in path.parts]
+    return files_digest(root, names)[:16]
 
 
 def shared_build(tmp_path_factory: pytest.TempPathFactory, packages: list[Path]) -> Path:
