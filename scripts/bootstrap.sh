@@ -176,11 +176,11 @@ src_hash="$( (find src -type f -not -path '*/__pycache__/*' | sort
   find src -type f \( "${BUILD_INPUTS[@]}" \) -printf '%p %T@\n' | sort; cat requirements.txt) \
   | sha256sum | cut -d' ' -f1)"
 CMAKE_ARGS=(-DBUILD_TESTING=OFF -DPython3_EXECUTABLE="$VENV/bin/python" -DCMAKE_PROJECT_INCLUDE="$INTERFACE_GENERATORS")
-# The message packages (turtlesim's with its launchers; its nodes are turtlesim_py) and the C++ twin:
-# most of a build's time, and rarely changed. Each is built
-# once per machine and content, without --symlink-install, and copied from ~/.cache/owl-kit-lab/builds
-# after that (a new clone, the class server's lab, after `make clean`); see scripts/prebuilt_packages.py.
-# (Only packages that need no other package of the workspace: colcon will not build one without them.)
+# Every package's build is kept once per machine and content in ~/.cache/owl-kit-lab/builds, and a
+# workspace that needs the same one (a new clone, the class server's lab, after `make clean`) gets
+# a copy instead of a build; see scripts/prebuilt_packages.py. The message packages (turtlesim's with
+# its launchers; its nodes are turtlesim_py) and the C++ twin are built without --symlink-install,
+# first (colcon builds no package without what it depends on; these depend on no other).
 PREBUILT=(src/compat/example_interfaces src/course/olive_interfaces src/compat/turtlesim
   src/common/owl_humble_fastdds)
 PREBUILT_NAMES=("${PREBUILT[@]##*/}")
@@ -194,10 +194,21 @@ if [ -n "$to_build" ]; then
     --cmake-args "${CMAKE_ARGS[@]}"
   python scripts/prebuilt_packages.py store "$ROOT" "$PREBUILT_RECIPE" "${to_build[@]}"
 fi
+# The rest with --symlink-install; colcon builds those the cache has not (and writes the workspace's
+# setup files, skipping every package when the cache had them all).
 if [ "$(cat "$BUILD_STAMP" 2>/dev/null)" != "$src_hash" ]; then
-  echo "setup: building the workspace (colcon build --symlink-install) ..."
+  SYMLINK_RECIPE="colcon build --symlink-install ${CMAKE_ARGS[*]//$ROOT/}"
+  mapfile -t packages < <(colcon list --paths-only --packages-skip "${PREBUILT_NAMES[@]}")
+  to_build="$(python scripts/prebuilt_packages.py restore "$ROOT" "$SYMLINK_RECIPE" "${packages[@]}")" \
+    || die "copying the workspace's packages from ~/.cache/owl-kit-lab/builds failed (see above)."
+  mapfile -t to_build < <(printf '%s' "$to_build" | sed '/^$/d')
+  mapfile -t restored < <(printf '%s\n' "${packages[@]}" | grep -vxF -f <(printf '%s\n' "${to_build[@]}" ""))
+  if [ ${#to_build[@]} -gt 0 ]; then
+    echo "setup: building the workspace (colcon build --symlink-install) ..."
+  fi
   run_logged colcon colcon build --symlink-install --event-handlers console_direct- \
-    --packages-skip "${PREBUILT_NAMES[@]}" --cmake-args "${CMAKE_ARGS[@]}"
+    --packages-skip "${PREBUILT_NAMES[@]}" "${restored[@]##*/}" --cmake-args "${CMAKE_ARGS[@]}"
+  [ ${#to_build[@]} -eq 0 ] || python scripts/prebuilt_packages.py store "$ROOT" "$SYMLINK_RECIPE" "${to_build[@]}"
   echo "$src_hash" >"$BUILD_STAMP"
   echo "$layout_hash" >"$LAYOUT_STAMP"
 fi

@@ -1,23 +1,27 @@
-"""make setup's packages built once per machine: the message packages and the C++ twin.
+"""make setup's packages built once per machine and content, copied into any workspace after that.
 
-Generating a package's message code and compiling it is most of a workspace's build (on a 2-core
-machine, about half of colcon's job time), and what it installs depends only on the package's own
-files and the toolchain. So these packages are built without --symlink-install, their install
-folder is kept in $XDG_CACHE_HOME/owl-kit-lab/builds under a digest of those inputs, and a
-workspace that needs the same digest (a new clone, the class server's lab, a build after
-`make clean`) gets a copy instead of a build. The few text files that name the workspace (a
-launcher's interpreter, a CMake export naming the venv) name it through a placeholder in the cache.
+What colcon installs for a package depends only on the package's own files, the packages of the
+workspace it is built against, and the toolchain. So a package's build is kept in
+$XDG_CACHE_HOME/owl-kit-lab/builds under a digest of those inputs, and a workspace that needs the
+same digest (a new clone, the class server's lab, a build after `make clean`) gets a copy instead of
+a build: for the message packages and the C++ twin, code generation and compiling (about half of
+colcon's job time on a 2-core machine); for a --symlink-install build of a Python package, colcon's
+four runs of its setup.py (about 2 s of CPU each package). The text files and symlinks that name
+the workspace (a launcher's interpreter, a CMake export naming the venv, the links of a
+--symlink-install build into src/ and build/) name it through a placeholder in the cache.
 
     prebuilt_packages.py restore ROOT RECIPE PACKAGE_DIR...   names the packages still to build
     prebuilt_packages.py store ROOT RECIPE PACKAGE_DIR...     keeps what the workspace built of them
 
 RECIPE is the build's command line (a different one is a different digest). Every package's files,
-requirements.txt, this file, the compilers, cmake and the Python are in the digest too.
+the digests of the workspace's packages it is built against (package.xml), requirements.txt, this
+file, the compilers, cmake and the Python are in the digest too.
 """
 
 from __future__ import annotations
 
 import compileall
+import functools
 import hashlib
 import os
 import shutil
@@ -25,13 +29,16 @@ import subprocess
 import sys
 import tempfile
 import time
+import xml.etree.ElementTree as ElementTree
 from pathlib import Path
 
 PLACEHOLDER = b'/@owl-kit-lab-workspace@'
-RELOCATED = '.owl-relocated'  # in a cached copy: the files whose text named the workspace
+RELOCATED = '.owl-relocated'  # in a cached copy: the texts and links that named the workspace
 STAMP_SUFFIX = '.owl-prebuilt.sha256'  # install/<name> + this: the digest its copy was made from
 UNUSED_FOR = 30 * 24 * 3600.0  # s: a cached build no workspace restored for this long is removed
 TOOLS = (['cc', '--version'], ['c++', '--version'], ['cmake', '--version'])
+# package.xml's dependencies a build reads (what a package only runs with does not change its build)
+BUILD_DEPENDS = ('depend', 'build_depend', 'buildtool_depend', 'build_export_depend')
 
 
 def cache_dir(environ: dict[str, str]) -> Path:
@@ -64,13 +71,51 @@ def toolchain() -> str:
     return '\n'.join(lines)
 
 
-def package_digest(root: Path, package_dir: Path, recipe: str, tools: str) -> str:
+@functools.cache
+def workspace_packages(root: Path) -> dict[str, Path]:
+    """The workspace's packages by name: each package.xml under src/ and its folder (read once)."""
+    found = {}
+    for manifest in sorted((root / 'src').rglob('package.xml')):
+        name = ElementTree.parse(manifest).findtext('name')
+        if name:
+            found[name.strip()] = manifest.parent
+    return found
+
+
+def build_dependencies(package_dir: Path, packages: dict[str, Path]) -> list[str]:
+    """The workspace's packages the package is built against, by name, sorted."""
+    manifest = ElementTree.parse(package_dir / 'package.xml').getroot()
+    return sorted({(element.text or '').strip() for tag in BUILD_DEPENDS for element in manifest.iter(tag)}
+                  & set(packages))
+
+
+def sources_digest(package_dir: Path, packages: dict[str, Path], seen: dict[Path, str]) -> str:
+    """A digest of the package's files and of those of every workspace package it is built against."""
+    if package_dir not in seen:
+        seen[package_dir] = 'in a dependency cycle'  # which colcon refuses to build anyway
+        digest = hashlib.sha256(tree_digest(package_dir).encode())
+        for name in build_dependencies(package_dir, packages):
+            digest.update(f'\0{name}\0'.encode() + sources_digest(packages[name], packages, seen).encode())
+        seen[package_dir] = digest.hexdigest()
+    return seen[package_dir]
+
+
+def package_digest(root: Path, package_dir: Path, recipe: str, tools: str,
+                   seen: dict[Path, str] | None = None) -> str:
     """The digest a build of the package is kept under: what the build reads, the workspace's path aside."""
+    sources = sources_digest(package_dir, workspace_packages(root), {} if seen is None else seen)
     digest = hashlib.sha256()
-    for part in (tree_digest(package_dir), (root / 'requirements.txt').read_text(),
-                 Path(__file__).read_text(), recipe, tools):
+    for part in (sources, (root / 'requirements.txt').read_text(), Path(__file__).read_text(), recipe, tools):
         digest.update(part.encode() + b'\0')
     return digest.hexdigest()
+
+
+def kept_folders(name: str, recipe: str) -> list[str]:
+    """What a build of the package leaves: install/<name>, and build/<name> if it links into that."""
+    folders = [f'install/{name}']
+    if '--symlink-install' in recipe.split():
+        folders.append(f'build/{name}')
+    return folders
 
 
 def entry(cache: Path, name: str, digest: str) -> Path:
@@ -88,29 +133,44 @@ def is_text(data: bytes) -> bool:
     return b'\0' not in data[:8192]
 
 
-def relocate(folder: Path, names: list[str], old: bytes, new: bytes) -> None:
-    """Replace old by new in the named files under folder."""
-    for name in names:
-        path = folder / name
-        path.write_bytes(path.read_bytes().replace(old, new))
+def naming(folder: Path, root: bytes) -> list[str]:
+    """What under folder names root: each text file ('text PATH') and each symlink ('link PATH') that does.
 
-
-def texts_naming(folder: Path, root: bytes) -> list[str]:
-    """The text files under folder whose contents name root (binaries name it only in debug strings)."""
+    A binary names it only in debug strings; a link is not followed.
+    """
     found = []
-    for path in sorted(folder.rglob('*')):
-        if path.is_file() and not path.is_symlink():
-            data = path.read_bytes()
-            if root in data and is_text(data):
-                found.append(str(path.relative_to(folder)))
-    return found
+    for parent, folders, files in os.walk(folder):
+        for name in sorted(folders + files):
+            path = Path(parent) / name
+            relative = path.relative_to(folder)
+            if path.is_symlink():
+                if root in os.fsencode(os.readlink(path)):
+                    found.append(f'link {relative}')
+            elif path.is_file():
+                data = path.read_bytes()
+                if root in data and is_text(data):
+                    found.append(f'text {relative}')
+    return sorted(found)
 
 
-def store(root: Path, cache: Path, package_dir: Path, digest: str) -> None:
-    """Keep install/<name> of a build just made in the cache (placed whole, by one rename).
+def relocate(folder: Path, named: list[str], old: bytes, new: bytes) -> None:
+    """Replace old by new in the named texts and links under folder (as naming() lists them)."""
+    for line in named:
+        kind, _, name = line.partition(' ')
+        path = folder / name
+        if kind == 'link':
+            target = os.fsencode(os.readlink(path)).replace(old, new)
+            path.unlink()
+            path.symlink_to(os.fsdecode(target))
+        else:
+            path.write_bytes(path.read_bytes().replace(old, new))
+
+
+def store(root: Path, cache: Path, package_dir: Path, digest: str, recipe: str) -> None:
+    """Keep what a build of the package just made in the cache (placed whole, by one rename).
 
     Where the cache cannot be written (a read-only home), one line says so and the build is simply
-    not kept: the workspace's own install is complete either way.
+    not kept: the workspace's own build is complete either way.
     """
     name = package_dir.name
     stamp(root, name).write_text(digest + '\n')
@@ -118,7 +178,7 @@ def store(root: Path, cache: Path, package_dir: Path, digest: str) -> None:
     try:
         cache.mkdir(parents=True, exist_ok=True)
         if not target.is_dir():
-            keep(root, root / 'install' / name, cache, target)
+            keep(root, kept_folders(name, recipe), cache, target)
         forget_unused(cache, name)
     except OSError as error:
         reason = error.strerror or str(error)
@@ -126,15 +186,17 @@ def store(root: Path, cache: Path, package_dir: Path, digest: str) -> None:
               file=sys.stderr)
 
 
-def keep(root: Path, installed: Path, cache: Path, target: Path) -> None:
-    """Copy installed into the cache as target, the workspace's path in its texts replaced by PLACEHOLDER."""
-    staging = Path(tempfile.mkdtemp(prefix=f'.{installed.name}-', dir=cache))
+def keep(root: Path, folders: list[str], cache: Path, target: Path) -> None:
+    """Copy root's folders into the cache as target, the workspace's path in them replaced by PLACEHOLDER."""
+    staging = Path(tempfile.mkdtemp(prefix=f'.{target.name}-', dir=cache))
     try:
-        copy = staging / installed.name
-        shutil.copytree(installed, copy, symlinks=True, ignore=shutil.ignore_patterns('__pycache__'))
-        relocated = texts_naming(copy, bytes(root))
-        relocate(copy, relocated, bytes(root), PLACEHOLDER)
-        (copy / RELOCATED).write_text(''.join(f'{line}\n' for line in relocated))
+        copy = staging / target.name
+        for folder in folders:
+            shutil.copytree(root / folder, copy / folder, symlinks=True,
+                            ignore=shutil.ignore_patterns('__pycache__'))
+        named = naming(copy, bytes(root))
+        relocate(copy, named, bytes(root), PLACEHOLDER)
+        (copy / RELOCATED).write_text(''.join(f'{line}\n' for line in named))
         try:
             copy.rename(target)
         except OSError:
@@ -153,12 +215,13 @@ def forget_unused(cache: Path, name: str) -> None:
             shutil.rmtree(old, ignore_errors=True)
 
 
-def restore(root: Path, cache: Path, package_dir: Path, digest: str) -> bool:
-    """Whether install/<name> is (now) the build of digest: already there or copied from the cache."""
+def restore(root: Path, cache: Path, package_dir: Path, digest: str, recipe: str) -> bool:
+    """Whether the package's build in root is (now) that of digest: there or copied from the cache."""
     name = package_dir.name
-    installed = root / 'install' / name
+    folders = kept_folders(name, recipe)
     marker = stamp(root, name)
-    if installed.is_dir() and marker.is_file() and marker.read_text().strip() == digest:
+    if all((root / folder).is_dir() for folder in folders) and marker.is_file() \
+            and marker.read_text().strip() == digest:
         return True
     source = entry(cache, name, digest)
     if not (source / RELOCATED).is_file():
@@ -172,13 +235,23 @@ def restore(root: Path, cache: Path, package_dir: Path, digest: str) -> bool:
     shutil.copytree(source, copy, symlinks=True, copy_function=shutil.copy)
     relocate(copy, (copy / RELOCATED).read_text().splitlines(), PLACEHOLDER, bytes(root))
     (copy / RELOCATED).unlink()
-    compileall.compile_dir(copy, quiet=2, workers=0)  # quiet: stdout names what to build
-    shutil.rmtree(installed, ignore_errors=True)
-    shutil.rmtree(root / 'build' / name, ignore_errors=True)  # a build folder of another kind of build
-    copy.rename(installed)
+    compileall.compile_dir(copy / 'install', quiet=2, workers=0)  # quiet: stdout names what to build
+    forget_build(root, name)  # what is there is of another digest or another kind of build
+    for folder in folders:
+        (root / folder).parent.mkdir(exist_ok=True)
+        (copy / folder).rename(root / folder)
     shutil.rmtree(staging, ignore_errors=True)
     marker.write_text(digest + '\n')
     return True
+
+
+def forget_build(root: Path, name: str) -> None:
+    """Remove the package's install and build folders, of whichever kind of build.
+
+    A build folder left configured for --symlink-install would symlink again; one without would not.
+    """
+    shutil.rmtree(root / 'install' / name, ignore_errors=True)
+    shutil.rmtree(root / 'build' / name, ignore_errors=True)
 
 
 def main(argv: list[str]) -> int:
@@ -189,16 +262,14 @@ def main(argv: list[str]) -> int:
     action, root, recipe = argv[0], Path(argv[1]).resolve(), argv[2]
     cache = cache_dir(dict(os.environ))
     tools = toolchain()
+    seen: dict[Path, str] = {}
     for relative in argv[3:]:
         package_dir = root / relative
-        digest = package_digest(root, package_dir, recipe, tools)
+        digest = package_digest(root, package_dir, recipe, tools, seen)
         if action == 'store':
-            store(root, cache, package_dir, digest)
-        elif not restore(root, cache, package_dir, digest):
-            # Its old install and build go: a build folder configured for --symlink-install would
-            # symlink again.
-            shutil.rmtree(root / 'install' / package_dir.name, ignore_errors=True)
-            shutil.rmtree(root / 'build' / package_dir.name, ignore_errors=True)
+            store(root, cache, package_dir, digest, recipe)
+        elif not restore(root, cache, package_dir, digest, recipe):
+            forget_build(root, package_dir.name)
             print(relative)
     return 0
 

@@ -45,7 +45,7 @@ def test_a_build_stored_from_one_workspace_is_restored_into_another_naming_it(tm
     one, two = tmp_path / 'one', tmp_path / 'two'
     package = workspace(one)
     digest = digest_of(one, package)
-    prebuilt.store(one, cache, package, digest)
+    prebuilt.store(one, cache, package, digest, RECIPE)
 
     other_package = workspace(two)
     for built in (two / 'install').iterdir():  # a workspace with an older, symlinked install of it
@@ -56,7 +56,7 @@ def test_a_build_stored_from_one_workspace_is_restored_into_another_naming_it(tm
     for path in cache.rglob('*'):  # kept long ago
         os.utime(path, (1e9, 1e9))
     restoring = time.time()
-    assert prebuilt.restore(two, cache, other_package, digest)
+    assert prebuilt.restore(two, cache, other_package, digest, RECIPE)
 
     installed = two / 'install' / 'olive_interfaces'
     launcher = (installed / 'lib' / 'olive_interfaces' / 'node').read_text()
@@ -86,17 +86,85 @@ def test_any_change_of_a_packages_files_or_the_recipe_is_another_digest(tmp_path
     assert digest_of(tmp_path, package) not in (digest, edited)
 
 
+def python_workspace(root: Path) -> Path:
+    """A workspace at root with a Python package built with --symlink-install, as colcon leaves it."""
+    package = root / 'src' / 'course' / 'olive_servo'
+    (package / 'olive_servo').mkdir(parents=True)
+    (package / 'olive_servo' / 'control_servo.py').write_text('print(1)\n')
+    (package / 'setup.py').write_text('setup()\n')
+    (package / 'package.xml').write_text('<package><name>olive_servo</name>'
+                                         '<exec_depend>olive_interfaces</exec_depend></package>\n')
+    (root / 'requirements.txt').write_text('rclpy==9.9\n')
+    build, installed = root / 'build' / 'olive_servo', root / 'install' / 'olive_servo'
+    build.mkdir(parents=True)
+    (build / 'olive_servo').symlink_to(package / 'olive_servo')
+    (build / 'setup.py').symlink_to(package / 'setup.py')
+    (installed / 'share' / 'olive_servo').mkdir(parents=True)
+    (installed / 'share' / 'olive_servo' / 'setup.py').symlink_to(build / 'setup.py')
+    (installed / 'share' / 'olive_servo' / 'relative').symlink_to('../../lib')
+    (installed / 'lib' / 'python3.11' / 'site-packages').mkdir(parents=True)
+    (installed / 'lib' / 'python3.11' / 'site-packages' / 'olive-servo.egg-link').write_text(f'{build}\n.')
+    return package
+
+
+def test_a_symlink_install_is_restored_with_its_build_folder_and_links_into_the_new_workspace(tmp_path):
+    cache, recipe = tmp_path / 'cache', 'colcon build --symlink-install'
+    one, two = tmp_path / 'one', tmp_path / 'two'
+    package = python_workspace(one)
+    digest = prebuilt.package_digest(one, package, recipe, TOOLS)
+    prebuilt.store(one, cache, package, digest, recipe)
+    other_package = python_workspace(two)
+    prebuilt.forget_build(two, 'olive_servo')
+    assert prebuilt.restore(two, cache, other_package, digest, recipe)
+
+    build, installed = two / 'build' / 'olive_servo', two / 'install' / 'olive_servo'
+    assert (build / 'olive_servo').readlink() == other_package / 'olive_servo'
+    assert (installed / 'share' / 'olive_servo' / 'setup.py').readlink() == build / 'setup.py'
+    assert (installed / 'share' / 'olive_servo' / 'setup.py').read_text() == 'setup()\n'
+    assert os.readlink(installed / 'share' / 'olive_servo' / 'relative') == '../../lib'
+    egg_link = installed / 'lib' / 'python3.11' / 'site-packages' / 'olive-servo.egg-link'
+    assert egg_link.read_text() == f'{build}\n.'
+    assert not list(two.glob('install/.olive_servo-*'))  # no staging left behind
+    # The cache holds no workspace's path, in a text or a link.
+    for path in cache.rglob('*'):
+        if path.is_symlink():
+            assert str(one) not in os.readlink(path)
+        elif path.is_file():
+            assert bytes(one) not in path.read_bytes()
+
+
+def test_a_build_dependency_is_in_the_digest_and_a_run_dependency_is_not(tmp_path):
+    interfaces = workspace(tmp_path)
+    servo = python_workspace(tmp_path)
+    prebuilt.workspace_packages.cache_clear()
+
+    def digests() -> tuple[str, str]:
+        return digest_of(tmp_path, interfaces), digest_of(tmp_path, servo)
+
+    before = digests()
+    (interfaces / 'msg' / 'RgbColor.msg').write_text('uint8 r\n')  # olive_servo only runs with it
+    after_run_dependency = digests()
+    assert after_run_dependency[0] != before[0]
+    assert after_run_dependency[1] == before[1]
+    manifest = servo / 'package.xml'
+    manifest.write_text(manifest.read_text().replace('exec_depend', 'depend'))
+    built_against = digest_of(tmp_path, servo)
+    (interfaces / 'msg' / 'RgbColor.msg').write_text('uint8 g\n')
+    assert digest_of(tmp_path, servo) != built_against
+
+
 def test_nothing_cached_means_build_it_and_a_second_store_keeps_the_first(tmp_path):
     cache = tmp_path / 'cache'
     package = workspace(tmp_path)
     digest = digest_of(tmp_path, package)
-    assert not prebuilt.restore(tmp_path, cache, package, 'f' * 64)
-    prebuilt.store(tmp_path, cache, package, digest)
+    assert not prebuilt.restore(tmp_path, cache, package, 'f' * 64, RECIPE)
+    prebuilt.store(tmp_path, cache, package, digest, RECIPE)
     [kept] = cache.iterdir()
-    (kept / 'lib' / 'olive_interfaces' / 'node').write_text('first')
-    prebuilt.store(tmp_path, cache, package, digest)
+    launcher = kept / 'install' / 'olive_interfaces' / 'lib' / 'olive_interfaces' / 'node'
+    launcher.write_text('first')
+    prebuilt.store(tmp_path, cache, package, digest, RECIPE)
     assert [path.name for path in cache.iterdir()] == [kept.name]
-    assert (kept / 'lib' / 'olive_interfaces' / 'node').read_text() == 'first'
+    assert launcher.read_text() == 'first'
 
 
 def test_the_command_names_what_to_build_and_refuses_bad_input_in_one_line(tmp_path):
@@ -126,8 +194,8 @@ def test_a_cache_that_cannot_be_written_keeps_nothing_and_says_so_in_one_line(tm
     digest = digest_of(tmp_path, package)
     not_a_folder = tmp_path / 'cache'
     not_a_folder.write_text('a file where the cache would be')
-    prebuilt.store(tmp_path, not_a_folder, package, digest)
+    prebuilt.store(tmp_path, not_a_folder, package, digest, RECIPE)
     [line] = capsys.readouterr().err.splitlines()
     assert line.startswith('setup: olive_interfaces is built but not kept for other workspaces'), line
     # The workspace's install stands: the next setup finds it built.
-    assert prebuilt.restore(tmp_path, not_a_folder, package, digest)
+    assert prebuilt.restore(tmp_path, not_a_folder, package, digest, RECIPE)
