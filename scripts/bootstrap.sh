@@ -198,11 +198,13 @@ fi
 # setup files, skipping every package when the cache had them all).
 if [ "$(cat "$BUILD_STAMP" 2>/dev/null)" != "$src_hash" ]; then
   SYMLINK_RECIPE="colcon build --symlink-install ${CMAKE_ARGS[*]//$ROOT/}"
+  started=$SECONDS
   mapfile -t packages < <(colcon list --paths-only --packages-skip "${PREBUILT_NAMES[@]}")
   to_build="$(python scripts/prebuilt_packages.py restore "$ROOT" "$SYMLINK_RECIPE" "${packages[@]}")" \
     || die "copying the workspace's packages from ~/.cache/owl-kit-lab/builds failed (see above)."
   mapfile -t to_build < <(printf '%s' "$to_build" | sed '/^$/d')
   mapfile -t restored < <(printf '%s\n' "${packages[@]}" | grep -vxF -f <(printf '%s\n' "${to_build[@]}" ""))
+  STEP_TIMES+=("cached builds $((SECONDS - started)) s")
   if [ ${#to_build[@]} -gt 0 ]; then
     echo "setup: building the workspace (colcon build --symlink-install) ..."
   fi
