@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # make test: the system programs the window tests use (Xvfb, xdotool, xwininfo) and the browser the
-# browser tests drive (Chromium, through Playwright), from Debian's packages. Installed with apt-get
+# browser tests drive (Chromium's headless shell, through Playwright), from Debian's packages. Installed with apt-get
 # when this runs as root (CI, a fresh machine); otherwise, or when apt-get fails, one line says so and
 # the tests that need them skip with a line of their own. Students never need them. In CI (CI=true)
 # nothing may be skipped: a program that cannot be installed fails `make test` here.
@@ -9,7 +9,8 @@ set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 LOG="$ROOT/log/bootstrap/test-prereqs.log"
 
-declare -A PACKAGE_OF=([Xvfb]=xvfb [xdotool]=xdotool [xwininfo]=x11-utils [chromium]=chromium)
+declare -A PACKAGE_OF=([Xvfb]=xvfb [xdotool]=xdotool [xwininfo]=x11-utils
+  [chromium-headless-shell]=chromium-headless-shell)
 missing=()
 for program in "${!PACKAGE_OF[@]}"; do
   command -v "$program" >/dev/null || missing+=("${PACKAGE_OF[$program]}")
