@@ -51,7 +51,7 @@ RQT_URL_LINE = r'^rqt: open (http://127\.0\.0\.1:\d+/)(#[a-z-]+)? in a browser \
 def chromium_missing() -> str | None:
     """Why the browser tests cannot run here, in one line, or None."""
     if not CHROMIUM.exists():
-        return f"{CHROMIUM} not found (the browser tests skip): 'sudo apt-get install chromium-headless-shell'"
+        return f"{CHROMIUM} not found (browser tests skip): 'sudo apt-get install chromium-headless-shell'"
     return None
 
 

@@ -1,6 +1,7 @@
 """Run a node until Ctrl-C or an external shutdown, then exit quietly with code 0 (1 if clean-up hangs)."""
 
 import faulthandler
+import gc
 import signal
 import sys
 from collections.abc import Callable
@@ -119,6 +120,10 @@ def spin_node(make_node: Callable[[], Node | list[Node]], args: list[str] | None
     try:
         made = make_node()
         nodes = made if isinstance(made, list) else [made]
+        # What the start built (modules, the node, its page) lives as long as the process: kept out
+        # of the collector's rounds, the last one at exit included (a simulated module's stop spent
+        # most of its 0.1-0.15 s of CPU there).
+        gc.freeze()
         spin_until_stopped(nodes, stop, events)
     except STARTUP_ERRORS as error:
         if nodes:
