@@ -16,9 +16,9 @@ demo: setup
 # workers; `make test TEST_WORKERS=0` runs them in one. worksteal: each worker starts on a run of
 # whole test files (a module's shared fixtures start once) and an idle one takes half of the busiest
 # one's queue, so the suite does not end on one worker's long tail. One worker per test slot (a core
-# and one more, and a spare one for an idle machine: tests/conftest.py) and one that may wait outside
+# and one more, and two spares for an idle machine: tests/conftest.py) and one that may wait outside
 # them for the class server's lab.
-TEST_WORKERS ?= $(shell echo $$(( $$(nproc) + 3 )))
+TEST_WORKERS ?= $(shell echo $$(( $$(nproc) + 4 )))
 PYTEST := python -m pytest -n $(TEST_WORKERS) --dist worksteal
 
 test: setup
