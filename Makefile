@@ -20,14 +20,19 @@ demo: setup
 # them for the class server's lab.
 TEST_WORKERS ?= $(shell echo $$(( $$(nproc) + 4 )))
 PYTEST := python -m pytest -n $(TEST_WORKERS) --dist worksteal
+# pytest rewrites each test module's asserts as it imports it (5 s of CPU for the suite), and where
+# PYTHONDONTWRITEBYTECODE is set (CI machines, ours too) every worker did it again: two collections
+# side by side write the rewritten modules once, and the workers read them.
+REWRITE_TESTS := for tests in src tests; do PYTHONDONTWRITEBYTECODE= python -m pytest --collect-only \
+  $$tests >/dev/null 2>&1 & done; wait
 
 test: setup
 	@bash scripts/test_prereqs.sh
-	@$(ENV) $(PYTEST)
+	@$(ENV) $(REWRITE_TESTS); $(PYTEST)
 
 # The inner loop while working: the unit tests, the style checks and the layout, no process of ROS.
 test-fast: setup
-	@$(ENV) $(PYTEST) src tests/test_code_style.py tests/test_layout.py
+	@$(ENV) $(REWRITE_TESTS); $(PYTEST) src tests/test_code_style.py tests/test_layout.py
 
 lint: setup
 	@$(ENV) ruff check . && python -m mypy && \

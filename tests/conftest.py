@@ -123,6 +123,8 @@ def needs_class_lab(item: pytest.Item) -> bool:
 
 
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    if config.getoption('collectonly'):
+        return  # nothing runs (make test's first collections write the rewritten test modules)
     if os.environ.get('PYTEST_XDIST_WORKER', 'gw0') == 'gw0' and any(map(needs_class_lab, items)):
         threading.Thread(target=build_lab_in_slots, name='class lab build', daemon=True).start()
     if config.getoption('usepdb'):
@@ -210,12 +212,14 @@ def pytest_runtest_protocol(item: pytest.Item,
     """
     if not item.path.is_relative_to(SYSTEM_TESTS):
         return (yield)
+    waiting_since = time.monotonic()
     if needs_class_lab(item):
         import class_harness
 
         class_harness.wait_for_lab()
     with ExitStack() as held:
         take_slots(held, slots_needed(item))
+        item.user_properties.append((suite_report.WAITED, time.monotonic() - waiting_since))
         return (yield)
 
 

@@ -8,8 +8,9 @@ wall time, which is printed beside them).
 Groups: style (ruff, mypy, the layout), browser (a test with a Chromium page), system (tests/),
 unit (src/<group>/<package>/test/). Every test's time, slowest first, is also written to
 log/test-durations.txt (one line a test: seconds, group, CPU seconds, when it started and ended in
-seconds from the first test's start, node id), for finding where the time goes: which tests run at
-the end, alone, and which keep the machine busy.
+seconds from the first test's start, the seconds it waited for its slots before its set-up, its
+worker, node id), for finding where the time goes: which tests run at the end, alone, which keep the
+machine busy, and where workers wait for slots.
 
 A test's CPU is its worker's own and that of the processes the worker waited for, from the test's
 set-up to the end of its tear-down: what its processes used, as the harness stops and waits for every
@@ -19,6 +20,7 @@ its parent is not counted).
 
 from __future__ import annotations
 
+import os
 import resource
 import time
 from collections import defaultdict
@@ -37,6 +39,9 @@ groups: dict[str, str] = {}
 spans: dict[str, tuple[float, float]] = {}  # node id -> (first phase's start, last phase's end), epoch s
 cpu_used: dict[str, float] = defaultdict(float)  # node id -> CPU seconds, its reruns' too
 cpu_at_setup: dict[str, float] = {}  # in a worker: node id -> cpu_seconds() as its set-up began
+waited: dict[str, float] = defaultdict(float)  # node id -> s waited for slots (WAITED) before it ran
+workers: dict[str, str] = {}  # node id -> the pytest-xdist worker that ran it
+WAITED = 'waited'  # the user property conftest sets: s a test waited for its slots before its set-up
 started = time.monotonic()
 
 
@@ -61,6 +66,7 @@ def cpu_seconds() -> float:
 def pytest_runtest_setup(item: pytest.Item) -> None:
     # user_properties travel with the reports from a pytest-xdist worker to the controller
     item.user_properties.append(('group', group_of(item)))
+    item.user_properties.append(('worker', os.environ.get('PYTEST_XDIST_WORKER', '-')))
     cpu_at_setup[item.nodeid] = cpu_seconds()
 
 
@@ -82,9 +88,13 @@ def pytest_runtest_logreport(report: pytest.TestReport) -> None:
             cpu_used[report.nodeid] += cpu[-1]
     first, last = spans.get(report.nodeid, (report.start, report.stop))
     spans[report.nodeid] = (min(first, report.start), max(last, report.stop))
-    group = dict(report.user_properties).get('group')
-    if isinstance(group, str):
+    properties = dict(report.user_properties)
+    if isinstance(group := properties.get('group'), str):
         groups[report.nodeid] = group
+    if isinstance(worker := properties.get('worker'), str):
+        workers[report.nodeid] = worker
+    if report.when == 'setup' and isinstance(wait := properties.get(WAITED), float):
+        waited[report.nodeid] = wait  # a rerun runs within the same wait
 
 
 def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:
@@ -103,7 +113,8 @@ def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:
         return f'{start - origin:7.1f} {stop - origin:7.1f}'
 
     DURATIONS_FILE.write_text(''.join(
-        f'{seconds:8.2f} {group_name(nodeid):8} {cpu_used[nodeid]:8.2f} {span(nodeid)} {nodeid}\n'
+        f'{seconds:8.2f} {group_name(nodeid):8} {cpu_used[nodeid]:8.2f} {span(nodeid)} '
+        f'{waited[nodeid]:6.1f} {workers.get(nodeid, "-"):5} {nodeid}\n'
         for nodeid, seconds in slowest))
     write(f'slowest {SLOWEST} tests (set-up, call and tear-down; all of them: '
           f'{DURATIONS_FILE.relative_to(TESTS.parent)}):')
