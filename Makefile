@@ -18,7 +18,7 @@ demo: setup
 # one's queue, so the suite does not end on one worker's long tail. One worker per test slot (a core
 # and one more, and two spares for an idle machine: tests/conftest.py) and one that may wait outside
 # them for the class server's lab.
-TEST_WORKERS ?= $(shell echo $$(( $$(nproc) + 4 )))
+TEST_WORKERS ?= $(shell echo $$(( $$(nproc) + 5 )))
 PYTEST := python -m pytest -n $(TEST_WORKERS) --dist worksteal
 # pytest rewrites each test module's asserts as it imports it (5 s of CPU for the suite), and where
 # PYTHONDONTWRITEBYTECODE is set (CI machines, ours too) every worker did it again: two collections

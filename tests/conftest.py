@@ -122,7 +122,22 @@ def needs_class_lab(item: pytest.Item) -> bool:
     return item.get_closest_marker(CLASS_LAB) is not None and os.geteuid() == 0
 
 
+# Owl check's tests run first, the longest of them (its runs over the reference solutions, 10-33 s
+# each, marked with the longest timeouts) at their head: where the suite's order put them, the
+# longest one started late and ran alone at its end (17 s of a 660 s run).
+FIRST_MODULES = ('test_owl_check.py',)
+
+
+def run_order(item: pytest.Item) -> tuple[bool, float]:
+    """The sort key of the run's order: FIRST_MODULES' tests first, longest timeout first among them."""
+    if item.path.name not in FIRST_MODULES or not item.path.is_relative_to(SYSTEM_TESTS):
+        return True, 0.0
+    timeout = item.get_closest_marker('timeout')
+    return False, -float(timeout.args[0]) if timeout is not None and timeout.args else 0.0
+
+
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    items.sort(key=run_order)  # stable: the rest keep pytest's order
     if config.getoption('collectonly'):
         return  # nothing runs (make test's first collections write the rewritten test modules)
     if os.environ.get('PYTEST_XDIST_WORKER', 'gw0') == 'gw0' and any(map(needs_class_lab, items)):
@@ -147,7 +162,7 @@ SLOT_DIR = Path(os.environ.get('OWL_TEST_SLOT_DIR', LEASE_DIR.parent / 'owl-kit-
 # busy, as the slower 2-core ones, never lends them. OWL_TEST_SPARE_SLOTS and OWL_TEST_SPARE_IDLE
 # change both (tests/test_reruns.py).
 SPARE_SLOTS = range(len(SYSTEM_TEST_SLOTS), len(SYSTEM_TEST_SLOTS)
-                    + int(os.environ.get('OWL_TEST_SPARE_SLOTS', '2')))
+                    + int(os.environ.get('OWL_TEST_SPARE_SLOTS', '3')))
 SPARE_IDLE = float(os.environ.get('OWL_TEST_SPARE_IDLE', '0.15'))
 # The whole simulated kit (four modules, the camera rendering 30 frames/s), with more beside it (a
 # tracker, robot_view's 3D page in Chromium): alone such a test keeps about one core busy (the robot
@@ -195,8 +210,16 @@ def build_lab_in_slots() -> None:
         class_harness.wait_for_lab()
 
 
+# A test in tests/ that starts no process (the layout's, the course texts') loads the machine no more
+# than a unit test: it holds no slot. 87 such tests had waited 178 s for slots in one run, each
+# holding its worker back from the test after it.
+NO_PROCESSES = 'no_processes'
+
+
 def slots_needed(item: pytest.Item) -> int:
     """How many of SYSTEM_TEST_SLOTS a system test holds while it runs: its share of the machine."""
+    if item.get_closest_marker(NO_PROCESSES):
+        return 0
     if item.get_closest_marker(WHOLE_KIT):
         return min(2, len(SYSTEM_TEST_SLOTS))
     return 1
@@ -210,7 +233,7 @@ def pytest_runtest_protocol(item: pytest.Item,
     A test marked whole_kit holds two; one marked class_lab waits for the lab before it takes any.
     The waits are outside its timeout.
     """
-    if not item.path.is_relative_to(SYSTEM_TESTS):
+    if not item.path.is_relative_to(SYSTEM_TESTS) or not slots_needed(item):
         return (yield)
     waiting_since = time.monotonic()
     if needs_class_lab(item):

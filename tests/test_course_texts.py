@@ -3,7 +3,10 @@
 import re
 from pathlib import Path
 
+import pytest
 from olive_kit.description import SERVO_RANGES
+
+pytestmark = pytest.mark.no_processes
 
 COURSE = Path(__file__).parents[1] / 'docs' / 'course'
 SECTIONS = sorted(COURSE.glob('4.*.md'))

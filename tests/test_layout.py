@@ -21,6 +21,8 @@ from pathlib import Path
 
 import pytest
 
+pytestmark = pytest.mark.no_processes
+
 SRC = Path(__file__).resolve().parents[1] / 'src'
 
 # group -> the groups of ours its packages may import (compat is ROS 2: see UPSTREAM_NAMES).

@@ -220,6 +220,18 @@ def test_a_spare_slot_lets_one_more_test_run_while_the_machine_idles(tmp_path):
     assert most_at_once(runs) == SLOTS + 1, runs
 
 
+def test_a_test_that_starts_no_process_runs_while_every_slot_is_taken(tmp_path):
+    """SLOTS tests fill the slots (no spare one); a test marked no_processes runs beside them all."""
+    tests = ''.join(f'\ndef test_{n}():\n    run_for_a_while()\n' for n in range(SLOTS))
+    tests += "\n@pytest.mark.no_processes\ndef test_reads_files():\n    run_for_a_while()\n"
+    lay_out(tmp_path, timed_module(SLOTS + 1, tests))
+    session = start_session(tmp_path, tmp_path / 'slots', '-n', str(SLOTS + 1), 'tests')
+    stdout, _ = session.communicate(timeout=120)
+    assert session.returncode == 0, stdout
+    runs = [json.loads(line) for line in (tmp_path / 'ran.jsonl').read_text().splitlines()]
+    assert most_at_once(runs) == SLOTS + 1, runs
+
+
 PROC_STAT = 'cpu  {user} 0 {system} {idle} {iowait} 0 0 0 0 0\ncpu0 1 2 3 4 5 6 7 8 9 10\nintr 1\n'
 
 
