@@ -122,18 +122,22 @@ def needs_class_lab(item: pytest.Item) -> bool:
     return item.get_closest_marker(CLASS_LAB) is not None and os.geteuid() == 0
 
 
-# Owl check's tests run first, the longest of them (its runs over the reference solutions, 10-33 s
-# each, marked with the longest timeouts) at their head: where the suite's order put them, the
-# longest one started late and ran alone at its end (17 s of a 660 s run).
-FIRST_MODULES = ('test_owl_check.py',)
+# These modules' tests run first, in this order, the longest of each module (marked with the longest
+# timeouts) at its head. pytest-xdist's worksteal gives each worker a run of the suite's order and
+# lets an idle one take the back half of another's: the head of the order runs on one worker, first.
+# The class server's tests share a hub of three students (module-scoped): when a worker's back half
+# split them, two to four workers started hubs of their own (the run 40 s longer, its CPU 15 % more).
+# Owl check's runs over the reference solutions (10-33 s each) had started late and run alone at the
+# suite's end (17 s of a 660 s run).
+FIRST_MODULES = ('test_class_server.py', 'test_owl_check.py')
 
 
-def run_order(item: pytest.Item) -> tuple[bool, float]:
-    """The sort key of the run's order: FIRST_MODULES' tests first, longest timeout first among them."""
+def run_order(item: pytest.Item) -> tuple[int, float]:
+    """The sort key of the run's order: FIRST_MODULES' tests first, longest timeout first in each."""
     if item.path.name not in FIRST_MODULES or not item.path.is_relative_to(SYSTEM_TESTS):
-        return True, 0.0
+        return len(FIRST_MODULES), 0.0
     timeout = item.get_closest_marker('timeout')
-    return False, -float(timeout.args[0]) if timeout is not None and timeout.args else 0.0
+    return FIRST_MODULES.index(item.path.name), -float(timeout.args[0]) if timeout and timeout.args else 0.0
 
 
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
