@@ -122,22 +122,22 @@ def needs_class_lab(item: pytest.Item) -> bool:
     return item.get_closest_marker(CLASS_LAB) is not None and os.geteuid() == 0
 
 
-# These modules' tests run first, in this order, the longest of each module (marked with the longest
-# timeouts) at its head. pytest-xdist's worksteal gives each worker a run of the suite's order and
-# lets an idle one take the back half of another's: the head of the order runs on one worker, first.
-# The class server's tests share a hub of three students (module-scoped): when a worker's back half
-# split them, two to four workers started hubs of their own (the run 40 s longer, its CPU 15 % more).
-# Owl check's runs over the reference solutions (10-33 s each) had started late and run alone at the
-# suite's end (17 s of a 660 s run).
-FIRST_MODULES = ('test_class_server.py', 'test_owl_check.py')
+# make test hands each worker whole test modules (pytest-xdist's loadfile), the next one as it nears
+# the end of its last, so a module's shared world (a kit, a Chromium, the class server's hub)
+# starts once. With worksteal, which splits modules, the class server's tests started up to four
+# hubs and the robot view's controls four pages (a run 40 s longer, its CPU 15 % more). The longest
+# modules go first, longest first (the summed time of their tests in a run, 170-45 s), so that the
+# last to start are short ones: owl check's had started late and ended the run alone.
+FIRST_MODULES = ('test_owl_check.py', 'test_benchmarks.py', 'test_class_server.py', 'test_ros2_tutorials.py',
+                 'test_ros2cli.py', 'test_robot_view_controls.py', 'test_course_listings.py',
+                 'test_humble_kit.py', 'test_reruns.py', 'test_olive_module_pages.py', 'test_olive_servo.py')
 
 
-def run_order(item: pytest.Item) -> tuple[int, float]:
-    """The sort key of the run's order: FIRST_MODULES' tests first, longest timeout first in each."""
-    if item.path.name not in FIRST_MODULES or not item.path.is_relative_to(SYSTEM_TESTS):
-        return len(FIRST_MODULES), 0.0
-    timeout = item.get_closest_marker('timeout')
-    return FIRST_MODULES.index(item.path.name), -float(timeout.args[0]) if timeout and timeout.args else 0.0
+def run_order(item: pytest.Item) -> int:
+    """The sort key of the run's order: FIRST_MODULES first, in their order, then the rest."""
+    if item.path.name in FIRST_MODULES and item.path.is_relative_to(SYSTEM_TESTS):
+        return FIRST_MODULES.index(item.path.name)
+    return len(FIRST_MODULES)
 
 
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
