@@ -16,9 +16,9 @@ demo: setup
 # workers; `make test TEST_WORKERS=0` runs them in one. loadfile: a worker runs whole test files (a
 # module's shared world starts once), the longest first (tests/conftest.py's FIRST_MODULES), and
 # takes the next file as it nears the end of its last. One worker per test slot (a core and one
-# more, and three spares for an idle machine: tests/conftest.py) and one that may wait outside them
+# more, and four spares for an idle machine: tests/conftest.py) and one that may wait outside them
 # for the class server's lab.
-TEST_WORKERS ?= $(shell echo $$(( $$(nproc) + 5 )))
+TEST_WORKERS ?= $(shell echo $$(( $$(nproc) + 6 )))
 PYTEST := python -m pytest -n $(TEST_WORKERS) --dist loadfile --no-loadscope-reorder
 # pytest rewrites each test module's asserts as it imports it (5 s of CPU for the suite), and where
 # PYTHONDONTWRITEBYTECODE is set (CI machines, ours too) every worker did it again: two collections

@@ -158,15 +158,16 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
 # instead of running six robots on two cores, where tests miss deadlines no user would meet.
 SYSTEM_TEST_SLOTS = range((os.cpu_count() or 1) + 1)
 SLOT_DIR = Path(os.environ.get('OWL_TEST_SLOT_DIR', LEASE_DIR.parent / 'owl-kit-lab-test-slots'))
-# And two spare slots, each taken only while at least SPARE_IDLE of the machine's time was idle over
-# the last spare_cpu.WINDOW: most system tests wait on discovery, timers and deadlines, and on a fast
-# 2-core machine the slots above left a third of it idle (the suite 777 s; 676 s with a fourth test
-# always allowed, no test slower to fail). Once the suite's CPU had fallen (919 s, 19 % idle with one
-# spare at 25 %: 683 s), two spares lent at 15 % gave 612 s, no rerun. A machine the suite keeps
-# busy, as the slower 2-core ones, never lends them. OWL_TEST_SPARE_SLOTS and OWL_TEST_SPARE_IDLE
-# change both (tests/test_reruns.py).
+# And spare slots, each taken only while at least SPARE_IDLE of the machine's time was idle over the
+# last spare_cpu.WINDOW (one test at a time takes slots, each on a look of its own at the machine):
+# most system tests wait on discovery, timers and deadlines, and on a fast 2-core machine the slots
+# above left a third of it idle (the suite 777 s; 676 s with a fourth test always allowed, no test
+# slower to fail). Two spares lent at 15 % gave 612 s, no rerun; with three, runs still idled
+# 17-19 % in their second half while workers waited for slots, held two at a time by whole_kit
+# tests. A machine the suite keeps busy, as the slower 2-core ones, never lends them.
+# OWL_TEST_SPARE_SLOTS and OWL_TEST_SPARE_IDLE change both (tests/test_reruns.py).
 SPARE_SLOTS = range(len(SYSTEM_TEST_SLOTS), len(SYSTEM_TEST_SLOTS)
-                    + int(os.environ.get('OWL_TEST_SPARE_SLOTS', '3')))
+                    + int(os.environ.get('OWL_TEST_SPARE_SLOTS', '4')))
 SPARE_IDLE = float(os.environ.get('OWL_TEST_SPARE_IDLE', '0.15'))
 # The whole simulated kit (four modules, the camera rendering 30 frames/s), with more beside it (a
 # tracker, robot_view's 3D page in Chromium): alone such a test keeps about one core busy (the robot
