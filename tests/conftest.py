@@ -122,22 +122,22 @@ def needs_class_lab(item: pytest.Item) -> bool:
     return item.get_closest_marker(CLASS_LAB) is not None and os.geteuid() == 0
 
 
-# make test hands each worker whole test modules (pytest-xdist's loadfile), the next one as it nears
-# the end of its last, so a module's shared world (a kit, a Chromium, the class server's hub)
-# starts once. With worksteal, which splits modules, the class server's tests started up to four
-# hubs and the robot view's controls four pages (a run 40 s longer, its CPU 15 % more). The longest
-# modules go first, longest first (the summed time of their tests in a run, 170-45 s), so that the
-# last to start are short ones: owl check's had started late and ended the run alone.
-FIRST_MODULES = ('test_owl_check.py', 'test_benchmarks.py', 'test_class_server.py', 'test_ros2_tutorials.py',
-                 'test_ros2cli.py', 'test_robot_view_controls.py', 'test_course_listings.py',
-                 'test_humble_kit.py', 'test_reruns.py', 'test_olive_module_pages.py', 'test_olive_servo.py')
+# These modules' tests run first, in this order, the longest of each module (marked with the longest
+# timeouts) at its head. pytest-xdist's worksteal gives each worker a run of the suite's order and
+# lets an idle one take the back half of another's: the head of the order runs on one worker, first.
+# The class server's tests share a hub of three students (module-scoped): when a worker's back half
+# split them, two to four workers started hubs of their own (the run 40 s longer, its CPU 15 % more).
+# Owl check's runs over the reference solutions (10-33 s each) had started late and run alone at the
+# suite's end (17 s of a 660 s run).
+FIRST_MODULES = ('test_class_server.py', 'test_owl_check.py')
 
 
-def run_order(item: pytest.Item) -> int:
-    """The sort key of the run's order: FIRST_MODULES first, in their order, then the rest."""
-    if item.path.name in FIRST_MODULES and item.path.is_relative_to(SYSTEM_TESTS):
-        return FIRST_MODULES.index(item.path.name)
-    return len(FIRST_MODULES)
+def run_order(item: pytest.Item) -> tuple[int, float]:
+    """The sort key of the run's order: FIRST_MODULES' tests first, longest timeout first in each."""
+    if item.path.name not in FIRST_MODULES or not item.path.is_relative_to(SYSTEM_TESTS):
+        return len(FIRST_MODULES), 0.0
+    timeout = item.get_closest_marker('timeout')
+    return FIRST_MODULES.index(item.path.name), -float(timeout.args[0]) if timeout and timeout.args else 0.0
 
 
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
@@ -162,12 +162,12 @@ SLOT_DIR = Path(os.environ.get('OWL_TEST_SLOT_DIR', LEASE_DIR.parent / 'owl-kit-
 # last spare_cpu.WINDOW (one test at a time takes slots, each on a look of its own at the machine):
 # most system tests wait on discovery, timers and deadlines, and on a fast 2-core machine the slots
 # above left a third of it idle (the suite 777 s; 676 s with a fourth test always allowed, no test
-# slower to fail). Two spares lent at 15 % gave 612 s, no rerun; with three, runs still idled
-# 17-19 % in their second half while workers waited for slots, held two at a time by whole_kit
-# tests. A machine the suite keeps busy, as the slower 2-core ones, never lends them.
-# OWL_TEST_SPARE_SLOTS and OWL_TEST_SPARE_IDLE change both (tests/test_reruns.py).
+# slower to fail). Two spares lent at 15 % gave 612 s, no rerun; three, 629 s. Four (eight
+# workers) gave 724 s: the tests' CPU grew with their wall time (kits and 3D pages that run longer
+# cost more), 1,036 s against 876 s. A machine the suite keeps busy, as the slower 2-core ones,
+# never lends them. OWL_TEST_SPARE_SLOTS and OWL_TEST_SPARE_IDLE change both (tests/test_reruns.py).
 SPARE_SLOTS = range(len(SYSTEM_TEST_SLOTS), len(SYSTEM_TEST_SLOTS)
-                    + int(os.environ.get('OWL_TEST_SPARE_SLOTS', '4')))
+                    + int(os.environ.get('OWL_TEST_SPARE_SLOTS', '3')))
 SPARE_IDLE = float(os.environ.get('OWL_TEST_SPARE_IDLE', '0.15'))
 # The whole simulated kit (four modules, the camera rendering 30 frames/s), with more beside it (a
 # tracker, robot_view's 3D page in Chromium): alone such a test keeps about one core busy (the robot
