@@ -86,6 +86,10 @@ def test_rqt_page_loads_and_draws_the_graph_as_it_changes(ros, page):
     assert all(url.startswith((rqt.base, 'data:')) for url in page.requested), page.requested
 
 
+# A page decoding and drawing 30 camera frames a second is about a core's work in software: beside
+# two other tests it drew 21.9 frames/s while rqt received 29.3 (one run of 5 December), so it holds
+# a whole kit's share of the slots.
+@pytest.mark.whole_kit
 def test_rqt_image_view_shows_the_camera_at_its_rate(ros, page):
     ros.run('olive_sim', 'camera_sim')
     rqt = Rqt(ros)
