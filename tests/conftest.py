@@ -238,7 +238,8 @@ def pytest_runtest_protocol(item: pytest.Item,
     A test marked whole_kit holds two; one marked class_lab waits for the lab before it takes any.
     The waits are outside its timeout.
     """
-    if not item.path.is_relative_to(SYSTEM_TESTS) or not slots_needed(item):
+    needed = slots_needed(item) if item.path.is_relative_to(SYSTEM_TESTS) else 0
+    if not needed:
         return (yield)
     waiting_since = time.monotonic()
     if needs_class_lab(item):
@@ -246,7 +247,7 @@ def pytest_runtest_protocol(item: pytest.Item,
 
         class_harness.wait_for_lab()
     with ExitStack() as held:
-        take_slots(held, slots_needed(item))
+        take_slots(held, needed)
         item.user_properties.append((suite_report.WAITED, time.monotonic() - waiting_since))
         return (yield)
 
