@@ -214,8 +214,11 @@ if [ "$(cat "$BUILD_STAMP" 2>/dev/null)" != "$src_hash" ]; then
   echo "$src_hash" >"$BUILD_STAMP"
   echo "$layout_hash" >"$LAYOUT_STAMP"
 fi
-# Its console scripts import their entry points directly (setuptools' look them up: 20 ms a start).
+# Its console scripts import their entry points directly (setuptools' look them up: 20 ms a start),
+# and the interface packages' msg/srv/action modules load a type when it is first used (all at once,
+# with numpy: 70 ms of a servo module's start).
 python scripts/direct_entry_scripts.py "$ROOT"
+python scripts/lazy_interface_packages.py "$VENV"/lib/python*/site-packages install/*/lib/python*/site-packages
 # The workspace's modules compiled, as the wheels' are (--compile-bytecode), and again once edited.
 BYTECODE_STAMP="$ROOT/install/.owl-bytecode.sha256"
 py_hash="$(find src -name '*.py' -not -path '*/__pycache__/*' -printf '%p %T@\n' | sort | sha256sum | cut -d' ' -f1)"
