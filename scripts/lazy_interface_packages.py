@@ -6,6 +6,12 @@ Imu's fixed-size arrays numpy too: 70 ms of a servo module's 200 ms of imports. 
 `__init__.py` names the same types (`__all__`, `dir()`, `from ... import *` as before) and imports a
 type's module when the type is first asked for (a module `__getattr__`, PEP 562).
 
+A type with a fixed-size array (CameraInfo's, Imu's covariances, and service_msgs' ServiceEventInfo,
+part of every service's type, so of every node's parameter services) imports numpy in its module,
+for the array's value: 60-100 ms of CPU at every node's start though most nodes never make one. In
+those modules numpy is imported at its first use instead (the module's `numpy` is a stand-in that
+imports it and puts it in its place).
+
 Usage: python scripts/lazy_interface_packages.py FOLDER... (make setup: the venv's site-packages
 and the workspace's install tree). An `__init__.py` that is not rosidl's list of imports (already
 lazy, or edited) is left as it is. Each rewritten one is compiled, as the wheels' modules are.
@@ -22,6 +28,15 @@ KINDS = ('msg', 'srv', 'action')
 GENERATED_LINE = re.compile(
     r'^from (?P<package>[\w.]+)\.(?P<module>_\w+) import (?P<name>\w+)  # noqa: F401$')
 MARKER = '# Each type loads on its first use'
+NUMPY_IMPORT = 'import numpy  # noqa: E402, I100\n'
+NUMPY_AT_FIRST_USE = (
+    '# numpy at its first use (scripts/lazy_interface_packages.py, make setup): a stand-in until then.\n'
+    'class _NumpyAtFirstUse:\n'
+    '    def __getattr__(self, name):\n'
+    '        import numpy as module\n'
+    "        globals()['numpy'] = module\n"
+    '        return getattr(module, name)\n\n\n'
+    'numpy = _NumpyAtFirstUse()\n')
 
 
 def type_modules(init_text: str, package: str) -> dict[str, str] | None:
@@ -63,6 +78,16 @@ def make_lazy(init: Path) -> bool:
     return True
 
 
+def numpy_at_first_use(module: Path) -> bool:
+    """Make one generated type module import numpy at its first use (and compile it); whether it did."""
+    text = module.read_text()
+    if text.count(NUMPY_IMPORT) != 1:
+        return False
+    module.write_text(text.replace(NUMPY_IMPORT, NUMPY_AT_FIRST_USE))
+    py_compile.compile(str(module), doraise=True)
+    return True
+
+
 def interface_inits(folder: Path) -> list[Path]:
     """The `<package>/<msg|srv|action>/__init__.py` files under a site-packages-like folder."""
     return sorted(init for kind in KINDS for init in folder.glob(f'*/{kind}/__init__.py'))
@@ -77,7 +102,9 @@ def main(argv: list[str]) -> int:
         return 2
     for folder in argv:
         for init in interface_inits(Path(folder)):
-            make_lazy(init)
+            if make_lazy(init) or init.read_text().startswith(MARKER):
+                for module in sorted(init.parent.glob('_*.py')):
+                    numpy_at_first_use(module)
     return 0
 
 
