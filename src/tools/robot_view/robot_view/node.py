@@ -366,7 +366,7 @@ class RobotViewNode(Node):
         for goals in self._goals.values():  # a servo that publishes no joint still shows its goals
             goals.poll()
         with self._lock:
-            batches = [(watcher, cursor.batch(self._plots))
+            batches = [(watcher, cursor.batch(self._plots, last_sent=not watcher.pending()))
                        for watcher, cursor in self._plot_watchers.items()]
         for watcher, batch in batches:
             if batch is not None:

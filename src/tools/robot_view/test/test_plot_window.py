@@ -113,3 +113,22 @@ def test_a_page_gets_the_window_first_then_what_is_new_with_an_overlap():
     # from OVERLAP before the last batch's newest bucket: a replaced update loses nothing
     assert second['t'] == pytest.approx([2.4, 2.5, 2.6, 2.7, 2.8, 2.9, 3.0])
     assert second['position'][-1] == 30.0
+
+
+def test_a_batch_made_while_the_last_waits_to_be_sent_begins_where_that_one_began():
+    """owl_web replaces a waiting update: however many are replaced, the page's plot has no gap."""
+    plot = window(bucket=0.1, window=2.0)
+    cursor = PushCursor()
+    plot.add(0.0, {'position': 0.0})
+    cursor.batch(plot)  # sent
+    plot.add(1.0, {'position': 10.0})
+    waiting = cursor.batch(plot)
+    assert waiting['t'] == [0.0, 1.0]  # from OVERLAP before the sent one's newest bucket (0.0)
+    for sample in range(11, 20):  # each batch takes the place of the one before, never sent
+        plot.add(sample * 0.1, {'position': float(sample)})
+        replacing = cursor.batch(plot, last_sent=False)
+        assert replacing['t'][0] == waiting['t'][0]
+        assert replacing['t'][-1] == pytest.approx(sample * 0.1)
+    plot.add(2.0, {'position': 20.0})
+    after_sent = cursor.batch(plot)  # the last one went: back to the overlap
+    assert after_sent['t'][0] == pytest.approx(1.9 - OVERLAP)

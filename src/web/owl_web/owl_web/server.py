@@ -178,6 +178,14 @@ class Subscription:
         if self.active:
             self.connection.error(self.id, message)
 
+    def pending(self) -> bool:
+        """Whether an update of this subscription still waits to be sent (the next one takes its place).
+
+        A channel whose updates each carry only what is new (the robot view's plots) makes the next
+        one cover what the waiting one did.
+        """
+        return self.connection.has_pending(self)
+
 
 class Connection:
     """One page's WebSocket: its subscriptions and what waits to be sent to it."""
@@ -202,6 +210,11 @@ class Connection:
             wake = self._wake_sender()
         if wake:
             self._notify()
+
+    def has_pending(self, subscription: Subscription) -> bool:
+        """Whether an update of the subscription is queued and not sent yet."""
+        with self._lock:
+            return subscription.id in self._updates
 
     def error(self, subscription_id: int | str | None, message: str) -> None:
         """Queue an error line after the others (beyond MAX_PENDING_ERRORS the oldest go)."""

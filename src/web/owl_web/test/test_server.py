@@ -464,6 +464,28 @@ def test_a_burst_of_updates_wakes_the_sender_once_and_the_next_burst_once_more()
     assert sent[1] == 'state 99'
 
 
+def test_a_subscription_says_whether_an_update_still_waits_to_be_sent():
+    async def offer_then_send():
+        connection = Connection(None, asyncio.get_running_loop())
+        connection.loop = CountingLoop()
+        plots, kit = Subscription(connection, 1, 'plots', {}), Subscription(connection, 2, 'kit', {})
+        connection.subscriptions.update({1: plots, 2: kit})
+        before = plots.pending()
+        connection.offer(plots, 'batch 1')
+        waiting = (plots.pending(), kit.pending())
+
+        class Page:
+            async def send_str(self, message):
+                raise ConnectionError  # the batch was taken off the queue to be sent
+
+        connection.websocket = Page()
+        connection._wake.set()
+        await connection.send_pending()
+        return before, waiting, plots.pending()
+
+    assert run(offer_then_send()) == (False, (True, False), False)
+
+
 # Run in a process of its own: this one has imported aiohttp already.
 LAZY_START = """
 import sys, time, urllib.request
