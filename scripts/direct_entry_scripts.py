@@ -63,35 +63,31 @@ def entry_point(entry_points_txt: str, group: str, name: str) -> tuple[str, str]
 
 def direct_script(shebang: str, dist: str, name: str, module: str, attr: str) -> str:
     """The text of a script that calls module's attr (which may be dotted), as pip's scripts do."""
-    first, _, rest = attr.partition('.')
-    call = f'{first}.{rest}' if rest else first
+    first = attr.split('.')[0]
     return (f'{shebang}\n'
             f'# {name} of {dist} ({module}:{attr}), imported directly: written by make setup\n'
             '# (scripts/direct_entry_scripts.py) over setuptools\' script, which took 20 ms to find it.\n'
             'import sys\n\n'
             f'from {module} import {first}\n\n'
             "if __name__ == '__main__':\n"
-            f'    sys.exit({call}())\n')
+            f'    sys.exit({attr}())\n')
 
 
-def rewrite(script: Path, entry_points: dict[str, Path]) -> bool:
-    """Rewrite one setuptools develop script in place; whether it was one (and is now direct)."""
+def rewrite(script: Path, entry_points: dict[str, Path]) -> None:
+    """Rewrite one setuptools develop script in place (any other script is left as it is)."""
     try:
         text = script.read_text()
     except (UnicodeDecodeError, OSError):
-        return False  # a binary, or a link to nothing
-    if MARKER not in text:
-        return False
-    found = LOAD.search(text)
+        return  # a binary, or a link to nothing
+    found = LOAD.search(text) if MARKER in text else None
     if found is None:
-        return False
+        return
     dist, group, name = found.groups()
     source = entry_points.get(normalised(dist))
     if source is None:
         raise LookupError(f'{script}: no entry_points.txt of {dist} in the workspace')
     module, attr = entry_point(source.read_text(), group, name)
     script.write_text(direct_script(text.split('\n', 1)[0], dist, name, module, attr))
-    return True
 
 
 def main(argv: list[str]) -> int:

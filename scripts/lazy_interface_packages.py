@@ -78,14 +78,12 @@ def make_lazy(init: Path) -> bool:
     return True
 
 
-def numpy_at_first_use(module: Path) -> bool:
-    """Make one generated type module import numpy at its first use (and compile it); whether it did."""
+def numpy_at_first_use(module: Path) -> None:
+    """Make one generated type module import numpy at its first use (and compile it), if it imports it."""
     text = module.read_text()
-    if text.count(NUMPY_IMPORT) != 1:
-        return False
-    module.write_text(text.replace(NUMPY_IMPORT, NUMPY_AT_FIRST_USE))
-    py_compile.compile(str(module), doraise=True)
-    return True
+    if text.count(NUMPY_IMPORT) == 1:
+        module.write_text(text.replace(NUMPY_IMPORT, NUMPY_AT_FIRST_USE))
+        py_compile.compile(str(module), doraise=True)
 
 
 def interface_inits(folder: Path) -> list[Path]:

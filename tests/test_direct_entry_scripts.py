@@ -1,19 +1,14 @@
 """scripts/direct_entry_scripts.py: the workspace's console scripts import their entry points directly."""
 
-import importlib.util
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
+import setup_scripts
 
 ROOT = Path(__file__).resolve().parents[1]
-SCRIPT = ROOT / 'scripts' / 'direct_entry_scripts.py'
-_spec = importlib.util.spec_from_file_location('direct_entry_scripts', SCRIPT)
-assert _spec is not None
-assert _spec.loader is not None
-direct = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(direct)
+direct = setup_scripts.load('direct_entry_scripts')
 
 # A plain Python process each (no ROS): no slot needed.
 pytestmark = pytest.mark.no_processes

@@ -6,14 +6,9 @@ import sys
 from pathlib import Path
 
 import pytest
+import setup_scripts
 
-ROOT = Path(__file__).resolve().parents[1]
-SCRIPT = ROOT / 'scripts' / 'lazy_interface_packages.py'
-_spec = importlib.util.spec_from_file_location('lazy_interface_packages', SCRIPT)
-assert _spec is not None
-assert _spec.loader is not None
-lazy = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(lazy)
+lazy = setup_scripts.load('lazy_interface_packages')
 
 # Plain Python processes (no ROS graph): no slot needed.
 pytestmark = pytest.mark.no_processes

@@ -1,19 +1,16 @@
 """scripts/prebuilt_packages.py: a package built once per machine is copied into any workspace, relocated."""
 
-import importlib.util
 import os
 import subprocess
 import sys
 import time
 from pathlib import Path
 
+import setup_scripts
+
 ROOT = Path(__file__).resolve().parents[1]
-SCRIPT = ROOT / 'scripts' / 'prebuilt_packages.py'
-_spec = importlib.util.spec_from_file_location('prebuilt_packages', SCRIPT)
-assert _spec is not None
-assert _spec.loader is not None
-prebuilt = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(prebuilt)
+SCRIPT = setup_scripts.SCRIPTS / 'prebuilt_packages.py'
+prebuilt = setup_scripts.load('prebuilt_packages')
 
 RECIPE = 'colcon build -DBUILD_TESTING=OFF'
 TOOLS = 'cc 12\ncmake 3.25\nPython 3.11'

@@ -1,19 +1,15 @@
 """scripts/repair_cmake_paths.py: the wheels' CMake exports name this venv, and uv's cache is left alone."""
 
-import importlib.util
 import os
 import subprocess
 import sys
 import sysconfig
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-SCRIPT = ROOT / 'scripts' / 'repair_cmake_paths.py'
-_spec = importlib.util.spec_from_file_location('repair_cmake_paths', SCRIPT)
-assert _spec is not None
-assert _spec.loader is not None
-repair = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(repair)
+import setup_scripts
+
+SCRIPT = setup_scripts.SCRIPTS / 'repair_cmake_paths.py'
+repair = setup_scripts.load('repair_cmake_paths')
 
 OURS_INCLUDE = '/home/student/.pyenv/versions/3.11.7/include/python3.11'
 OURS_SITE = '/home/student/owl-kit-lab/.venv/lib/python3.11/site-packages'
