@@ -506,6 +506,38 @@ def test_readouts_are_rewritten_only_when_their_text_changes(ros, kit_and_view, 
     assert page.evaluate(READOUTS_REWRITTEN) == 0
 
 
+# Over 200 kit states (2 s): the 3D view's renders, and whether a servo moved meanwhile.
+RENDERS_AT_REST = """() => new Promise((done) => {
+  const view = window.robotView;
+  const renders = view.renders;
+  const pan = view.pan;
+  const tilt = view.tilt;
+  let states = 0;
+  let imu = view.imu;
+  Object.defineProperty(view, 'imu', {
+    configurable: true,
+    get: () => imu,
+    set: (value) => {
+      imu = value;
+      states += 1;
+      if (states === 200) {
+        done({ renders: view.renders - renders, servosMoved: view.pan !== pan || view.tilt !== tilt });
+      }
+    },
+  });
+})"""
+
+
+def test_a_kit_at_rest_is_not_drawn_again_for_its_imus_jitter(ros, kit_and_view, page):
+    # Each render holds the page's main thread 6-7 ms in software WebGL; the IMU's jitter redrew a kit
+    # at rest 18 times a second (static/view_changes.js), and the kit's next state waited behind it.
+    open_page(kit_and_view, page)
+    page.wait_for_function('() => window.robotView.renders > 0', timeout=10_000)
+    at_rest = page.evaluate(RENDERS_AT_REST)
+    assert not at_rest['servosMoved'], at_rest
+    assert at_rest['renders'] <= 2, at_rest
+
+
 def test_record_makes_a_bag_of_the_plotted_topics_and_draws_it_under_the_live_plots(ros, kit_and_view, page):
     open_page(kit_and_view, page)
     row = servo_row('pan')

@@ -1,5 +1,5 @@
 // The page's plot data functions (static/plot_data.js), run by node's own test runner through
-// test_plot_data_js.py.
+// test_page_functions_js.py.
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
 import {

@@ -11,6 +11,7 @@ import { OwlSocket } from '../owl/socket.js';
 import { startControls } from './controls.js';
 import { startPlots } from './plots.js';
 import { startScene } from './scene.js';
+import { visiblyChanged } from './view_changes.js';
 
 const DRAG_RADIANS_PER_PIXEL = 0.01;
 const FPS_WINDOW = 2000;  // ms: the shown frame rate is the frames received in the last 2 s, / 2 s
@@ -29,8 +30,9 @@ const socket = new OwlSocket((connected, detail) => {
 // What the tests read (page.evaluate) and the page shows.
 // lastFrame: robot_view's count of the camera frames it took from DDS, sent with each frame: where
 // it grows faster than frames, frames were dropped between robot_view and this page.
+// renders: how many times the 3D view was drawn.
 const view = { pan: null, tilt: null, imu: null, kit: null, frames: 0, lastFrame: 0, fps: 0, commandsSent: 0,
-               errors: [] };
+               errors: [], renders: 0 };
 window.robotView = view;
 
 // ---- scene --------------------------------------------------------------------------------------
@@ -127,6 +129,7 @@ function render() {
   renderQueued = true;
   requestAnimationFrame(() => {
     renderQueued = false;
+    view.renders += 1;
     renderer.render(scene, camera);
   });
 }
@@ -145,20 +148,9 @@ function eulerOf(q) {
   return [roll, pitch, yaw];
 }
 
-// A render costs a whole WebGL frame (in software where there is no GPU, as in a headless
-// browser), and the IMU's jitter (0.002 rad) changes the orientation with every message: only a
-// change a student could see, measured from what the last render drew, is rendered (less CPU for a
-// page left open; the camera's frame rate under load measured the same either way).
-const VISIBLE = 0.005;  // rad: half a pixel at the model's edge
+// Only a change a student could see, measured from what the last render drew, is rendered
+// (view_changes.js says why).
 let drawn = { pan: null, tilt: null, imu: null };
-
-function visiblyChanged(state) {
-  const moved = (now, before) => (now === null) !== (before === null)
-    || (now !== null && Math.abs(now - before) > VISIBLE);
-  if (moved(state.pan, drawn.pan) || moved(state.tilt, drawn.tilt)) return true;
-  if ((state.imu === null) !== (drawn.imu === null)) return true;
-  return state.imu !== null && state.imu.some((value, i) => Math.abs(value - drawn.imu[i]) > VISIBLE / 2);
-}
 
 let updateScene = () => false;  // set once the scene's objects exist (below)
 // ---- what runs of the kit, and what steers it (the server looks at the ROS graph every second) ----
@@ -262,7 +254,7 @@ socket.subscribe('kit', {}, (state) => {
   showReadout('roll', degrees(roll));
   showReadout('pitch', degrees(pitch));
   showReadout('yaw', degrees(yaw));
-  if (visiblyChanged(state) || sceneChanged) {
+  if (visiblyChanged(state, drawn) || sceneChanged) {
     drawn = { pan: state.pan, tilt: state.tilt, imu: state.imu };
     render();
   }
