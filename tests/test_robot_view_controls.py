@@ -533,7 +533,10 @@ def test_a_kit_at_rest_is_not_drawn_again_for_its_imus_jitter(ros, kit_and_view,
     # at rest 18 times a second (static/view_changes.js), and the kit's next state waited behind it.
     open_page(kit_and_view, page)
     page.wait_for_function('() => window.robotView.renders > 0', timeout=10_000)
-    at_rest = page.evaluate(RENDERS_AT_REST)
+    for _window in range(5):  # a servo still coasting from the test before redraws rightly: look again
+        at_rest = page.evaluate(RENDERS_AT_REST)
+        if not at_rest['servosMoved']:
+            break
     assert not at_rest['servosMoved'], at_rest
     assert at_rest['renders'] <= 2, at_rest
 
