@@ -471,10 +471,32 @@ def test_gains_set_elsewhere_show_on_the_page(ros, kit_and_view, page):
     assert page.input_value(f'{servo_row("pan")} input.kp') == '7.5'
 
 
-# Over the next 50 kit states: how often a readout's text was set to the text it already had.
-READOUTS_REWRITTEN = """() => new Promise((done) => {
-  let unchanged = 0;
+def over_kit_states(count: int, start: str, finish: str) -> str:
+    """A page.evaluate function: start, count more kit states, then what finish returns.
+
+    start: JS statements (`view` is window.robotView); a kit state is each setting of view.imu; finish: a
+    JS function body whose return value the promise resolves with.
+    """
+    return f"""() => new Promise((done) => {{
+  const view = window.robotView;
+  {start}
   let states = 0;
+  let imu = view.imu;
+  Object.defineProperty(view, 'imu', {{
+    configurable: true,
+    get: () => imu,
+    set: (value) => {{
+      imu = value;
+      states += 1;
+      if (states === {count}) setTimeout(() => done((() => {{ {finish} }})()));
+    }},
+  }});
+}})"""
+
+
+# Over the next 50 kit states: how often a readout's text was set to the text it already had.
+READOUTS_REWRITTEN = over_kit_states(50, """
+  let unchanged = 0;
   const observer = new MutationObserver((mutations) => {
     for (const mutation of mutations) {
       const [before] = mutation.removedNodes;
@@ -484,19 +506,7 @@ READOUTS_REWRITTEN = """() => new Promise((done) => {
   });
   for (const id of ['pan', 'tilt', 'roll', 'pitch', 'yaw']) {
     observer.observe(document.getElementById(id), { childList: true, characterData: true, subtree: true });
-  }
-  const view = window.robotView;
-  let imu = view.imu;
-  Object.defineProperty(view, 'imu', {
-    configurable: true,
-    get: () => imu,
-    set: (value) => {
-      imu = value;
-      states += 1;
-      if (states === 50) setTimeout(() => { observer.disconnect(); done(unchanged); });
-    },
-  });
-})"""
+  }""", 'observer.disconnect(); return unchanged;')
 
 
 def test_readouts_are_rewritten_only_when_their_text_changes(ros, kit_and_view, page):
@@ -507,25 +517,11 @@ def test_readouts_are_rewritten_only_when_their_text_changes(ros, kit_and_view, 
 
 
 # Over 200 kit states (2 s): the 3D view's renders, and whether a servo moved meanwhile.
-RENDERS_AT_REST = """() => new Promise((done) => {
-  const view = window.robotView;
+RENDERS_AT_REST = over_kit_states(200, """
   const renders = view.renders;
   const pan = view.pan;
-  const tilt = view.tilt;
-  let states = 0;
-  let imu = view.imu;
-  Object.defineProperty(view, 'imu', {
-    configurable: true,
-    get: () => imu,
-    set: (value) => {
-      imu = value;
-      states += 1;
-      if (states === 200) {
-        done({ renders: view.renders - renders, servosMoved: view.pan !== pan || view.tilt !== tilt });
-      }
-    },
-  });
-})"""
+  const tilt = view.tilt;""",
+    'return { renders: view.renders - renders, servosMoved: view.pan !== pan || view.tilt !== tilt };')
 
 
 def test_a_kit_at_rest_is_not_drawn_again_for_its_imus_jitter(ros, kit_and_view, page):
