@@ -134,12 +134,17 @@ def test_spawn_naming_kill_clear_reset(ros, tmp_path):
     wait_until(lambda: '/turtle1/pose' not in dict(ros.probe.node.get_topic_names_and_types()),
                10, 'turtle1 topics gone')
 
-    # A trail with the default pen, one with width 0 (1 px), one with the pen off.
-    teleport(ros, 'turtle2', 5.0, 1.0)
-    set_pen(ros, 'turtle2', r=255, width=0)
-    teleport(ros, 'turtle2', 5.0, 5.0)
-    set_pen(ros, 'turtle2', off=1)
-    teleport(ros, 'turtle2', 9.0, 5.0)
+    # A trail with the default pen, one with width 0 (1 px), one with the pen off. A teleport is done
+    # (and its trail drawn) at turtlesim's next tick, as upstream: the next pen waits for its pose.
+    poses: list[Pose] = []
+    subscription = ros.probe.node.create_subscription(Pose, '/turtle2/pose', poses.append, TURTLE_QOS)
+    for x, y, pen in ((5.0, 1.0, {'r': 255, 'width': 0}), (5.0, 5.0, {'off': 1}), (9.0, 5.0, None)):
+        teleport(ros, 'turtle2', x, y)
+        settled(poses, lambda p, x=x, y=y: (p.x, p.y) == (pytest.approx(x), pytest.approx(y)),
+                f'turtle2 teleported to ({x}, {y})')
+        if pen:
+            set_pen(ros, 'turtle2', **pen)
+    ros.probe.node.destroy_subscription(subscription)  # turtle2's topics are to leave the graph below
     wait_until(lambda: 'Traceback' not in sim.output, 1, 'no crash')
     image = snapshot(ros, png)
     assert image.getpixel(pixel(3.0, 1.0)) == PEN
