@@ -54,7 +54,7 @@ class IdleWatch:
 
 
 class IdleSampler:
-    """An IdleWatch asked every PERIOD s by a thread of its own, from its first share() on.
+    """An IdleWatch asked every PERIOD s by a thread of its own, from the sampler's making on.
 
     A test waiting for a spare slot then knows the last WINDOW's idle share at once, instead of
     watching the machine for a WINDOW first: those watches, one test at a time, had let at most one
@@ -66,15 +66,10 @@ class IdleSampler:
     def __init__(self, watch: IdleWatch | None = None) -> None:
         self._watch = watch or IdleWatch()
         self._share: float | None = None
-        self._started = False
-        self._lock = threading.Lock()
+        threading.Thread(target=self._sample, name='idle sampler', daemon=True).start()
 
     def share(self) -> float | None:
-        """The idle share over the last WINDOW; None for the first WINDOW after the first call."""
-        with self._lock:
-            if not self._started:
-                self._started = True
-                threading.Thread(target=self._sample, name='idle sampler', daemon=True).start()
+        """The idle share over the last WINDOW; None for the first WINDOW of the sampler's life."""
         return self._share
 
     def _sample(self) -> None:
