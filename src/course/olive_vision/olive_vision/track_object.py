@@ -15,10 +15,12 @@ from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor
 from rclpy.exceptions import InvalidTopicNameException, ParameterException
 from rclpy.node import Node
 from rclpy.qos import QoSDurabilityPolicy, QoSProfile, QoSReliabilityPolicy
+from rclpy.time import Time
 from rclpy.timer import Timer
 from sensor_msgs.msg import CompressedImage, JointState
 from std_msgs.msg import Float32
 
+from olive_vision.joint_history import JointHistory
 from olive_vision.red_ball import angle_offsets, find_red_ball, tracking_goals
 
 DEFAULT_IMAGE_TOPIC = '/olive/camera/eye/image/compressed'  # the course's camera, also olive_sim's
@@ -57,7 +59,8 @@ class TrackObject(Node):
         self.bounds = BoundParameters(self, SERVOS)  # pan_min .. tilt_max, each pair checked
         self.image_topic = self.get_parameter('image_topic').value
         self.torque = ServoTorque(self, SERVOS)
-        self.positions: dict[str, float] = {}  # where each servo is, from its joint state
+        # where each servo was lately, from its joint states: a picture steers from where the head was
+        self.positions = {servo: JointHistory() for servo in SERVOS}
         self.publishers_ = {servo: self.create_publisher(Float32, f'/olive/servo/{servo}/goal/position', 10)
                             for servo in SERVOS}
         for servo in SERVOS:
@@ -94,7 +97,7 @@ class TrackObject(Node):
     def joint_callback_of(self, servo: str) -> Callable[[JointState], None]:
         def joint_callback(msg: JointState) -> None:
             if msg.position and math.isfinite(msg.position[0]):
-                self.positions[servo] = msg.position[0]
+                self.positions[servo].add(Time.from_msg(msg.header.stamp).nanoseconds, msg.position[0])
         return joint_callback
 
     def image_callback(self, msg: CompressedImage) -> None:
@@ -112,7 +115,9 @@ class TrackObject(Node):
                 self.get_logger().warning('lost the red ball: the head holds still')
             return
         self.last_seen = time.monotonic()
-        if 'pan' not in self.positions or 'tilt' not in self.positions:
+        taken = Time.from_msg(msg.header.stamp).nanoseconds
+        pan_then, tilt_then = self.positions['pan'].at(taken), self.positions['tilt'].at(taken)
+        if pan_then is None or tilt_then is None:
             self.get_logger().info('waiting for the joint states of the pan and tilt servos',
                                    throttle_duration_sec=WAITING_EVERY)
             return
@@ -124,8 +129,7 @@ class TrackObject(Node):
         right, down = angle_offsets(x, y, width, height,
                                     math.radians(self.get_parameter('horizontal_fov').value))
         gain_pan, gain_tilt = self.get_parameter('gain_pan').value, self.get_parameter('gain_tilt').value
-        pan, tilt = tracking_goals(self.positions['pan'], self.positions['tilt'], right, down,
-                                   gain_pan, gain_tilt)
+        pan, tilt = tracking_goals(pan_then, tilt_then, right, down, gain_pan, gain_tilt)
         self.publish_goals(pan, tilt)
         self.get_logger().info(
             f'ball {100 * (x - (width - 1) / 2) / width:+.1f} % of the width right, '
