@@ -42,7 +42,7 @@ from sensor_msgs.msg import Imu, JointState
 
 TESTS = Path(__file__).resolve().parents[1] / 'tests'
 sys.path.insert(0, str(TESTS))  # the browser tests' Chromium set-up: one piece of code for it
-from web_harness import Browser, chromium_missing, free_port  # noqa: E402
+from web_harness import ON_KIT_STATE, Browser, chromium_missing, free_port  # noqa: E402
 
 TRUE_ORIENTATION = f"/{node_name('imu', IMU_NAMESPACE)}/true_orientation"
 PAN_JOINT = joint_topic('pan')
@@ -137,16 +137,10 @@ ROUND_TRIP = f"""() => {{
   const before = yaw(view.imu);
   const trip = {{ moved: null, arrived: null, shown: null }};
   window.roundTrip = trip;
-  let imu = view.imu;
-  Object.defineProperty(view, 'imu', {{
-    configurable: true,
-    get: () => imu,
-    set: (value) => {{
-      imu = value;
-      if (trip.moved !== null && trip.arrived === null && value && Math.abs(yaw(value) - before) > {SHOWN}) {{
-        trip.arrived = performance.now();
-      }}
-    }},
+  ({ON_KIT_STATE})(view, (value) => {{
+    if (trip.moved !== null && trip.arrived === null && value && Math.abs(yaw(value) - before) > {SHOWN}) {{
+      trip.arrived = performance.now();
+    }}
   }});
   const once = {{ capture: true, once: true }};
   addEventListener('pointermove', (event) => {{ trip.moved = event.timeStamp; }}, once);

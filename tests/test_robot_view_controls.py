@@ -31,7 +31,7 @@ from sensor_msgs.msg import Imu, JointState
 from std_msgs.msg import Float32
 from std_srvs.srv import Trigger
 from test_robot_view import TRUE_ORIENTATION, drag, start_kit_and_view
-from web_harness import PageSocket, SocketClosed
+from web_harness import ON_KIT_STATE, PageSocket, SocketClosed
 
 PAN_NODE = '/olive_servo_pan_dcm_srv'
 TILT_NODE = '/olive_servo_tilt_dcm_srv'
@@ -481,15 +481,9 @@ def over_kit_states(count: int, start: str, finish: str) -> str:
   const view = window.robotView;
   {start}
   let states = 0;
-  let imu = view.imu;
-  Object.defineProperty(view, 'imu', {{
-    configurable: true,
-    get: () => imu,
-    set: (value) => {{
-      imu = value;
-      states += 1;
-      if (states === {count}) setTimeout(() => done((() => {{ {finish} }})()));
-    }},
+  ({ON_KIT_STATE})(view, () => {{
+    states += 1;
+    if (states === {count}) setTimeout(() => done((() => {{ {finish} }})()));
   }});
 }})"""
 

@@ -274,6 +274,18 @@ def check_module_pages(page: BrowserPage, base: str) -> None:
     assert page.text_content('#roll').endswith('°')
 
 
+# A JS function for page.evaluate's scripts: on_kit_state(view, seen) calls seen(imu) at every kit
+# state the robot view's page takes (each one sets window.robotView.imu), the value kept as before.
+ON_KIT_STATE = """(view, seen) => {
+  let imu = view.imu;
+  Object.defineProperty(view, 'imu', {
+    configurable: true,
+    get: () => imu,
+    set: (value) => { imu = value; seen(value); },
+  });
+}"""
+
+
 def free_port() -> int:
     with socket.socket() as probe:
         probe.bind(('127.0.0.1', 0))
