@@ -1,11 +1,12 @@
 """The node-free parts of a module's page: process samples, traffic counters, log book, restart handover."""
 
 import json
+import time
 
 import pytest
 from olive_sim import restart
 from olive_sim.module_log import LogBook, RecordingLogger
-from olive_sim.process_stats import ProcessSampler, TrafficMeter, resident_bytes
+from olive_sim.process_stats import ProcessSampler, TrafficMeter, process_cpu_seconds, resident_bytes
 
 
 def test_samples_are_rates_since_the_previous_one():
@@ -29,6 +30,15 @@ def test_samples_are_rates_since_the_previous_one():
 
 def test_this_process_has_resident_memory():
     assert resident_bytes() > 1_000_000
+
+
+def test_a_millisecond_of_work_shows_in_the_cpu_time():
+    # A module using under 1 % of a core must not chart 0 %: 10 ms clock ticks showed 0 or 10 ms here.
+    before = process_cpu_seconds()
+    end = time.perf_counter() + 0.001
+    while time.perf_counter() < end:
+        pass
+    assert 0 < process_cpu_seconds() - before < 0.009
 
 
 class FakeLogger:
