@@ -66,9 +66,10 @@ def lay_out(root: Path, system_tests: str) -> None:
     (root / 'src' / 'pkg' / 'test' / 'test_unit.py').write_text(UNIT_TEST)
 
 
-def start_session(root: Path, slots: Path, *args: str, spare_idle: float | None = None) -> subprocess.Popen:
+def start_session(root: Path, slots: Path, *args: str, spare_idle: float | None = None,
+                  spares: int = 1) -> subprocess.Popen:
     """A pytest session of root's tests in slots; with no spare slot unless spare_idle is given."""
-    spare = {'OWL_TEST_SPARE_SLOTS': '0'} if spare_idle is None else {'OWL_TEST_SPARE_SLOTS': '1',
+    spare = {'OWL_TEST_SPARE_SLOTS': '0'} if spare_idle is None else {'OWL_TEST_SPARE_SLOTS': str(spares),
                                                                       'OWL_TEST_SPARE_IDLE': str(spare_idle)}
     return subprocess.Popen(
         [sys.executable, '-m', 'pytest', '-c', str(REPOSITORY / 'pyproject.toml'), '--rootdir', str(root),
@@ -205,19 +206,24 @@ def test_suites_side_by_side_run_no_more_system_tests_at_once_than_the_machine_h
     assert most_at_once(runs) <= SLOTS, runs  # without slots, up to twice as many
 
 
-def test_a_spare_slot_lets_one_more_test_run_while_the_machine_idles(tmp_path):
-    """With any idle share enough (0), the spare slot is taken: SLOTS + 1 tests at once, no more.
+def test_spare_slots_let_more_tests_run_while_the_machine_idles_lent_half_a_second_apart(tmp_path):
+    """With any idle share enough (0), both spare slots are taken: SLOTS + 2 tests at once, no more.
 
-    The tests outlast spare_cpu.WINDOW, which a test waits before it takes the spare slot.
+    The tests outlast spare_cpu.WINDOW, which a worker watches the machine before its first spare
+    slot. The second spare comes SPARE_SPACING (0.5 s) after the first, not a WINDOW of its own later.
     """
-    workers = SLOTS + 2
+    workers = SLOTS + 3
     tests = ''.join(f'\ndef test_{n}():\n    run_for_a_while()\n' for n in range(workers))
     lay_out(tmp_path, timed_module(workers, tests, run_for=spare_cpu.WINDOW + 2))
-    session = start_session(tmp_path, tmp_path / 'slots', '-n', str(workers), 'tests', spare_idle=0.0)
+    session = start_session(tmp_path, tmp_path / 'slots', '-n', str(workers), 'tests', spare_idle=0.0,
+                            spares=2)
     stdout, _ = session.communicate(timeout=120)
     assert session.returncode == 0, stdout
     runs = [json.loads(line) for line in (tmp_path / 'ran.jsonl').read_text().splitlines()]
-    assert most_at_once(runs) == SLOTS + 1, runs
+    assert most_at_once(runs) == SLOTS + 2, runs
+    first_spare, second_spare = sorted(start for start, _ in runs)[SLOTS:SLOTS + 2]
+    # when each test began, a little after it took its slot: 0.1 s of slack
+    assert 0.4 <= second_spare - first_spare < spare_cpu.WINDOW, runs
 
 
 def test_a_test_that_starts_no_process_runs_while_every_slot_is_taken(tmp_path):
